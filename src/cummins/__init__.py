@@ -1,0 +1,73 @@
+"""cummins: from frequency-domain hydrodynamics to time-domain vessel models.
+
+Read the output of WAMIT, NEMOH, AQWA, ShipX/VERES, Capytaine or MSS into one
+canonical dataset, check it, and (as the project grows) turn it into retardation
+functions, state-space radiation models and simulations.
+
+>>> import cummins
+>>> ds = cummins.read(cummins.demo_files() / "tanker.1")
+>>> report = cummins.check(ds)
+"""
+
+from __future__ import annotations
+
+from importlib import resources
+from pathlib import Path
+
+import xarray as xr
+
+from cummins._version import __version__
+from cummins.check import CheckReport, Finding, check
+from cummins.errors import (
+    CumminsError,
+    FitError,
+    HydroDataError,
+    OutputExistsError,
+    SimulationError,
+)
+from cummins.hydrodb import (
+    DOF_NAMES,
+    change_axes,
+    dof_labels,
+    make_hydrodb,
+    move_reference_point,
+    select_dofs,
+    validate,
+)
+from cummins.io import FORMATS, detect_format, read, write
+
+
+def demo_files() -> Path:
+    """Folder of the bundled demo vessel (MSS tanker, WAMIT output, MIT licence)."""
+    return Path(str(resources.files("cummins") / "data" / "tanker"))
+
+
+def demo_dataset() -> xr.Dataset:
+    """The bundled tanker as a ``HydroDB`` (WAMIT ``.1/.3/.hst/.frc/.out``)."""
+    return read(demo_files() / "tanker.1")
+
+
+__all__ = [
+    "DOF_NAMES",
+    "FORMATS",
+    "CheckReport",
+    "CumminsError",
+    "Finding",
+    "FitError",
+    "HydroDataError",
+    "OutputExistsError",
+    "SimulationError",
+    "__version__",
+    "change_axes",
+    "check",
+    "demo_dataset",
+    "demo_files",
+    "detect_format",
+    "dof_labels",
+    "make_hydrodb",
+    "move_reference_point",
+    "read",
+    "select_dofs",
+    "validate",
+    "write",
+]

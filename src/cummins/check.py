@@ -1,0 +1,629 @@
+"""Diagnostics of a hydrodynamic database: is it physically usable, and where not?
+
+:func:`check` runs every test below and returns a :class:`CheckReport`; nothing is
+changed in the data. Each finding says what was measured, where, and what to do.
+
+* ``frequency_grid`` — range and spacing of the finite frequencies; whether ω = 0 and
+  ω = ∞ limits are present.
+* ``symmetry`` — A(ω) and B(ω) symmetric (zero speed): worst relative asymmetry per DOF
+  pair, |X_ij − X_ji| / √(max|X_ii| · max|X_jj|).
+* ``damping_positive`` — B(ω) positive semidefinite at each frequency: eigenvalues of
+  the symmetric part of the diagonally scaled matrix D^{-1/2} B D^{-1/2}
+  (D = peak |B_ii|), not determinants; negative diagonal entries are named.
+* ``added_mass_inf`` — A∞ symmetric positive definite (eigenvalues, scaled likewise).
+* ``damping_decay`` — |B_ii(ω_max)| / max_ω |B_ii|: the retardation function needs
+  B to have decayed at the end of the data.
+* ``inertia``, ``hydrostatics`` — M_RB symmetric positive definite; C33, C44, C55 > 0.
+* ``copied_dof`` — a DOF that is an exact scaled copy of another (strip-theory codes
+  approximate surge by scaling sway).
+* ``finite`` — NaN/Inf anywhere (validation of the dataset already refuses them).
+"""
+
+from __future__ import annotations
+
+import json
+from collections.abc import Iterator
+from dataclasses import asdict, dataclass, field
+
+import numpy as np
+import xarray as xr
+
+from cummins.hydrodb import validate
+from cummins.kinematics import center_of_gravity_from_inertia
+
+SEVERITIES = ("ok", "info", "warning", "error")
+
+#: Relative tolerances of the checks.
+SYMMETRY_TOL = 0.02
+NEGATIVE_DAMPING_TOL = 1e-3
+DECAY_TOL = 0.05
+
+
+@dataclass(frozen=True)
+class Finding:
+    """One result of a check.
+
+    Attributes
+    ----------
+    check
+        Name of the check (``"symmetry"``, ``"damping_positive"`` …).
+    severity
+        ``"ok"``, ``"info"``, ``"warning"`` or ``"error"``.
+    message
+        What was found, in plain language.
+    where
+        The DOF pair, DOF or frequency concerned, if any.
+    value
+        The measured number behind the finding (relative, dimensionless), if any.
+    advice
+        What to do about it, if anything.
+    """
+
+    check: str
+    severity: str
+    message: str
+    where: str | None = None
+    value: float | None = None
+    advice: str | None = None
+
+
+@dataclass(frozen=True)
+class CheckReport:
+    """All findings of :func:`check` on one dataset."""
+
+    source: str
+    findings: tuple[Finding, ...] = field(default_factory=tuple)
+
+    def __iter__(self) -> Iterator[Finding]:
+        return iter(self.findings)
+
+    @property
+    def ok(self) -> bool:
+        """True when no finding is an error."""
+        return not any(f.severity == "error" for f in self.findings)
+
+    def worst(self) -> str:
+        """The most severe severity present (``"ok"`` if none)."""
+        ranks = [SEVERITIES.index(f.severity) for f in self.findings] or [0]
+        return SEVERITIES[max(ranks)]
+
+    def by_check(self, name: str) -> list[Finding]:
+        """Findings of one check."""
+        return [f for f in self.findings if f.check == name]
+
+    def to_dict(self) -> dict:
+        """JSON-ready dictionary: ``{"source", "ok", "worst", "findings": [...]}``."""
+        return {
+            "source": self.source,
+            "ok": self.ok,
+            "worst": self.worst(),
+            "findings": [asdict(f) for f in self.findings],
+        }
+
+    def to_json(self, **kwargs) -> str:
+        """The report as JSON text."""
+        return json.dumps(self.to_dict(), indent=2, **kwargs)
+
+    def to_text(self) -> str:
+        """A readable report, one finding per paragraph."""
+        marks = {"ok": "ok     ", "info": "info   ", "warning": "WARNING", "error": "ERROR  "}
+        lines = [f"Checks of {self.source}"]
+        for f in self.findings:
+            where = f" [{f.where}]" if f.where else ""
+            lines.append(f"  {marks[f.severity]} {f.check}{where}: {f.message}")
+            if f.advice:
+                lines.append(f"          → {f.advice}")
+        lines.append(
+            "Result: "
+            + ("usable" if self.ok else "NOT usable as it is")
+            + f" (worst: {self.worst()})"
+        )
+        return "\n".join(lines)
+
+
+def _diag_scale(values: np.ndarray) -> np.ndarray:
+    """1/√(peak |X_ii|) per DOF (1 where the DOF is identically zero)."""
+    peak = np.max(
+        np.abs(np.diagonal(values, axis1=-2, axis2=-1)).reshape(-1, values.shape[-1]), axis=0
+    )
+    with np.errstate(divide="ignore"):
+        scale = np.where(peak > 0, 1.0 / np.sqrt(peak), 0.0)
+    return scale
+
+
+def _labels(ds: xr.Dataset) -> list[str]:
+    return [str(d) for d in ds.influenced_dof.values]
+
+
+def _speeds(ds: xr.Dataset) -> list[xr.Dataset]:
+    if "forward_speed" in ds.dims:
+        return [ds.isel(forward_speed=k) for k in range(ds.sizes["forward_speed"])]
+    return [ds]
+
+
+def _speed_suffix(ds: xr.Dataset) -> str:
+    """`` at U = … m/s`` for a slice at non-zero forward speed, else empty."""
+    if "forward_speed" in ds.coords and ds.forward_speed.ndim == 0 and float(ds.forward_speed):
+        return f" at U = {float(ds.forward_speed):g} m/s"
+    return ""
+
+
+def _check_grid(ds: xr.Dataset) -> list[Finding]:
+    w = ds.omega.values
+    dw = np.diff(w)
+    uniform = dw.size == 0 or np.allclose(dw, dw.mean(), rtol=1e-3)
+    msg = (
+        f"{w.size} frequencies from {w[0]:.4g} to {w[-1]:.4g} rad/s "
+        f"({2 * np.pi / w[-1]:.3g}–{2 * np.pi / w[0]:.4g} s), "
+        + ("uniform spacing" if uniform else f"spacing {dw.min():.3g}–{dw.max():.3g} rad/s")
+    )
+    out = [Finding("frequency_grid", "ok", msg)]
+    have = [name for name in ("added_mass_zero", "added_mass_inf") if name in ds]
+    if "added_mass_inf" not in ds:
+        out.append(
+            Finding(
+                "frequency_grid",
+                "info",
+                "no infinite-frequency added mass A∞ in the data",
+                advice="time-domain models need A∞: estimate it from A(ω), B(ω) "
+                "(Ogilvie's relation) or rerun the solver with ω = ∞",
+            )
+        )
+    else:
+        out.append(Finding("frequency_grid", "ok", "limits present: " + ", ".join(have)))
+    if w.size < 20:
+        out.append(
+            Finding(
+                "frequency_grid",
+                "warning",
+                f"only {w.size} frequencies",
+                advice="retardation functions and fits need a finer grid (50+ frequencies)",
+            )
+        )
+    return out
+
+
+def _check_symmetry(ds: xr.Dataset) -> list[Finding]:
+    out: list[Finding] = []
+    labels = _labels(ds)
+    for sub in _speeds(ds):
+        speed = float(sub.forward_speed) if "forward_speed" in sub.coords else 0.0
+        if speed != 0.0:
+            out.append(
+                Finding(
+                    "symmetry",
+                    "info",
+                    f"not tested at U = {speed:g} m/s: forward speed makes A and B non-symmetric",
+                )
+            )
+            continue
+        suffix = _speed_suffix(sub)
+        for name in ("added_mass", "radiation_damping", "added_mass_inf"):
+            if name not in sub:
+                continue
+            x = sub[name].transpose(..., "influenced_dof", "radiating_dof").values
+            x = x.reshape(-1, x.shape[-2], x.shape[-1])
+            s = _diag_scale(x)
+            scaled = x * s[:, None] * s[None, :]
+            asym = np.abs(scaled - np.swapaxes(scaled, 1, 2))
+            k, i, j = np.unravel_index(np.argmax(asym), asym.shape)
+            worst = float(asym[k, i, j])
+            at = f" at {sub.omega.values[k]:.4g} rad/s" if name != "added_mass_inf" else ""
+            if worst > SYMMETRY_TOL:
+                bad = np.max(asym, axis=(1, 2)) > SYMMETRY_TOL
+                count = (
+                    f" ({int(bad.sum())} of {bad.size} frequencies, "
+                    f"{_frequency_span(sub.omega.values[bad])})"
+                    if name != "added_mass_inf"
+                    else ""
+                )
+                out.append(
+                    Finding(
+                        "symmetry",
+                        "warning",
+                        f"{name} is not symmetric{suffix}{count}: relative asymmetry "
+                        f"{worst:.3g}{at}",
+                        where=f"{labels[i]}-{labels[j]}",
+                        value=worst,
+                        advice="at zero speed A and B must be symmetric; asymmetry confined to "
+                        "a few frequencies points to irregular frequencies, everywhere to the "
+                        "mesh or solver settings",
+                    )
+                )
+            else:
+                out.append(
+                    Finding(
+                        "symmetry",
+                        "ok",
+                        f"{name} symmetric{suffix} (worst relative asymmetry {worst:.2g}, "
+                        f"{labels[i]}-{labels[j]}{at})",
+                        value=worst,
+                    )
+                )
+    return out
+
+
+def _check_damping(ds: xr.Dataset) -> list[Finding]:
+    out: list[Finding] = []
+    labels = _labels(ds)
+    for sub in _speeds(ds):
+        suffix = _speed_suffix(sub)
+        b = sub.radiation_damping.transpose("omega", "influenced_dof", "radiating_dof").values
+        w = sub.omega.values
+        diag = np.diagonal(b, axis1=1, axis2=2)
+        peak = np.max(np.abs(diag), axis=0)
+        negligible = _negligible_dofs(peak, labels)
+        for k, label in enumerate(labels):
+            if negligible[k]:
+                continue
+            rel = diag[:, k] / peak[k]
+            neg = rel < -NEGATIVE_DAMPING_TOL
+            if neg.any():
+                worst = int(np.argmin(rel))
+                out.append(
+                    Finding(
+                        "damping_positive",
+                        "warning",
+                        f"B_{label} is negative at {int(neg.sum())} of {w.size} frequencies"
+                        f"{suffix} ({_frequency_span(w[neg])}), down to {rel[worst]:.3g} of its "
+                        f"peak at {w[worst]:.4g} rad/s",
+                        where=label,
+                        value=float(rel[worst]),
+                        advice="negative damping is unphysical (typically irregular frequencies "
+                        "of the panel method): exclude these frequencies or rerun the solver "
+                        "with irregular-frequency removal",
+                    )
+                )
+        sym = 0.5 * (b + np.swapaxes(b, 1, 2))[:, ~negligible][:, :, ~negligible]
+        s = _diag_scale(sym)
+        scaled = sym * s[None, :, None] * s[None, None, :]
+        labels = [label for label, z in zip(labels, negligible, strict=True) if not z]
+        eig = np.linalg.eigvalsh(scaled)
+        lam_min = eig[:, 0]
+        lam_max = max(float(np.max(eig[:, -1])), np.finfo(float).tiny)
+        rel = lam_min / lam_max
+        neg = rel < -NEGATIVE_DAMPING_TOL
+        if neg.any():
+            worst = int(np.argmin(rel))
+            _, vecs = np.linalg.eigh(scaled[worst])
+            dominant = np.argsort(np.abs(vecs[:, 0]))[::-1][:2]
+            out.append(
+                Finding(
+                    "damping_positive",
+                    "warning",
+                    f"B(ω) is not positive semidefinite at {int(neg.sum())} of {w.size} "
+                    f"frequencies{suffix} ({_frequency_span(w[neg])}); worst eigenvalue "
+                    f"{rel[worst]:.3g} of the largest, at {w[worst]:.4g} rad/s, mainly "
+                    f"{' and '.join(labels[d] for d in dominant)}",
+                    where=f"{w[worst]:.4g} rad/s",
+                    value=float(rel[worst]),
+                    advice="the radiation force must dissipate energy; these frequencies cannot "
+                    "be fitted by a passive model: exclude or repair them",
+                )
+            )
+        else:
+            out.append(
+                Finding(
+                    "damping_positive",
+                    "ok",
+                    f"B(ω) positive semidefinite at all {w.size} frequencies{suffix} "
+                    f"(smallest scaled eigenvalue {rel.min():.2g})",
+                    value=float(rel.min()),
+                )
+            )
+    return out
+
+
+def _frequency_span(w: np.ndarray) -> str:
+    if w.size == 1:
+        return f"{w[0]:.4g} rad/s"
+    return f"{w.min():.4g}–{w.max():.4g} rad/s"
+
+
+def _negligible_dofs(diagonal: np.ndarray, labels: list[str]) -> np.ndarray:
+    """DOFs whose diagonal term is < 1e-6 of the largest of their kind (translation or rotation).
+
+    An axisymmetric body has no yaw added mass or damping; solvers then print noise
+    (1e-8 where roll is 1e2), which must not be read as a physical value.
+    """
+    rotation = np.array([label.rpartition("__")[2] in ("Roll", "Pitch", "Yaw") for label in labels])
+    peak = np.abs(diagonal)
+    out = np.zeros(len(labels), dtype=bool)
+    for kind in (rotation, ~rotation):
+        if kind.any():
+            out[kind] = peak[kind] <= 1e-6 * peak[kind].max()
+    return out
+
+
+def _check_added_mass_inf(ds: xr.Dataset) -> list[Finding]:
+    if "added_mass_inf" not in ds:
+        return []
+    labels = _labels(ds)
+    out = []
+    for sub in _speeds(ds):
+        a = sub.added_mass_inf.transpose("influenced_dof", "radiating_dof").values
+        zero = _negligible_dofs(np.diag(a), labels)
+        if zero.any():
+            names = ", ".join(labels[k] for k in np.flatnonzero(zero))
+            out.append(
+                Finding(
+                    "added_mass_inf",
+                    "info",
+                    f"A∞ is negligible for {names} (normal for an axisymmetric body in yaw)",
+                    where=names,
+                )
+            )
+        keep = ~zero
+        s = _diag_scale(a)
+        scaled = (a * s[:, None] * s[None, :])[np.ix_(keep, keep)]
+        if scaled.size == 0:
+            continue
+        eig = np.linalg.eigvalsh(0.5 * (scaled + scaled.T))
+        if eig[0] < -1e-6:
+            out.append(
+                Finding(
+                    "added_mass_inf",
+                    "error",
+                    f"A∞ is not positive semidefinite (scaled eigenvalues {eig[0]:.3g} … "
+                    f"{eig[-1]:.3g})",
+                    value=float(eig[0]),
+                    advice="the infinite-frequency added mass must store kinetic energy: check "
+                    "the ω = ∞ data of the solver",
+                )
+            )
+        else:
+            out.append(
+                Finding(
+                    "added_mass_inf",
+                    "ok",
+                    f"A∞ positive definite on {int(keep.sum())} DOFs (scaled eigenvalues "
+                    f"{eig[0]:.3g} … {eig[-1]:.3g})",
+                    value=float(eig[0]),
+                )
+            )
+        if "inertia_matrix" in sub:
+            m = sub.inertia_matrix.transpose("influenced_dof", "radiating_dof").values + a
+            sm = _diag_scale(m)
+            eig_m = np.linalg.eigvalsh(0.5 * (m + m.T) * sm[:, None] * sm[None, :])
+            if eig_m[0] <= 1e-9:
+                out.append(
+                    Finding(
+                        "added_mass_inf",
+                        "error",
+                        f"M_RB + A∞ is not positive definite (smallest scaled eigenvalue "
+                        f"{eig_m[0]:.3g})",
+                        value=float(eig_m[0]),
+                        advice="the time-domain mass matrix must be invertible: check the "
+                        "inertia matrix and the ω = ∞ data",
+                    )
+                )
+    return out
+
+
+def _check_decay(ds: xr.Dataset) -> list[Finding]:
+    out = []
+    labels = _labels(ds)
+    for sub in _speeds(ds):
+        suffix = _speed_suffix(sub)
+        b = np.diagonal(
+            sub.radiation_damping.transpose("omega", "influenced_dof", "radiating_dof").values,
+            axis1=1,
+            axis2=2,
+        )
+        w = sub.omega.values
+        peak = np.max(np.abs(b), axis=0)
+        negligible = _negligible_dofs(peak, labels)
+        for k, label in enumerate(labels):
+            if negligible[k]:
+                out.append(
+                    Finding(
+                        "damping_decay",
+                        "info",
+                        f"B_{label} is negligible at every frequency{suffix}",
+                        where=label,
+                    )
+                )
+                continue
+            tail = abs(b[-1, k]) / peak[k]
+            if tail > DECAY_TOL:
+                out.append(
+                    Finding(
+                        "damping_decay",
+                        "warning",
+                        f"B_{label} has not decayed at ω_max = {w[-1]:.4g} rad/s{suffix}: "
+                        f"{tail:.2g} of its peak",
+                        where=label,
+                        value=float(tail),
+                        advice="the retardation function will be truncated: extend the "
+                        "frequency range or use a high-frequency tail",
+                    )
+                )
+            else:
+                out.append(
+                    Finding(
+                        "damping_decay",
+                        "ok",
+                        f"B_{label} decayed to {tail:.2g} of its peak at ω_max{suffix}",
+                        where=label,
+                        value=float(tail),
+                    )
+                )
+    return out
+
+
+def _check_rigid_body(ds: xr.Dataset) -> list[Finding]:
+    out = []
+    labels = _labels(ds)
+    if "inertia_matrix" in ds:
+        m = ds.inertia_matrix.transpose("influenced_dof", "radiating_dof").values
+        m = m.reshape(-1, m.shape[-2], m.shape[-1])[0]
+        s = _diag_scale(m)
+        scaled = m * s[:, None] * s[None, :]
+        asym = float(np.max(np.abs(scaled - scaled.T)))
+        eig = np.linalg.eigvalsh(0.5 * (scaled + scaled.T))
+        if asym > 1e-6 or eig[0] <= 0:
+            out.append(
+                Finding(
+                    "inertia",
+                    "error",
+                    f"the inertia matrix is not symmetric positive definite (asymmetry {asym:.2g}, "
+                    f"smallest scaled eigenvalue {eig[0]:.3g})",
+                    advice="check the mass, centre of gravity and radii of gyration",
+                )
+            )
+        else:
+            out.append(Finding("inertia", "ok", "inertia matrix symmetric positive definite"))
+        if len(labels) == 6:
+            out.extend(_rigid_body_consistency(m, labels))
+    if "hydrostatic_stiffness" in ds:
+        c = ds.hydrostatic_stiffness.transpose("influenced_dof", "radiating_dof").values
+        c = c.reshape(-1, c.shape[-2], c.shape[-1])[0]
+        for k, label in enumerate(labels):
+            name = label.rpartition("__")[2]
+            if name in ("Heave", "Roll", "Pitch"):
+                if c[k, k] < 0:
+                    out.append(
+                        Finding(
+                            "hydrostatics",
+                            "warning",
+                            f"C_{label} = {c[k, k]:.4g} is negative: the body is statically "
+                            "unstable in this DOF",
+                            where=label,
+                            value=float(c[k, k]),
+                            advice="check the centre of gravity (negative metacentric height?)",
+                        )
+                    )
+                elif c[k, k] == 0:
+                    out.append(
+                        Finding(
+                            "hydrostatics",
+                            "info",
+                            f"C_{label} is zero (submerged or moored body?)",
+                            where=label,
+                        )
+                    )
+        if not any(f.check == "hydrostatics" for f in out):
+            out.append(
+                Finding("hydrostatics", "ok", "restoring in heave, roll and pitch is positive")
+            )
+    return out
+
+
+def _rigid_body_consistency(m: np.ndarray, labels: list[str]) -> list[Finding]:
+    """The mass-moment coupling block of a rigid body is −m S(r_g): skew-symmetric."""
+    mass, r_g, inconsistency = center_of_gravity_from_inertia(m)
+    if inconsistency <= 1e-3:
+        return [
+            Finding(
+                "inertia",
+                "ok",
+                "inertia matrix is that of a rigid body "
+                f"(centre of gravity {np.round(r_g, 4).tolist()} m from the reference point)",
+            )
+        ]
+    block = m[:3, 3:]
+    pairs = []
+    for (i, j), axis in (((1, 2), "x"), ((2, 0), "y"), ((0, 1), "z")):
+        # −m S(r): block[i, j] = m r_axis = −block[j, i]
+        if not np.isclose(block[i, j], -block[j, i], rtol=1e-3, atol=1e-9 * abs(mass)):
+            pairs.append(
+                f"M[{labels[i]}, {labels[3 + j]}] = {block[i, j]:.4g} but −M[{labels[j]}, "
+                f"{labels[3 + i]}] = {-block[j, i]:.4g} (these give {axis}_g = "
+                f"{block[i, j] / mass:.4g} and {-block[j, i] / mass:.4g} m)"
+            )
+    return [
+        Finding(
+            "inertia",
+            "warning",
+            "the inertia matrix is not that of a rigid body: " + "; ".join(pairs),
+            value=inconsistency,
+            advice="a coupling term was probably left out when the matrix was typed in; "
+            "rebuild it from mass, centre of gravity and radii of gyration "
+            "(cummins.kinematics.rigid_body_inertia)",
+        )
+    ]
+
+
+def _check_copied_dof(ds: xr.Dataset) -> list[Finding]:
+    """Detect a DOF whose diagonal A and B are an exact constant multiple of another's."""
+    out = []
+    labels = _labels(ds)
+    sub = _speeds(ds)[0]
+    a = np.diagonal(
+        sub.added_mass.transpose("omega", "influenced_dof", "radiating_dof").values,
+        axis1=1,
+        axis2=2,
+    )
+    b = np.diagonal(
+        sub.radiation_damping.transpose("omega", "influenced_dof", "radiating_dof").values,
+        axis1=1,
+        axis2=2,
+    )
+    n = len(labels)
+    for i in range(n):
+        for j in range(i + 1, n):
+            ra = _constant_ratio(a[:, i], a[:, j])
+            rb = _constant_ratio(b[:, i], b[:, j])
+            if ra is None or rb is None:
+                continue
+            out.append(
+                Finding(
+                    "copied_dof",
+                    "info",
+                    f"{labels[i]} and {labels[j]} are exact scaled copies of each other "
+                    f"(A ratio {ra:.4g}, B ratio {rb:.4g})",
+                    where=f"{labels[i]}-{labels[j]}",
+                    advice="strip-theory codes approximate surge by scaling sway; the "
+                    "fluid memory of the copied DOF is then no more than a guess",
+                )
+            )
+    return out
+
+
+def _constant_ratio(x: np.ndarray, y: np.ndarray) -> float | None:
+    """x / y if it is the same number (to 1e-6) at 3 or more points where both are non-zero."""
+    both = (x != 0) & (y != 0)
+    if both.sum() < 3 or np.any((x == 0) != (y == 0)):
+        return None
+    ratio = x[both] / y[both]
+    if np.ptp(ratio) <= 1e-6 * abs(np.mean(ratio)):
+        return float(np.mean(ratio))
+    return None
+
+
+def check(ds: xr.Dataset) -> CheckReport:
+    """Run all diagnostics on a ``HydroDB``.
+
+    Parameters
+    ----------
+    ds
+        A canonical dataset (as returned by :func:`cummins.read`).
+
+    Returns
+    -------
+    CheckReport
+        Findings with severities ``ok``/``info``/``warning``/``error``; ``report.ok`` is
+        False when the data cannot be used as they are. ``report.to_text()`` and
+        ``report.to_json()`` format it.
+
+    Examples
+    --------
+    >>> import cummins
+    >>> report = cummins.check(cummins.demo_dataset())
+    >>> [f.where for f in report.by_check("damping_positive") if f.severity == "warning"][:2]
+    ['Heave', 'Roll']
+    """
+    validate(ds)
+    source = ds.attrs.get("source_file") or ds.attrs.get("source_format", "dataset")
+    findings: list[Finding] = [Finding("finite", "ok", "no NaN or Inf values")]
+    for part in (
+        _check_grid,
+        _check_symmetry,
+        _check_damping,
+        _check_added_mass_inf,
+        _check_decay,
+        _check_rigid_body,
+        _check_copied_dof,
+    ):
+        findings.extend(part(ds))
+    return CheckReport(source=str(source), findings=tuple(findings))

@@ -1,0 +1,303 @@
+"""The ``cummins`` command line.
+
+Every command prints what it did; errors in the data are reported in one line naming
+the file, line or quantity at fault, without a traceback (exit status 2).
+"""
+
+from __future__ import annotations
+
+import functools
+import json
+import sys
+from pathlib import Path
+
+import click
+from rich.console import Console
+from rich.table import Table
+
+from cummins._version import __version__
+from cummins.cli_bem import bem_command
+from cummins.errors import CumminsError
+
+console = Console(highlight=False, soft_wrap=True)
+err_console = Console(stderr=True, highlight=False, soft_wrap=True)
+
+
+def _reports_errors(func):
+    """Turn a CumminsError into a one-line message and exit status 2."""
+
+    @functools.wraps(func)
+    def wrapper(*args, **kwargs):
+        try:
+            return func(*args, **kwargs)
+        except CumminsError as exc:
+            err_console.print(f"[bold red]error:[/] {exc}")
+            sys.exit(2)
+
+    return wrapper
+
+
+def _read_options(func):
+    """--format, --rho, --g, --ulen: how to read solver files."""
+    decorators = [
+        click.option(
+            "--format",
+            "format_",
+            metavar="NAME",
+            default=None,
+            help="Solver format (wamit, wamit-out, nemoh, aqwa, veres, netcdf, mss); "
+            "detected from the content by default.",
+        ),
+        click.option(
+            "--rho",
+            type=float,
+            default=None,
+            metavar="KG/M3",
+            help="Water density for nondimensional formats (WAMIT does not record it "
+            "everywhere; default 1025).",
+        ),
+        click.option(
+            "--g",
+            "g",
+            type=float,
+            default=None,
+            metavar="M/S2",
+            help="Acceleration of gravity for nondimensional formats (default 9.81, or "
+            "the value in the WAMIT .out).",
+        ),
+        click.option(
+            "--ulen",
+            type=float,
+            default=None,
+            metavar="M",
+            help="WAMIT length scale ULEN (default: from the .out, else 1).",
+        ),
+    ]
+    for decorator in reversed(decorators):
+        func = decorator(func)
+    return func
+
+
+def _read(path: str, format_: str | None, rho: float | None, g: float | None, ulen: float | None):
+    from cummins.io import read
+
+    return read(path, format=format_, rho=rho, g=g, ulen=ulen)
+
+
+@click.group(
+    context_settings={"help_option_names": ["-h", "--help"], "max_content_width": 100},
+)
+@click.version_option(__version__, "--version", "-V", prog_name="cummins")
+def main() -> None:
+    """cummins: from frequency-domain hydrodynamics to time-domain vessel models.
+
+    \b
+    The pipeline, one command per stage:
+      cummins info FILE        what is in a solver output file (or folder)
+      cummins check FILE       is the data physically usable? (symmetry, B >= 0, A-inf, decay)
+      cummins convert IN OUT   write canonical NetCDF (.nc) or an MSS vessel struct (.mat)
+      cummins bem MESH         compute a database with Capytaine (pip install cummins[bem])
+      cummins demo             run all of it on a bundled real vessel (WAMIT tanker)
+
+    \b
+    Formats read (detected from the content): WAMIT .1/.3/.hst/.out, NEMOH .tec,
+    AQWA .LIS/.AH1, ShipX/VERES .re7/.re8/.re1, Capytaine NetCDF, MSS .mat.
+    Nondimensional WAMIT files take --rho, --g and --ulen.
+
+    Run `cummins COMMAND --help` for the options of a command.
+    """
+
+
+@main.command()
+@click.argument("path", type=click.Path(exists=True))
+@_read_options
+@click.option("--json", "as_json", is_flag=True, help="Print the description as JSON.")
+@_reports_errors
+def info(path, format_, rho, g, ulen, as_json):
+    """Describe what PATH holds: format, DOFs, frequencies, headings, constants used.
+
+    \b
+    Example:
+      cummins info tanker.1
+      cummins info results/ --format nemoh --json
+    """
+    from cummins.hydrodb import describe
+
+    ds = _read(path, format_, rho, g, ulen)
+    d = describe(ds)
+    if as_json:
+        click.echo(json.dumps(d, indent=2))
+        return
+    table = Table(show_header=False, box=None, pad_edge=False)
+    table.add_column(style="bold")
+    table.add_column()
+    table.add_row("file", f"{d['source_file']} ({d['source_format']})")
+    table.add_row("DOFs", ", ".join(d["dofs"]))
+    table.add_row(
+        "frequencies",
+        f"{d['n_omega']} from {d['omega_min_rad_s']:.4g} to {d['omega_max_rad_s']:.4g} rad/s "
+        f"(periods {d['period_range_s'][0]:.3g}–{d['period_range_s'][1]:.4g} s)",
+    )
+    if d["wave_directions_deg"]:
+        betas = d["wave_directions_deg"]
+        table.add_row(
+            "wave directions", f"{len(betas)}: " + ", ".join(f"{b:g}" for b in betas) + " deg"
+        )
+    table.add_row("forward speeds", ", ".join(f"{u:g}" for u in d["forward_speeds_m_s"]) + " m/s")
+    table.add_row("variables", ", ".join(d["variables"]))
+    table.add_row("rho, g", f"{d['rho_kg_m3']:g} kg/m³, {d['g_m_s2']:g} m/s²")
+    table.add_row("water depth", f"{d['water_depth_m']:g} m")
+    table.add_row("axes", str(d["axis_convention"]))
+    table.add_row("reference point", f"{d['reference_point_m']} m")
+    for key, label in (
+        ("center_of_gravity_m", "centre of gravity"),
+        ("center_of_buoyancy_m", "centre of buoyancy"),
+    ):
+        if key in d:
+            table.add_row(label, f"{d[key]} m")
+    if "mass_kg" in d:
+        table.add_row("mass", f"{d['mass_kg']:.6g} kg")
+    for k, line in enumerate(d["history"]):
+        table.add_row("provenance" if k == 0 else "", line)
+    console.print(table)
+
+
+@main.command("check")
+@click.argument("path", type=click.Path(exists=True))
+@_read_options
+@click.option(
+    "--json",
+    "json_path",
+    metavar="FILE",
+    default=None,
+    help="Also write the report as JSON to FILE ('-' for standard output only).",
+)
+@click.option("--strict", is_flag=True, help="Exit with status 1 on warnings too, not only errors.")
+@_reports_errors
+def check_command(path, format_, rho, g, ulen, json_path, strict):
+    """Check that the data in PATH are physically usable, and say where not.
+
+    \b
+    Tests: frequency grid; symmetry of A and B; B positive semidefinite per
+    frequency (eigenvalues); A-infinity positive definite; decay of B at the highest
+    frequency; inertia and restoring; DOFs copied from others. Exit status 0 when
+    the data are usable (warnings allowed), 1 when not (or on warnings with --strict).
+
+    \b
+    Example:
+      cummins check tanker.1
+      cummins check cylinder.LIS --json report.json
+    """
+    from cummins.check import check
+
+    ds = _read(path, format_, rho, g, ulen)
+    report = check(ds)
+    if json_path == "-":
+        click.echo(report.to_json())
+    else:
+        _print_report(report)
+        if json_path:
+            Path(json_path).write_text(report.to_json() + "\n", encoding="utf-8")
+            console.print(f"JSON report written to {json_path}")
+    failed = not report.ok or (strict and report.worst() == "warning")
+    sys.exit(1 if failed else 0)
+
+
+def _print_report(report) -> None:
+    styles = {"ok": "green", "info": "cyan", "warning": "yellow", "error": "bold red"}
+    console.print(f"[bold]Checks of {report.source}[/]")
+    for f in report:
+        where = f" [{f.where}]" if f.where else ""
+        console.print(f"  [{styles[f.severity]}]{f.severity:7}[/] {f.check}{where}: {f.message}")
+        if f.advice:
+            console.print(f"          → {f.advice}", style="dim")
+    verdict = "[green]usable[/]" if report.ok else "[bold red]NOT usable as it is[/]"
+    console.print(f"Result: {verdict} (worst finding: {report.worst()})")
+
+
+@main.command()
+@click.argument("source", type=click.Path(exists=True))
+@click.argument("destination", type=click.Path())
+@_read_options
+@click.option(
+    "--axes",
+    type=click.Choice(["z-up", "z-down"]),
+    default=None,
+    help="Axis convention to write: z-up (x fwd, y port, z up: solvers) or z-down "
+    "(x fwd, y starboard, z down: Fossen/MSS). Default: .mat files z-down, else as read.",
+)
+@click.option(
+    "--reference-point",
+    nargs=3,
+    type=float,
+    default=None,
+    metavar="X Y Z",
+    help="Move the reference point to X Y Z (m, in the axes written).",
+)
+@click.option("--force", is_flag=True, help="Overwrite DESTINATION if it exists.")
+@_reports_errors
+def convert(source, destination, format_, rho, g, ulen, axes, reference_point, force):
+    """Convert SOURCE to canonical NetCDF (.nc) or an MSS vessel struct (.mat).
+
+    \b
+    The NetCDF has Capytaine's layout (complex values on a re/im dimension) plus
+    cummins' variables (added_mass_inf, ...), in SI units.
+
+    \b
+    Examples:
+      cummins convert tanker.1 tanker.nc
+      cummins convert input.re7 supply.mat --reference-point 0 0 0
+    """
+    from cummins.errors import check_writable
+    from cummins.hydrodb import change_axes, move_reference_point
+    from cummins.io import write
+
+    check_writable(destination, force)
+    ds = _read(source, format_, rho, g, ulen)
+    if axes is None and Path(destination).suffix.lower() == ".mat":
+        axes = "z-down"
+    if axes is not None:
+        ds = change_axes(ds, axes)
+    if reference_point is not None:
+        ds = move_reference_point(ds, reference_point)
+    write(ds, destination, force=force)
+    console.print(
+        f"wrote {destination} ({ds.attrs.get('axis_convention')} axes, reference point "
+        f"{[float(x) for x in ds.attrs['reference_point']]} m)"
+    )
+
+
+@main.command()
+@click.option(
+    "-o",
+    "--output",
+    "outdir",
+    type=click.Path(file_okay=False),
+    default="cummins-demo",
+    show_default=True,
+    help="Folder to write the results to.",
+)
+@click.option("--force", is_flag=True, help="Overwrite the files of an earlier demo run.")
+@_reports_errors
+def demo(outdir, force):
+    """Run the pipeline on a bundled real vessel (the MSS tanker, WAMIT output).
+
+    Reads the WAMIT files, checks them, writes canonical NetCDF and an MSS .mat, and
+    plots added mass, damping and excitation, all into the output folder.
+    """
+    from cummins.demo import run_demo
+
+    with console.status("starting") as status:
+        steps = run_demo(outdir, force=force, progress=lambda m: status.update(m))
+    for step in steps:
+        console.print(f"[bold green]✓[/] [bold]{step.title}[/]: {step.detail}")
+        for f in step.files:
+            console.print(f"    {f}")
+    console.print(f"All results in {Path(outdir).resolve()}")
+
+
+main.add_command(bem_command)  # works without Capytaine: it then says how to install it
+
+
+if __name__ == "__main__":  # pragma: no cover
+    main()

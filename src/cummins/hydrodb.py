@@ -1,0 +1,699 @@
+"""The canonical hydrodynamic database (``HydroDB``).
+
+A ``HydroDB`` is an :class:`xarray.Dataset` with Capytaine's names, always dimensional
+and in SI units, whatever solver produced it:
+
+==========================  ==========================================  ===================
+variable                    dims                                        unit
+==========================  ==========================================  ===================
+``added_mass``              omega, influenced_dof, radiating_dof        kg, kg·m, kg·m²
+``radiation_damping``       omega, influenced_dof, radiating_dof        kg/s, kg·m/s, …
+``added_mass_inf``          influenced_dof, radiating_dof               as added mass
+``added_mass_zero``         influenced_dof, radiating_dof               as added mass
+``excitation_force``        omega, wave_direction, influenced_dof       N/m, N·m/m (complex)
+``Froude_Krylov_force``     omega, wave_direction, influenced_dof       N/m, N·m/m (complex)
+``diffraction_force``       omega, wave_direction, influenced_dof       N/m, N·m/m (complex)
+``rao``                     omega, wave_direction, radiating_dof        m/m, rad/m (complex)
+``drift_force``             omega, wave_direction, influenced_dof       N/m², N·m/m² (mean)
+``hydrostatic_stiffness``   influenced_dof, radiating_dof               N/m, N, N·m/rad
+``inertia_matrix``          influenced_dof, radiating_dof               kg, kg·m, kg·m²
+``additional_added_mass``   omega, influenced_dof, radiating_dof        as added mass
+``additional_damping``      omega, influenced_dof, radiating_dof        as damping
+``additional_stiffness``    influenced_dof, radiating_dof               as stiffness
+==========================  ==========================================  ===================
+
+Only ``added_mass`` and ``radiation_damping`` are required. Coordinates: ``omega``
+(rad/s, finite, strictly increasing, > 0; the limits ω = 0 and ω = ∞ live in
+``added_mass_zero`` and ``added_mass_inf``), ``wave_direction`` (rad, direction in
+which the waves travel, measured from +x towards +y: 0 = following seas, π = head seas),
+``influenced_dof`` / ``radiating_dof`` (labels ``Surge`` … ``Yaw``; ``body__Heave`` for
+several bodies), and optionally ``forward_speed`` (m/s, scalar or a dimension).
+
+Conventions: time dependence x(t) = Re{X e^{iωt}}; ``added_mass[ω, i, j]`` is the force
+in DOF i due to a unit acceleration in DOF j; attributes ``rho`` (kg/m³), ``g`` (m/s²),
+``water_depth`` (m, ``inf`` for deep water), ``source_format``, ``source_file``,
+``reference_point`` (m, the point about which moments and rotations are taken),
+``axis_convention`` (``"z-up"``: x forward, y to port, z up, as WAMIT, NEMOH, AQWA,
+Capytaine; ``"z-down"``: Fossen's body axes x forward, y to starboard, z down, as MSS),
+and ``history`` (one line per conversion applied since the file was read).
+Positions (``reference_point``, ``center_of_gravity``, ``center_of_buoyancy``) are
+coordinates in the body axes of the dataset, from its coordinate origin.
+"""
+
+from __future__ import annotations
+
+from collections.abc import Iterable, Sequence
+from typing import Any
+
+import numpy as np
+import scipy.linalg
+import xarray as xr
+from numpy.typing import ArrayLike, NDArray
+
+from cummins.errors import HydroDataError
+from cummins.kinematics import Z_UP_TO_Z_DOWN, screw_transform
+
+DOF_NAMES: tuple[str, ...] = ("Surge", "Sway", "Heave", "Roll", "Pitch", "Yaw")
+
+AXIS_CONVENTIONS: dict[str, str] = {
+    "z-up": "x forward, y to port, z up (WAMIT, NEMOH, AQWA, Capytaine)",
+    "z-down": "x forward, y to starboard, z down (Fossen body axes, MSS)",
+}
+
+#: Variables holding a DOF×DOF matrix (influenced_dof, radiating_dof).
+MATRIX_VARIABLES: tuple[str, ...] = (
+    "added_mass",
+    "radiation_damping",
+    "added_mass_inf",
+    "added_mass_zero",
+    "hydrostatic_stiffness",
+    "inertia_matrix",
+    "additional_added_mass",
+    "additional_damping",
+    "additional_stiffness",
+)
+#: Variables holding a generalized force per DOF (influenced_dof).
+FORCE_VARIABLES: tuple[str, ...] = (
+    "excitation_force",
+    "Froude_Krylov_force",
+    "diffraction_force",
+    "drift_force",
+)
+#: Variables holding a generalized motion per DOF (radiating_dof).
+MOTION_VARIABLES: tuple[str, ...] = ("rao",)
+
+_UNITS = {
+    "added_mass": "kg | kg m | kg m^2 (translation-translation | mixed | rotation-rotation)",
+    "added_mass_inf": "kg | kg m | kg m^2",
+    "added_mass_zero": "kg | kg m | kg m^2",
+    "inertia_matrix": "kg | kg m | kg m^2",
+    "radiation_damping": "kg/s | kg m/s | kg m^2/s",
+    "additional_added_mass": "kg | kg m | kg m^2",
+    "additional_damping": "kg/s | kg m/s | kg m^2/s",
+    "additional_stiffness": "N/m | N/rad, N | N m/rad",
+    "hydrostatic_stiffness": "N/m | N/rad, N | N m/rad",
+    "excitation_force": "N/m | N m/m (per metre of wave amplitude)",
+    "Froude_Krylov_force": "N/m | N m/m (per metre of wave amplitude)",
+    "diffraction_force": "N/m | N m/m (per metre of wave amplitude)",
+    "drift_force": "N/m^2 | N m/m^2 (mean drift per squared wave amplitude)",
+    "rao": "m/m | rad/m (per metre of wave amplitude)",
+}
+
+_LONG_NAMES = {
+    "added_mass": "added mass A(omega)",
+    "radiation_damping": "radiation (potential) damping B(omega)",
+    "added_mass_inf": "infinite-frequency added mass A(inf)",
+    "added_mass_zero": "zero-frequency added mass A(0)",
+    "inertia_matrix": "rigid-body inertia matrix M_RB",
+    "additional_added_mass": "added mass supplied with the data besides the potential-flow "
+    "added mass (VERES additional added mass, e.g. an anti-roll tank)",
+    "additional_damping": "linear damping supplied with the data besides radiation damping "
+    "(WAMIT .frc external damping, MSS viscous damping Bv, VERES roll damping)",
+    "additional_stiffness": "linear stiffness supplied with the data besides hydrostatics "
+    "(WAMIT .frc external stiffness, e.g. moorings)",
+    "hydrostatic_stiffness": "hydrostatic and gravitational restoring matrix C",
+    "excitation_force": "first-order wave excitation force (Froude-Krylov + diffraction)",
+    "Froude_Krylov_force": "Froude-Krylov force",
+    "diffraction_force": "diffraction force",
+    "drift_force": "mean second-order wave drift force",
+    "rao": "motion response amplitude operator (as computed by the solver)",
+}
+
+
+# --------------------------------------------------------------------------- DOF labels
+
+
+def dof_labels(bodies: Sequence[str] | None = None) -> list[str]:
+    """DOF labels for one body (``Surge`` … ``Yaw``) or several (``name__Surge`` …).
+
+    Examples
+    --------
+    >>> dof_labels()[:3]
+    ['Surge', 'Sway', 'Heave']
+    >>> dof_labels(["buoy", "float"])[6]
+    'float__Surge'
+    """
+    if not bodies or len(bodies) == 1:
+        return list(DOF_NAMES)
+    return [f"{b}__{d}" for b in bodies for d in DOF_NAMES]
+
+
+def split_dof(label: str) -> tuple[str | None, str]:
+    """Split ``"body__Heave"`` into ``("body", "Heave")``; ``"Heave"`` into ``(None, "Heave")``."""
+    body, sep, name = str(label).rpartition("__")
+    return (body if sep else None), name
+
+
+def dof_index(label: str) -> int:
+    """Index 0…5 of a DOF label within its body (``"Pitch"`` → 4)."""
+    _, name = split_dof(label)
+    try:
+        return DOF_NAMES.index(name)
+    except ValueError:
+        raise HydroDataError(
+            f"unknown DOF label {label!r}", hint=f"DOF labels are {', '.join(DOF_NAMES)}"
+        ) from None
+
+
+def bodies(ds: xr.Dataset) -> list[str | None]:
+    """The bodies of a dataset, in DOF order (``[None]`` for a single unnamed body)."""
+    seen: list[str | None] = []
+    for label in ds["influenced_dof"].values:
+        body, _ = split_dof(label)
+        if body not in seen:
+            seen.append(body)
+    return seen
+
+
+# --------------------------------------------------------------------------- construction
+
+
+def make_hydrodb(
+    omega: ArrayLike,
+    added_mass: ArrayLike,
+    radiation_damping: ArrayLike,
+    *,
+    rho: float,
+    g: float,
+    source_format: str,
+    source_file: str = "",
+    dofs: Sequence[str] | None = None,
+    water_depth: float = np.inf,
+    wave_direction: ArrayLike | None = None,
+    excitation_force: ArrayLike | None = None,
+    froude_krylov_force: ArrayLike | None = None,
+    diffraction_force: ArrayLike | None = None,
+    rao: ArrayLike | None = None,
+    drift_force: ArrayLike | None = None,
+    added_mass_inf: ArrayLike | None = None,
+    added_mass_zero: ArrayLike | None = None,
+    hydrostatic_stiffness: ArrayLike | None = None,
+    inertia_matrix: ArrayLike | None = None,
+    additional_added_mass: ArrayLike | None = None,
+    additional_damping: ArrayLike | None = None,
+    additional_stiffness: ArrayLike | None = None,
+    forward_speed: float | None = None,
+    reference_point: ArrayLike = (0.0, 0.0, 0.0),
+    axis_convention: str = "z-up",
+    history: Iterable[str] = (),
+    **attrs: Any,
+) -> xr.Dataset:
+    """Assemble and validate a canonical hydrodynamic dataset from arrays.
+
+    Readers call this once they have converted the solver's numbers to SI units; it
+    is also the way to build a ``HydroDB`` from arrays of one's own.
+
+    Parameters
+    ----------
+    omega
+        Wave (or encounter) frequencies, rad/s, shape (nω,), finite and > 0; sorted
+        here if needed. Put the ω = 0 and ω = ∞ limits in ``added_mass_zero`` and
+        ``added_mass_inf``, not in this grid.
+    added_mass, radiation_damping
+        Shape (nω, n, n): ``[k, i, j]`` is the force in DOF i due to motion in DOF j.
+    rho, g
+        Water density (kg/m³) and acceleration of gravity (m/s²).
+    source_format, source_file
+        Provenance, recorded as attributes.
+    dofs
+        DOF labels (default ``Surge`` … ``Yaw``).
+    water_depth
+        Metres; ``inf`` for deep water.
+    wave_direction
+        Directions of wave propagation, rad, shape (nβ,). Required with any of the
+        wave-dependent arrays below.
+    excitation_force, froude_krylov_force, diffraction_force, rao, drift_force
+        Shape (nω, nβ, n): complex first-order forces per metre of wave amplitude
+        (N/m, N·m/m), motion RAOs (m/m, rad/m), real mean drift force per squared
+        amplitude (N/m², N·m/m²).
+    added_mass_inf, added_mass_zero, hydrostatic_stiffness, inertia_matrix
+        Shape (n, n).
+    additional_added_mass
+        Shape (nω, n, n): added mass supplied besides the potential-flow one (VERES
+        additional added mass, e.g. of an anti-roll tank).
+    additional_damping
+        Shape (nω, n, n): linear damping supplied with the data besides the radiation
+        damping (WAMIT external damping, MSS viscous damping, VERES roll damping).
+    additional_stiffness
+        Shape (n, n): linear stiffness supplied besides hydrostatics (moorings).
+    forward_speed
+        m/s, recorded as a scalar coordinate.
+    reference_point
+        Point about which moments and rotations are taken, m, in the dataset's axes.
+    axis_convention
+        ``"z-up"`` or ``"z-down"``, see :data:`AXIS_CONVENTIONS`.
+    history
+        Lines describing conversions and assumptions (e.g. default density used).
+    **attrs
+        Further attributes (``body_name``, ``center_of_gravity`` …).
+
+    Returns
+    -------
+    xarray.Dataset
+        The validated ``HydroDB``.
+
+    Raises
+    ------
+    HydroDataError
+        Inconsistent shapes, non-finite values, duplicate frequencies.
+
+    Examples
+    --------
+    >>> import numpy as np
+    >>> w = np.array([0.5, 1.0])
+    >>> a = np.tile(np.eye(6), (2, 1, 1)) * 1e3
+    >>> ds = make_hydrodb(w, a, a * 0.1, rho=1025.0, g=9.81, source_format="arrays")
+    >>> ds.added_mass.sel(influenced_dof="Heave", radiating_dof="Heave").values
+    array([1000., 1000.])
+    """
+    omega = np.asarray(omega, dtype=float).reshape(-1)
+    n_omega = omega.size
+    labels = list(dofs) if dofs is not None else list(DOF_NAMES)
+    n = len(labels)
+    where = source_file or source_format
+
+    def matrix3(name: str, value: ArrayLike) -> NDArray:
+        arr = np.asarray(value, dtype=float)
+        if arr.shape != (n_omega, n, n):
+            raise HydroDataError(
+                f"{name} has shape {arr.shape}, expected {(n_omega, n, n)} "
+                "(frequencies, influenced DOF, radiating DOF)",
+                path=where,
+            )
+        return arr
+
+    data_vars: dict[str, tuple[tuple[str, ...], NDArray]] = {
+        "added_mass": (
+            ("omega", "influenced_dof", "radiating_dof"),
+            matrix3("added_mass", added_mass),
+        ),
+        "radiation_damping": (
+            ("omega", "influenced_dof", "radiating_dof"),
+            matrix3("radiation_damping", radiation_damping),
+        ),
+    }
+    for name, value in (
+        ("additional_added_mass", additional_added_mass),
+        ("additional_damping", additional_damping),
+    ):
+        if value is not None:
+            data_vars[name] = (("omega", "influenced_dof", "radiating_dof"), matrix3(name, value))
+    for name, value in (
+        ("added_mass_inf", added_mass_inf),
+        ("added_mass_zero", added_mass_zero),
+        ("hydrostatic_stiffness", hydrostatic_stiffness),
+        ("inertia_matrix", inertia_matrix),
+        ("additional_stiffness", additional_stiffness),
+    ):
+        if value is None:
+            continue
+        arr = np.asarray(value, dtype=float)
+        if arr.shape != (n, n):
+            raise HydroDataError(f"{name} has shape {arr.shape}, expected {(n, n)}", path=where)
+        data_vars[name] = (("influenced_dof", "radiating_dof"), arr)
+
+    coords: dict[str, Any] = {
+        "omega": ("omega", omega, {"units": "rad/s", "long_name": "wave frequency"}),
+        "influenced_dof": ("influenced_dof", labels),
+        "radiating_dof": ("radiating_dof", labels),
+    }
+    wave_arrays = {
+        "excitation_force": (excitation_force, complex, "influenced_dof"),
+        "Froude_Krylov_force": (froude_krylov_force, complex, "influenced_dof"),
+        "diffraction_force": (diffraction_force, complex, "influenced_dof"),
+        "rao": (rao, complex, "radiating_dof"),
+        "drift_force": (drift_force, float, "influenced_dof"),
+    }
+    if any(v[0] is not None for v in wave_arrays.values()):
+        if wave_direction is None:
+            raise HydroDataError("wave-dependent data given without wave_direction", path=where)
+        beta = np.asarray(wave_direction, dtype=float).reshape(-1)
+        coords["wave_direction"] = (
+            "wave_direction",
+            beta,
+            {"units": "rad", "long_name": "direction of wave propagation (0 = along +x)"},
+        )
+        for name, (value, dtype, dof_dim) in wave_arrays.items():
+            if value is None:
+                continue
+            arr = np.asarray(value, dtype=dtype)
+            if arr.shape != (n_omega, beta.size, n):
+                raise HydroDataError(
+                    f"{name} has shape {arr.shape}, expected {(n_omega, beta.size, n)} "
+                    "(frequencies, wave directions, DOF)",
+                    path=where,
+                )
+            data_vars[name] = (("omega", "wave_direction", dof_dim), arr)
+    if forward_speed is not None:
+        coords["forward_speed"] = ((), float(forward_speed), {"units": "m/s"})
+
+    ds = xr.Dataset(data_vars, coords=coords)
+    for name in ds.data_vars:
+        ds[name].attrs.update(units=_UNITS[name], long_name=_LONG_NAMES[name])
+    if axis_convention not in AXIS_CONVENTIONS:
+        raise HydroDataError(
+            f"unknown axis_convention {axis_convention!r}",
+            hint=f"use one of {', '.join(AXIS_CONVENTIONS)}",
+        )
+    ds.attrs.update(
+        rho=float(rho),
+        g=float(g),
+        water_depth=float(water_depth),
+        source_format=str(source_format),
+        source_file=str(source_file),
+        reference_point=_points(reference_point, "reference_point", where),
+        axis_convention=axis_convention,
+        time_convention="x(t) = Re{X exp(i omega t)}",
+        history="\n".join(history),
+    )
+    for key, value in attrs.items():
+        if value is not None:
+            ds.attrs[key] = value
+
+    if np.any(np.diff(omega) <= 0):
+        order = np.argsort(omega, kind="stable")
+        sorted_omega = omega[order]
+        duplicated = sorted_omega[1:][np.diff(sorted_omega) == 0]
+        if duplicated.size:
+            raise HydroDataError(
+                f"frequency {duplicated[0]:.6g} rad/s appears more than once",
+                path=where,
+                hint="each frequency must appear once; check the file is not two runs joined",
+            )
+        ds = ds.isel(omega=order)
+        add_history(ds, "frequencies sorted into increasing order")
+    validate(ds)
+    return ds
+
+
+def _points(value: ArrayLike, name: str, where: str) -> NDArray[np.float64]:
+    """Positions as a flat array of 3 coordinates per body."""
+    arr = np.asarray(value, dtype=float).reshape(-1)
+    if arr.size == 0 or arr.size % 3:
+        raise HydroDataError(
+            f"{name} needs 3 coordinates per body, got {arr.size} values", path=where
+        )
+    return arr
+
+
+def add_history(ds: xr.Dataset, line: str) -> None:
+    """Append a line to the dataset's ``history`` attribute (in place)."""
+    old = ds.attrs.get("history", "")
+    ds.attrs["history"] = f"{old}\n{line}" if old else line
+
+
+def stack_forward_speeds(datasets: Sequence[xr.Dataset]) -> xr.Dataset:
+    """Join single-speed datasets along a new ``forward_speed`` dimension.
+
+    Each dataset must carry a scalar ``forward_speed`` coordinate and share the
+    frequency grid, wave directions and DOFs.
+    """
+    if not datasets:
+        raise HydroDataError("no datasets to stack")
+    for ds in datasets:
+        if "forward_speed" not in ds.coords:
+            raise HydroDataError("dataset without a forward_speed coordinate cannot be stacked")
+    first = datasets[0]
+    for ds in datasets[1:]:
+        if not np.array_equal(ds.omega.values, first.omega.values):
+            raise HydroDataError(
+                "datasets at different forward speeds have different frequency grids"
+            )
+    out = xr.concat(datasets, dim="forward_speed", combine_attrs="override")
+    out["forward_speed"].attrs["units"] = "m/s"
+    return out
+
+
+# --------------------------------------------------------------------------- validation
+
+
+def validate(ds: xr.Dataset) -> xr.Dataset:
+    """Check that ``ds`` is a well-formed ``HydroDB``; return it unchanged.
+
+    Structural checks only (dimensions, units attributes, finite values, frequency
+    grid). Physical plausibility (symmetry, positive damping …) is the job of
+    :func:`cummins.check`.
+
+    Raises
+    ------
+    HydroDataError
+        Naming the variable, frequency and DOF pair at fault.
+    """
+    where = ds.attrs.get("source_file") or ds.attrs.get("source_format") or None
+    for name in ("added_mass", "radiation_damping"):
+        if name not in ds:
+            raise HydroDataError(f"dataset has no {name!r} variable", path=where)
+    for dim in ("omega", "influenced_dof", "radiating_dof"):
+        if dim not in ds.dims:
+            raise HydroDataError(f"dataset has no {dim!r} dimension", path=where)
+    if list(ds.influenced_dof.values) != list(ds.radiating_dof.values):
+        raise HydroDataError("influenced_dof and radiating_dof labels differ", path=where)
+    omega = ds.omega.values
+    if omega.size == 0:
+        raise HydroDataError("no frequencies in the data", path=where)
+    if not np.all(np.isfinite(omega)):
+        raise HydroDataError(
+            "the frequency grid contains non-finite values",
+            path=where,
+            hint="store the omega = infinity limit in added_mass_inf",
+        )
+    if np.any(omega <= 0):
+        raise HydroDataError(
+            f"frequency {omega[omega <= 0][0]:g} rad/s is not positive",
+            path=where,
+            hint="store the omega = 0 limit in added_mass_zero",
+        )
+    if np.any(np.diff(omega) <= 0):
+        k = int(np.argmax(np.diff(omega) <= 0))
+        raise HydroDataError(
+            f"frequencies are not strictly increasing: {omega[k]:g} then {omega[k + 1]:g} rad/s",
+            path=where,
+        )
+    for var in ds.data_vars.values():
+        values = var.values
+        bad = ~np.isfinite(values)
+        if bad.any():
+            raise HydroDataError(
+                "non-finite value (NaN or Inf)",
+                path=where,
+                quantity=_describe_element(var, np.argwhere(bad)[0]),
+                hint="the file is damaged or the solver failed at this point; "
+                "rerun it or remove the frequency",
+            )
+    for key in ("rho", "g"):
+        value = ds.attrs.get(key)
+        if value is None or not np.isfinite(value) or value <= 0:
+            raise HydroDataError(
+                f"attribute {key!r} must be a positive number, got {value!r}", path=where
+            )
+    depth = ds.attrs.get("water_depth", np.inf)
+    if not depth > 0:
+        raise HydroDataError(f"water_depth must be positive or inf, got {depth!r}", path=where)
+    return ds
+
+
+def _describe_element(var: xr.DataArray, index: Sequence[int]) -> str:
+    parts = []
+    for dim, i in zip(var.dims, index, strict=True):
+        value = var[dim].values[i] if dim in var.coords else i
+        if dim == "omega":
+            parts.append(f"omega={float(value):.6g} rad/s")
+        elif dim == "wave_direction":
+            parts.append(f"wave_direction={np.degrees(float(value)):.6g} deg")
+        elif dim == "forward_speed":
+            parts.append(f"forward_speed={float(value):.6g} m/s")
+        else:
+            parts.append(str(value))
+    return f"{var.name}[{', '.join(parts)}]"
+
+
+# --------------------------------------------------------------------------- selection
+
+
+def select_dofs(ds: xr.Dataset, dofs: Sequence[str]) -> xr.Dataset:
+    """Keep only the given DOFs (in both ``influenced_dof`` and ``radiating_dof``).
+
+    Examples
+    --------
+    >>> import cummins
+    >>> ds = cummins.demo_dataset()
+    >>> cummins.select_dofs(ds, ["Heave", "Pitch"]).added_mass.shape
+    (58, 2, 2)
+    """
+    labels = [str(d) for d in ds.influenced_dof.values]
+    missing = [d for d in dofs if d not in labels]
+    if missing:
+        raise HydroDataError(
+            f"DOF {missing[0]!r} is not in the data", hint=f"available: {', '.join(labels)}"
+        )
+    return ds.sel(influenced_dof=list(dofs), radiating_dof=list(dofs))
+
+
+# --------------------------------------------------------------------------- transforms
+
+
+def _per_body_transform(ds: xr.Dataset, block) -> NDArray[np.float64]:
+    """Block-diagonal 6N×6N matrix with ``block(body_index)`` for each body."""
+    labels = [str(d) for d in ds.influenced_dof.values]
+    groups = bodies(ds)
+    for k, body in enumerate(groups):
+        expected = [f"{body}__{d}" if body else d for d in DOF_NAMES]
+        if labels[6 * k : 6 * k + 6] != expected:
+            raise HydroDataError(
+                "this transform needs all six DOFs of each body in the order Surge … Yaw",
+                hint="read the full 6-DOF data, transform, then select_dofs",
+            )
+    return scipy.linalg.block_diag(*[block(k) for k in range(len(groups))])
+
+
+def _apply(ds: xr.Dataset, left: NDArray, right: NDArray, motion: NDArray) -> xr.Dataset:
+    """Return a copy with matrices L·M·R, forces L·F, motions motion·X."""
+    out = ds.copy(deep=True)
+    for name in MATRIX_VARIABLES:
+        if name in out:
+            v = out[name].transpose(..., "influenced_dof", "radiating_dof")
+            out[name] = v.copy(data=left @ v.values @ right).transpose(*ds[name].dims)
+    for name in FORCE_VARIABLES:
+        if name in out:
+            v = out[name].transpose(..., "influenced_dof")
+            out[name] = v.copy(data=v.values @ left.T).transpose(*ds[name].dims)
+    for name in MOTION_VARIABLES:
+        if name in out:
+            v = out[name].transpose(..., "radiating_dof")
+            out[name] = v.copy(data=v.values @ motion.T).transpose(*ds[name].dims)
+    return out
+
+
+def _reference_points(ds: xr.Dataset) -> NDArray[np.float64]:
+    points = np.asarray(ds.attrs.get("reference_point", (0.0, 0.0, 0.0)), dtype=float)
+    return points.reshape(-1, 3)
+
+
+def move_reference_point(ds: xr.Dataset, point: ArrayLike) -> xr.Dataset:
+    """Express the data about another reference point (the screw transform).
+
+    With r the vector from the new point O to the old point W, matrices become
+    ``H(r)ᵀ M H(r)``, forces ``H(r)ᵀ F`` (seed 004 eqs. 15, 38, 45) and motions
+    ``H(−r) ξ`` (eq. 16 inverted). This is exact for added mass, damping, inertia and
+    wave forces; for the hydrostatic stiffness it holds when the body floats in
+    equilibrium (weight = buoyancy, G above B), which is the case the data describe.
+
+    Parameters
+    ----------
+    ds
+        A ``HydroDB`` with all six DOFs of each body.
+    point
+        New reference point, m, in the dataset's axes (shape (3,), or (nbodies, 3)).
+
+    Returns
+    -------
+    xarray.Dataset
+        A new dataset; ``attrs["reference_point"]`` is updated.
+
+    Examples
+    --------
+    >>> import cummins
+    >>> ds = cummins.demo_dataset()
+    >>> moved = cummins.move_reference_point(ds, [10.0, 0.0, 0.0])
+    >>> back = cummins.move_reference_point(moved, ds.attrs["reference_point"])
+    >>> bool(abs(back.added_mass - ds.added_mass).max() < 1e-6 * abs(ds.added_mass).max())
+    True
+    """
+    old = _reference_points(ds)
+    new = np.broadcast_to(np.asarray(point, dtype=float).reshape(-1, 3), old.shape)
+    r = old - new
+    h = _per_body_transform(ds, lambda k: screw_transform(r[k]))
+    h_inv = _per_body_transform(ds, lambda k: screw_transform(-r[k]))
+    out = _apply(ds, h.T, h, h_inv)
+    out.attrs["reference_point"] = new.reshape(-1) if new.shape[0] > 1 else new[0].copy()
+    add_history(
+        out,
+        f"reference point moved from {np.round(old, 6).tolist()} to {np.round(new, 6).tolist()} m",
+    )
+    return out
+
+
+def change_axes(ds: xr.Dataset, to: str) -> xr.Dataset:
+    """Change the axis convention between solver axes and Fossen's body axes.
+
+    ``"z-up"`` (x forward, y to port, z up) and ``"z-down"`` (x forward, y to
+    starboard, z down) differ by a rotation of π about x: with T = diag(1, −1, −1, 1,
+    −1, −1), matrices become T M T, forces and motions T F, positions (x, −y, −z), and
+    a wave travelling at angle β from +x towards +y travels at −β in the new axes.
+
+    Parameters
+    ----------
+    ds
+        A ``HydroDB`` with all six DOFs of each body.
+    to
+        ``"z-up"`` or ``"z-down"``.
+
+    Returns
+    -------
+    xarray.Dataset
+        A new dataset (or ``ds`` itself when it already has that convention).
+    """
+    if to not in AXIS_CONVENTIONS:
+        raise HydroDataError(
+            f"unknown axis convention {to!r}", hint=f"use one of {', '.join(AXIS_CONVENTIONS)}"
+        )
+    current = ds.attrs.get("axis_convention", "z-up")
+    if current == to:
+        return ds
+    t = _per_body_transform(ds, lambda k: np.diag(Z_UP_TO_Z_DOWN))
+    out = _apply(ds, t, t, t)
+    flip = np.array([1.0, -1.0, -1.0])
+    for key in ("reference_point", "center_of_gravity", "center_of_buoyancy"):
+        if key in out.attrs:
+            out.attrs[key] = (
+                np.asarray(out.attrs[key], dtype=float).reshape(-1, 3) * flip
+            ).reshape(-1)
+    if "wave_direction" in out.dims:
+        beta = np.mod(-out.wave_direction.values, 2 * np.pi)
+        beta[np.isclose(beta, 2 * np.pi)] = 0.0
+        out = out.assign_coords(wave_direction=("wave_direction", beta, ds.wave_direction.attrs))
+        out = out.sortby("wave_direction")
+    out.attrs["axis_convention"] = to
+    add_history(out, f"axes changed from {current} to {to} ({AXIS_CONVENTIONS[to]})")
+    return out
+
+
+def describe(ds: xr.Dataset) -> dict[str, Any]:
+    """A short, JSON-ready description of a ``HydroDB`` (what ``cummins info`` prints)."""
+    w = ds.omega.values
+    info: dict[str, Any] = {
+        "source_format": ds.attrs.get("source_format"),
+        "source_file": ds.attrs.get("source_file"),
+        "dofs": [str(d) for d in ds.influenced_dof.values],
+        "bodies": [b for b in bodies(ds) if b is not None],
+        "n_omega": int(w.size),
+        "omega_min_rad_s": float(w.min()),
+        "omega_max_rad_s": float(w.max()),
+        "period_range_s": [float(2 * np.pi / w.max()), float(2 * np.pi / w.min())],
+        "wave_directions_deg": (
+            [float(b) for b in np.degrees(ds.wave_direction.values)]
+            if "wave_direction" in ds.dims
+            else []
+        ),
+        "forward_speeds_m_s": (
+            [float(u) for u in np.atleast_1d(ds.forward_speed.values)]
+            if "forward_speed" in ds.coords
+            else [0.0]
+        ),
+        "variables": sorted(str(v) for v in ds.data_vars),
+        "rho_kg_m3": float(ds.attrs["rho"]),
+        "g_m_s2": float(ds.attrs["g"]),
+        "water_depth_m": float(ds.attrs.get("water_depth", np.inf)),
+        "axis_convention": ds.attrs.get("axis_convention"),
+        "reference_point_m": [float(x) for x in np.ravel(ds.attrs.get("reference_point", []))],
+        "history": [line for line in str(ds.attrs.get("history", "")).splitlines() if line],
+    }
+    for key in ("center_of_gravity", "center_of_buoyancy"):
+        if key in ds.attrs:
+            info[f"{key}_m"] = [float(x) for x in np.ravel(ds.attrs[key])]
+    if "displaced_volume" in ds.attrs:
+        info["displaced_volume_m3"] = float(ds.attrs["displaced_volume"])
+    if "inertia_matrix" in ds:
+        m = ds.inertia_matrix.transpose(..., "influenced_dof", "radiating_dof").values
+        info["mass_kg"] = float(np.ravel(m)[0])
+    return info

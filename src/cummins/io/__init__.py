@@ -1,0 +1,255 @@
+"""Readers and writers of hydrodynamic data, with format detection by content.
+
+``read(path)`` returns a canonical ``HydroDB`` (see :mod:`cummins.hydrodb`) from:
+
+========== ============================================================ ==============
+format     files                                                        module
+========== ============================================================ ==============
+wamit      WAMIT ``.1`` (+ ``.3``, ``.hst``, ``.frc``, ``.out``)         :mod:`.wamit`
+wamit-out  WAMIT ``.out`` log on its own                                :mod:`.wamit`
+nemoh      NEMOH v2/v3 ``RadiationCoefficients.tec`` … (file or folder)  :mod:`.nemoh`
+aqwa       ANSYS AQWA ``.LIS`` (or ``.AH1``)                            :mod:`.aqwa`
+veres      ShipX/VERES ``.re7`` (+ ``.re8``, ``.re1``)                  :mod:`.veres`
+netcdf     Capytaine NetCDF (and cummins' own, which is the same layout) :mod:`.netcdf`
+mss        Marine Systems Simulator ``vessel`` struct (``.mat``)        :mod:`.mss`
+========== ============================================================ ==============
+
+``write(ds, path)`` writes canonical NetCDF (``.nc``) or an MSS ``vessel`` ``.mat``.
+"""
+
+from __future__ import annotations
+
+import importlib
+import os
+from collections.abc import Callable
+from dataclasses import dataclass
+from pathlib import Path
+
+import xarray as xr
+
+from cummins.errors import HydroDataError, check_writable
+
+
+@dataclass(frozen=True)
+class Format:
+    """A file format cummins reads.
+
+    Attributes
+    ----------
+    name
+        Short name, as passed to ``read(..., format=name)``.
+    description
+        What the user has on disk, in a few words.
+    module
+        Module implementing ``sniff(path) -> bool``, ``sniff_dir(path) -> list[Path]``
+        and the reader function ``reader``.
+    reader
+        Name of the reader function in ``module``.
+    nondimensional
+        True if the files are nondimensional (``rho``, ``g``, ``ulen`` matter).
+    sniff_function, sniff_dir_function
+        Names of the detection functions in ``module`` (``sniff_dir_function=None``:
+        the format is never detected in a folder).
+    """
+
+    name: str
+    description: str
+    module: str
+    reader: str
+    nondimensional: bool = False
+    sniff_function: str = "sniff"
+    sniff_dir_function: str | None = "sniff_dir"
+
+    def _module(self):
+        return importlib.import_module(self.module)
+
+    def sniff(self, path: Path) -> bool:
+        try:
+            return bool(getattr(self._module(), self.sniff_function)(path))
+        except (OSError, ValueError, HydroDataError):
+            return False
+
+    def sniff_dir(self, path: Path) -> list[Path]:
+        if self.sniff_dir_function is None:
+            return []
+        try:
+            return list(getattr(self._module(), self.sniff_dir_function)(path))
+        except (OSError, ValueError, HydroDataError):
+            return []
+
+    def read(self, path: Path, **options) -> xr.Dataset:
+        function: Callable[..., xr.Dataset] = getattr(self._module(), self.reader)
+        return function(path, **options)
+
+
+FORMATS: dict[str, Format] = {
+    f.name: f
+    for f in (
+        Format(
+            "wamit",
+            "WAMIT numeric files .1/.3/.hst (+ .frc, .out)",
+            "cummins.io.wamit",
+            "read_wamit",
+            nondimensional=True,
+        ),
+        Format(
+            "wamit-out",
+            "WAMIT .out log",
+            "cummins.io.wamit",
+            "read_wamit_out",
+            nondimensional=True,
+            sniff_function="is_out_file",
+            sniff_dir_function=None,
+        ),
+        Format(
+            "nemoh",
+            "NEMOH v2/v3 results (RadiationCoefficients.tec, ...)",
+            "cummins.io.nemoh",
+            "read_nemoh",
+        ),
+        Format("aqwa", "ANSYS AQWA .LIS / .AH1", "cummins.io.aqwa", "read_aqwa"),
+        Format("veres", "ShipX/VERES .re7/.re8/.re1", "cummins.io.veres", "read_veres"),
+        Format("netcdf", "Capytaine / cummins NetCDF", "cummins.io.netcdf", "read_netcdf"),
+        Format("mss", "MSS vessel struct .mat", "cummins.io.mss", "read_mss"),
+    )
+}
+
+
+def detect_format(path: str | os.PathLike[str]) -> tuple[str, Path]:
+    """Find the format of a file or folder by its content.
+
+    Returns
+    -------
+    (format name, file to read)
+        For a folder, the file the reader starts from.
+
+    Raises
+    ------
+    HydroDataError
+        Nothing recognised, or a folder holding several runs or several solvers' output.
+    """
+    p = Path(path)
+    if not p.exists():
+        raise HydroDataError("no such file or folder", path=p)
+    if p.is_dir():
+        found = [(name, f) for name, fmt in FORMATS.items() for f in fmt.sniff_dir(p)]
+        if not found:
+            raise HydroDataError(
+                "no solver output recognised in this folder",
+                path=p,
+                hint="supported: " + "; ".join(f.description for f in FORMATS.values()),
+            )
+        if len(found) > 1:
+            listing = ", ".join(f"{name}: {f.name}" for name, f in found)
+            raise HydroDataError(
+                f"this folder holds several runs ({listing})",
+                path=p,
+                hint="pass one file, or format= (--format) to choose the solver",
+            )
+        return found[0]
+    if p.stat().st_size == 0:
+        raise HydroDataError("the file is empty", path=p)
+    names = [name for name, fmt in FORMATS.items() if fmt.sniff(p)]
+    if not names:
+        raise HydroDataError(
+            "unrecognised file format",
+            path=p,
+            hint="supported: " + "; ".join(f.description for f in FORMATS.values()),
+        )
+    if len(names) > 1:
+        raise HydroDataError(
+            f"the content fits several formats ({', '.join(names)})",
+            path=p,
+            hint="pass format= (--format) to choose",
+        )
+    return names[0], p
+
+
+def read(
+    path: str | os.PathLike[str],
+    format: str | None = None,
+    *,
+    rho: float | None = None,
+    g: float | None = None,
+    ulen: float | None = None,
+    **options,
+) -> xr.Dataset:
+    """Read hydrodynamic data into a canonical ``HydroDB`` (an :class:`xarray.Dataset`).
+
+    Parameters
+    ----------
+    path
+        A solver output file, or a folder holding one run.
+    format
+        Force a format (see :data:`FORMATS`); detected from the content by default.
+    rho, g, ulen
+        Water density (kg/m³), gravity (m/s²) and length scale (m) for nondimensional
+        formats (WAMIT). For dimensional formats they may only confirm the file's values.
+    **options
+        Passed to the format's reader (e.g. ``siblings=False`` for WAMIT).
+
+    Returns
+    -------
+    xarray.Dataset
+        Dimensional, SI units; see :mod:`cummins.hydrodb` for names and conventions.
+
+    Raises
+    ------
+    HydroDataError
+        Unreadable, damaged or inconsistent files, naming the file and line.
+
+    Examples
+    --------
+    >>> import cummins
+    >>> ds = cummins.read(cummins.demo_files() / "tanker.1")
+    >>> ds.added_mass.dims
+    ('omega', 'influenced_dof', 'radiating_dof')
+    """
+    if format is None:
+        name, target = detect_format(path)
+    else:
+        if format not in FORMATS:
+            raise HydroDataError(
+                f"unknown format {format!r}", hint=f"choose one of {', '.join(FORMATS)}"
+            )
+        name, target = format, Path(path)
+        if target.is_dir():
+            files = FORMATS[name].sniff_dir(target)
+            if len(files) != 1:
+                raise HydroDataError(
+                    f"expected one {name} run in this folder, found {len(files)}", path=target
+                )
+            target = files[0]
+    fmt = FORMATS[name]
+    constants = {k: v for k, v in (("rho", rho), ("g", g), ("ulen", ulen)) if v is not None}
+    if "ulen" in constants and not fmt.nondimensional:
+        constants.pop("ulen")
+    return fmt.read(target, **constants, **options)
+
+
+def write(ds: xr.Dataset, path: str | os.PathLike[str], *, force: bool = False) -> Path:
+    """Write a ``HydroDB`` to ``.nc`` (Capytaine-compatible NetCDF) or ``.mat`` (MSS).
+
+    Refuses to overwrite an existing file unless ``force=True``.
+    """
+    p = Path(path)
+    check_writable(p, force)
+    suffix = p.suffix.lower()
+    if suffix == ".nc":
+        from cummins.io.netcdf import write_netcdf
+
+        write_netcdf(ds, p)
+    elif suffix == ".mat":
+        from cummins.io.mss import write_mss
+
+        write_mss(ds, p)
+    else:
+        raise HydroDataError(
+            f"cannot write {suffix or 'files without an extension'}",
+            path=p,
+            hint="use .nc (NetCDF, Capytaine layout) or .mat (MSS vessel struct)",
+        )
+    return p
+
+
+__all__ = ["FORMATS", "Format", "detect_format", "read", "write"]

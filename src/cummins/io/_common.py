@@ -1,0 +1,113 @@
+"""Pieces shared by the readers: physical constants, units of nondimensional data."""
+
+from __future__ import annotations
+
+import os
+
+import numpy as np
+
+from cummins.errors import HydroDataError
+
+#: Sea-water density and gravity used when a nondimensional file does not record them.
+DEFAULT_RHO = 1025.0
+DEFAULT_G = 9.81
+
+
+def resolve_constant(
+    name: str,
+    given: float | None,
+    in_file: float | None,
+    default: float | None,
+    *,
+    unit: str,
+    path: str | os.PathLike[str],
+    history: list[str],
+    dimensional: bool,
+) -> float:
+    """Decide the value of ρ, g or a length scale, and record where it came from.
+
+    Parameters
+    ----------
+    name
+        ``"rho"``, ``"g"`` or ``"ulen"``, as the keyword the user passes.
+    given
+        Value passed by the user, or ``None``.
+    in_file
+        Value recorded in the file(s), or ``None``.
+    default
+        Value used when neither is known; ``None`` makes that an error.
+    dimensional
+        True when the file's numbers are already dimensional: then a given value
+        that differs from the file's one is an error, since it cannot change the data.
+        For nondimensional data the given value wins (with a note).
+    """
+    if given is not None:
+        given = float(given)
+        if not np.isfinite(given) or given <= 0:
+            raise HydroDataError(f"{name} must be a positive number, got {given!r}", path=path)
+    if in_file is not None and given is not None and not np.isclose(given, in_file, rtol=1e-6):
+        if dimensional:
+            raise HydroDataError(
+                f"{name} = {given:g} {unit} was given but the file records {in_file:g} {unit}",
+                path=path,
+                hint=f"the data are dimensional, computed with {name} = {in_file:g}; "
+                f"drop the {name} option",
+            )
+        history.append(f"{name} = {given:g} {unit} (given; the file records {in_file:g} {unit})")
+        return given
+    if in_file is not None:
+        history.append(f"{name} = {in_file:g} {unit} (from the file)")
+        return float(in_file)
+    if given is not None:
+        history.append(f"{name} = {given:g} {unit} (given)")
+        return given
+    if default is None:
+        raise HydroDataError(
+            f"the file does not record {name}",
+            path=path,
+            hint=f"pass {name}= (--{name} on the command line)",
+        )
+    history.append(
+        f"{name} = {default:g} {unit} (not recorded in the file: default; pass {name}= to change)"
+    )
+    return default
+
+
+def resolve_rho_g(
+    rho: float | None,
+    g: float | None,
+    file_rho: float | None,
+    file_g: float | None,
+    *,
+    path: str | os.PathLike[str],
+    history: list[str],
+    dimensional: bool,
+    defaults: bool = True,
+) -> tuple[float, float]:
+    """Water density and gravity of a file, with :func:`resolve_constant` for each.
+
+    ``defaults=False`` makes a value that is neither given nor in the file an error
+    instead of falling back on :data:`DEFAULT_RHO` / :data:`DEFAULT_G`.
+    """
+    common = {"path": path, "history": history, "dimensional": dimensional}
+    rho_v = resolve_constant(
+        "rho", rho, file_rho, DEFAULT_RHO if defaults else None, unit="kg/m^3", **common
+    )
+    g_v = resolve_constant("g", g, file_g, DEFAULT_G if defaults else None, unit="m/s^2", **common)
+    return rho_v, g_v
+
+
+def length_exponents(n: int, offset: int) -> np.ndarray:
+    """Exponent of the length scale L for each (i, j) entry of an n×n matrix.
+
+    WAMIT-style nondimensionalization scales an entry by L^(offset + a_i + a_j), where
+    a = 0 for translations and 1 for rotations (DOF index mod 6 ≥ 3). For added mass
+    ``offset`` is 3 (L³, L⁴, L⁵); for hydrostatics 2 (L², L³, L⁴).
+    """
+    rot = (np.arange(n) % 6 >= 3).astype(int)
+    return offset + rot[:, None] + rot[None, :]
+
+
+def force_exponents(n: int, offset: int) -> np.ndarray:
+    """Exponent of L for each entry of a force vector: ``offset`` + 1 for moments."""
+    return offset + (np.arange(n) % 6 >= 3).astype(int)

@@ -1,0 +1,200 @@
+"""Reading numeric text files written by Fortran solvers, with errors that name the line."""
+
+from __future__ import annotations
+
+import os
+import re
+from dataclasses import dataclass
+from pathlib import Path
+
+import numpy as np
+
+from cummins.errors import HydroDataError
+
+#: A Fortran-style real: 1.0, -1.E+03, 1.0D-02, .5, 12 — also when numbers run together
+#: without a space ("1.2E+03-4.5E+01"), as fixed-width Fortran output sometimes does.
+_NUMBER = re.compile(r"[-+]?(?:\d+\.?\d*|\.\d+)(?:[EeDd][-+]?\d+)?")
+_NON_NUMERIC = re.compile(r"[^\s0-9.eEdD+\-]")
+
+
+@dataclass(frozen=True)
+class TextFile:
+    """The lines of a text file, for parsing with line-accurate error messages.
+
+    Line numbers in messages are 1-based, as an editor shows them; indices in the
+    methods are 0-based, as Python counts.
+    """
+
+    path: Path
+    lines: tuple[str, ...]
+
+    @classmethod
+    def read(cls, path: str | os.PathLike[str]) -> TextFile:
+        """Read ``path``; a missing, empty or binary file raises :class:`HydroDataError`."""
+        p = Path(path)
+        try:
+            raw = p.read_bytes()
+        except FileNotFoundError:
+            raise HydroDataError("file not found", path=p) from None
+        except IsADirectoryError:
+            raise HydroDataError("expected a file, found a directory", path=p) from None
+        except OSError as exc:
+            raise HydroDataError(f"cannot read the file ({exc.strerror})", path=p) from None
+        if not raw.strip():
+            raise HydroDataError("the file is empty", path=p)
+        if b"\x00" in raw[:65536]:
+            raise HydroDataError(
+                "this is a binary file, not a text output file",
+                path=p,
+                hint="check the file name and format",
+            )
+        text = raw.decode("utf-8", errors="replace")
+        return cls(p, tuple(text.splitlines()))
+
+    def __len__(self) -> int:
+        return len(self.lines)
+
+    def error(self, message: str, index: int | None = None, **kwargs) -> HydroDataError:
+        """A :class:`HydroDataError` at line ``index`` (0-based) of this file."""
+        return HydroDataError(
+            message, path=self.path, line=None if index is None else index + 1, **kwargs
+        )
+
+    def numbers(self, index: int, count: int | None = None, *, at_least: int | None = None):
+        """The numbers on line ``index`` (0-based) as a float array.
+
+        Parameters
+        ----------
+        index
+            0-based line index.
+        count
+            Exact number of values expected (error otherwise).
+        at_least
+            Minimum number of values expected.
+        """
+        if index >= len(self.lines):
+            raise self.error("the file ends too early (truncated?)", len(self.lines) - 1)
+        values = parse_numbers(self.lines[index])
+        if values is None:
+            raise self.error(f"expected numbers, found {self.lines[index].strip()[:60]!r}", index)
+        if count is not None and values.size != count:
+            raise self.error(f"expected {count} numbers, found {values.size}", index)
+        if at_least is not None and values.size < at_least:
+            raise self.error(f"expected at least {at_least} numbers, found {values.size}", index)
+        return values
+
+    def find(self, pattern: str | re.Pattern[str], start: int = 0, stop: int | None = None) -> int:
+        """Index of the first line at or after ``start`` matching ``pattern`` (regex), or −1."""
+        rx = re.compile(pattern) if isinstance(pattern, str) else pattern
+        end = len(self.lines) if stop is None else min(stop, len(self.lines))
+        for i in range(start, end):
+            if rx.search(self.lines[i]):
+                return i
+        return -1
+
+
+def parse_numbers(line: str) -> np.ndarray | None:
+    """All numbers of a line, or ``None`` if the line holds anything but numbers.
+
+    Fortran ``D`` exponents are accepted, as are numbers written without a space
+    between them. NaN and Inf, as some solvers write them, are returned as such (the
+    dataset validation then reports them with their frequency and DOF).
+
+    Examples
+    --------
+    >>> parse_numbers(" 1.0D+00  -2.5E-01 3")
+    array([ 1.  , -0.25,  3.  ])
+    >>> parse_numbers("1.2E+03-4.5E+01")
+    array([1200.,  -45.])
+    >>> parse_numbers("PERIOD = 3") is None
+    True
+    """
+    fields = line.split()
+    if not fields:
+        return np.empty(0)
+    try:
+        return np.array([float(f.replace("D", "E").replace("d", "e")) for f in fields])
+    except ValueError:
+        pass
+    lowered = line.lower()
+    if "nan" in lowered or "inf" in lowered:
+        try:
+            return np.array([float(f) for f in fields])
+        except ValueError:
+            return None
+    if _NON_NUMERIC.search(line):
+        return None
+    found = _NUMBER.findall(line)
+    if not found or "".join(found) != "".join(fields):
+        return None
+    return np.array([float(f.replace("D", "E").replace("d", "e")) for f in found])
+
+
+def numeric_table(
+    text: TextFile, start: int = 0, stop: int | None = None, *, columns: int | tuple[int, ...]
+) -> tuple[np.ndarray, np.ndarray]:
+    """Parse the numeric rows of ``text.lines[start:stop]``, skipping blank lines.
+
+    Parameters
+    ----------
+    columns
+        Allowed numbers of values per row (an int or a tuple of ints). Rows with
+        fewer values are padded with NaN up to the largest allowed width.
+
+    Returns
+    -------
+    table : ndarray, shape (nrows, max(columns))
+    line_index : ndarray of int, shape (nrows,)
+        0-based line index of each row, for error messages.
+    """
+    allowed = (columns,) if isinstance(columns, int) else tuple(columns)
+    width = max(allowed)
+    end = len(text.lines) if stop is None else stop
+    where = [i for i in range(start, end) if text.lines[i].strip()]
+    if not where:
+        raise text.error("no numeric data found", start)
+    fast = _fast_table(text, where, allowed, width)
+    if fast is not None:
+        return fast, np.asarray(where)
+    rows: list[np.ndarray] = []
+    for i in where:  # slow path: find the first bad line and say what is wrong with it
+        line = text.lines[i]
+        values = parse_numbers(line)
+        if values is None:
+            raise text.error(f"expected a row of numbers, found {line.strip()[:60]!r}", i)
+        if values.size not in allowed:
+            expected = " or ".join(str(c) for c in allowed)
+            raise text.error(f"expected {expected} numbers on the row, found {values.size}", i)
+        if not np.all(np.isfinite(values)):
+            raise text.error(
+                "non-finite value (NaN or Inf) in the data",
+                i,
+                hint="the solver failed at this point; rerun it or remove the frequency",
+            )
+        if values.size < width:
+            values = np.concatenate([values, np.full(width - values.size, np.nan)])
+        rows.append(values)
+    return np.vstack(rows), np.asarray(where)
+
+
+def _fast_table(
+    text: TextFile, where: list[int], allowed: tuple[int, ...], width: int
+) -> np.ndarray | None:
+    """Vectorised parse of well-formed rows; ``None`` sends the caller to the slow path."""
+    fields = [text.lines[i].split() for i in where]
+    sizes = np.fromiter((len(f) for f in fields), dtype=int, count=len(fields))
+    if not np.isin(sizes, allowed).all():
+        return None
+    table = np.full((len(fields), width), np.nan)
+    try:
+        for size in np.unique(sizes):
+            rows = np.flatnonzero(sizes == size)
+            values = np.array([fields[r] for r in rows], dtype=float)
+            table[rows, :size] = values
+    except ValueError:
+        return None
+    for size in np.unique(sizes):
+        rows = np.flatnonzero(sizes == size)
+        if not np.isfinite(table[rows, :size]).all():
+            return None
+    return table

@@ -1,0 +1,123 @@
+"""Diagnostics: each check fires on data that break it, and stays quiet on data that don't."""
+
+from __future__ import annotations
+
+import json
+
+import numpy as np
+import pytest
+
+import cummins
+import cummins.kinematics
+from cummins.hydrodb import make_hydrodb
+
+
+def _clean_dataset(n_omega=60):
+    """A passive 6-DOF database from a sum of damped modes (B ≥ 0, symmetric, decaying)."""
+    w = np.linspace(0.05, 6.0, n_omega)
+    rng = np.random.default_rng(3)
+    q = rng.normal(size=(6, 6))
+    base = q @ q.T + 6 * np.eye(6)
+    width = np.array([0.8, 0.9, 1.0, 1.1, 1.2, 1.3])  # a different curve per DOF
+    d_b = w[:, None] * np.exp(-0.5 * (w[:, None] / width) ** 2)  # D(ω) B₀ D(ω) ≥ 0
+    d_a = np.exp(-w[:, None] / width) / (1 + w[:, None])
+    b = d_b[:, :, None] * base[None] * d_b[:, None, :] * 1e3
+    a_inf = base * 1e3
+    a = a_inf + d_a[:, :, None] * base[None] * d_a[:, None, :] * 1e3
+    return make_hydrodb(
+        w,
+        a,
+        b,
+        rho=1025,
+        g=9.81,
+        source_format="arrays",
+        added_mass_inf=a_inf,
+        inertia_matrix=cummins.kinematics.rigid_body_inertia(
+            1e4, [1.0, 0.0, -0.5], [3e4, 5e4, 5e4]
+        ),
+        hydrostatic_stiffness=np.diag([0, 0, 1e5, 2e5, 3e6, 0.0]),
+    )
+
+
+def test_clean_data_passes():
+    report = cummins.check(_clean_dataset())
+    assert report.ok
+    assert report.worst() == "ok", report.to_text()
+
+
+def test_negative_damping_is_located():
+    ds = _clean_dataset()
+    ds.radiation_damping[40, 3, 3] = -0.3 * float(ds.radiation_damping[:, 3, 3].max())
+    report = cummins.check(ds)
+    found = [f for f in report.by_check("damping_positive") if f.severity == "warning"]
+    roll = [f for f in found if f.where == "Roll"]
+    assert roll and "1 of 60" in roll[0].message
+    assert f"{float(ds.omega[40]):.4g} rad/s" in roll[0].message
+    assert roll[0].value == pytest.approx(-0.3, rel=1e-6)
+    # The matrix test finds it too, at that frequency, mostly in roll.
+    matrix = [f for f in found if f.where and "rad/s" in f.where]
+    assert matrix and "Roll" in matrix[0].message
+
+
+def test_indefinite_damping_without_negative_diagonal():
+    """B can have positive diagonals and still be indefinite: eigenvalues catch it."""
+    ds = _clean_dataset()
+    k = 30
+    b = ds.radiation_damping.values[k]
+    b[2, 4] = b[4, 2] = 3 * np.sqrt(b[2, 2] * b[4, 4])
+    report = cummins.check(ds)
+    matrix = [f for f in report.by_check("damping_positive") if f.severity == "warning"]
+    assert len(matrix) == 1 and "Heave" in matrix[0].message and "Pitch" in matrix[0].message
+
+
+def test_asymmetry_and_added_mass_inf_errors():
+    ds = _clean_dataset()
+    ds.added_mass.values[:, 1, 5] *= 1.5
+    ds.added_mass_inf.values[3, 3] = -ds.added_mass_inf.values[3, 3]
+    report = cummins.check(ds)
+    sym = [f for f in report.by_check("symmetry") if f.severity == "warning"]
+    assert sym and sym[0].where == "Sway-Yaw"
+    assert not report.ok
+    assert any(f.severity == "error" for f in report.by_check("added_mass_inf"))
+
+
+def test_forward_speed_skips_symmetry():
+    ds = _clean_dataset().assign_coords(forward_speed=5.0)
+    ds.added_mass.values[:, 1, 5] *= 1.5
+    report = cummins.check(ds)
+    assert all(f.severity == "info" for f in report.by_check("symmetry"))
+
+
+def test_undecayed_damping_and_copied_dof():
+    ds = _clean_dataset()
+    ds = ds.isel(omega=slice(0, 20))  # stops at ω ≈ 2 rad/s: B has not decayed
+    ds.added_mass.values[:, 0, 0] = 0.25 * ds.added_mass.values[:, 1, 1]
+    ds.radiation_damping.values[:, 0, 0] = 0.5 * ds.radiation_damping.values[:, 1, 1]
+    report = cummins.check(ds)
+    assert any(f.severity == "warning" for f in report.by_check("damping_decay"))
+    copied = report.by_check("copied_dof")
+    assert copied and copied[0].where == "Surge-Sway" and "0.25" in copied[0].message
+
+
+def test_tanker_facts(tanker_wamit):
+    """The figures the identification issue measured on the WAMIT tanker, found by check."""
+    report = cummins.check(tanker_wamit)
+    negative = {
+        f.where: f.value for f in report.by_check("damping_positive") if f.severity == "warning"
+    }
+    assert negative["Heave"] == pytest.approx(-0.56, abs=0.01)
+    assert negative["Roll"] == pytest.approx(-0.41, abs=0.01)
+    assert negative["Pitch"] == pytest.approx(-0.34, abs=0.01)
+    # WAMIT's .frc mass matrix lacks the sway-yaw term m·x_g: not a rigid body.
+    rigid = [f for f in report.by_check("inertia") if f.severity == "warning"]
+    assert rigid and "M[Sway, Yaw]" in rigid[0].message
+    assert report.ok  # usable, with warnings
+
+
+def test_report_formats(tanker_wamit):
+    report = cummins.check(tanker_wamit)
+    data = json.loads(report.to_json())
+    assert data["ok"] is True and data["worst"] == "warning"
+    assert {"check", "severity", "message", "where", "value", "advice"} <= set(data["findings"][0])
+    text = report.to_text()
+    assert "WARNING damping_positive [Heave]" in text and "Result: usable" in text

@@ -1,0 +1,114 @@
+"""The command line: outputs, exit codes, refusal to overwrite, error messages."""
+
+from __future__ import annotations
+
+import json
+import shutil
+
+import numpy as np
+import pytest
+from click.testing import CliRunner
+
+import cummins
+import cummins.demo
+from cummins.cli import main
+
+
+@pytest.fixture
+def runner():
+    return CliRunner()
+
+
+@pytest.fixture
+def tanker_copy(tmp_path):
+    for f in cummins.demo_files().glob("tanker.*"):
+        shutil.copy(f, tmp_path / f.name)
+    return tmp_path / "tanker.1"
+
+
+def test_version_and_help(runner):
+    result = runner.invoke(main, ["--version"])
+    assert result.exit_code == 0 and cummins.__version__ in result.output
+    result = runner.invoke(main, ["--help"])
+    assert result.exit_code == 0
+    for command in ("info", "check", "convert", "demo", "bem"):
+        assert command in result.output
+    for command in ("info", "check", "convert", "demo"):
+        sub = runner.invoke(main, [command, "--help"])
+        assert sub.exit_code == 0 and "Usage" in sub.output
+
+
+def test_info_json(runner, tanker_copy):
+    result = runner.invoke(main, ["info", str(tanker_copy), "--json"])
+    assert result.exit_code == 0, result.output
+    info = json.loads(result.output)
+    assert info["source_format"] == "wamit"
+    assert info["n_omega"] == 58 and len(info["wave_directions_deg"]) == 19
+    assert info["rho_kg_m3"] == 1025.0 and info["g_m_s2"] == pytest.approx(9.80665)
+    assert any("from the file" in line for line in info["history"])
+
+
+def test_info_table(runner, tanker_copy):
+    result = runner.invoke(main, ["info", str(tanker_copy), "--rho", "1000"])
+    assert result.exit_code == 0, result.output
+    assert "1000 kg/m³" in result.output and "given" in result.output
+
+
+def test_check_exit_codes(runner, tanker_copy, tmp_path):
+    report_path = tmp_path / "report.json"
+    result = runner.invoke(main, ["check", str(tanker_copy), "--json", str(report_path)])
+    assert result.exit_code == 0, result.output
+    assert "B_Heave is negative" in result.output
+    assert json.loads(report_path.read_text())["ok"] is True
+    strict = runner.invoke(main, ["check", str(tanker_copy), "--strict"])
+    assert strict.exit_code == 1
+
+
+def test_check_json_to_stdout(runner, tanker_copy):
+    result = runner.invoke(main, ["check", str(tanker_copy), "--json", "-"])
+    assert json.loads(result.output)["worst"] == "warning"
+
+
+def test_convert_and_refuse_overwrite(runner, tanker_copy, tmp_path):
+    out = tmp_path / "tanker.nc"
+    result = runner.invoke(main, ["convert", str(tanker_copy), str(out)])
+    assert result.exit_code == 0, result.output
+    back = cummins.read(out)
+    np.testing.assert_allclose(back.added_mass, cummins.read(tanker_copy).added_mass)
+    again = runner.invoke(main, ["convert", str(tanker_copy), str(out)])
+    assert again.exit_code == 2 and "refusing to overwrite" in again.output
+    forced = runner.invoke(main, ["convert", str(tanker_copy), str(out), "--force"])
+    assert forced.exit_code == 0
+
+
+def test_convert_to_mss_with_reference_point(runner, tanker_copy, tmp_path):
+    out = tmp_path / "tanker.mat"
+    result = runner.invoke(
+        main, ["convert", str(tanker_copy), str(out), "--reference-point", "10", "0", "0"]
+    )
+    assert result.exit_code == 0, result.output
+    back = cummins.read(out)
+    assert back.attrs["axis_convention"] == "z-down"
+    np.testing.assert_allclose(back.attrs["reference_point"], [10.0, 0.0, 0.0])
+
+
+def test_broken_file_gives_one_line_error(runner, tanker_copy):
+    lines = tanker_copy.read_text().splitlines()
+    lines[10] = "  0.1000E+01   1   garbage"
+    tanker_copy.write_text("\n".join(lines) + "\n")
+    result = runner.invoke(main, ["info", str(tanker_copy)])
+    assert result.exit_code == 2
+    assert "error:" in result.output and "line 11" in result.output
+    assert "Traceback" not in result.output
+
+
+def test_demo(runner, tmp_path):
+    out = tmp_path / "demo"
+    result = runner.invoke(main, ["demo", "-o", str(out)])
+    assert result.exit_code == 0, result.output
+    for name in cummins.demo.DEMO_FILES:
+        assert (out / name).is_file(), name
+    assert (out / "added_mass_damping.png").stat().st_size > 10_000
+    refused = runner.invoke(main, ["demo", "-o", str(out)])
+    assert refused.exit_code == 2 and "--force" in refused.output
+    assert runner.invoke(main, ["demo", "-o", str(out), "--force"]).exit_code == 0
