@@ -112,3 +112,59 @@ def test_demo(runner, tmp_path):
     refused = runner.invoke(main, ["demo", "-o", str(out)])
     assert refused.exit_code == 2 and "--force" in refused.output
     assert runner.invoke(main, ["demo", "-o", str(out), "--force"]).exit_code == 0
+
+
+def test_kernel_command(runner, tanker_copy, tmp_path):
+    out = tmp_path / "K.nc"
+    plots = tmp_path / "plots"
+    result = runner.invoke(
+        main,
+        [
+            "kernel",
+            str(tanker_copy),
+            "-o",
+            str(out),
+            "--plot",
+            str(plots),
+            "--remove-suspect",
+            "--above-first",
+            "--truncate",
+            "subtract",
+            "--t-max",
+            "40",
+            "--dt",
+            "0.1",
+        ],
+    )
+    assert result.exit_code == 0, result.output
+    assert "suspect 3.927 rad/s" in result.output
+    import xarray as xr
+
+    k = xr.load_dataset(out, engine="h5netcdf")
+    assert k.retardation_function.sizes["time"] == 401
+    np.testing.assert_allclose(k.retardation_function.isel(time=-1), 0.0, atol=1e-6)
+    assert k.attrs["added_mass_inf_method"] == "data"
+    for name in ("retardation.png", "reconstruction.png", "added_mass_inf.png"):
+        assert (plots / name).stat().st_size > 10_000
+    again = runner.invoke(main, ["kernel", str(tanker_copy), "-o", str(out)])
+    assert again.exit_code == 2 and "refusing to overwrite" in again.output
+
+
+def test_kernel_needs_a_speed(runner, shared_data, tmp_path):
+    result = runner.invoke(
+        main,
+        ["kernel", str(shared_data / "mss" / "s175" / "s175.mat"), "-o", str(tmp_path / "K.nc")],
+    )
+    assert result.exit_code != 0 and "--speed" in result.output
+    result = runner.invoke(
+        main,
+        [
+            "kernel",
+            str(shared_data / "mss" / "s175" / "s175.mat"),
+            "-o",
+            str(tmp_path / "K.nc"),
+            "--speed",
+            "0",
+        ],
+    )
+    assert result.exit_code == 0, result.output

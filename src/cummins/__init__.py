@@ -16,6 +16,7 @@ from pathlib import Path
 
 import xarray as xr
 
+from cummins import repair
 from cummins._version import __version__
 from cummins.check import CheckReport, Finding, check
 from cummins.errors import (
@@ -35,6 +36,11 @@ from cummins.hydrodb import (
     validate,
 )
 from cummins.io import FORMATS, detect_format, read, write
+from cummins.retardation import (
+    added_mass_inf,
+    kramers_kronig_error,
+    retardation_function,
+)
 
 
 def demo_files() -> Path:
@@ -58,15 +64,19 @@ __all__ = [
     "OutputExistsError",
     "SimulationError",
     "__version__",
+    "added_mass_inf",
     "change_axes",
     "check",
     "demo_dataset",
     "demo_files",
     "detect_format",
     "dof_labels",
+    "kramers_kronig_error",
     "make_hydrodb",
     "move_reference_point",
     "read",
+    "repair",
+    "retardation_function",
     "select_dofs",
     "validate",
     "write",

@@ -12,11 +12,18 @@ changed in the data. Each finding says what was measured, where, and what to do.
   (D = peak |B_ii|), not determinants; negative diagonal entries are named.
 * ``added_mass_inf`` — A∞ symmetric positive definite (eigenvalues, scaled likewise).
 * ``damping_decay`` — |B_ii(ω_max)| / max_ω |B_ii|: the retardation function needs
-  B to have decayed at the end of the data.
+  B to have decayed at the end of the data; and |B_ii(ω_min)| / max|B_ii|, since it
+  assumes B(0) = 0 below the first frequency.
 * ``inertia``, ``hydrostatics`` — M_RB symmetric positive definite; C33, C44, C55 > 0.
 * ``copied_dof`` — a DOF that is an exact scaled copy of another (strip-theory codes
   approximate surge by scaling sway).
 * ``finite`` — NaN/Inf anywhere (validation of the dataset already refuses them).
+* ``suspect_frequencies`` — spikes and clearly negative damping
+  (:func:`cummins.repair.find_suspect_frequencies`).
+* ``retardation`` — per significant coupling: K(0), ∫K dt against B(0) = 0,
+  K(t_max)/max|K|, the tail's share of ∫B dω, the Ogilvie estimate of A∞ and its spread
+  over frequency (and its distance from the solver's ω = ∞ row), and the
+  Kramers–Kronig error (:func:`cummins.retardation.retardation_diagnostics`).
 """
 
 from __future__ import annotations
@@ -30,6 +37,8 @@ import xarray as xr
 
 from cummins.hydrodb import validate
 from cummins.kinematics import center_of_gravity_from_inertia
+from cummins.repair import find_suspect_frequencies
+from cummins.retardation import retardation_diagnostics
 
 SEVERITIES = ("ok", "info", "warning", "error")
 
@@ -37,6 +46,12 @@ SEVERITIES = ("ok", "info", "warning", "error")
 SYMMETRY_TOL = 0.02
 NEGATIVE_DAMPING_TOL = 1e-3
 DECAY_TOL = 0.05
+LOW_FREQUENCY_TOL = 0.2  # |B_ii(ω_min)| / peak
+K_END_TOL = 0.05  # |K(t_max)| / max|K|
+K_INTEGRAL_TOL = 0.1  # |∫K dt| / ∫|K| dt
+TAIL_TOL = 0.2  # share of ∫B dω in the extrapolated tail
+A_INF_TOL = 0.05  # relative spread, or distance from the data row
+KK_TOL = 0.1  # relative Kramers-Kronig error
 
 
 @dataclass(frozen=True)
@@ -57,6 +72,8 @@ class Finding:
         The measured number behind the finding (relative, dimensionless), if any.
     advice
         What to do about it, if anything.
+    details
+        The numbers behind the finding, by name (for ``--json`` users).
     """
 
     check: str
@@ -65,6 +82,7 @@ class Finding:
     where: str | None = None
     value: float | None = None
     advice: str | None = None
+    details: dict | None = None
 
 
 @dataclass(frozen=True)
@@ -424,6 +442,21 @@ def _check_decay(ds: xr.Dataset) -> list[Finding]:
                     )
                 )
                 continue
+            start = abs(b[0, k]) / peak[k]
+            if start > LOW_FREQUENCY_TOL:
+                out.append(
+                    Finding(
+                        "damping_decay",
+                        "warning",
+                        f"B_{label} is already {start:.0%} of its peak at ω_min = "
+                        f"{w[0]:.4g} rad/s{suffix}",
+                        where=label,
+                        value=float(start),
+                        advice="the data do not reach low enough frequencies (or come from "
+                        "strip theory, whose damping does not vanish as ω → 0); K(t) assumes "
+                        "B(0) = 0 and its long-time part and A(ω) near ω_min are uncertain",
+                    )
+                )
             tail = abs(b[-1, k]) / peak[k]
             if tail > DECAY_TOL:
                 out.append(
@@ -580,6 +613,127 @@ def _check_copied_dof(ds: xr.Dataset) -> list[Finding]:
     return out
 
 
+def _check_suspect_frequencies(ds: xr.Dataset) -> list[Finding]:
+    out = []
+    for sub in _speeds(ds):
+        suffix = _speed_suffix(sub)
+        suspects = find_suspect_frequencies(sub)
+        if not suspects:
+            out.append(
+                Finding(
+                    "suspect_frequencies", "ok", f"no spikes or clearly negative damping{suffix}"
+                )
+            )
+            continue
+        listed = ", ".join(f"{s.omega:.4g}" for s in suspects)
+        worst = max(suspects, key=lambda s: s.score)
+        out.append(
+            Finding(
+                "suspect_frequencies",
+                "warning",
+                f"{len(suspects)} suspect frequencies{suffix} ({listed} rad/s); worst at "
+                f"{worst.omega:.4g} rad/s: {worst.quantity}, {worst.reason}",
+                where=f"{worst.omega:.4g} rad/s",
+                value=worst.score,
+                advice="spikes and negative damping are irregular frequencies of panel methods or "
+                "solver failures; remove them before fitting (cummins kernel --remove-suspect, "
+                "cummins.repair.remove_suspect_frequencies)",
+                details={
+                    "omega": [s.omega for s in suspects],
+                    "quantity": [s.quantity for s in suspects],
+                    "reason": [s.reason for s in suspects],
+                },
+            )
+        )
+    return out
+
+
+def _check_retardation(ds: xr.Dataset) -> list[Finding]:
+    out = []
+    labels = _labels(ds)
+    for sub in _speeds(ds):
+        if float(sub.forward_speed) if "forward_speed" in sub.coords else 0.0:
+            out.append(
+                Finding(
+                    "retardation",
+                    "info",
+                    f"not evaluated{_speed_suffix(sub)}: forward speed needs the speed-"
+                    "dependent kernels (see cummins.speed)",
+                )
+            )
+            continue
+        d = retardation_diagnostics(sub)
+        diag_est = np.abs(np.diag(d.added_mass_inf_estimate.values))
+        for i, j in zip(*np.nonzero(np.triu(d.significant.values)), strict=True):
+            out.append(_retardation_finding(d, int(i), int(j), labels, diag_est))
+    return out
+
+
+def _retardation_finding(d: xr.Dataset, i: int, j: int, labels: list[str], diag_est) -> Finding:
+    pair = labels[i] if i == j else f"{labels[i]}-{labels[j]}"
+    k0 = float(d.K0.values[i, j])
+    integral = float(d.k_integral.values[i, j])
+    end = float(d.k_end_ratio.values[i, j])
+    tail = float(d.tail_fraction.values[i, j])
+    est = float(d.added_mass_inf_estimate.values[i, j])
+    spread = float(d.added_mass_inf_spread.values[i, j])
+    row = float(d.added_mass_inf_data.values[i, j])
+    kk = float(d.kramers_kronig_error.values[i, j])
+    scale = np.sqrt(diag_est[i] * diag_est[j]) or 1.0
+    t_max = d.attrs["t_max"]
+    abs_integral = abs(integral) / max(abs(k0) * t_max, np.finfo(float).tiny)
+    problems, advice = [], []
+    if end > K_END_TOL:
+        problems.append(f"K has not decayed by t = {t_max:.3g} s ({end:.2g} of its peak)")
+        advice.append("use a longer time grid or truncate with cut-and-subtract")
+    if i == j and abs_integral > K_INTEGRAL_TOL:
+        problems.append(f"∫K dt = {integral:.3g} is not close to B(0) = 0")
+        advice.append("low-frequency data are missing or inconsistent")
+    if tail > TAIL_TOL:
+        problems.append(f"{tail:.0%} of ∫B dω lies in the extrapolated tail")
+        advice.append("K(0) rests on the tail model: extend the frequency range")
+    if spread / scale > A_INF_TOL:
+        problems.append(f"the A∞ estimates vary by ±{spread / scale:.1%} over frequency")
+        advice.append("A(ω) and B(ω) are not a consistent pair at some frequencies")
+    if np.isfinite(row) and abs(est - row) / scale > A_INF_TOL:
+        problems.append(
+            f"the ω = ∞ row differs from the Ogilvie estimate by {abs(est - row) / scale:.1%}"
+        )
+        advice.append("check the solver's infinite-frequency computation")
+    if kk > KK_TOL:
+        problems.append(f"Kramers–Kronig error {kk:.1%}")
+        advice.append(
+            "A(ω) and B(ω) are not causal as given (irregular frequencies, "
+            "truncated or strip-theory speed terms)"
+        )
+    row_text = f", data row {row:.4g}" if np.isfinite(row) else ""
+    message = (
+        f"K(0) = {k0:.4g}, K(t_max)/max|K| = {end:.2g}, tail {tail:.0%} of ∫B; "
+        f"A∞ estimate {est:.4g} ± {spread:.2g}{row_text}; KK error {kk:.1%}"
+    )
+    if problems:
+        message += " — " + "; ".join(problems)
+    return Finding(
+        "retardation",
+        "warning" if problems else "ok",
+        message,
+        where=pair,
+        value=kk,
+        advice="; ".join(dict.fromkeys(advice)) or None,
+        details={
+            "K0": k0,
+            "k_integral": integral,
+            "k_end_ratio": end,
+            "tail_fraction": tail,
+            "added_mass_inf_estimate": est,
+            "added_mass_inf_spread": spread,
+            "added_mass_inf_data": row if np.isfinite(row) else None,
+            "kramers_kronig_error": kk,
+            "t_max": t_max,
+        },
+    )
+
+
 def _constant_ratio(x: np.ndarray, y: np.ndarray) -> float | None:
     """x / y if it is the same number (to 1e-6) at 3 or more points where both are non-zero."""
     both = (x != 0) & (y != 0)
@@ -624,6 +778,8 @@ def check(ds: xr.Dataset) -> CheckReport:
         _check_decay,
         _check_rigid_body,
         _check_copied_dof,
+        _check_suspect_frequencies,
+        _check_retardation,
     ):
         findings.extend(part(ds))
     return CheckReport(source=str(source), findings=tuple(findings))

@@ -6,82 +6,17 @@ the file, line or quantity at fault, without a traceback (exit status 2).
 
 from __future__ import annotations
 
-import functools
 import json
 import sys
 from pathlib import Path
 
 import click
-from rich.console import Console
 from rich.table import Table
 
 from cummins._version import __version__
 from cummins.cli_bem import bem_command
-from cummins.errors import CumminsError
-
-console = Console(highlight=False, soft_wrap=True)
-err_console = Console(stderr=True, highlight=False, soft_wrap=True)
-
-
-def _reports_errors(func):
-    """Turn a CumminsError into a one-line message and exit status 2."""
-
-    @functools.wraps(func)
-    def wrapper(*args, **kwargs):
-        try:
-            return func(*args, **kwargs)
-        except CumminsError as exc:
-            err_console.print(f"[bold red]error:[/] {exc}")
-            sys.exit(2)
-
-    return wrapper
-
-
-def _read_options(func):
-    """--format, --rho, --g, --ulen: how to read solver files."""
-    decorators = [
-        click.option(
-            "--format",
-            "format_",
-            metavar="NAME",
-            default=None,
-            help="Solver format (wamit, wamit-out, nemoh, aqwa, veres, netcdf, mss); "
-            "detected from the content by default.",
-        ),
-        click.option(
-            "--rho",
-            type=float,
-            default=None,
-            metavar="KG/M3",
-            help="Water density for nondimensional formats (WAMIT does not record it "
-            "everywhere; default 1025).",
-        ),
-        click.option(
-            "--g",
-            "g",
-            type=float,
-            default=None,
-            metavar="M/S2",
-            help="Acceleration of gravity for nondimensional formats (default 9.81, or "
-            "the value in the WAMIT .out).",
-        ),
-        click.option(
-            "--ulen",
-            type=float,
-            default=None,
-            metavar="M",
-            help="WAMIT length scale ULEN (default: from the .out, else 1).",
-        ),
-    ]
-    for decorator in reversed(decorators):
-        func = decorator(func)
-    return func
-
-
-def _read(path: str, format_: str | None, rho: float | None, g: float | None, ulen: float | None):
-    from cummins.io import read
-
-    return read(path, format=format_, rho=rho, g=g, ulen=ulen)
+from cummins.cli_common import console, read_hydrodb, read_options, reports_errors
+from cummins.cli_kernel import kernel_command
 
 
 @click.group(
@@ -97,6 +32,8 @@ def main() -> None:
       cummins check FILE       is the data physically usable? (symmetry, B >= 0, A-inf, decay)
       cummins convert IN OUT   write canonical NetCDF (.nc) or an MSS vessel struct (.mat)
       cummins bem MESH         compute a database with Capytaine (pip install cummins[bem])
+      cummins kernel FILE      retardation functions K(t), A-infinity, causality diagnostics
+      cummins kernel FILE      retardation functions K(t), A-infinity, causality diagnostics
       cummins demo             run all of it on a bundled real vessel (WAMIT tanker)
 
     \b
@@ -110,9 +47,9 @@ def main() -> None:
 
 @main.command()
 @click.argument("path", type=click.Path(exists=True))
-@_read_options
+@read_options
 @click.option("--json", "as_json", is_flag=True, help="Print the description as JSON.")
-@_reports_errors
+@reports_errors
 def info(path, format_, rho, g, ulen, as_json):
     """Describe what PATH holds: format, DOFs, frequencies, headings, constants used.
 
@@ -123,7 +60,7 @@ def info(path, format_, rho, g, ulen, as_json):
     """
     from cummins.hydrodb import describe
 
-    ds = _read(path, format_, rho, g, ulen)
+    ds = read_hydrodb(path, format_, rho, g, ulen)
     d = describe(ds)
     if as_json:
         click.echo(json.dumps(d, indent=2))
@@ -164,7 +101,7 @@ def info(path, format_, rho, g, ulen, as_json):
 
 @main.command("check")
 @click.argument("path", type=click.Path(exists=True))
-@_read_options
+@read_options
 @click.option(
     "--json",
     "json_path",
@@ -173,7 +110,7 @@ def info(path, format_, rho, g, ulen, as_json):
     help="Also write the report as JSON to FILE ('-' for standard output only).",
 )
 @click.option("--strict", is_flag=True, help="Exit with status 1 on warnings too, not only errors.")
-@_reports_errors
+@reports_errors
 def check_command(path, format_, rho, g, ulen, json_path, strict):
     """Check that the data in PATH are physically usable, and say where not.
 
@@ -190,7 +127,7 @@ def check_command(path, format_, rho, g, ulen, json_path, strict):
     """
     from cummins.check import check
 
-    ds = _read(path, format_, rho, g, ulen)
+    ds = read_hydrodb(path, format_, rho, g, ulen)
     report = check(ds)
     if json_path == "-":
         click.echo(report.to_json())
@@ -218,7 +155,7 @@ def _print_report(report) -> None:
 @main.command()
 @click.argument("source", type=click.Path(exists=True))
 @click.argument("destination", type=click.Path())
-@_read_options
+@read_options
 @click.option(
     "--axes",
     type=click.Choice(["z-up", "z-down"]),
@@ -235,7 +172,7 @@ def _print_report(report) -> None:
     help="Move the reference point to X Y Z (m, in the axes written).",
 )
 @click.option("--force", is_flag=True, help="Overwrite DESTINATION if it exists.")
-@_reports_errors
+@reports_errors
 def convert(source, destination, format_, rho, g, ulen, axes, reference_point, force):
     """Convert SOURCE to canonical NetCDF (.nc) or an MSS vessel struct (.mat).
 
@@ -253,7 +190,7 @@ def convert(source, destination, format_, rho, g, ulen, axes, reference_point, f
     from cummins.io import write
 
     check_writable(destination, force)
-    ds = _read(source, format_, rho, g, ulen)
+    ds = read_hydrodb(source, format_, rho, g, ulen)
     if axes is None and Path(destination).suffix.lower() == ".mat":
         axes = "z-down"
     if axes is not None:
@@ -278,7 +215,7 @@ def convert(source, destination, format_, rho, g, ulen, axes, reference_point, f
     help="Folder to write the results to.",
 )
 @click.option("--force", is_flag=True, help="Overwrite the files of an earlier demo run.")
-@_reports_errors
+@reports_errors
 def demo(outdir, force):
     """Run the pipeline on a bundled real vessel (the MSS tanker, WAMIT output).
 
@@ -297,6 +234,7 @@ def demo(outdir, force):
 
 
 main.add_command(bem_command)  # works without Capytaine: it then says how to install it
+main.add_command(kernel_command)
 
 
 if __name__ == "__main__":  # pragma: no cover

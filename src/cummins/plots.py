@@ -141,3 +141,100 @@ def save_figure(
     p.parent.mkdir(parents=True, exist_ok=True)
     fig.savefig(p, dpi=dpi)
     return p
+
+
+def _pairs(kernel, couplings) -> list[tuple[str, str]]:
+    labels = [str(d) for d in kernel.influenced_dof.values]
+    if couplings is None:
+        return [(d, d) for d in labels]
+    return [(labels[i], labels[j]) for i, j in couplings]
+
+
+def _k_unit(a: str, b: str) -> str:
+    rot = sum(x.rpartition("__")[2] in ("Roll", "Pitch", "Yaw") for x in (a, b))
+    return ("kg/s²", "kg·m/s²", "kg·m²/s²")[rot]
+
+
+def plot_retardation(
+    kernel: xr.DataArray,
+    couplings: Sequence[tuple[int, int]] | None = None,
+    *,
+    reference: xr.DataArray | None = None,
+    reference_label: str = "reference",
+) -> Figure:
+    """K_ij(t) per coupling (diagonal by default), optionally against a reference K(t)."""
+    pairs = _pairs(kernel, couplings)
+    ncols = 2 if len(pairs) > 3 else 1
+    nrows = int(np.ceil(len(pairs) / ncols))
+    fig = Figure(figsize=(5.5 * ncols, 2.2 * nrows + 0.8), layout="constrained")
+    axes = np.atleast_1d(fig.subplots(nrows, ncols, squeeze=False).ravel())
+    t = kernel.time.values
+    for ax, (a, b) in zip(axes, pairs, strict=False):
+        ax.plot(t, kernel.sel(influenced_dof=a, radiating_dof=b).values, color="C0", label="K(t)")
+        if reference is not None:
+            ref = reference.sel(influenced_dof=a, radiating_dof=b)
+            ax.plot(ref.time.values, ref.values, "--", color="C3", label=reference_label)
+        ax.axhline(0.0, color="0.6", lw=0.8)
+        ax.set_title(a if a == b else f"{a} ← {b}", fontsize="medium")
+        ax.set_ylabel(f"K [{_k_unit(a, b)}]")
+        ax.grid(alpha=0.3)
+    for ax in axes[len(pairs) :]:
+        ax.set_visible(False)
+    for ax in axes[-ncols:]:
+        ax.set_xlabel("t [s]")
+    axes[0].legend(fontsize="small")
+    fig.suptitle("Retardation functions K(t)")
+    return fig
+
+
+def plot_reconstruction(
+    ds: xr.Dataset, reconstructed: xr.Dataset, dofs: Sequence[str] | None = None
+) -> Figure:
+    """Original A(ω), B(ω) against the ones rebuilt from K(t) (Ogilvie), per DOF."""
+    dofs = _diagonal_dofs(ds, dofs)
+    fig = Figure(figsize=(10, 2.2 * len(dofs) + 0.8), layout="constrained")
+    axes = fig.subplots(len(dofs), 2, squeeze=False, sharex=True)
+    for row, dof in enumerate(dofs):
+        for col, (name, unit) in enumerate(
+            (("added_mass", "added_mass"), ("radiation_damping", "damping"))
+        ):
+            ax = axes[row, col]
+            sel = {"influenced_dof": dof, "radiating_dof": dof}
+            ax.plot(ds.omega, ds[name].sel(sel), "o", ms=3, color="0.3", label="data")
+            ax.plot(
+                reconstructed.omega, reconstructed[name].sel(sel), color="C1", label="from K(t)"
+            )
+            ax.set_ylabel(f"{'A' if col == 0 else 'B'} {dof} [{_unit(dof, unit)}]")
+            ax.grid(alpha=0.3)
+    axes[0, 0].legend(fontsize="small")
+    for ax in axes[-1]:
+        ax.set_xlabel("ω [rad/s]")
+    fig.suptitle(f"A(ω), B(ω) rebuilt from K(t) — {_title(ds)}")
+    return fig
+
+
+def plot_added_mass_inf(
+    per_frequency: xr.DataArray,
+    estimate: xr.DataArray,
+    ds: xr.Dataset,
+    dofs: Sequence[str] | None = None,
+) -> Figure:
+    """The Ogilvie estimate of A∞ at each frequency, its median, and the data row if any."""
+    dofs = _diagonal_dofs(ds, dofs)
+    fig = Figure(figsize=(6, 1.9 * len(dofs) + 0.8), layout="constrained")
+    axes = np.atleast_1d(fig.subplots(len(dofs), 1, squeeze=False, sharex=True).ravel())
+    for ax, dof in zip(axes, dofs, strict=True):
+        sel = {"influenced_dof": dof, "radiating_dof": dof}
+        ax.plot(per_frequency.omega, per_frequency.sel(sel), ".", ms=3, label="A∞(ω) (Ogilvie)")
+        ax.axhline(float(estimate.sel(sel)), color="C1", label="median")
+        if "added_mass_inf" in ds:
+            ax.axhline(float(ds.added_mass_inf.sel(sel)), color="C3", ls="--", label="solver ω = ∞")
+        value = float(estimate.sel(sel))
+        if value:
+            ax.set_ylim(sorted((value * 0.8, value * 1.2)))
+        ax.set_ylabel(f"A∞ {dof} [{_unit(dof, 'added_mass')}]")
+        ax.grid(alpha=0.3)
+    axes[0].legend(fontsize="small")
+    axes[-1].set_xlabel("ω [rad/s]")
+    fig.suptitle("Infinite-frequency added mass from A(ω), B(ω)")
+    return fig

@@ -1,0 +1,83 @@
+"""Pieces shared by the ``cummins`` commands: consoles, error reporting, read options."""
+
+from __future__ import annotations
+
+import functools
+import sys
+
+import click
+from rich.console import Console
+
+from cummins.errors import CumminsError
+
+console = Console(highlight=False, soft_wrap=True)
+err_console = Console(stderr=True, highlight=False, soft_wrap=True)
+
+
+def run_reporting_errors(function, *args, **kwargs):
+    """Call ``function``; turn a CumminsError into a one-line message and exit status 2."""
+    try:
+        return function(*args, **kwargs)
+    except CumminsError as exc:
+        err_console.print(f"[bold red]error:[/] {exc}")
+        sys.exit(2)
+
+
+def reports_errors(func):
+    """Decorator form of :func:`run_reporting_errors` for the commands."""
+
+    @functools.wraps(func)
+    def wrapper(*args, **kwargs):
+        return run_reporting_errors(func, *args, **kwargs)
+
+    return wrapper
+
+
+def read_options(func):
+    """--format, --rho, --g, --ulen: how to read solver files."""
+    decorators = [
+        click.option(
+            "--format",
+            "format_",
+            metavar="NAME",
+            default=None,
+            help="Solver format (wamit, wamit-out, nemoh, aqwa, veres, netcdf, mss); "
+            "detected from the content by default.",
+        ),
+        click.option(
+            "--rho",
+            type=float,
+            default=None,
+            metavar="KG/M3",
+            help="Water density for nondimensional formats (WAMIT does not record it "
+            "everywhere; default 1025).",
+        ),
+        click.option(
+            "--g",
+            "g",
+            type=float,
+            default=None,
+            metavar="M/S2",
+            help="Acceleration of gravity for nondimensional formats (default 9.81, or "
+            "the value in the WAMIT .out).",
+        ),
+        click.option(
+            "--ulen",
+            type=float,
+            default=None,
+            metavar="M",
+            help="WAMIT length scale ULEN (default: from the .out, else 1).",
+        ),
+    ]
+    for decorator in reversed(decorators):
+        func = decorator(func)
+    return func
+
+
+def read_hydrodb(
+    path: str, format_: str | None, rho: float | None, g: float | None, ulen: float | None
+):
+    """Read ``path`` with the options of :func:`read_options`."""
+    from cummins.io import read
+
+    return read(path, format=format_, rho=rho, g=g, ulen=ulen)

@@ -1,0 +1,97 @@
+"""Pipeline stages composed from the library functions, shared by the CLI and the demo.
+
+Each stage takes a ``HydroDB`` and options, applies the documented steps in order and
+returns plain results; printing and file names are left to the caller.
+"""
+
+from __future__ import annotations
+
+from collections.abc import Callable
+from pathlib import Path
+
+import numpy as np
+import xarray as xr
+
+
+def kernel_stage(
+    ds: xr.Dataset,
+    *,
+    t_max: float | None = None,
+    dt: float | None = None,
+    tail: str = "auto",
+    interpolation: str = "linear",
+    omega_max: float | None = None,
+    remove_suspect: bool = False,
+    above_first: bool = False,
+    truncate: str | None = None,
+    say: Callable[[str], object] = lambda message: None,
+) -> tuple[xr.Dataset, xr.Dataset]:
+    """Repair options, K(t) and diagnostics: what ``cummins kernel`` and the demo run.
+
+    Steps: :func:`~cummins.repair.limit_frequency_range` (``omega_max``),
+    :func:`~cummins.repair.remove_suspect_frequencies` (``remove_suspect``, each one
+    reported through ``say``), a time grid of step ``dt`` to ``t_max`` (defaults from
+    :func:`~cummins.retardation.default_time_grid`),
+    :func:`~cummins.retardation.retardation_dataset` and, with ``truncate``,
+    :func:`~cummins.retardation.truncate_retardation` at t_max.
+
+    Returns
+    -------
+    (result, ds)
+        The :func:`cummins.retardation.retardation_dataset` and the (repaired) data.
+    """
+    from cummins.repair import limit_frequency_range, remove_suspect_frequencies
+    from cummins.retardation import default_time_grid, retardation_dataset, truncate_retardation
+
+    if omega_max is not None:
+        ds = limit_frequency_range(ds, omega_max=omega_max)
+    if remove_suspect:
+        ds, suspects = remove_suspect_frequencies(ds, above_first=above_first)
+        for s in suspects:
+            say(f"  suspect {s.omega:.4g} rad/s: {s.quantity}, {s.reason}")
+    end = t_max if t_max is not None else float(default_time_grid(ds)[-1])
+    step = dt if dt is not None else end / 1000
+    t = np.arange(0.0, end + 0.5 * step, step)
+    result = retardation_dataset(ds, t, tail=tail, interpolation=interpolation)
+    if truncate:
+        k = truncate_retardation(result.retardation_function, float(t[-1]), method=truncate)
+        result["retardation_function"] = k
+        result.attrs["truncation"] = k.attrs["truncation"]
+    return result, ds
+
+
+def write_kernel_plots(
+    result: xr.Dataset, ds: xr.Dataset, folder: Path, *, force: bool = False
+) -> list[Path]:
+    """K(t) (diagonal, couplings), A and B rebuilt from K, and A∞(ω), as PNG files."""
+    from cummins.plots import (
+        plot_added_mass_inf,
+        plot_reconstruction,
+        plot_retardation,
+        save_figure,
+    )
+    from cummins.retardation import reconstruct_added_mass_damping, significant_couplings
+
+    omega = np.linspace(ds.omega.values[0], ds.omega.values[-1], 400)
+    rebuilt = reconstruct_added_mass_damping(
+        result.retardation_function, result.added_mass_inf.values, omega
+    )
+    off_diagonal = [c for c in significant_couplings(ds) if c[0] != c[1]]
+    figures = [
+        ("retardation.png", plot_retardation(result.retardation_function)),
+        ("reconstruction.png", plot_reconstruction(ds, rebuilt)),
+        (
+            "added_mass_inf.png",
+            plot_added_mass_inf(
+                result.added_mass_inf_per_frequency, result.added_mass_inf_estimate, ds
+            ),
+        ),
+    ]
+    if off_diagonal:
+        figures.append(
+            (
+                "retardation_couplings.png",
+                plot_retardation(result.retardation_function, off_diagonal),
+            )
+        )
+    return [save_figure(fig, folder / name, force=force) for name, fig in figures]

@@ -1,0 +1,256 @@
+"""Finding and removing bad frequencies in hydrodynamic data (off by default, always reported).
+
+Panel methods without irregular-frequency removal produce spikes and negative damping
+near the eigenfrequencies of the interior problem (WAMIT tanker above 3.4 rad/s);
+strip-theory codes can return an inconsistent lowest frequency (ShipX supply vessel at
+0.105 rad/s). :func:`find_suspect_frequencies` detects both kinds; nothing is changed
+until the user calls :func:`remove_frequencies` (or the ``--remove-irregular`` options
+of the command line), and every removal is written to the dataset's ``history``.
+
+Detection, per diagonal term of A(ω) and B(ω):
+
+* negative damping below −1 % of the term's peak (smaller negative values are noise
+  around zero where the damping has decayed; ``cummins check`` still reports them);
+* a spike: the value differs from the straight line through its two neighbours by more
+  than ``spike_threshold`` of the curve's range and by more than ``mad_factor`` times
+  the median such difference, *and* in the opposite direction from its neighbours'
+  own differences (a curved but smooth curve gives differences of one sign). End
+  points, tested against the line through the next two points, must be off by four
+  times ``spike_threshold``. Points are flagged one at a time, worst first, and the
+  test is repeated without them, so that a bad point does not make its neighbours
+  look bad.
+"""
+
+from __future__ import annotations
+
+from dataclasses import dataclass
+
+import numpy as np
+import xarray as xr
+from numpy.typing import ArrayLike, NDArray
+
+from cummins.errors import HydroDataError
+from cummins.hydrodb import add_history, validate
+
+#: Negative diagonal damping below this fraction of its peak makes a frequency suspect.
+NEGATIVE_DAMPING = 0.01
+
+
+@dataclass(frozen=True)
+class SuspectFrequency:
+    """A frequency whose data look wrong, and why.
+
+    Attributes
+    ----------
+    omega
+        rad/s.
+    quantity
+        The worst quantity there, e.g. ``"radiation_damping[Heave, Heave]"``.
+    reason
+        In plain language, with the size of the problem.
+    score
+        Size of the deviation as a fraction of the curve's range (or of the damping peak
+        for negative damping).
+    """
+
+    omega: float
+    quantity: str
+    reason: str
+    score: float
+
+
+def _leave_one_out_residual(w: NDArray, x: NDArray) -> NDArray:
+    """x_k minus the straight line through its neighbours (end points: extrapolated)."""
+    r = np.empty_like(x)
+    if w.size < 3:
+        return np.zeros_like(x)
+    inner = slice(1, -1)
+    frac = (w[inner] - w[:-2]) / (w[2:] - w[:-2])
+    r[inner] = x[inner] - (x[:-2] + frac * (x[2:] - x[:-2]))
+    r[0] = x[0] - (x[1] + (x[2] - x[1]) * (w[0] - w[1]) / (w[2] - w[1]))
+    r[-1] = x[-1] - (x[-2] + (x[-2] - x[-3]) * (w[-1] - w[-2]) / (w[-2] - w[-3]))
+    return r
+
+
+def _diagonal_curves(ds: xr.Dataset) -> list[tuple[str, NDArray]]:
+    curves = []
+    labels = [str(d) for d in ds.influenced_dof.values]
+    for name in ("added_mass", "radiation_damping"):
+        x = ds[name].transpose("omega", "influenced_dof", "radiating_dof").values
+        diag = np.diagonal(x, axis1=1, axis2=2)
+        size = np.abs(diag).max(axis=0)
+        for i, label in enumerate(labels):
+            if size[i] > 1e-6 * size.max():
+                curves.append((f"{name}[{label}, {label}]", diag[:, i]))
+    return curves
+
+
+def find_suspect_frequencies(
+    ds: xr.Dataset, *, spike_threshold: float = 0.05, mad_factor: float = 10.0
+) -> tuple[SuspectFrequency, ...]:
+    """Frequencies where the diagonal added mass or damping look wrong.
+
+    Parameters
+    ----------
+    ds
+        A ``HydroDB`` at one forward speed.
+    spike_threshold
+        Minimum deviation from the neighbours, as a fraction of the curve's range.
+    mad_factor
+        Minimum deviation as a multiple of the median deviation of the curve.
+
+    Returns
+    -------
+    tuple of SuspectFrequency
+        Sorted by frequency; empty for clean data.
+    """
+    if "forward_speed" in ds.dims:
+        raise HydroDataError("select one forward speed first", hint="ds.sel(forward_speed=...)")
+    w = ds.omega.values
+    curves = _diagonal_curves(ds)
+    found: dict[float, SuspectFrequency] = {}
+    for quantity, x in curves:
+        if quantity.startswith("radiation_damping"):
+            peak = np.abs(x).max()
+            for k in np.flatnonzero(x < -NEGATIVE_DAMPING * peak):
+                score = float(-x[k] / peak)
+                _keep_worst(
+                    found,
+                    SuspectFrequency(
+                        float(w[k]),
+                        quantity,
+                        f"negative damping, {x[k] / peak:.3g} of its peak",
+                        score,
+                    ),
+                )
+    keep = np.ones(w.size, dtype=bool)
+    for _ in range(max(1, w.size // 3)):
+        idx = np.flatnonzero(keep)
+        if idx.size < 4:
+            break
+        worst: tuple[float, int, str, float] | None = None
+        for quantity, x in curves:
+            r = _leave_one_out_residual(w[idx], x[idx])
+            spread = np.ptp(x[idx])
+            if spread == 0:
+                continue
+            mad = np.median(np.abs(r))
+            rel = np.abs(r) / spread
+            rel[np.abs(r) <= mad_factor * mad] = 0.0
+            isolated = np.ones(r.size, dtype=bool)  # opposite to both neighbours' residuals
+            isolated[1:-1] = (np.sign(r[1:-1]) != np.sign(r[:-2])) & (
+                np.sign(r[1:-1]) != np.sign(r[2:])
+            )
+            rel[~isolated] = 0.0
+            rel[[0, -1]] = np.where(rel[[0, -1]] > 4 * spike_threshold, rel[[0, -1]], 0.0)
+            j = int(np.argmax(rel))
+            if rel[j] > spike_threshold and (worst is None or rel[j] > worst[0]):
+                worst = (float(rel[j]), int(idx[j]), quantity, float(r[j] / spread))
+        if worst is None:
+            break
+        score, k, quantity, signed = worst
+        keep[k] = False
+        _keep_worst(
+            found,
+            SuspectFrequency(
+                float(w[k]),
+                quantity,
+                f"spike: {abs(signed):.0%} of the curve's range off the line through "
+                "its neighbours",
+                score,
+            ),
+        )
+    return tuple(sorted(found.values(), key=lambda s: s.omega))
+
+
+def _keep_worst(found: dict[float, SuspectFrequency], item: SuspectFrequency) -> None:
+    if item.omega not in found or item.score > found[item.omega].score:
+        found[item.omega] = item
+
+
+def remove_frequencies(ds: xr.Dataset, omega: ArrayLike, *, reason: str = "") -> xr.Dataset:
+    """A copy of ``ds`` without the given frequencies (matched to 1e-9 relative).
+
+    The removal and its ``reason`` are written to ``history``. At least three
+    frequencies must remain.
+    """
+    targets = np.atleast_1d(np.asarray(omega, dtype=float))
+    w = ds.omega.values
+    drop = np.zeros(w.size, dtype=bool)
+    for target in targets:
+        match = np.isclose(w, target, rtol=1e-9, atol=0)
+        if not match.any():
+            raise HydroDataError(f"frequency {target:g} rad/s is not in the data")
+        drop |= match
+    if (~drop).sum() < 3:
+        raise HydroDataError("removing these frequencies would leave fewer than three")
+    out = ds.isel(omega=np.flatnonzero(~drop))
+    out.attrs = dict(ds.attrs)
+    listed = ", ".join(f"{x:.4g}" for x in w[drop])
+    add_history(
+        out,
+        f"removed {int(drop.sum())} frequencies ({listed} rad/s)"
+        + (f": {reason}" if reason else ""),
+    )
+    return validate(out)
+
+
+def limit_frequency_range(
+    ds: xr.Dataset, omega_min: float | None = None, omega_max: float | None = None
+) -> xr.Dataset:
+    """A copy of ``ds`` keeping only omega_min ≤ ω ≤ omega_max (recorded in ``history``)."""
+    w = ds.omega.values
+    lo = -np.inf if omega_min is None else omega_min
+    hi = np.inf if omega_max is None else omega_max
+    keep = (w >= lo) & (w <= hi)
+    if keep.sum() < 3:
+        raise HydroDataError(
+            f"fewer than three frequencies between {lo:g} and {hi:g} rad/s",
+            hint=f"the data cover {w[0]:.4g}–{w[-1]:.4g} rad/s",
+        )
+    if keep.all():
+        return ds
+    out = ds.isel(omega=np.flatnonzero(keep))
+    out.attrs = dict(ds.attrs)
+    add_history(out, f"frequency range limited to {w[keep][0]:.4g}–{w[keep][-1]:.4g} rad/s")
+    return out
+
+
+def remove_suspect_frequencies(
+    ds: xr.Dataset, *, above_first: bool = False, **detection
+) -> tuple[xr.Dataset, tuple[SuspectFrequency, ...]]:
+    """Detect (:func:`find_suspect_frequencies`) and remove suspect frequencies.
+
+    Parameters
+    ----------
+    above_first
+        Also drop every frequency above the first suspect one that lies above the
+        frequency of peak damping: irregular frequencies of panel methods get denser
+        towards high frequencies, and the data between them are rarely trustworthy.
+    **detection
+        Passed to :func:`find_suspect_frequencies`.
+
+    Returns
+    -------
+    (dataset, suspects)
+    """
+    suspects = find_suspect_frequencies(ds, **detection)
+    if not suspects:
+        return ds, suspects
+    w = ds.omega.values
+    drop = {s.omega for s in suspects}
+    reason = "suspect (spikes or negative damping)"
+    if above_first:
+        b = np.abs(
+            np.diagonal(
+                ds.radiation_damping.transpose("omega", "influenced_dof", "radiating_dof").values,
+                axis1=1,
+                axis2=2,
+            )
+        )
+        w_peak = float(np.median(w[np.argmax(b, axis=0)]))
+        high = [s.omega for s in suspects if s.omega > w_peak]
+        if high:
+            drop |= set(w[w >= min(high)].tolist())
+            reason += f"; all frequencies from {min(high):.4g} rad/s up (irregular frequencies)"
+    return remove_frequencies(ds, sorted(drop), reason=reason), suspects
