@@ -11,6 +11,7 @@ from click.testing import CliRunner
 
 import cummins
 import cummins.demo
+import cummins.radiation
 from cummins.cli import main
 
 
@@ -31,9 +32,9 @@ def test_version_and_help(runner):
     assert result.exit_code == 0 and cummins.__version__ in result.output
     result = runner.invoke(main, ["--help"])
     assert result.exit_code == 0
-    for command in ("info", "check", "convert", "demo", "bem"):
+    for command in ("info", "check", "convert", "demo", "bem", "kernel", "fit"):
         assert command in result.output
-    for command in ("info", "check", "convert", "demo"):
+    for command in ("info", "check", "convert", "demo", "kernel", "fit"):
         sub = runner.invoke(main, [command, "--help"])
         assert sub.exit_code == 0 and "Usage" in sub.output
 
@@ -109,6 +110,23 @@ def test_demo(runner, tmp_path):
     for name in cummins.demo.DEMO_FILES:
         assert (out / name).is_file(), name
     assert (out / "added_mass_damping.png").stat().st_size > 10_000
+    # the fit stage: model file, summary, exports and one plot per fitted coupling agree
+    from cummins.io.openfast import read_openfast_ss
+    from cummins.radiation import RadiationModel
+
+    model = RadiationModel.load(out / "tanker_model.nc")
+    summary = json.loads((out / "fit.json").read_text())
+    assert summary["total_order"] == model.total_order and summary["mimo_stable"]
+    assert all(c["passive"] for c in summary["couplings"] if c["i"] == c["j"])
+    w = np.array([0.2, 0.6, 1.5])
+    np.testing.assert_allclose(
+        read_openfast_ss(out / "tanker.ss").to_radiation_model().frequency_response(w).values,
+        model.frequency_response(w).values,
+        rtol=1e-6,
+        atol=1e-9 * np.abs(model.frequency_response(w).values).max(),
+    )
+    fitted = [c for c in model.couplings if c.influenced <= c.radiating]
+    assert len(list((out / cummins.demo.FIT_PLOTS).glob("fit_*.png"))) == len(fitted)
     refused = runner.invoke(main, ["demo", "-o", str(out)])
     assert refused.exit_code == 2 and "--force" in refused.output
     assert runner.invoke(main, ["demo", "-o", str(out), "--force"]).exit_code == 0
@@ -168,3 +186,49 @@ def test_kernel_needs_a_speed(runner, shared_data, tmp_path):
         ],
     )
     assert result.exit_code == 0, result.output
+    s175 = str(shared_data / "mss" / "s175" / "s175.mat")
+    result = runner.invoke(main, ["fit", s175, "-o", str(tmp_path / "m.nc"), "--speed", "3"])
+    assert result.exit_code == 2 and "no data at --speed 3 m/s" in result.output
+    assert "5.14444" in result.output  # the speeds there are
+
+
+def test_fit_command(runner, tanker_copy, tmp_path):
+    out = tmp_path / "model" / "tanker_model.nc"  # the folder is created
+    summary_path, plots, ss = tmp_path / "fit.json", tmp_path / "plots", tmp_path / "tanker.ss"
+    args = ["fit", str(tanker_copy), "-o", str(out), "--json", str(summary_path)]
+    result = runner.invoke(
+        main, [*args, "--plot", str(plots), "--openfast", str(ss), "--order", "Heave", "Pitch", "3"]
+    )
+    assert result.exit_code == 0, result.output
+    assert "3.927 rad/s left out" in result.output and "negative damping" in result.output
+    summary = json.loads(summary_path.read_text())
+    assert set(summary) == {"couplings", "total_order", "mimo_stable", "mimo_passive", "elapsed_s"}
+    model = cummins.radiation.RadiationModel.load(out)
+    assert (
+        summary["total_order"] == model.total_order == sum(c["order"] for c in summary["couplings"])
+    )
+    assert summary["mimo_stable"] is True and isinstance(summary["mimo_passive"], bool)
+    by_pair = {(c["i"], c["j"]): c for c in summary["couplings"]}
+    assert by_pair[(3, 5)]["order"] == by_pair[(5, 3)]["order"] == 3  # the override, 1-based
+    for (i, j), c in by_pair.items():
+        assert set(c) == {"i", "j", "order", "r2_added_mass", "r2_damping", "stable", "passive"}
+        assert (c["passive"] is None) == (i != j)
+        if i == j:
+            assert c["passive"] and min(c["r2_added_mass"], c["r2_damping"]) >= 0.99
+    assert (plots / "fit_Heave-Pitch.png").stat().st_size > 10_000
+    assert ss.read_text().count("\n") > 10
+    again = runner.invoke(main, args)
+    assert again.exit_code == 2 and "refusing to overwrite" in again.output
+    assert runner.invoke(main, [*args, "--force", "--method", "realization"]).exit_code == 0
+    assert cummins.radiation.RadiationModel.load(out).attrs["method"] == "realization"
+
+
+def test_fit_command_bad_input(runner, tanker_copy, tmp_path):
+    out = str(tmp_path / "m.nc")
+    result = runner.invoke(
+        main, ["fit", str(tanker_copy), "-o", out, "--order", "Heave", "Spin", "3"]
+    )
+    assert result.exit_code == 2 and "unknown DOF 'Spin'" in result.output
+    result = runner.invoke(main, ["fit", str(tanker_copy), "-o", out, "--max-order", "1"])
+    assert result.exit_code != 0 and "at least 2 states" in result.output
+    assert not (tmp_path / "m.nc").exists()

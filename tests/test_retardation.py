@@ -309,3 +309,37 @@ def test_multi_speed_needs_a_choice(shared_data):
     s175 = cummins.read(shared_data / "mss" / "s175" / "s175.mat")
     with pytest.raises(cummins.HydroDataError, match="forward speeds"):
         retardation_function(s175)
+
+
+@pytest.mark.parametrize("cos", [True, False])
+def test_inverse_square_tail_in_closed_form(cos):
+    """The ω⁻² tail's transform (sine/cosine integrals) against the exact transform of
+    its piecewise-linear interpolant on a 20 000-point grid up to 10⁴ ω_N."""
+    from cummins.retardation import DampingTail
+    from cummins.transforms import cosine_transform, sine_transform
+
+    w_n, t = 3.4, np.linspace(-2.0, 60.0, 125)
+    tail = DampingTail(
+        np.array(["power"], dtype=object), w_n, np.array([2.5]), np.array([2.0]), np.array([""])
+    )
+    w = w_n * np.geomspace(1.0, 1e4, 20_000)
+    transform = cosine_transform if cos else sine_transform
+    reference = transform(w, 2.5 * (w_n / w) ** 2, t)
+    if cos:  # the part beyond 10⁴ ω_N, its area, matters only at t = 0
+        reference += 2.5 * w_n / 1e4 * (np.abs(t) < 1e-9)
+    got = tail.cosine(t)[:, 0] if cos else tail.sine(t)[:, 0]
+    np.testing.assert_allclose(got, reference, rtol=0, atol=1e-5 * np.abs(reference).max())
+
+
+def test_a_hardly_decaying_window_gets_the_inverse_square_tail(tanker_wamit):
+    """Tanker B31 over its last regular frequencies hardly decays (α ω_N ≈ 0.03): an
+    exponential would put 27× the data's ∫|B| dω in the extrapolation; ω⁻² is used."""
+    data, _ = remove_suspect_frequencies(tanker_wamit, above_first=True)
+    b = data.radiation_damping.values
+    tail = fit_damping_tail(data.omega.values, b[:, 2, 0])
+    assert tail.kind[0] == "power" and tail.rate[0] == 2.0
+    assert "ω⁻²" in tail.note[0]
+    # a clearly decaying exponential window is kept
+    w = np.linspace(0.1, 3.0, 30)
+    kept = fit_damping_tail(w, np.exp(-2.0 * w), "exponential")
+    assert kept.kind[0] == "exponential" and kept.rate[0] == pytest.approx(2.0)

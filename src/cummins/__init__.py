@@ -1,12 +1,15 @@
 """cummins: from frequency-domain hydrodynamics to time-domain vessel models.
 
 Read the output of WAMIT, NEMOH, AQWA, ShipX/VERES, Capytaine or MSS into one
-canonical dataset, check it, and (as the project grows) turn it into retardation
-functions, state-space radiation models and simulations.
+canonical dataset, check it, compute retardation functions and identify stable
+state-space models of the fluid memory (and, as the project grows, simulate them).
 
 >>> import cummins
 >>> ds = cummins.read(cummins.demo_files() / "tanker.1")
 >>> report = cummins.check(ds)
+>>> model = cummins.fit_radiation(ds)
+>>> model.is_stable()
+True
 """
 
 from __future__ import annotations
@@ -26,6 +29,7 @@ from cummins.errors import (
     OutputExistsError,
     SimulationError,
 )
+from cummins.fit import fit_radiation
 from cummins.hydrodb import (
     DOF_NAMES,
     change_axes,
@@ -36,6 +40,7 @@ from cummins.hydrodb import (
     validate,
 )
 from cummins.io import FORMATS, detect_format, read, write
+from cummins.radiation import CouplingModel, RadiationModel
 from cummins.retardation import (
     added_mass_inf,
     kramers_kronig_error,
@@ -57,11 +62,13 @@ __all__ = [
     "DOF_NAMES",
     "FORMATS",
     "CheckReport",
+    "CouplingModel",
     "CumminsError",
     "Finding",
     "FitError",
     "HydroDataError",
     "OutputExistsError",
+    "RadiationModel",
     "SimulationError",
     "__version__",
     "added_mass_inf",
@@ -71,6 +78,7 @@ __all__ = [
     "demo_files",
     "detect_format",
     "dof_labels",
+    "fit_radiation",
     "kramers_kronig_error",
     "make_hydrodb",
     "move_reference_point",

@@ -577,8 +577,9 @@ def _rigid_body_consistency(m: np.ndarray, labels: list[str]) -> list[Finding]:
     ]
 
 
-def _check_copied_dof(ds: xr.Dataset) -> list[Finding]:
-    """Detect a DOF whose diagonal A and B are an exact constant multiple of another's."""
+def copied_dofs(ds: xr.Dataset) -> list[Finding]:
+    """DOFs whose diagonal A and B are an exact constant multiple of another's (strip
+    theory's surge from sway), one ``copied_dof`` finding per pair (also used by the fit)."""
     out = []
     labels = _labels(ds)
     sub = _speeds(ds)[0]
@@ -777,7 +778,7 @@ def check(ds: xr.Dataset) -> CheckReport:
         _check_added_mass_inf,
         _check_decay,
         _check_rigid_body,
-        _check_copied_dof,
+        copied_dofs,
         _check_suspect_frequencies,
         _check_retardation,
     ):

@@ -15,7 +15,14 @@ from rich.table import Table
 
 from cummins._version import __version__
 from cummins.cli_bem import bem_command
-from cummins.cli_common import console, read_hydrodb, read_options, reports_errors
+from cummins.cli_common import (
+    console,
+    prepare_outputs,
+    read_hydrodb,
+    read_options,
+    reports_errors,
+)
+from cummins.cli_fit import fit_command
 from cummins.cli_kernel import kernel_command
 
 
@@ -33,7 +40,9 @@ def main() -> None:
       cummins convert IN OUT   write canonical NetCDF (.nc) or an MSS vessel struct (.mat)
       cummins bem MESH         compute a database with Capytaine (pip install cummins[bem])
       cummins kernel FILE      retardation functions K(t), A-infinity, causality diagnostics
+      cummins fit FILE         stable, passive state-space models of the fluid memory
       cummins kernel FILE      retardation functions K(t), A-infinity, causality diagnostics
+      cummins fit FILE         stable, passive state-space models of the fluid memory
       cummins demo             run all of it on a bundled real vessel (WAMIT tanker)
 
     \b
@@ -185,11 +194,10 @@ def convert(source, destination, format_, rho, g, ulen, axes, reference_point, f
       cummins convert tanker.1 tanker.nc
       cummins convert input.re7 supply.mat --reference-point 0 0 0
     """
-    from cummins.errors import check_writable
     from cummins.hydrodb import change_axes, move_reference_point
     from cummins.io import write
 
-    check_writable(destination, force)
+    prepare_outputs(destination, force=force)
     ds = read_hydrodb(source, format_, rho, g, ulen)
     if axes is None and Path(destination).suffix.lower() == ".mat":
         axes = "z-down"
@@ -235,6 +243,7 @@ def demo(outdir, force):
 
 main.add_command(bem_command)  # works without Capytaine: it then says how to install it
 main.add_command(kernel_command)
+main.add_command(fit_command)
 
 
 if __name__ == "__main__":  # pragma: no cover

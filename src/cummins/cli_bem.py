@@ -9,7 +9,8 @@ from pathlib import Path
 import click
 import numpy as np
 
-from cummins.errors import CumminsError, check_writable
+from cummins.cli_common import prepare_outputs
+from cummins.errors import CumminsError
 from cummins.io._common import DEFAULT_G, DEFAULT_RHO
 
 
@@ -119,7 +120,7 @@ def bem_command(
         if missing:
             raise click.UsageError(f"--hull {hull} needs {', '.join(missing)}")
     try:
-        check_writable(output, force)
+        prepare_outputs(output, force=force)
         omega = bem.default_omegas(omega_min, omega_max, n_omega)
         if hull is not None:
             geometry = bem.hull_mesh(hull, length, beam, draft, resolution=resolution)

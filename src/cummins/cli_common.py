@@ -4,6 +4,7 @@ from __future__ import annotations
 
 import functools
 import sys
+from pathlib import Path
 
 import click
 from rich.console import Console
@@ -81,3 +82,34 @@ def read_hydrodb(
     from cummins.io import read
 
     return read(path, format=format_, rho=rho, g=g, ulen=ulen)
+
+
+def prepare_outputs(*paths, force: bool) -> None:
+    """Before any work: refuse to overwrite without ``--force``, create missing folders."""
+    from cummins.errors import check_writable
+
+    for path in paths:
+        if path:
+            check_writable(path, force)
+    for path in paths:
+        if path:
+            Path(path).parent.mkdir(parents=True, exist_ok=True)
+
+
+def select_speed(ds, speed: float | None):
+    """The data at one forward speed (``--speed``): required when there are several, and
+    one of them (within 1 mm/s), never the nearest."""
+    if "forward_speed" not in ds.dims:
+        return ds
+    speeds = ds.forward_speed.values
+    listed = ", ".join(f"{u:g}" for u in speeds)
+    if speed is None:
+        if speeds.size > 1:
+            raise click.UsageError(
+                f"the data hold several forward speeds: choose one with --speed ({listed} m/s)"
+            )
+        return ds.isel(forward_speed=0)
+    matches = [k for k, u in enumerate(speeds) if abs(u - speed) <= 1e-3]
+    if not matches:
+        raise click.UsageError(f"no data at --speed {speed:g} m/s; the data hold {listed} m/s")
+    return ds.isel(forward_speed=matches[0])

@@ -8,7 +8,14 @@ import click
 import numpy as np
 from rich.table import Table
 
-from cummins.cli_common import console, read_hydrodb, read_options, reports_errors
+from cummins.cli_common import (
+    console,
+    prepare_outputs,
+    read_hydrodb,
+    read_options,
+    reports_errors,
+    select_speed,
+)
 
 
 @click.command(name="kernel")
@@ -123,11 +130,10 @@ def kernel_command(
       cummins kernel tanker.1 -o K.nc --plot kernel-plots
       cummins kernel tanker.1 -o K.nc --remove-suspect --above-first --truncate subtract
     """
-    from cummins.errors import check_writable
     from cummins.pipeline import kernel_stage, write_kernel_plots
 
-    check_writable(output, force)
-    ds = _select_speed(read_hydrodb(path, format_, rho, g, ulen), speed)
+    prepare_outputs(output, force=force)
+    ds = select_speed(read_hydrodb(path, format_, rho, g, ulen), speed)
     result, ds = kernel_stage(
         ds,
         t_max=t_max,
@@ -146,17 +152,6 @@ def kernel_command(
     if plot_dir:
         for file in write_kernel_plots(result, ds, Path(plot_dir), force=force):
             console.print(f"wrote {file}")
-
-
-def _select_speed(ds, speed):
-    if "forward_speed" not in ds.dims:
-        return ds
-    if speed is None and ds.sizes["forward_speed"] > 1:
-        raise click.UsageError(
-            "the data hold several forward speeds: choose one with --speed "
-            f"({', '.join(f'{u:g}' for u in ds.forward_speed.values)} m/s)"
-        )
-    return ds.sel(forward_speed=speed or 0.0, method="nearest")
 
 
 def kernel_table(result) -> Table:

@@ -95,3 +95,48 @@ def write_kernel_plots(
             )
         )
     return [save_figure(fig, folder / name, force=force) for name, fig in figures]
+
+
+def write_fit_plots(model, ds: xr.Dataset, folder: Path, *, force: bool = False) -> list[Path]:
+    """One PNG per fitted coupling (i ≤ j): data against the model (``fit_<coupling>.png``).
+
+    ``ds`` is the data as read (one forward speed); the frequencies the fit left out are
+    drawn as open circles.
+    """
+    from cummins.plots import plot_coupling_fit, save_figure
+
+    excluded = model.attrs.get("excluded_frequencies", [])
+    if "forward_speed" in ds.dims:
+        ds = ds.isel(forward_speed=0)
+    written = []
+    for k in model.couplings:
+        if k.influenced > k.radiating:
+            continue
+        a, b = model.dofs[k.influenced], model.dofs[k.radiating]
+        name = f"fit_{a}.png" if a == b else f"fit_{a}-{b}.png"
+        fig = plot_coupling_fit(ds, model, k.influenced, k.radiating, excluded)
+        written.append(save_figure(fig, folder / name, force=force))
+    return written
+
+
+def write_model_mss_abc(model, ds: xr.Dataset, path: Path, *, force: bool = False) -> Path:
+    """The model as an MSS ``vesselABC`` .mat, in Fossen's axes, with the data's rigid-body
+    inertia and restoring matrices (about the data's reference point)."""
+    from cummins.hydrodb import change_axes
+    from cummins.io.mss_abc import write_mss_abc
+    from cummins.radiation import change_model_axes
+
+    fossen = change_axes(ds, "z-down")
+
+    def matrix(name):
+        if name not in fossen:
+            return None
+        return fossen[name].transpose("influenced_dof", "radiating_dof").values
+
+    return write_mss_abc(
+        change_model_axes(model, "z-down"),
+        path,
+        inertia_matrix=matrix("inertia_matrix"),
+        hydrostatic_stiffness=matrix("hydrostatic_stiffness"),
+        force=force,
+    )

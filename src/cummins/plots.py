@@ -238,3 +238,86 @@ def plot_added_mass_inf(
     axes[-1].set_xlabel("ω [rad/s]")
     fig.suptitle("Infinite-frequency added mass from A(ω), B(ω)")
     return fig
+
+
+def plot_coupling_fit(
+    ds: xr.Dataset, model, i: int, j: int, left_out: Sequence[float] = ()
+) -> Figure:
+    """Data against the fitted model for coupling (i, j): A, B, |K|, ∠K and K(t).
+
+    Parameters
+    ----------
+    ds
+        The data (one forward speed).
+    model
+        A :class:`cummins.radiation.RadiationModel`.
+    i, j
+        0-based DOF indices (force, velocity).
+    left_out
+        Frequencies (rad/s) of ``ds`` the fit left out: drawn as open circles, and not
+        used for K(t) from the data.
+    """
+    from cummins.retardation import default_time_grid, retardation_function
+
+    dof_i, dof_j = model.dofs[i], model.dofs[j]
+    title = dof_i if i == j else f"{dof_i} ← {dof_j}"
+    out = np.isin(ds.omega.values, np.asarray(left_out, dtype=float))
+    w = ds.omega.values
+    w_model = np.geomspace(w[~out][0] * 0.5, w[~out][-1] * 2.0, 400)
+    sel = {"influenced_dof": dof_i, "radiating_dof": dof_j}
+    a_data = ds.added_mass.sel(sel).values
+    b_data = ds.radiation_damping.sel(sel).values
+    a_inf = float(model.added_mass_inf[i, j])
+    k_data = b_data + 1j * w * (a_data - a_inf)
+    k_model = model.frequency_response(w_model).values[:, i, j]
+    fig = Figure(figsize=(11, 7.5), layout="constrained")
+    grid = fig.add_gridspec(3, 2)
+    ax_a, ax_b = fig.add_subplot(grid[0, 0]), fig.add_subplot(grid[0, 1])
+    ax_m, ax_p = fig.add_subplot(grid[1, 0]), fig.add_subplot(grid[1, 1])
+    ax_k = fig.add_subplot(grid[2, :])
+    rot = sum(d.rpartition("__")[2] in ("Roll", "Pitch", "Yaw") for d in (dof_i, dof_j))
+    mass_unit = ("kg", "kg·m", "kg·m²")[rot]
+
+    def points(ax, values, plot="plot"):
+        getattr(ax, plot)(w[~out], values[~out], "o", ms=3, color="0.3", label="data")
+        if out.any():
+            getattr(ax, plot)(
+                w[out], values[out], "o", ms=4, mfc="none", color="0.5", label="left out"
+            )
+
+    points(ax_a, a_data)
+    ax_a.plot(w_model, a_inf + k_model.imag / w_model, color="C0", label="model")
+    ax_a.axhline(a_inf, color="C3", ls="--", lw=0.8, label="A∞")
+    ax_a.set_ylabel(f"A [{mass_unit}]")
+    points(ax_b, b_data)
+    ax_b.plot(w_model, k_model.real, color="C1")
+    ax_b.set_ylabel(f"B [{mass_unit}/s]")
+    points(ax_m, np.abs(k_data), "loglog")
+    ax_m.loglog(w_model, np.abs(k_model), color="C2")
+    ax_m.set_ylabel(f"|K(jω)| [{mass_unit}/s]")
+    points(ax_p, np.degrees(np.angle(k_data)), "semilogx")
+    ax_p.semilogx(w_model, np.degrees(np.angle(k_model)), color="C4")
+    ax_p.set_ylabel("∠K(jω) [deg]")
+    for ax in (ax_a, ax_b, ax_m, ax_p):
+        ax.set_xlabel("ω [rad/s]")
+        ax.grid(alpha=0.3, which="both")
+    ax_a.legend(fontsize="small")
+    kept = ds.isel(omega=np.flatnonzero(~out))
+    t = default_time_grid(kept)
+    k_t = retardation_function(kept, t).sel(sel).values
+    ax_k.plot(t, k_t, color="0.3", label="from the data" + (" kept" if out.any() else ""))
+    ax_k.plot(t, model.impulse_response(t).values[:, i, j], "--", color="C0", label="model")
+    ax_k.set_xlabel("t [s]")
+    ax_k.set_ylabel(f"K(t) [{mass_unit}/s²]")
+    ax_k.grid(alpha=0.3)
+    ax_k.legend(fontsize="small")
+    coupling = model.coupling(i, j)
+    metrics = coupling.metrics if coupling is not None else {}
+    r2 = ", ".join(
+        f"{label} {metrics[k]:.4f}"
+        for k, label in (("r2_added_mass", "A"), ("r2_damping", "B"), ("r2_kernel", "K(t)"))
+        if metrics.get(k) is not None
+    )
+    order = coupling.order if coupling is not None else 0
+    fig.suptitle(f"{title}: order {order}; R² {r2}")
+    return fig

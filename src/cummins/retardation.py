@@ -33,6 +33,7 @@ import numpy as np
 import xarray as xr
 from numpy.typing import ArrayLike, NDArray
 from scipy.interpolate import PchipInterpolator
+from scipy.special import sici
 
 from cummins.errors import HydroDataError
 from cummins.transforms import cosine_transform, hilbert_pv, sine_transform
@@ -76,32 +77,45 @@ def default_time_grid(
 ) -> NDArray[np.float64]:
     """A time grid long and fine enough for the retardation functions of ``ds``.
 
-    The step resolves the highest frequency of the data, dt = π/(4 ω_N). The length is
-    found from K itself: K is evaluated up to 2π/ω_min, beyond which the data hold no
-    information (seed 000 §12.4), and the grid ends at 1.5 times the last time where
-    some coupling still exceeds ``threshold`` of its peak (at most 2π/ω_min). Bodies
-    with a long memory in one DOF (heave in shallow water) get a long grid, compact
-    ones a short one.
+    The step resolves the highest frequency of the data, dt = π/(4 ω_N) (coarser if
+    ``max_points`` would otherwise be exceeded). The length is found from K itself: K is
+    evaluated up to 2π/ω_min, beyond which the data hold no information (seed 000
+    §12.4), and the grid ends at 1.5 times the last time where some coupling still
+    exceeds ``threshold`` of its peak (at most 2π/ω_min). Bodies with a long memory in
+    one DOF (heave in shallow water) get a long grid, compact ones a short one.
 
     Returns
     -------
     ndarray
         Times in seconds, uniformly spaced from 0.
     """
+    return _default_kernel(ds, threshold, max_points)[0]
+
+
+def default_retardation_function(
+    ds: xr.Dataset, *, threshold: float = 0.01, max_points: int = 20_000
+) -> xr.DataArray:
+    """:func:`retardation_function` on :func:`default_time_grid`, computed once."""
+    return _default_kernel(ds, threshold, max_points)[1]
+
+
+def _default_kernel(ds: xr.Dataset, threshold: float, max_points: int):
     ds = _single_speed(ds)
     w = ds.omega.values
     t_limit = 2 * np.pi / w[0]
     dt = max(np.pi / (4 * w[-1]), t_limit / max_points)
     probe = np.arange(0.0, t_limit + 0.5 * dt, dt)
-    k = retardation_function(ds, probe).values.reshape(probe.size, -1)
+    kernel = retardation_function(ds, probe)
+    k = kernel.values.reshape(probe.size, -1)
     peak = np.abs(k).max(axis=0)
     keep = peak > 1e-9 * peak.max()
     if not keep.any():
-        return probe
+        return probe, kernel
     active = np.abs(k[:, keep]) > threshold * peak[keep]
     last = probe[np.flatnonzero(active.any(axis=1))[-1]]
     t_max = min(t_limit, max(1.5 * last, 20 * dt))
-    return probe[probe <= t_max + 0.5 * dt]
+    stop = int(np.searchsorted(probe, t_max + 0.5 * dt))
+    return probe[:stop], kernel.isel(time=slice(0, stop))
 
 
 # --------------------------------------------------------------------------- tail
@@ -123,7 +137,7 @@ class DampingTail:
     rate
         α (s) for exponential tails, n for power tails, NaN where there is none.
     note
-        Why a coupling has no tail, per coupling ("" where it has one).
+        Why a coupling has no tail, or why its kind was changed, per coupling.
     """
 
     kind: NDArray
@@ -143,7 +157,7 @@ class DampingTail:
         if "exponential" in kinds:
             alpha = finite[self.kind[np.isfinite(self.rate)] == "exponential"].min()
             end = max(end, self.omega_start + 18.5 / alpha)
-        return self.omega_start * np.geomspace(1.0, end / self.omega_start, 1500)
+        return self.omega_start * np.geomspace(1.0, end / self.omega_start, 800)
 
     def sampled(self) -> tuple[NDArray, NDArray]:
         """(ω, B) of every tail on one fine grid from ω_N, shape (G,), (G, P)."""
@@ -177,7 +191,10 @@ class DampingTail:
                 out[:, exponential] = c * (a * np.cos(w0 * tt) - tt * np.sin(w0 * tt)) / denominator
             else:
                 out[:, exponential] = c * (a * np.sin(w0 * tt) + tt * np.cos(w0 * tt)) / denominator
-        power = self.kind == "power"
+        square = (self.kind == "power") & (self.rate == 2.0)
+        if square.any():  # closed form with the sine and cosine integrals
+            out[:, square] = self.value[square] * _inverse_square_tail(self.omega_start, t, cos)
+        power = (self.kind == "power") & ~square
         if power.any():  # exact for the interpolant on a fine geometric grid
             w, b = self.sampled()
             transform = cosine_transform if cos else sine_transform
@@ -205,6 +222,20 @@ class DampingTail:
         return out
 
 
+def _inverse_square_tail(a: float, t: NDArray, cos: bool) -> NDArray:
+    """∫_a^∞ (a/ω)² cos(ωt) dω (or sin), shape (len(t), 1), by parts:
+
+    a² [cos(at)/a − t (π/2 − Si(at))]  and  a² [sin(at)/a − t Ci(at)]   (t ≥ 0).
+    """
+    tt = np.abs(t)[:, None]
+    si, ci = sici(a * tt)
+    if cos:
+        return a * np.cos(a * tt) - a**2 * tt * (0.5 * np.pi - si)
+    with np.errstate(invalid="ignore"):
+        sine = a * np.sin(a * tt) - a**2 * np.where(tt > 0, tt * ci, 0.0)
+    return np.sign(t)[:, None] * sine
+
+
 def fit_damping_tail(
     omega: ArrayLike,
     damping: ArrayLike,
@@ -222,7 +253,9 @@ def fit_damping_tail(
     there (|B_N| below ``negligible`` × its peak), when B changes sign or is zero in the
     fitting window, or when the fitted curve does not decay (α ≤ 0, n ≤ 1): the reason
     is recorded in ``note``. Power laws decaying slower than ω⁻² are steepened to
-    :data:`MIN_POWER`.
+    :data:`MIN_POWER`; an exponential whose area B_N/α exceeds twice that of the ω⁻²
+    law, B_N ω_N (α ω_N < 1/2: a window that hardly decays, such as a noisy
+    off-diagonal term), is replaced by the ω⁻² law.
 
     Parameters
     ----------
@@ -277,6 +310,10 @@ def fit_damping_tail(
             notes[k] = "damping does not decay near the last frequency: no tail fitted"
             continue
         _, kinds[k], rates[k] = min(candidates)
+        if kinds[k] == "exponential" and rates[k] * w[-1] < 0.5 * (MIN_POWER - 1):
+            # area B_N/α over twice that of the slowest admissible power law, B_N ω_N/(n−1)
+            kinds[k], rates[k] = "power", MIN_POWER
+            notes[k] = "exponential decay much slower than the ω⁻² law: ω⁻² used"
     return DampingTail(kinds, float(w[-1]), b[-1].copy(), rates, notes)
 
 

@@ -130,7 +130,9 @@ def sniff_dir(path: Path) -> list[Path]:
 # --------------------------------------------------------------------------- struct access
 
 
-def _load_vessel(path: Path) -> np.void:
+def load_mat_struct(path: Path, name: str, missing_hint: str) -> np.void:
+    """The 1×1 struct ``name`` of a MATLAB (v5–v7) .mat file, or a HydroDataError naming
+    the file (v7.3/HDF5, unreadable, no such struct, not a struct)."""
     if not path.is_file():
         raise HydroDataError("file not found", path=path)
     with open(path, "rb") as f:
@@ -139,7 +141,7 @@ def _load_vessel(path: Path) -> np.void:
         raise HydroDataError(
             "MATLAB v7.3 (HDF5) .mat files are not supported",
             path=path,
-            hint="in MATLAB, save the struct again with save(file, 'vessel', '-v7')",
+            hint=f"in MATLAB, save the struct again with save(file, '{name}', '-v7')",
         )
     try:
         content = scipy.io.loadmat(str(path), squeeze_me=False, struct_as_record=True)
@@ -149,18 +151,15 @@ def _load_vessel(path: Path) -> np.void:
             path=path,
             hint="check the file was saved by MATLAB (save -v7) and is complete",
         ) from None
-    if "vessel" not in content:
+    if name not in content:
         names = ", ".join(k for k in content if not k.startswith("__")) or "none"
         raise HydroDataError(
-            f"no 'vessel' struct in the file (variables: {names})",
-            path=path,
-            hint="MSS vessel files hold a struct named vessel; *ABC.mat files hold "
-            "fitted models (vesselABC), not hydrodynamic data",
+            f"no '{name}' struct in the file (variables: {names})", path=path, hint=missing_hint
         )
-    vessel = content["vessel"]
-    if vessel.dtype.names is None or vessel.size != 1:
-        raise HydroDataError("'vessel' is not a 1×1 struct", path=path)
-    return vessel.reshape(-1)[0]
+    value = content[name]
+    if value.dtype.names is None or value.size != 1:
+        raise HydroDataError(f"'{name}' is not a 1×1 struct", path=path)
+    return value.reshape(-1)[0]
 
 
 def _has(struct: np.void | None, name: str) -> bool:
@@ -552,7 +551,12 @@ def read_mss(
 
 
 def _read_mss(path, rho, g, speed, rao_reference) -> xr.Dataset:
-    vessel = _load_vessel(path)
+    vessel = load_mat_struct(
+        path,
+        "vessel",
+        "MSS vessel files hold a struct named vessel; *ABC.mat files hold "
+        "fitted models (vesselABC), not hydrodynamic data",
+    )
     main = _substruct(vessel, "main")
     extras = _substruct(vessel, "cummins")
     history: list[str] = [f"read MSS vessel struct from {path.name}"]

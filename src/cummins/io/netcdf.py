@@ -218,7 +218,7 @@ def sniff_dir(path: Path) -> list[Path]:
 # --------------------------------------------------------------------------- reading
 
 
-def _load(path: Path) -> xr.Dataset:
+def load_netcdf(path: Path) -> xr.Dataset:
     """Open a NetCDF file fully into memory; every failure becomes HydroDataError."""
     engine = _engine(path)
     try:
@@ -284,7 +284,7 @@ def read_netcdf(
     True
     """
     path = Path(path)
-    raw = _load(path)
+    raw = load_netcdf(path)
     try:
         return from_capytaine_dataset(
             raw,
@@ -756,7 +756,7 @@ def _is_native(key: Any, value: Any) -> bool:
     return False
 
 
-def _to_json(value: Any, key: str) -> Any:
+def encode_attribute(value: Any, key: str) -> Any:
     """Tagged JSON form of an attribute value NetCDF cannot store as it is."""
     if value is None:
         return {"type": "none"}
@@ -788,18 +788,18 @@ def _to_json(value: Any, key: str) -> Any:
             "data": value.reshape(-1).tolist(),
         }
     if isinstance(value, list | tuple):
-        return {"type": type(value).__name__, "items": [_to_json(v, key) for v in value]}
+        return {"type": type(value).__name__, "items": [encode_attribute(v, key) for v in value]}
     if isinstance(value, dict):
         if not all(isinstance(k, str) for k in value):
             raise HydroDataError(f"attribute {key!r}: dictionary keys must be strings")
-        return {"type": "dict", "items": {k: _to_json(v, key) for k, v in value.items()}}
+        return {"type": "dict", "items": {k: encode_attribute(v, key) for k, v in value.items()}}
     raise HydroDataError(
         f"attribute {key!r} of type {type(value).__name__} cannot be stored in NetCDF",
         hint="convert it to a string, a number or an array before writing",
     )
 
 
-def _from_json(item: dict) -> Any:
+def decode_attribute(item: dict) -> Any:
     kind = item["type"]
     if kind == "none":
         return None
@@ -815,10 +815,10 @@ def _from_json(item: dict) -> Any:
             flat = np.asarray(item["data"])
         return flat.astype(dtype).reshape(item["shape"])
     if kind in ("list", "tuple"):
-        items = [_from_json(v) for v in item["items"]]
+        items = [decode_attribute(v) for v in item["items"]]
         return items if kind == "list" else tuple(items)
     if kind == "dict":
-        return {k: _from_json(v) for k, v in item["items"].items()}
+        return {k: decode_attribute(v) for k, v in item["items"].items()}
     raise ValueError(f"unknown attribute type {kind!r}")
 
 
@@ -830,7 +830,7 @@ def encode_attributes(attrs: dict) -> dict:
         if _is_native(key, value):
             native[key] = value
         else:
-            special[str(key)] = _to_json(value, str(key))
+            special[str(key)] = encode_attribute(value, str(key))
     if special:
         native[JSON_ATTRS] = json.dumps(special)
     return native
@@ -842,7 +842,7 @@ def decode_attributes(attrs: dict, where=None) -> dict:
     if JSON_ATTRS in attrs:
         try:
             special = json.loads(str(attrs[JSON_ATTRS]))
-            out.update({k: _from_json(v) for k, v in special.items()})
+            out.update({k: decode_attribute(v) for k, v in special.items()})
         except (ValueError, KeyError, TypeError, AttributeError) as exc:
             raise HydroDataError(
                 f"unreadable {JSON_ATTRS} attribute ({exc})",
@@ -949,13 +949,18 @@ def write_netcdf(ds: xr.Dataset, path: str | os.PathLike[str]) -> Path:
     Path
         ``path``.
     """
+    return save_netcdf(to_capytaine_layout(ds), path)
+
+
+def save_netcdf(ds: xr.Dataset, path: str | os.PathLike[str]) -> Path:
+    """Write ``ds`` (h5netcdf) to a temporary name, then rename it to ``path``: a failure
+    leaves no half-written file. No overwrite check (the callers do it)."""
     path = Path(path)
-    layout = to_capytaine_layout(ds)
     tmp = path.with_name(f".{path.name}.tmp")
     try:
         with warnings.catch_warnings():
             warnings.simplefilter("ignore", category=FutureWarning)
-            layout.to_netcdf(tmp, engine="h5netcdf")
+            ds.to_netcdf(tmp, engine="h5netcdf")
         os.replace(tmp, path)
     except OSError as exc:
         raise HydroDataError(f"cannot write the file ({exc})", path=path) from None

@@ -1,0 +1,74 @@
+"""Benchmark: identification of the whole tanker 6×6 radiation model.
+
+The data MSS ships for its tanker (``tanker.mat``, 58 frequencies from 0.038 to
+6.0 rad/s, the same WAMIT run as the bundled demo vessel) fitted, in one run, by
+
+* ``method="fd"`` — frequency-domain identification (the default), and
+* ``method="realization"`` — ERA Hankel-SVD of the sampled K(t),
+
+each coupling timed separately, with its order and R² of A, B and K(t). The ratio
+of the two is printed. For the record, MSS's FDI (its own order search, run
+non-interactively under Octave on this machine, issue 4) takes 6.2 s for the 18
+couplings, with 5 of them unstable; the ratio against that figure is printed too.
+
+Run: ``python benchmarks/bench_fit.py``.
+"""
+
+from __future__ import annotations
+
+import os
+
+os.environ.setdefault("OPENBLAS_NUM_THREADS", "1")
+
+import time
+from pathlib import Path
+
+import cummins
+from cummins.fit import fit_radiation
+from cummins.passivity import is_passive
+
+DATA = Path(__file__).resolve().parents[2] / "shared" / "data" / "mss" / "tanker" / "tanker.mat"
+MSS_FDI_SECONDS = 6.2  # issue 4: MSS FDI on the same data, this machine, 18 couplings
+REPEAT = 3
+
+
+def timed(function):
+    best, result = float("inf"), None
+    for _ in range(REPEAT):
+        start = time.perf_counter()
+        result = function()
+        best = min(best, time.perf_counter() - start)
+    return best, result
+
+
+def report(label: str, seconds: float, model) -> None:
+    upper = [c for c in model.couplings if c.influenced <= c.radiating]
+    stable = all(c.metrics["stable"] for c in model.couplings)
+    print(
+        f"{label}: {seconds:.3f} s, total order {model.total_order}, "
+        f"{len(upper)} fitted couplings, all stable {stable}, MIMO passive {is_passive(model)}"
+    )
+    print("   coupling  order  R2(A)   R2(B)   R2(K(t))  time [ms]")
+    for c in upper:
+        m = c.metrics
+        print(
+            f"   {c.influenced + 1}{c.radiating + 1:<8d} {c.order:5d}  {m['r2_added_mass']:.4f}  "
+            f"{m['r2_damping']:.4f}  {m['r2_kernel']:.4f}    {1e3 * m['elapsed_s']:7.1f}"
+        )
+
+
+def main() -> None:
+    if not DATA.is_file():
+        raise SystemExit(f"{DATA} not found: the benchmark needs ../shared/data")
+    ds = cummins.read(DATA)
+    fit_radiation(ds)  # warm up imports and caches
+    t_fd, fd = timed(lambda: fit_radiation(ds))
+    t_era, era = timed(lambda: fit_radiation(ds, method="realization"))
+    report("fd (default)", t_fd, fd)
+    report("realization (ERA)", t_era, era)
+    print(f"ratio fd / realization             {t_fd / t_era:6.2f}")
+    print(f"ratio MSS FDI (6.2 s, issue 4) / fd {MSS_FDI_SECONDS / t_fd:6.2f}")
+
+
+if __name__ == "__main__":
+    main()

@@ -1,0 +1,313 @@
+"""``cummins fit``: state-space models of the fluid memory of every significant coupling."""
+
+from __future__ import annotations
+
+import json
+import time
+from pathlib import Path
+
+import click
+from rich.progress import BarColumn, Progress, TextColumn, TimeElapsedColumn
+from rich.table import Table
+
+from cummins.cli_common import (
+    console,
+    prepare_outputs,
+    read_hydrodb,
+    read_options,
+    reports_errors,
+    select_speed,
+)
+
+
+@click.command(name="fit")
+@click.argument("path", type=click.Path(exists=True))
+@read_options
+@click.option(
+    "-o",
+    "--output",
+    type=click.Path(dir_okay=False),
+    required=True,
+    help="NetCDF file for the model (A, B, C, D, A-infinity, per-coupling metrics).",
+)
+@click.option(
+    "--method",
+    type=click.Choice(["fd", "realization", "prony"]),
+    default="fd",
+    show_default=True,
+    help="fd: frequency-domain fit (Levy, Sanathanan-Koerner, nonlinear); "
+    "realization: Kung/ERA on K(t); prony: Prony on K(t).",
+)
+@click.option(
+    "--r2",
+    type=float,
+    default=0.99,
+    show_default=True,
+    help="Target R-squared of A(w) and B(w) for the diagonal terms.",
+)
+@click.option(
+    "--r2-coupling",
+    type=float,
+    default=0.97,
+    show_default=True,
+    help="Target for the off-diagonal couplings.",
+)
+@click.option("--max-order", type=int, default=10, show_default=True, help="Highest order tried.")
+@click.option(
+    "--order",
+    "orders",
+    type=(str, str, int),
+    multiple=True,
+    metavar="DOF DOF N",
+    help="Fix the order of a coupling, e.g. --order Heave Pitch 4 (repeatable).",
+)
+@click.option(
+    "--added-mass-inf",
+    type=click.Choice(["auto", "data", "fit", "ogilvie"]),
+    default="auto",
+    show_default=True,
+    help="A-infinity: the data row (auto when present), a joint estimate (fit), or "
+    "Ogilvie's relation.",
+)
+@click.option("--omega-min", type=float, default=None, metavar="RAD/S", help="Fitting range.")
+@click.option("--omega-max", type=float, default=None, metavar="RAD/S", help="Fitting range.")
+@click.option(
+    "--keep-suspect",
+    is_flag=True,
+    help="Fit the suspect frequencies too (irregular frequencies, spikes).",
+)
+@click.option(
+    "--threshold",
+    type=float,
+    default=0.01,
+    show_default=True,
+    help="Couplings below this fraction of the diagonal terms are left out.",
+)
+@click.option(
+    "--json",
+    "json_path",
+    type=click.Path(dir_okay=False),
+    default=None,
+    help="Write a summary as JSON (couplings with order, R2, stable, passive).",
+)
+@click.option(
+    "--plot",
+    "plot_dir",
+    type=click.Path(file_okay=False),
+    default=None,
+    help="Write one PNG per coupling (A, B, |K|, phase of K, K(t)).",
+)
+@click.option(
+    "--openfast",
+    type=click.Path(dir_okay=False),
+    default=None,
+    help="Also write the model as an OpenFAST HydroDyn .ss file.",
+)
+@click.option(
+    "--mss",
+    "mss_path",
+    type=click.Path(dir_okay=False),
+    default=None,
+    help="Also write an MSS vesselABC .mat (Fossen axes).",
+)
+@click.option(
+    "--speed",
+    type=float,
+    default=None,
+    metavar="M/S",
+    help="Forward speed to use when the data hold several.",
+)
+@click.option("--force", is_flag=True, help="Overwrite the output files.")
+@reports_errors
+def fit_command(
+    path,
+    format_,
+    rho,
+    g,
+    ulen,
+    output,
+    method,
+    r2,
+    r2_coupling,
+    max_order,
+    orders,
+    added_mass_inf,
+    omega_min,
+    omega_max,
+    keep_suspect,
+    threshold,
+    json_path,
+    plot_dir,
+    openfast,
+    mss_path,
+    speed,
+    force,
+):
+    """Identify stable state-space models of the fluid memory, for every significant coupling.
+
+    \b
+    Each coupling K_ij(s) is fitted at the smallest order whose R-squared of A(w) and
+    B(w) reaches the target; diagonal models are positive real; symmetric couplings
+    are fitted once; negligible couplings and suspect frequencies are left out and
+    reported. The MIMO model (A, B, C, D = 0) and A-infinity go to OUTPUT.
+
+    \b
+    Examples:
+      cummins fit tanker.1 -o tanker_model.nc --json fit.json --plot fit-plots
+      cummins fit input.re7 -o supply_model.nc --method realization --max-order 12
+      cummins fit tanker.1 -o model.nc --order Heave Pitch 4 --openfast tanker.ss
+    """
+    from cummins.fit import fit_radiation
+
+    prepare_outputs(output, json_path, openfast, mss_path, force=force)
+    ds = select_speed(read_hydrodb(path, format_, rho, g, ulen), speed)
+    labels = [str(d) for d in ds.influenced_dof.values]
+    fixed = {}
+    for a, b, n in orders:
+        for label in (a, b):
+            if label not in labels:
+                raise click.BadParameter(
+                    f"unknown DOF {label!r}; use {', '.join(labels)}", param_hint="--order"
+                )
+        fixed[(labels.index(a), labels.index(b))] = n
+    start = time.perf_counter()
+    with Progress(
+        TextColumn("fitting {task.description}"),
+        BarColumn(),
+        TextColumn("{task.completed}/{task.total}"),
+        TimeElapsedColumn(),
+        console=console,
+        transient=True,
+    ) as bar:
+        from cummins.retardation import significant_couplings
+
+        task = bar.add_task("couplings", total=len(significant_couplings(ds, threshold)))
+        started = []
+
+        def progress(message: str) -> None:
+            if started:
+                bar.advance(task)
+            started.append(message)
+            bar.update(task, description=message)
+
+        model = fit_radiation(
+            ds,
+            method=method,
+            r2=r2,
+            r2_coupling=r2_coupling,
+            max_order=max_order,
+            orders=fixed or None,
+            threshold=threshold,
+            added_mass_inf=added_mass_inf,
+            omega_min=omega_min,
+            omega_max=omega_max,
+            exclude_suspect=not keep_suspect,
+            progress=progress,
+        )
+    elapsed = time.perf_counter() - start
+    console.print(fit_table(model))
+    summary = fit_summary(model, elapsed)
+    console.print(
+        f"total order {summary['total_order']}, every model stable: {summary['mimo_stable']}, "
+        f"MIMO passive: {summary['mimo_passive']}, {elapsed:.2f} s"
+    )
+    for note in model.attrs.get("data_notes", []):
+        console.print(f"[yellow]data:[/yellow] {note}")
+    negligible = [c for c in model.attrs.get("negligible_couplings", []) if "-" in c]
+    if negligible:
+        console.print(
+            f"negligible couplings (< {threshold:g} of the diagonal terms): "
+            + ", ".join(negligible)
+        )
+    model.save(output, force=force)
+    console.print(f"wrote {output}")
+    if json_path:
+        Path(json_path).write_text(json.dumps(summary, indent=2) + "\n", encoding="utf-8")
+        console.print(f"wrote {json_path}")
+    if openfast:
+        from cummins.io.openfast import write_openfast_ss
+
+        write_openfast_ss(model, openfast, force=force)
+        console.print(f"wrote {openfast}")
+    if mss_path:
+        from cummins.pipeline import write_model_mss_abc
+
+        write_model_mss_abc(model, ds, Path(mss_path), force=force)
+        console.print(f"wrote {mss_path} (Fossen axes, about the data's reference point)")
+    if plot_dir:
+        from cummins.pipeline import write_fit_plots
+
+        for file in write_fit_plots(model, ds, Path(plot_dir), force=force):
+            console.print(f"wrote {file}")
+
+
+def fit_summary(model, elapsed: float) -> dict:
+    """The ``--json`` summary: couplings (1-based i, j), total order, stability, passivity."""
+    from cummins.passivity import is_passive
+
+    couplings = []
+    for k in model.couplings:
+        m = k.metrics
+        couplings.append(
+            {
+                "i": k.influenced + 1,
+                "j": k.radiating + 1,
+                "order": k.order,
+                "r2_added_mass": float(m["r2_added_mass"]),
+                "r2_damping": float(m["r2_damping"]),
+                "stable": bool(m["stable"]),
+                "passive": None if m.get("passive") is None else bool(m["passive"]),
+            }
+        )
+    return {
+        "couplings": couplings,
+        "total_order": model.total_order,
+        "mimo_stable": model.is_stable(),
+        "mimo_passive": is_passive(model),
+        "elapsed_s": elapsed,
+    }
+
+
+def fit_table(model) -> Table:
+    """Per-coupling summary printed by ``cummins fit``."""
+    table = Table(
+        title=f"fluid-memory model ({model.attrs.get('method')}; A∞: "
+        f"{model.attrs.get('added_mass_inf_method')})"
+    )
+    for column in ("coupling", "order", "R² A", "R² B", "R² K(t)", "stable", "passive", "note"):
+        table.add_column(column, justify="right" if column != "note" else "left")
+    for k in model.couplings:
+        if k.influenced > k.radiating:
+            continue
+        m = k.metrics
+        a, b = model.dofs[k.influenced], model.dofs[k.radiating]
+        passive = m.get("passive")
+        table.add_row(
+            a if a == b else f"{a}-{b}",
+            str(k.order),
+            f"{m['r2_added_mass']:.4f}",
+            f"{m['r2_damping']:.4f}",
+            "—" if m.get("r2_kernel") is None else f"{m['r2_kernel']:.4f}",
+            "yes" if m["stable"] else "NO",
+            "—" if passive is None else ("yes" if passive else "NO"),
+            short_note(k.note),
+        )
+    return table
+
+
+#: Steps every fit may take; the table leaves them out (the model file keeps the note).
+ROUTINE_STEPS = (
+    "refined by nonlinear least squares",
+    "Steiglitz–McBride refinement",
+    "zero at s = 0 imposed",
+    "started from the pruned poles",
+)
+
+
+def short_note(note: str) -> str:
+    """The parts of a coupling's note worth a line in the table."""
+    parts = [p.strip() for p in note.split(";") if p.strip()]
+    kept = [p for p in parts if not p.startswith(ROUTINE_STEPS)]
+    if any("passivity" in p for p in kept) and not any(p.startswith("not passive") for p in kept):
+        kept = [p for p in kept if "passivity" not in p] + ["passivity enforced"]
+    return "; ".join(kept)

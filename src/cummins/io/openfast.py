@@ -1,0 +1,379 @@
+"""OpenFAST HydroDyn state-space radiation file (``.ss``), as SS_Fitting writes it.
+
+HydroDyn (OpenFAST) models the fluid memory with a state-space system when
+``RdtnMod = 2``: it reads ``<PotFile>.ss`` in ``SS_Rad_Init``
+(``modules/hydrodyn/src/SS_Radiation.f90``) and adds the output y = C x to the
+platform loads unchanged (``WAMIT_CalcOutput``: ``F_Rdtn = SS_Rdtn_y%y``). The file is
+written by NREL's SS_Fitting tool (and by BEMRosetta). Layout, for NBody bodies and N
+states (one record per line; numbers free-format, separated by blanks)::
+
+    line 1            title (any text)
+    line 2            6·NBody DOF flags (1 = DOF modelled), then an optional comment
+    line 3            N, the total number of states, then an optional comment
+    line 4            6·NBody numbers of states per DOF (they add up to N)
+    next N lines      A, one row per line (N numbers)
+    next N lines      B, one row per line (6·NBody numbers)
+    next 6·NBody lines C, one row per line (N numbers)
+
+and nothing after: HydroDyn counts every remaining line (blank ones too) and requires
+(lines − 6·NBody)/2 = N. It also requires every flag to be 1 (it enables all DOFs and
+reads B and C with 6·NBody columns and rows whatever the flags say).
+
+Conventions of the file (from HydroDyn and SS_Fitting's writer):
+
+* x' = A x + B q̇, F_rad = C x, with q̇ the body velocities (m/s, rad/s) and F_rad the
+  radiation memory *force* on the body (N, N·m), SI units, not scaled by ρ. cummins'
+  model gives the memory term μ with F_rad = −μ, so the file's C is −C of the model
+  (SS_Fitting also writes ``CC = -C``).
+* Axes are HydroDyn's platform axes, z up (x forward along the WAMIT x axis, y to
+  port), about the WAMIT body reference point: cummins' ``"z-up"`` axes. A model in
+  ``"z-down"`` (MSS) axes is converted on writing (c of coupling (i, j) times
+  T_i T_j, T = diag(1, −1, −1, 1, −1, −1)).
+* The states are grouped by radiating DOF: the first n₁ states (line 4) are those
+  driven by the surge velocity, then the n₂ of sway, … HydroDyn relies on this to drop
+  the states of a disabled DOF. :func:`write_openfast_ss` therefore orders the
+  couplings by (radiating j, influenced i), which permutes the states of the
+  :class:`~cummins.radiation.RadiationModel` (whose states follow its couplings).
+
+Numbers are written with 17 significant digits, so a file read back gives the same
+matrices bit for bit (HydroDyn itself stores them in single precision).
+"""
+
+from __future__ import annotations
+
+import os
+from dataclasses import dataclass
+from pathlib import Path
+
+import numpy as np
+from numpy.typing import ArrayLike, NDArray
+
+from cummins._version import __version__
+from cummins.errors import HydroDataError, check_writable
+from cummins.hydrodb import DOF_NAMES
+from cummins.io._model_common import resolve_axis_convention
+from cummins.io._text import TextFile, parse_numbers
+from cummins.radiation import CouplingModel, RadiationModel, change_model_axes
+
+__all__ = ["OpenFastSS", "read_openfast_ss", "write_openfast_ss"]
+
+_FMT = "{:.16e}"
+
+
+@dataclass(frozen=True)
+class OpenFastSS:
+    """The content of an OpenFAST ``.ss`` file.
+
+    Attributes
+    ----------
+    title
+        Line 1.
+    dof_flags
+        Line 2: 6·NBody flags (1 = DOF modelled).
+    states_per_dof
+        Line 4: number of states driven by each DOF's velocity.
+    A, B, C
+        The matrices as in the file: F_rad = C x is the radiation memory force, the
+        negative of cummins' memory term μ.
+    path
+        The file read, if any.
+    """
+
+    title: str
+    dof_flags: NDArray[np.int_]
+    states_per_dof: NDArray[np.int_]
+    A: NDArray[np.float64]
+    B: NDArray[np.float64]
+    C: NDArray[np.float64]
+    path: Path | None = None
+
+    @property
+    def n_states(self) -> int:
+        """N, the number of states."""
+        return int(self.A.shape[0])
+
+    def frequency_response(self, omega: ArrayLike) -> NDArray[np.complex128]:
+        """cummins' memory transfer matrix K(jω) = −C (jωI − A)⁻¹ B, shape (nω, n, n)."""
+        w = np.asarray(omega, dtype=float).reshape(-1)
+        eye = np.eye(self.n_states)
+        out = np.empty((w.size, self.C.shape[0], self.B.shape[1]), dtype=complex)
+        for k, wk in enumerate(w):
+            out[k] = -self.C @ np.linalg.solve(1j * wk * eye - self.A, self.B)
+        return out
+
+    def to_radiation_model(
+        self,
+        dofs: tuple[str, ...] | None = None,
+        added_mass_inf: ArrayLike | None = None,
+    ) -> RadiationModel:
+        """The file as a :class:`~cummins.radiation.RadiationModel` of SISO couplings.
+
+        The states are split into the connected blocks of A; each block must be driven
+        by one velocity j and seen by one force i (a SISO model, as SS_Fitting and
+        cummins write them), and the blocks with the same (i, j) form one coupling.
+        Blocks with no input or no output contribute nothing to K and are dropped.
+
+        Parameters
+        ----------
+        dofs
+            DOF labels; default ``Surge`` … ``Yaw`` (``body1__Surge`` … for several
+            bodies).
+        added_mass_inf
+            A∞ (the ``.ss`` file does not hold it; HydroDyn takes it from the WAMIT
+            ``.1`` file). Default: NaN, which makes :meth:`added_mass` NaN too.
+
+        Raises
+        ------
+        HydroDataError
+            A block of states couples several inputs or outputs.
+        """
+        n = self.B.shape[1]
+        if dofs is None:
+            dofs = default_dof_labels(n)
+        if len(dofs) != n:
+            raise HydroDataError(f"{len(dofs)} DOF labels given for {n} DOFs", path=self.path)
+        added = np.full((n, n), np.nan) if added_mass_inf is None else np.asarray(added_mass_inf)
+        memory_c = -self.C
+        groups: dict[tuple[int, int], list[NDArray[np.int_]]] = {}
+        for block in _connected_blocks(self.A):
+            inputs = np.flatnonzero(np.any(self.B[block] != 0, axis=0))
+            outputs = np.flatnonzero(np.any(memory_c[:, block] != 0, axis=1))
+            if inputs.size == 0 or outputs.size == 0:
+                continue
+            if inputs.size > 1 or outputs.size > 1:
+                raise HydroDataError(
+                    f"states {block[0] + 1}…{block[-1] + 1} couple the velocities "
+                    f"{(inputs + 1).tolist()} to the forces {(outputs + 1).tolist()}: not a "
+                    "stack of single-input single-output models",
+                    path=self.path,
+                    hint="use the matrices A, B, C of read_openfast_ss directly",
+                )
+            groups.setdefault((int(outputs[0]), int(inputs[0])), []).append(block)
+        couplings = []
+        for (i, j), blocks in groups.items():
+            states = np.concatenate(blocks)
+            couplings.append(
+                CouplingModel(
+                    i,
+                    j,
+                    self.A[np.ix_(states, states)],
+                    self.B[states, j],
+                    memory_c[i, states],
+                    method="openfast-ss",
+                )
+            )
+        attrs = {
+            "axis_convention": "z-up",
+            "source_format": "openfast-ss",
+            "openfast_title": self.title,
+        }
+        if self.path is not None:
+            attrs["source_file"] = str(self.path)
+        if added_mass_inf is None:
+            attrs["history"] = "added_mass_inf unknown (not in the .ss file): NaN"
+        return RadiationModel(tuple(dofs), tuple(couplings), added, attrs)
+
+
+def default_dof_labels(n: int) -> tuple[str, ...]:
+    """``Surge`` … ``Yaw`` for 6 DOFs, ``body1__Surge`` … for 6·NBody."""
+    if n == 6:
+        return DOF_NAMES
+    return tuple(f"body{b + 1}__{d}" for b in range(n // 6) for d in DOF_NAMES)
+
+
+def _connected_blocks(a: NDArray) -> list[NDArray[np.int_]]:
+    """Index sets of the connected components of the graph of A's nonzero entries."""
+    from scipy.sparse.csgraph import connected_components
+
+    if a.shape[0] == 0:
+        return []
+    count, labels = connected_components(a != 0, directed=True, connection="weak")
+    blocks = [np.flatnonzero(labels == k) for k in range(count)]
+    return sorted(blocks, key=lambda b: int(b[0]))
+
+
+# --------------------------------------------------------------------------- writing
+
+
+def ordered_for_openfast(model: RadiationModel) -> tuple[CouplingModel, ...]:
+    """The couplings in the state order of the ``.ss`` file: by radiating DOF, then i."""
+    return tuple(sorted(model.couplings, key=lambda k: (k.radiating, k.influenced)))
+
+
+def write_openfast_ss(
+    model: RadiationModel,
+    path: str | os.PathLike[str],
+    *,
+    axis_convention: str | None = None,
+    title: str | None = None,
+    force: bool = False,
+) -> Path:
+    """Write ``model`` as an OpenFAST HydroDyn ``.ss`` file (see the module docstring).
+
+    Parameters
+    ----------
+    model
+        The memory model, six DOFs per body, about the WAMIT body reference point.
+    path
+        Output file; HydroDyn reads ``<PotFile>.ss``.
+    axis_convention
+        Axes of the model when it does not record them (attribute ``axis_convention``).
+        A ``"z-down"`` model is converted to HydroDyn's z-up axes.
+    title
+        Line 1; by default it names cummins and the identification methods.
+    force
+        Overwrite an existing file.
+
+    Returns
+    -------
+    Path
+        ``path``.
+    """
+    path = Path(path)
+    check_writable(path, force)
+    n = len(model.dofs)
+    if n == 0 or n % 6:
+        raise HydroDataError(
+            f"the model has {n} DOFs; HydroDyn needs all six DOFs of each body", path=path
+        )
+    if model.total_order == 0:
+        raise HydroDataError(
+            "the model has no states: nothing to write",
+            path=path,
+            hint="without fluid memory, run HydroDyn with RdtnMod = 0",
+        )
+    current = resolve_axis_convention(model, axis_convention, path=path)
+    z_up = change_model_axes(model, "z-up", current=current)
+    content = openfast_ss_from_model(z_up, title=title)
+    path.write_text(format_openfast_ss(content), encoding="utf-8")
+    return path
+
+
+def openfast_ss_from_model(model: RadiationModel, *, title: str | None = None) -> OpenFastSS:
+    """The ``.ss`` content of a z-up ``model``: states grouped by radiating DOF, C = −C."""
+    n = len(model.dofs)
+    ordered = RadiationModel(model.dofs, ordered_for_openfast(model), model.added_mass_inf)
+    per_dof = np.zeros(n, dtype=int)
+    for k in ordered.couplings:
+        per_dof[k.radiating] += k.order
+    if title is None:
+        methods = sorted({k.method for k in model.couplings if k.method})
+        title = (
+            f"cummins {__version__}: state-space radiation (fluid memory) matrices for "
+            f"HydroDyn SS_Radiation, methods: {', '.join(methods) or 'unknown'}; "
+            "states grouped by radiating DOF, F_rad = C x"
+        )
+    return OpenFastSS(
+        title=" ".join(str(title).split()),
+        dof_flags=np.ones(n, dtype=int),
+        states_per_dof=per_dof,
+        A=ordered.A,
+        B=ordered.B,
+        C=-ordered.C,
+    )
+
+
+def format_openfast_ss(content: OpenFastSS) -> str:
+    """The text of a ``.ss`` file, lines ending with ``\\n``, nothing after C."""
+    lines = [
+        content.title,
+        " ".join(str(int(f)) for f in content.dof_flags) + "    %Enabled DoFs",
+        f"{content.n_states}    %Radiation states",
+        " ".join(str(int(v)) for v in content.states_per_dof) + "    %Radiation states per DOFs",
+    ]
+    for matrix in (content.A, content.B, content.C):
+        lines.extend(" ".join(_FMT.format(x) for x in row) for row in matrix)
+    return "\n".join(lines) + "\n"
+
+
+# --------------------------------------------------------------------------- reading
+
+
+def read_openfast_ss(path: str | os.PathLike[str]) -> OpenFastSS:
+    """Read an OpenFAST ``.ss`` file (written by SS_Fitting, BEMRosetta or cummins).
+
+    The file is checked as HydroDyn checks it (counts of lines and states), so a file
+    that reads here is one HydroDyn accepts. Use :meth:`OpenFastSS.to_radiation_model`
+    for a :class:`~cummins.radiation.RadiationModel`.
+
+    Raises
+    ------
+    HydroDataError
+        Naming the file and line: missing or malformed header, wrong counts, a matrix
+        row with the wrong number of values, lines after the C matrix.
+    """
+    text = TextFile.read(path)
+    if len(text) < 4:
+        raise text.error("the file ends before the 4 header lines", len(text) - 1)
+    flags = _leading_integers(text, 1, "DOF flags")
+    if flags.size == 0 or flags.size % 6:
+        raise text.error(
+            f"expected 6 DOF flags per body, found {flags.size}",
+            1,
+            hint="line 2 lists 6·NBody flags (1 = DOF modelled)",
+        )
+    if np.any((flags != 0) & (flags != 1)):
+        raise text.error("the DOF flags must be 0 or 1", 1)
+    count = _leading_integers(text, 2, "number of states")
+    if count.size < 1 or count[0] < 0:
+        raise text.error("expected the number of states", 2)
+    n_states, n_dofs = int(count[0]), flags.size
+    per_dof = _leading_integers(text, 3, "states per DOF")
+    if per_dof.size < n_dofs:
+        raise text.error(f"expected {n_dofs} numbers of states per DOF, found {per_dof.size}", 3)
+    per_dof = per_dof[:n_dofs]
+    if int(per_dof.sum()) != n_states:
+        raise text.error(
+            f"the states per DOF add up to {int(per_dof.sum())}, not to {n_states} (line 3)", 3
+        )
+    expected = 4 + 2 * n_states + n_dofs
+    if len(text) != expected:
+        where = min(len(text), expected) - 1
+        raise text.error(
+            f"expected {expected} lines (4 header lines, {n_states} rows of A, {n_states} of "
+            f"B, {n_dofs} of C), found {len(text)}",
+            where,
+            hint="HydroDyn counts every line, blank ones too: remove lines after C",
+        )
+    a = _rows(text, 4, n_states, n_states)
+    b = _rows(text, 4 + n_states, n_states, n_dofs)
+    c = _rows(text, 4 + 2 * n_states, n_dofs, n_states)
+    return OpenFastSS(
+        title=text.lines[0].strip(),
+        dof_flags=flags.astype(int),
+        states_per_dof=per_dof.astype(int),
+        A=a,
+        B=b,
+        C=c,
+        path=text.path,
+    )
+
+
+def _leading_integers(text: TextFile, index: int, what: str) -> NDArray[np.int_]:
+    """The integers at the start of a header line, up to a comment or other text."""
+    values = []
+    for field in text.lines[index].split():
+        try:
+            values.append(int(field))
+        except ValueError:
+            try:
+                number = float(field.replace("D", "E").replace("d", "e"))
+            except ValueError:
+                break
+            if number != int(number):
+                raise text.error(f"expected integers ({what}), found {field!r}", index) from None
+            values.append(int(number))
+    return np.asarray(values, dtype=int)
+
+
+def _rows(text: TextFile, start: int, count: int, width: int) -> NDArray[np.float64]:
+    out = np.empty((count, width))
+    for r in range(count):
+        values = parse_numbers(text.lines[start + r])
+        if values is None or values.size != width:
+            found = "text" if values is None else f"{values.size} numbers"
+            raise text.error(f"expected a matrix row of {width} numbers, found {found}", start + r)
+        if not np.all(np.isfinite(values)):
+            raise text.error("NaN or Inf in a matrix", start + r)
+        out[r] = values
+    return out

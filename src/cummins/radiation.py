@@ -1,0 +1,429 @@
+"""State-space models of the fluid memory: the ``RadiationModel``.
+
+The radiation force of the Cummins equation is −A∞ ξ̈ − μ with μ(t) = ∫₀ᵗ K(t−τ) ξ̇(τ) dτ.
+cummins represents the convolution by a linear state-space model (seed 004 eq. 36,
+seed 001 eqs. 3.40–3.41)
+
+    χ̇ = A_r χ + B_r ξ̇,    μ = C_r χ + D_r ξ̇,    D_r = 0,
+
+whose transfer matrix approximates K(s), with K(jω) = B(ω) + jω (A(ω) − A∞). Each
+significant coupling K_ij is identified as a single-input single-output model (see
+:mod:`cummins.fit`), and the MIMO model stacks them block-diagonally: coupling (i, j)
+owns a block of states driven by ξ̇_j and read by μ_i. A symmetric pair K_ij = K_ji is
+fitted once and appears twice (two blocks with the same matrices), so the assembled
+model is symmetric, as the physics requires at zero speed.
+
+Units: inputs are velocities (m/s, rad/s) in ``input`` DOF order, outputs forces and
+moments (N, N·m) in ``output`` order; the state has no physical unit.
+"""
+
+from __future__ import annotations
+
+import functools
+import os
+from collections.abc import Mapping, Sequence
+from dataclasses import dataclass, field, replace
+from pathlib import Path
+from typing import TYPE_CHECKING, Any
+
+import numpy as np
+import xarray as xr
+from numpy.typing import ArrayLike, NDArray
+
+from cummins.errors import CumminsError, FitError, check_writable
+
+if TYPE_CHECKING:
+    import scipy.signal
+
+
+class SisoStateSpace:
+    """Methods shared by the SISO models K(s) = c (sI − a)⁻¹ b (attributes a, b, c)."""
+
+    a: NDArray[np.float64]
+    b: NDArray[np.float64]
+    c: NDArray[np.float64]
+
+    @property
+    def order(self) -> int:
+        """Number of states."""
+        return int(self.a.shape[0])
+
+    def poles(self) -> NDArray[np.complex128]:
+        """Eigenvalues of ``a`` (rad/s)."""
+        return np.linalg.eigvals(self.a) if self.order else np.empty(0, dtype=complex)
+
+    def is_stable(self) -> bool:
+        """True when every pole has a negative real part."""
+        return bool(np.all(self.poles().real < 0))
+
+    def frequency_response(self, omega: ArrayLike) -> NDArray[np.complex128]:
+        """K(jω) = c (jωI − a)⁻¹ b at ``omega`` (rad/s)."""
+        return siso_frequency_response(self.a, self.b, self.c, omega)
+
+    def impulse_response(self, t: ArrayLike) -> NDArray[np.float64]:
+        """K(t) = c e^{a t} b at ``t`` (s)."""
+        return siso_impulse_response(self.a, self.b, self.c, t)
+
+
+@dataclass(frozen=True)
+class CouplingModel(SisoStateSpace):
+    """SISO state-space model of one coupling, K_ij(s) = c (sI − a)⁻¹ b.
+
+    Attributes
+    ----------
+    influenced, radiating
+        0-based DOF indices i (force) and j (velocity).
+    a, b, c
+        State matrix (n, n), input vector (n,), output vector (n,).
+    method
+        How it was identified (``"fd"``, ``"realization"``, ``"prony"``, ``"mss"`` …).
+    metrics
+        Fit measures (``r2_added_mass``, ``r2_damping``, ``stable``, ``passive`` …).
+    note
+        Anything the user should know (target not met, frequencies excluded …).
+    """
+
+    influenced: int
+    radiating: int
+    a: NDArray[np.float64]
+    b: NDArray[np.float64]
+    c: NDArray[np.float64]
+    method: str = ""
+    metrics: Mapping[str, Any] = field(default_factory=dict)
+    note: str = ""
+
+    def transposed(self) -> CouplingModel:
+        """The same model for the symmetric coupling (j, i)."""
+        return CouplingModel(
+            self.radiating,
+            self.influenced,
+            self.a,
+            self.b,
+            self.c,
+            self.method,
+            self.metrics,
+            self.note,
+        )
+
+
+def siso_frequency_response(a: ArrayLike, b: ArrayLike, c: ArrayLike, omega: ArrayLike) -> NDArray:
+    """c (jωI − a)⁻¹ b for each ω, through the eigen-decomposition of ``a``.
+
+    Falls back to a linear solve per frequency when ``a`` is defective.
+    """
+    a = np.asarray(a, dtype=float)
+    b = np.asarray(b, dtype=float).reshape(-1)
+    c = np.asarray(c, dtype=float).reshape(-1)
+    s = 1j * np.asarray(omega, dtype=float).reshape(-1)
+    if a.size == 0:
+        return np.zeros(s.size, dtype=complex)
+    lam, v = np.linalg.eig(a)
+    if np.linalg.cond(v) < 1e10:
+        left = c @ v
+        right = np.linalg.solve(v, b)
+        return (left * right) @ (1.0 / (s[None, :] - lam[:, None]))
+    eye = np.eye(a.shape[0])
+    return np.array([c @ np.linalg.solve(si * eye - a, b) for si in s])
+
+
+def siso_impulse_response(a: ArrayLike, b: ArrayLike, c: ArrayLike, t: ArrayLike) -> NDArray:
+    """c e^{a t} b for each t, through the eigen-decomposition of ``a``."""
+    a = np.asarray(a, dtype=float)
+    b = np.asarray(b, dtype=float).reshape(-1)
+    c = np.asarray(c, dtype=float).reshape(-1)
+    t = np.asarray(t, dtype=float).reshape(-1)
+    if a.size == 0:
+        return np.zeros(t.size)
+    lam, v = np.linalg.eig(a)
+    if np.linalg.cond(v) < 1e10:
+        weights = (c @ v) * np.linalg.solve(v, b)
+        return np.real(np.exp(np.outer(t, lam)) @ weights)
+    from scipy.linalg import expm
+
+    return np.array([c @ expm(a * ti) @ b for ti in t])
+
+
+@dataclass(frozen=True)
+class RadiationModel:
+    """MIMO state-space model of the fluid memory, with its provenance.
+
+    Attributes
+    ----------
+    dofs
+        DOF labels, inputs and outputs alike (``Surge`` … ``Yaw``).
+    couplings
+        One :class:`CouplingModel` per modelled (i, j); symmetric pairs appear as two
+        entries with the same matrices. Couplings not listed are zero.
+    added_mass_inf
+        A∞ (n, n), kg, kg·m, kg·m², used with the model: A(ω) = A∞ + Im K(jω)/ω.
+    attrs
+        Provenance: source file, history, options, A∞ method …
+
+    Examples
+    --------
+    >>> import numpy as np
+    >>> k = CouplingModel(2, 2, np.array([[-1.0]]), np.array([1.0]), np.array([2.0]))
+    >>> model = RadiationModel(("Surge", "Sway", "Heave", "Roll", "Pitch", "Yaw"), (k,),
+    ...                        np.eye(6))
+    >>> model.total_order, model.A.shape
+    (1, (1, 1))
+    """
+
+    dofs: tuple[str, ...]
+    couplings: tuple[CouplingModel, ...]
+    added_mass_inf: NDArray[np.float64]
+    attrs: Mapping[str, Any] = field(default_factory=dict)
+
+    def __post_init__(self) -> None:
+        n = len(self.dofs)
+        if np.shape(self.added_mass_inf) != (n, n):
+            raise CumminsError(f"added_mass_inf must be {n}×{n}")
+        seen = set()
+        for k in self.couplings:
+            key = (k.influenced, k.radiating)
+            if key in seen:
+                raise CumminsError(f"coupling {key} is given twice")
+            if not (0 <= k.influenced < n and 0 <= k.radiating < n):
+                raise CumminsError(f"coupling {key} is outside the {n} DOFs")
+            seen.add(key)
+
+    # ------------------------------------------------------------------ MIMO matrices
+
+    @functools.cached_property
+    def _mimo(self) -> tuple[NDArray, NDArray, NDArray, NDArray]:
+        n = len(self.dofs)
+        total = sum(k.order for k in self.couplings)
+        a = np.zeros((total, total))
+        b = np.zeros((total, n))
+        c = np.zeros((n, total))
+        owner = np.zeros(total, dtype=int)
+        start = 0
+        for index, k in enumerate(self.couplings):
+            stop = start + k.order
+            a[start:stop, start:stop] = k.a
+            b[start:stop, k.radiating] = k.b
+            c[k.influenced, start:stop] = k.c
+            owner[start:stop] = index
+            start = stop
+        return a, b, c, owner
+
+    @property
+    def A(self) -> NDArray:
+        """State matrix A_r (n_states, n_states)."""
+        return self._mimo[0]
+
+    @property
+    def B(self) -> NDArray:
+        """Input matrix B_r (n_states, n_dofs)."""
+        return self._mimo[1]
+
+    @property
+    def C(self) -> NDArray:
+        """Output matrix C_r (n_dofs, n_states)."""
+        return self._mimo[2]
+
+    @property
+    def D(self) -> NDArray:
+        """Feed-through D_r = 0 (n_dofs, n_dofs): A∞ is kept separate."""
+        n = len(self.dofs)
+        return np.zeros((n, n))
+
+    @property
+    def state_coupling(self) -> NDArray[np.int_]:
+        """Index in :attr:`couplings` of the coupling owning each state."""
+        return self._mimo[3]
+
+    @property
+    def total_order(self) -> int:
+        """Number of states of the MIMO model."""
+        return int(self.A.shape[0])
+
+    def coupling(self, i: int | str, j: int | str) -> CouplingModel | None:
+        """The model of coupling (i, j) (indices or DOF labels), or None."""
+        i = self.dofs.index(i) if isinstance(i, str) else i
+        j = self.dofs.index(j) if isinstance(j, str) else j
+        for k in self.couplings:
+            if (k.influenced, k.radiating) == (i, j):
+                return k
+        return None
+
+    def is_stable(self) -> bool:
+        """True when every coupling model is stable (hence the block-diagonal MIMO model)."""
+        return all(k.is_stable() for k in self.couplings)
+
+    # ------------------------------------------------------------------ responses
+
+    def _labels(self) -> dict:
+        return {"influenced_dof": list(self.dofs), "radiating_dof": list(self.dofs)}
+
+    def frequency_response(self, omega: ArrayLike) -> xr.DataArray:
+        """K(jω) = C (jωI − A)⁻¹ B, dims (omega, influenced_dof, radiating_dof)."""
+        w = np.asarray(omega, dtype=float).reshape(-1)
+        n = len(self.dofs)
+        out = np.zeros((w.size, n, n), dtype=complex)
+        for k in self.couplings:
+            out[:, k.influenced, k.radiating] = k.frequency_response(w)
+        return xr.DataArray(
+            out,
+            dims=("omega", "influenced_dof", "radiating_dof"),
+            coords={"omega": w, **self._labels()},
+            name="memory_transfer_function",
+        )
+
+    def added_mass(self, omega: ArrayLike) -> xr.DataArray:
+        """A(ω) = A∞ + Im K(jω)/ω of the model (kg, kg·m, kg·m²)."""
+        k = self.frequency_response(omega)
+        out = self.added_mass_inf[None] + k.imag / k.omega.values[:, None, None]
+        return out.rename("added_mass")
+
+    def radiation_damping(self, omega: ArrayLike) -> xr.DataArray:
+        """B(ω) = Re K(jω) of the model (kg/s, kg·m/s, kg·m²/s)."""
+        return self.frequency_response(omega).real.rename("radiation_damping")
+
+    def impulse_response(self, t: ArrayLike) -> xr.DataArray:
+        """K(t) = C e^{At} B, dims (time, influenced_dof, radiating_dof)."""
+        t = np.asarray(t, dtype=float).reshape(-1)
+        n = len(self.dofs)
+        out = np.zeros((t.size, n, n))
+        for k in self.couplings:
+            out[:, k.influenced, k.radiating] = k.impulse_response(t)
+        return xr.DataArray(
+            out,
+            dims=("time", "influenced_dof", "radiating_dof"),
+            coords={"time": t, **self._labels()},
+            name="retardation_function",
+        )
+
+    # ------------------------------------------------------------------ exports
+
+    def to_scipy(self) -> scipy.signal.StateSpace:
+        """The MIMO model as :class:`scipy.signal.StateSpace` (continuous time)."""
+        import scipy.signal
+
+        if self.total_order == 0:
+            raise FitError("the model has no states")
+        return scipy.signal.StateSpace(self.A, self.B, self.C, self.D)
+
+    def to_control(self):
+        """The MIMO model as a python-control ``StateSpace`` (needs ``pip install control``)."""
+        try:
+            import control
+        except ImportError as exc:
+            raise CumminsError(
+                "python-control is not installed",
+            ) from exc
+        return control.ss(
+            self.A, self.B, self.C, self.D, inputs=list(self.dofs), outputs=list(self.dofs)
+        )
+
+    def summary(self) -> list[dict]:
+        """One dictionary per coupling: i, j (1-based), order, method and metrics."""
+        rows = []
+        for k in self.couplings:
+            rows.append(
+                {
+                    "i": k.influenced + 1,
+                    "j": k.radiating + 1,
+                    "order": k.order,
+                    "method": k.method,
+                    **dict(k.metrics),
+                    "note": k.note,
+                }
+            )
+        return rows
+
+    # ------------------------------------------------------------------ files
+
+    def save(self, path: str | os.PathLike[str], *, force: bool = False) -> Path:
+        """Write the model as NetCDF (see :func:`cummins.io.model_netcdf`)."""
+        from cummins.io.model_netcdf import write_radiation_model
+
+        p = Path(path)
+        check_writable(p, force)
+        write_radiation_model(self, p)
+        return p
+
+    @classmethod
+    def load(cls, path: str | os.PathLike[str]) -> RadiationModel:
+        """Read a model written by :meth:`save`."""
+        from cummins.io.model_netcdf import read_radiation_model
+
+        return read_radiation_model(path)
+
+
+#: Model attributes holding a position (x, y, z) per body, flipped with the axes.
+POSITION_ATTRS: tuple[str, ...] = (
+    "reference_point",
+    "center_of_gravity",
+    "center_of_buoyancy",
+    "mss_r_g",
+)
+#: Model attributes holding a DOF×DOF matrix, transformed as T M T with the axes.
+MATRIX_ATTRS: tuple[str, ...] = ("inertia_matrix", "hydrostatic_stiffness")
+
+
+def change_model_axes(
+    model: RadiationModel, to: str, *, current: str | None = None
+) -> RadiationModel:
+    """The model in another axis convention (z-up solver axes ↔ Fossen's z-down axes).
+
+    With T = diag(1, −1, −1, 1, −1, −1) per body (:data:`cummins.kinematics.Z_UP_TO_Z_DOWN`),
+    K(s) becomes T K(s) T: coupling (i, j) keeps its poles (``a``, ``b``) and its output
+    vector becomes T_i T_j c. A∞ and the matrix attributes become T M T, the position
+    attributes (x, −y, −z); ``axis_convention`` is set and ``history`` says what was
+    done. Exact (sign changes only).
+
+    Parameters
+    ----------
+    model
+        The model.
+    to
+        ``"z-up"`` or ``"z-down"``.
+    current
+        The model's axes, when its ``axis_convention`` attribute does not say
+        (default ``"z-up"`` then).
+    """
+    from cummins.hydrodb import AXIS_CONVENTIONS
+    from cummins.kinematics import Z_UP_TO_Z_DOWN
+
+    for value in (to, current):
+        if value is not None and value not in AXIS_CONVENTIONS:
+            raise CumminsError(
+                f"unknown axis convention {value!r}; use one of {', '.join(AXIS_CONVENTIONS)}"
+            )
+    current = current or model.attrs.get("axis_convention", "z-up")
+    attrs: dict[str, Any] = dict(model.attrs)
+    attrs["axis_convention"] = to
+    if current == to:
+        return replace(model, attrs=attrs)
+    n = len(model.dofs)
+    if n % 6:
+        raise CumminsError(f"cannot change the axes of a model with {n} DOFs: six per body needed")
+    t = np.tile(Z_UP_TO_Z_DOWN, n // 6)
+    couplings = tuple(
+        replace(k, c=np.asarray(k.c, dtype=float) * (t[k.influenced] * t[k.radiating]))
+        for k in model.couplings
+    )
+    flip = np.array([1.0, -1.0, -1.0])
+    for key in POSITION_ATTRS:
+        if key in attrs and np.size(attrs[key]) and np.size(attrs[key]) % 3 == 0:
+            attrs[key] = (np.asarray(attrs[key], dtype=float).reshape(-1, 3) * flip).reshape(-1)
+    for key in MATRIX_ATTRS:
+        if key in attrs and np.shape(attrs[key]) == (n, n):
+            attrs[key] = t[:, None] * np.asarray(attrs[key], dtype=float) * t[None, :]
+    line = f"axes changed from {current} to {to} ({AXIS_CONVENTIONS[to]})"
+    history = attrs.get("history")
+    attrs["history"] = f"{history}\n{line}" if isinstance(history, str) and history else line
+    added = t[:, None] * np.asarray(model.added_mass_inf, dtype=float) * t[None, :]
+    return RadiationModel(model.dofs, couplings, added, attrs)
+
+
+def symmetric_couplings(models: Sequence[CouplingModel]) -> tuple[CouplingModel, ...]:
+    """Add the transposed copy (j, i) of every off-diagonal model fitted for i < j."""
+    out: list[CouplingModel] = []
+    present = {(k.influenced, k.radiating) for k in models}
+    for k in models:
+        out.append(k)
+        if k.influenced != k.radiating and (k.radiating, k.influenced) not in present:
+            out.append(k.transposed())
+    return tuple(sorted(out, key=lambda k: (k.influenced, k.radiating)))
