@@ -14,7 +14,6 @@ from __future__ import annotations
 import argparse
 import json
 import os
-import time
 from pathlib import Path
 
 import numpy as np
@@ -22,6 +21,7 @@ import scipy.io
 import xarray as xr
 
 import cummins
+from _timing import timed
 
 ROOT = Path(__file__).resolve().parents[1]
 DATA = Path(os.environ.get("CUMMINS_SHARED_DATA", ROOT.parent / "shared" / "data"))
@@ -108,12 +108,7 @@ CASES = [
 
 def best_time(function, repeat: int) -> float:
     """Best of ``repeat`` wall-clock times, seconds."""
-    times = []
-    for _ in range(repeat):
-        start = time.perf_counter()
-        function()
-        times.append(time.perf_counter() - start)
-    return min(times)
+    return timed(function, repeat)[0]
 
 
 def main() -> None:

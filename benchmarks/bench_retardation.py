@@ -15,11 +15,10 @@ Run: ``python benchmarks/bench_retardation.py``.
 
 from __future__ import annotations
 
-import time
-
 import numpy as np
 
 import cummins
+from _timing import timed
 from cummins.hydrodb import make_hydrodb
 from cummins.retardation import retardation_function
 
@@ -28,12 +27,7 @@ REPEAT = 5
 
 
 def best_time(function) -> float:
-    times = []
-    for _ in range(REPEAT):
-        start = time.perf_counter()
-        function()
-        times.append(time.perf_counter() - start)
-    return min(times)
+    return timed(function, REPEAT)[0]
 
 
 def analytic_case(omega: np.ndarray):

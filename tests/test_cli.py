@@ -207,7 +207,7 @@ def test_fit_command(runner, tanker_copy, tmp_path):
     assert (
         summary["total_order"] == model.total_order == sum(c["order"] for c in summary["couplings"])
     )
-    assert summary["mimo_stable"] is True and isinstance(summary["mimo_passive"], bool)
+    assert summary["mimo_stable"] is True and summary["mimo_passive"] is True
     by_pair = {(c["i"], c["j"]): c for c in summary["couplings"]}
     assert by_pair[(3, 5)]["order"] == by_pair[(5, 3)]["order"] == 3  # the override, 1-based
     for (i, j), c in by_pair.items():
@@ -221,6 +221,8 @@ def test_fit_command(runner, tanker_copy, tmp_path):
     assert again.exit_code == 2 and "refusing to overwrite" in again.output
     assert runner.invoke(main, [*args, "--force", "--method", "realization"]).exit_code == 0
     assert cummins.radiation.RadiationModel.load(out).attrs["method"] == "realization"
+    assert runner.invoke(main, [*args, "--force", "--no-passive"]).exit_code == 0
+    assert json.loads(summary_path.read_text())["mimo_passive"] is False  # identification only
 
 
 def test_fit_command_bad_input(runner, tanker_copy, tmp_path):
@@ -232,3 +234,52 @@ def test_fit_command_bad_input(runner, tanker_copy, tmp_path):
     result = runner.invoke(main, ["fit", str(tanker_copy), "-o", out, "--max-order", "1"])
     assert result.exit_code != 0 and "at least 2 states" in result.output
     assert not (tmp_path / "m.nc").exists()
+
+
+def test_reduce_command(runner, tanker_copy, tmp_path):
+    """A high-order ERA model reduced to 54 states, passive again, measured against the
+    data; then by --tol without data; refusals."""
+    era = tmp_path / "era.nc"
+    args = ["fit", str(tanker_copy), "-o", str(era), "--method", "realization", "--no-passive"]
+    assert runner.invoke(main, [*args, "--r2", "0.999", "--max-order", "12"]).exit_code == 0
+    model = cummins.radiation.RadiationModel.load(era)
+    small, summary_path = tmp_path / "small.nc", tmp_path / "reduce.json"
+    result = runner.invoke(
+        main,
+        [
+            "reduce",
+            str(era),
+            "-o",
+            str(small),
+            "--order",
+            "54",
+            "--data",
+            str(tanker_copy),
+            "--json",
+            str(summary_path),
+        ],
+    )
+    assert result.exit_code == 0, result.output
+    assert "R² against the data" in result.output
+    summary = json.loads(summary_path.read_text())
+    reduced = cummins.radiation.RadiationModel.load(small)
+    assert summary["order_before"] == model.total_order > 54
+    assert summary["total_order"] == reduced.total_order == 54
+    assert summary["mimo_stable"] and summary["mimo_passive"]
+    assert cummins.passivity.passivity_test(reduced).passive
+    for c in summary["couplings"]:
+        if c["i"] == c["j"]:
+            assert min(c["r2_added_mass"], c["r2_damping"]) >= 0.97, c
+    by_tol = tmp_path / "tol.nc"
+    result = runner.invoke(
+        main, ["reduce", str(era), "-o", str(by_tol), "--tol", "0.05", "--method", "mixed"]
+    )
+    assert result.exit_code == 0, result.output
+    assert "R² against the unreduced model" in result.output
+    assert cummins.radiation.RadiationModel.load(by_tol).total_order < model.total_order
+    both = runner.invoke(
+        main, ["reduce", str(era), "-o", str(by_tol), "--order", "40", "--tol", "0.1"]
+    )
+    assert both.exit_code == 2 and "exactly one of --order and --tol" in both.output
+    again = runner.invoke(main, ["reduce", str(era), "-o", str(small), "--order", "54"])
+    assert again.exit_code == 2 and "refusing to overwrite" in again.output

@@ -53,8 +53,18 @@ def test_readme_console_command(command, workdir):
     if " bem " in f" {command} ":
         pytest.importorskip("capytaine")
     args = shlex.split(command)[1:]
+    # a command that reads a file another README command writes runs after that one
+    for earlier in _console_commands():
+        made = shlex.split(earlier)[1:]
+        if made[0] != args[0] and any(f in args[1:2] for f in _outputs(made)):
+            first = CliRunner().invoke(main, made, catch_exceptions=False)
+            assert first.exit_code == 0, f"{earlier}\n{first.output}"
     result = CliRunner().invoke(main, args, catch_exceptions=False)
     assert result.exit_code == 0, f"{command}\n{result.output}"
+
+
+def _outputs(args: list[str]) -> list[str]:
+    return [args[k + 1] for k, a in enumerate(args[:-1]) if a in ("-o", "--output")]
 
 
 def test_readme_python_block(workdir):

@@ -19,7 +19,7 @@ from pathlib import Path
 
 import xarray as xr
 
-from cummins import repair
+from cummins import passivity, reduce, repair
 from cummins._version import __version__
 from cummins.check import CheckReport, Finding, check
 from cummins.errors import (
@@ -82,7 +82,9 @@ __all__ = [
     "kramers_kronig_error",
     "make_hydrodb",
     "move_reference_point",
+    "passivity",
     "read",
+    "reduce",
     "repair",
     "retardation_function",
     "select_dofs",

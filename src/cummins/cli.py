@@ -24,6 +24,7 @@ from cummins.cli_common import (
 )
 from cummins.cli_fit import fit_command
 from cummins.cli_kernel import kernel_command
+from cummins.cli_reduce import reduce_command
 
 
 @click.group(
@@ -41,8 +42,7 @@ def main() -> None:
       cummins bem MESH         compute a database with Capytaine (pip install cummins[bem])
       cummins kernel FILE      retardation functions K(t), A-infinity, causality diagnostics
       cummins fit FILE         stable, passive state-space models of the fluid memory
-      cummins kernel FILE      retardation functions K(t), A-infinity, causality diagnostics
-      cummins fit FILE         stable, passive state-space models of the fluid memory
+      cummins reduce MODEL     fewer states by balanced truncation, passive again
       cummins demo             run all of it on a bundled real vessel (WAMIT tanker)
 
     \b
@@ -244,6 +244,7 @@ def demo(outdir, force):
 main.add_command(bem_command)  # works without Capytaine: it then says how to install it
 main.add_command(kernel_command)
 main.add_command(fit_command)
+main.add_command(reduce_command)
 
 
 if __name__ == "__main__":  # pragma: no cover

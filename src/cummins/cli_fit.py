@@ -117,6 +117,13 @@ from cummins.cli_common import (
     metavar="M/S",
     help="Forward speed to use when the data hold several.",
 )
+@click.option(
+    "--passive/--no-passive",
+    default=True,
+    show_default=True,
+    help="Make the MIMO model passive (K + K^H >= 0 at every frequency) by the smallest "
+    "data-weighted change of the residues. Diagonal models are positive real either way.",
+)
 @click.option("--force", is_flag=True, help="Overwrite the output files.")
 @reports_errors
 def fit_command(
@@ -141,6 +148,7 @@ def fit_command(
     openfast,
     mss_path,
     speed,
+    passive,
     force,
 ):
     """Identify stable state-space models of the fluid memory, for every significant coupling.
@@ -202,6 +210,7 @@ def fit_command(
             omega_min=omega_min,
             omega_max=omega_max,
             exclude_suspect=not keep_suspect,
+            passivity="mimo" if passive else "diagonal",
             progress=progress,
         )
     elapsed = time.perf_counter() - start
@@ -307,7 +316,12 @@ ROUTINE_STEPS = (
 def short_note(note: str) -> str:
     """The parts of a coupling's note worth a line in the table."""
     parts = [p.strip() for p in note.split(";") if p.strip()]
-    kept = [p for p in parts if not p.startswith(ROUTINE_STEPS)]
-    if any("passivity" in p for p in kept) and not any(p.startswith("not passive") for p in kept):
-        kept = [p for p in kept if "passivity" not in p] + ["passivity enforced"]
+    kept = [
+        p.replace("residues adjusted for MIMO passivity: ", "MIMO passivity: ")
+        for p in parts
+        if not p.startswith(ROUTINE_STEPS)
+    ]
+    siso = [p for p in kept if "passivity" in p and "MIMO" not in p]
+    if siso and not any(p.startswith("not passive") for p in kept):
+        kept = [p for p in kept if p not in siso] + ["passivity enforced"]
     return "; ".join(kept)

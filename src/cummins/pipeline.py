@@ -7,6 +7,7 @@ returns plain results; printing and file names are left to the caller.
 from __future__ import annotations
 
 from collections.abc import Callable
+from dataclasses import replace
 from pathlib import Path
 
 import numpy as np
@@ -140,3 +141,69 @@ def write_model_mss_abc(model, ds: xr.Dataset, path: Path, *, force: bool = Fals
         hydrostatic_stiffness=matrix("hydrostatic_stiffness"),
         force=force,
     )
+
+
+def model_as_data(model, points: int = 200):
+    """The model's own A(ω) − A∞ + A∞, B(ω) and K(t) as :class:`cummins.fit.FitData`: the
+    reference a reduced or corrected model is measured against when the data are not at
+    hand (log grid over the fitted range, K(t) to five times the slowest time constant)."""
+    from cummins.fit import FitData
+    from cummins.passivity import fit_range_grid
+
+    w = fit_range_grid(model, points)
+    k = model.response(w)
+    poles = np.concatenate([c.poles() for c in model.couplings if c.order])
+    t_end = 5.0 / max(float(np.abs(poles.real).min()), 1e-6)
+    t = np.linspace(0.0, min(t_end, 100 * 2 * np.pi / w[0]), 500)
+    a = model.added_mass_inf[None, :, :] + k.imag / w[:, None, None]
+    return FitData(w, a, k.real, t, model.impulse_response(t).values)
+
+
+def reduce_stage(
+    model,
+    *,
+    order=None,
+    tol: float | None = None,
+    method: str = "lyapunov",
+    data: xr.Dataset | None = None,
+    passive: bool = True,
+):
+    """Reduce a radiation model and, by default, make the result passive as a MIMO model.
+
+    The reduced model is measured against the data of the fit when ``data`` is given,
+    else against the unreduced model (:func:`model_as_data`); the passivity correction
+    minimises the change against the same reference (:func:`cummins.passivity.
+    enforce_passivity`) and each coupling it changed gets its R² before and after in its
+    note. Returns the reduced model, whether a passivity correction was made (None when
+    ``passive`` is false) and the reference (:class:`cummins.fit.FitData`).
+    """
+    from cummins.fit import make_passive, model_fit_data
+    from cummins.fit.metrics import coupling_metrics
+    from cummins.passivity import is_passive
+    from cummins.reduce import reduce_radiation_model
+
+    reduced = reduce_radiation_model(model, order=order, tol=tol, method=method, data=data)
+    reference = model_fit_data(model, data) if data is not None else model_as_data(model)
+    if not passive:
+        return reduced, None, reference
+    # measures of fit against the reference, for the weighting of the correction
+    couplings = []
+    for k in reduced.couplings:
+        i, j = k.influenced, k.radiating
+        metrics = coupling_metrics(
+            k,
+            reference.omega,
+            reference.added_mass[:, i, j],
+            reference.damping[:, i, j],
+            float(reduced.added_mass_inf[i, j]),
+            time=reference.time,
+            kernel=reference.kernel[:, i, j],
+        )
+        couplings.append(replace(k, metrics={**k.metrics, **metrics}))
+    reduced = replace(reduced, couplings=tuple(couplings))
+    if is_passive(reduced):
+        return replace(reduced, attrs={**reduced.attrs, "mimo_passive": True}), None, reference
+    r2 = float(model.attrs.get("r2_target", 0.99))
+    r2_coupling = float(model.attrs.get("r2_coupling_target", 0.97))
+    corrected = make_passive(reduced, reference, r2=r2, r2_coupling=r2_coupling, augment=False)
+    return corrected, True, reference

@@ -256,13 +256,40 @@ class RadiationModel:
     def _labels(self) -> dict:
         return {"influenced_dof": list(self.dofs), "radiating_dof": list(self.dofs)}
 
-    def frequency_response(self, omega: ArrayLike) -> xr.DataArray:
-        """K(jω) = C (jωI − A)⁻¹ B, dims (omega, influenced_dof, radiating_dof)."""
+    @functools.cached_property
+    def _modal(self) -> list[tuple[int, int, NDArray, NDArray | None]]:
+        """(i, j, poles, residues) per coupling; residues None when ``a`` is defective."""
+        out = []
+        for k in self.couplings:
+            if not k.order:
+                continue
+            lam, v = np.linalg.eig(k.a)
+            if np.linalg.cond(v) < 1e10:
+                out.append((k.influenced, k.radiating, lam, (k.c @ v) * np.linalg.solve(v, k.b)))
+            else:
+                out.append((k.influenced, k.radiating, lam, None))
+        return out
+
+    def response(self, omega: ArrayLike) -> NDArray[np.complex128]:
+        """K(jω) as an array (len(omega), n_dofs, n_dofs): :meth:`frequency_response`
+        without the labels, for repeated evaluation."""
         w = np.asarray(omega, dtype=float).reshape(-1)
         n = len(self.dofs)
         out = np.zeros((w.size, n, n), dtype=complex)
-        for k in self.couplings:
-            out[:, k.influenced, k.radiating] = k.frequency_response(w)
+        s = 1j * w
+        for (i, j, lam, residues), k in zip(
+            self._modal, [k for k in self.couplings if k.order], strict=True
+        ):
+            if residues is None:
+                out[:, i, j] = k.frequency_response(w)
+            else:
+                out[:, i, j] = (1.0 / (s[:, None] - lam[None, :])) @ residues
+        return out
+
+    def frequency_response(self, omega: ArrayLike) -> xr.DataArray:
+        """K(jω) = C (jωI − A)⁻¹ B, dims (omega, influenced_dof, radiating_dof)."""
+        w = np.asarray(omega, dtype=float).reshape(-1)
+        out = self.response(w)
         return xr.DataArray(
             out,
             dims=("omega", "influenced_dof", "radiating_dof"),

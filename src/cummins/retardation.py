@@ -747,7 +747,8 @@ def significant_couplings(ds: xr.Dataset, threshold: float = 0.01) -> list[tuple
     A coupling is kept when max|B_ij| or the range of A_ij exceeds ``threshold`` times
     the geometric mean of the same measure for B_ii and B_jj (or A_ii, A_jj); diagonal
     terms are kept unless they are negligible against the other DOFs of their kind
-    (e.g. the yaw of an axisymmetric body).
+    (e.g. the yaw of an axisymmetric body), and the couplings of such a DOF are left out
+    too (a DOF without damping cannot have coupled damping in passive data).
     """
     ds = _single_speed(ds)
     b = np.abs(_matrix(ds, "radiation_damping")).max(axis=0)
@@ -756,13 +757,15 @@ def significant_couplings(ds: xr.Dataset, threshold: float = 0.01) -> list[tuple
     labels = [str(d) for d in ds.influenced_dof.values]
     rotation = np.array([lab.rpartition("__")[2] in ("Roll", "Pitch", "Yaw") for lab in labels])
     out = []
+    modelled = [b[i, i] > 1e-6 * np.diag(b)[rotation == rotation[i]].max() for i in range(n)]
     for i in range(n):
         for j in range(i, n):
             if i == j:
-                kind = rotation == rotation[i]
-                if b[i, i] > 1e-6 * np.diag(b)[kind].max():
+                if modelled[i]:
                     out.append((i, j))
                 continue
+            if not (modelled[i] and modelled[j]):
+                continue  # no damping of its own: its couplings are numerical noise
             measures = []
             for m in (a, b):
                 scale = np.sqrt(m[i, i] * m[j, j])

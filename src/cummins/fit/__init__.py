@@ -29,16 +29,18 @@ from __future__ import annotations
 
 import time
 from collections.abc import Callable, Mapping
-from dataclasses import replace
+from dataclasses import dataclass, replace
 
 import numpy as np
 import xarray as xr
+from numpy.typing import NDArray
 
 from cummins.check import copied_dofs
 from cummins.errors import FitError, HydroDataError
 from cummins.fit.frequency import FrequencyFit, fit_frequency_domain, pruned_poles
 from cummins.fit.metrics import coupling_metrics
 from cummins.fit.realization import modal_realization
+from cummins.passivity import augment_for_passivity, enforce_passivity
 from cummins.radiation import CouplingModel, RadiationModel, symmetric_couplings
 from cummins.repair import limit_frequency_range, remove_suspect_frequencies
 from cummins.retardation import (
@@ -47,6 +49,7 @@ from cummins.retardation import (
 from cummins.retardation import default_retardation_function, significant_couplings
 
 METHODS = ("fd", "realization", "prony")
+PASSIVITY_OPTIONS = ("mimo", "diagonal", "none")
 ADDED_MASS_INF = ("auto", "data", "fit", "ogilvie")
 
 __all__ = ["METHODS", "FitError", "FrequencyFit", "fit_frequency_domain", "fit_radiation"]
@@ -65,7 +68,7 @@ def fit_radiation(
     omega_min: float | None = None,
     omega_max: float | None = None,
     exclude_suspect: bool = True,
-    passive: bool = True,
+    passivity: str = "mimo",
     progress: Callable[[str], None] | None = None,
 ) -> RadiationModel:
     """Identify state-space models of all significant couplings of the fluid memory.
@@ -95,8 +98,13 @@ def fit_radiation(
         Fitting range, rad/s.
     exclude_suspect
         Leave out the suspect frequencies (see module docstring).
-    passive
-        Require positive-real diagonal models.
+    passivity
+        ``"mimo"`` (default): diagonal models positive real, and the assembled MIMO model
+        made passive (:func:`cummins.passivity.enforce_passivity`: the smallest
+        data-weighted change of the residues, with a pole added where residues alone
+        would cost a diagonal term its R² target; each changed coupling's note gives its
+        R² before and after). ``"diagonal"``: positive-real diagonal models only (the
+        identification itself). ``"none"``: stability only.
     progress
         Called with a short message before each coupling.
 
@@ -120,6 +128,10 @@ def fit_radiation(
     start = time.perf_counter()
     if method not in METHODS:
         raise FitError(f"unknown method {method!r}; use one of {', '.join(METHODS)}")
+    if passivity not in PASSIVITY_OPTIONS:
+        raise FitError(
+            f"unknown passivity option {passivity!r}; use one of {', '.join(PASSIVITY_OPTIONS)}"
+        )
     if max_order < 2:
         raise FitError(
             f"max_order is {max_order}: a radiation model needs at least 2 states "
@@ -167,25 +179,17 @@ def fit_radiation(
 
     labels = [str(d) for d in data.influenced_dof.values]
     w = data.omega.values
-    a_all = _matrix(data, "added_mass")
-    b_all = _matrix(data, "radiation_damping")
+    measured = fit_data(data)
+    a_all, b_all = measured.added_mass, measured.damping
     pairs = significant_couplings(data, threshold)
     all_pairs = [(i, j) for i in range(len(labels)) for j in range(i, len(labels))]
     negligible = [p for p in all_pairs if p not in pairs]
-    # K(t) of the symmetric part of the data (what is fitted), for the R² of K(t)
-    b = data.radiation_damping
-    swapped = b.rename(influenced_dof="radiating_dof", radiating_dof="influenced_dof")
-    kernel_data = default_retardation_function(
-        data.assign(radiation_damping=(0.5 * (b + swapped)).transpose(*b.dims)),
-        max_points=500,
-    )
-    t, kernel = kernel_data.time.values, kernel_data.values
+    t, kernel = measured.time, measured.kernel
     models: list[CouplingModel] = []
     for i, j in pairs:
         name = labels[i] if i == j else f"{labels[i]}-{labels[j]}"
         say(f"{name}")
-        a_ij = 0.5 * (a_all[:, i, j] + a_all[:, j, i])
-        b_ij = 0.5 * (b_all[:, i, j] + b_all[:, j, i])
+        a_ij, b_ij = a_all[:, i, j], b_all[:, i, j]
         fixed = (orders or {}).get((i, j), (orders or {}).get((j, i)))
         started = time.perf_counter()
         coupling, a_inf_ij = _fit_coupling(
@@ -198,7 +202,7 @@ def fit_radiation(
             a_inf=None if a_inf_mode == "fit" else 0.5 * (a_inf[i, j] + a_inf[j, i]),
             guess=0.5 * (ogilvie[i, j] + ogilvie[j, i]),
             spread=0.5 * (ogilvie_spread[i, j] + ogilvie_spread[j, i]),
-            passive=passive and i == j,
+            passive=passivity != "none" and i == j,
             target=r2 if i == j or r2_coupling is None else r2_coupling,
             max_order=max_order,
             fixed=fixed,
@@ -238,9 +242,188 @@ def fit_radiation(
         ],
         "omega_fit_min": float(w[0]),
         "omega_fit_max": float(w[-1]),
-        "elapsed_s": time.perf_counter() - start,
     }
-    return RadiationModel(tuple(labels), symmetric_couplings(models), a_inf, attrs)
+    model = RadiationModel(tuple(labels), symmetric_couplings(models), a_inf, attrs)
+    if passivity == "mimo":
+        say("MIMO passivity")
+        model = make_passive(
+            model, measured, r2=r2, r2_coupling=r2 if r2_coupling is None else r2_coupling
+        )
+    return replace(model, attrs={**model.attrs, "elapsed_s": time.perf_counter() - start})
+
+
+def make_passive(
+    model: RadiationModel,
+    measured: FitData,
+    *,
+    r2: float = 0.99,
+    r2_coupling: float = 0.97,
+    augment: bool = True,
+) -> RadiationModel:
+    """The model made passive as a MIMO system (:func:`cummins.passivity.enforce_passivity`),
+    with the metrics of every changed coupling recomputed and the change noted.
+
+    Each coupling's R² loss weighs 1/(R² − target) (``r2`` on the diagonal,
+    ``r2_coupling`` off it; the couplings' metrics must be against ``measured``): the
+    couplings with room above their target take the change. When residue changes alone
+    would push a diagonal term below its target, the enforcement is tried again with a
+    pole added where the model violates (:func:`cummins.passivity.augment_for_passivity`),
+    and the better result is kept (unless ``augment`` is false: the order then stays). A
+    model that cannot be made passive is returned as it
+    is, with ``mimo_passive`` false and the reason in ``data_notes``.
+    """
+
+    def target(k: CouplingModel) -> float:
+        return r2 if k.influenced == k.radiating else r2_coupling
+
+    def importance(k: CouplingModel) -> float:
+        return 1.0 / max(_score(k) - target(k), PASSIVITY_SLACK_FLOOR)
+
+    def attempt(start: RadiationModel):
+        result = enforce_passivity(
+            start,
+            omega=measured.omega,
+            added_mass=measured.added_mass,
+            damping=measured.damping,
+            time=measured.time,
+            kernel=measured.kernel,
+            importance=importance,
+        )
+        couplings = [
+            refreshed_coupling(old, new, measured, model.added_mass_inf, "MIMO passivity")
+            for old, new in zip(start.couplings, result.model.couplings, strict=True)
+        ]
+        shortfall = max(
+            (
+                min(target(k), _score(old)) - _score(k)
+                for old, k in zip(start.couplings, couplings, strict=True)
+            ),
+            default=0.0,
+        )
+        return result, tuple(couplings), shortfall
+
+    try:
+        result, couplings, shortfall = attempt(model)
+        diagonal_shortfall = any(
+            _score(k) < min(target(k), _score(old))
+            for old, k in zip(model.couplings, couplings, strict=True)
+            if k.influenced == k.radiating
+        )
+        if augment and result.iterations and diagonal_shortfall:
+            augmented = augment_for_passivity(model, result.before)
+            try:
+                second = attempt(augmented)
+            except FitError:
+                second = None
+            if second is not None and second[2] < shortfall:
+                result, couplings, shortfall = second
+    except FitError as exc:
+        notes = [*model.attrs.get("data_notes", []), f"MIMO passivity not enforced: {exc}"]
+        return replace(model, attrs={**model.attrs, "mimo_passive": False, "data_notes": notes})
+    attrs = {
+        **model.attrs,
+        "mimo_passive": result.after.passive,
+        "passivity_iterations": result.iterations,
+        "passivity_worst_before": result.before.min_eigenvalue,
+        "passivity_worst_omega_before": result.before.worst_omega,
+    }
+    return replace(model, couplings=couplings, attrs=attrs)
+
+
+def _score(k: CouplingModel) -> float:
+    return min(k.metrics["r2_added_mass"], k.metrics["r2_damping"])
+
+
+def refreshed_coupling(
+    old: CouplingModel, new: CouplingModel, measured: FitData, added_mass_inf, why: str
+) -> CouplingModel:
+    """``new`` (a changed ``old``) with its metrics recomputed against the data and the
+    change of R² noted (``why``: what changed it); ``new`` itself if c is unchanged."""
+    if old.a.shape == new.a.shape and np.array_equal(old.c, new.c) and np.array_equal(old.a, new.a):
+        return new
+    i, j = new.influenced, new.radiating
+    metrics = coupling_metrics(
+        new,
+        measured.omega,
+        measured.added_mass[:, i, j],
+        measured.damping[:, i, j],
+        float(np.asarray(added_mass_inf)[i, j]),
+        time=measured.time,
+        kernel=measured.kernel[:, i, j],
+    )
+    for key, value in old.metrics.items():
+        metrics.setdefault(key, value)
+    before = old.metrics.get("r2_added_mass"), old.metrics.get("r2_damping")
+    change = f"{why}: R² of A {metrics['r2_added_mass']:.4f}, of B {metrics['r2_damping']:.4f}"
+    if None not in before:
+        change = (
+            f"{why}: R² of A {before[0]:.4f} → {metrics['r2_added_mass']:.4f}, "
+            f"of B {before[1]:.4f} → {metrics['r2_damping']:.4f}"
+        )
+    return replace(new, metrics=metrics, note="; ".join(filter(None, [new.note, change])))
+
+
+@dataclass(frozen=True)
+class FitData:
+    """What the couplings of a model are measured against: the symmetric parts of the data.
+
+    Attributes
+    ----------
+    omega
+        The fitted frequencies, rad/s.
+    added_mass, damping
+        ½(X + Xᵀ) of A(ω) and B(ω), shape (len(omega), n_dofs, n_dofs).
+    time, kernel
+        K(t) of the symmetric damping on the default time grid (≤ 500 points), for the
+        R² of K(t).
+    """
+
+    omega: NDArray[np.float64]
+    added_mass: NDArray[np.float64]
+    damping: NDArray[np.float64]
+    time: NDArray[np.float64]
+    kernel: NDArray[np.float64]
+
+
+def fit_data(data: xr.Dataset) -> FitData:
+    """:class:`FitData` of a ``HydroDB`` already restricted to the fitted frequencies."""
+    b = data.radiation_damping
+    swapped = b.rename(influenced_dof="radiating_dof", radiating_dof="influenced_dof")
+    kernel = default_retardation_function(
+        data.assign(radiation_damping=(0.5 * (b + swapped)).transpose(*b.dims)),
+        max_points=500,
+    ).transpose("time", "influenced_dof", "radiating_dof")
+    a_all, b_all = _matrix(data, "added_mass"), _matrix(data, "radiation_damping")
+    return FitData(
+        data.omega.values,
+        0.5 * (a_all + np.swapaxes(a_all, 1, 2)),
+        0.5 * (b_all + np.swapaxes(b_all, 1, 2)),
+        kernel.time.values,
+        kernel.values,
+    )
+
+
+def model_fit_data(model: RadiationModel, ds: xr.Dataset) -> FitData:
+    """The data a model was fitted to, as :func:`fit_radiation` used them: its DOFs, the
+    frequencies in ``omega_fit_min`` … ``omega_fit_max`` less its ``excluded_frequencies``
+    (the model's attributes), one forward speed."""
+    if "forward_speed" in ds.dims:
+        ds = ds.isel(forward_speed=0)
+    dofs = list(model.dofs)
+    try:
+        ds = ds.sel(influenced_dof=dofs, radiating_dof=dofs)
+    except KeyError as exc:
+        raise FitError(f"the data do not hold the model's DOFs {dofs}") from exc
+    w = ds.omega.values
+    keep = np.ones(w.size, dtype=bool)
+    lo, hi = model.attrs.get("omega_fit_min"), model.attrs.get("omega_fit_max")
+    if lo is not None and hi is not None:
+        keep &= (w >= float(lo) * (1 - 1e-12)) & (w <= float(hi) * (1 + 1e-12))
+    for excluded in model.attrs.get("excluded_frequencies", []) or []:
+        keep &= ~np.isclose(w, float(excluded), rtol=1e-12, atol=0.0)
+    if not keep.any():
+        raise FitError("the data have no frequency in the model's fitted range")
+    return fit_data(ds.isel(omega=np.flatnonzero(keep)))
 
 
 def _matrix(ds: xr.Dataset, name: str) -> np.ndarray:
@@ -291,6 +474,8 @@ class _Siso:
 #: Orders whose linearised fit comes within this much of the R² target get the full
 #: (nonlinear, passivity-enforcing) fit: it often lifts a lower order over the target.
 SCREENING_MARGIN = 0.05
+#: Smallest R² margin above the target used to weigh a coupling in passivity enforcement.
+PASSIVITY_SLACK_FLOOR = 1e-3
 #: Leading Hankel singular values kept in a realization's metrics.
 HANKEL_VALUES_REPORTED = 20
 #: Highest order a user may fix for a coupling: beyond it, a typing error, not a model.
