@@ -2,7 +2,8 @@
 
 Read the output of WAMIT, NEMOH, AQWA, ShipX/VERES, Capytaine or MSS into one
 canonical dataset, check it, compute retardation functions and identify stable
-state-space models of the fluid memory (and, as the project grows, simulate them).
+state-space models of the fluid memory, and simulate the vessel in waves against the
+frequency domain.
 
 >>> import cummins
 >>> ds = cummins.read(cummins.demo_files() / "tanker.1")
@@ -19,7 +20,7 @@ from pathlib import Path
 
 import xarray as xr
 
-from cummins import passivity, reduce, repair
+from cummins import frequency_domain, passivity, reduce, repair, waves
 from cummins._version import __version__
 from cummins.check import CheckReport, Finding, check
 from cummins.errors import (
@@ -30,6 +31,7 @@ from cummins.errors import (
     SimulationError,
 )
 from cummins.fit import fit_radiation
+from cummins.frequency_domain import motion_rao
 from cummins.hydrodb import (
     DOF_NAMES,
     change_axes,
@@ -46,6 +48,8 @@ from cummins.retardation import (
     kramers_kronig_error,
     retardation_function,
 )
+from cummins.simulate import simulate_waves
+from cummins.vessel import Vessel, vessel_from_hydrodb
 
 
 def demo_files() -> Path:
@@ -70,6 +74,7 @@ __all__ = [
     "OutputExistsError",
     "RadiationModel",
     "SimulationError",
+    "Vessel",
     "__version__",
     "added_mass_inf",
     "change_axes",
@@ -79,8 +84,10 @@ __all__ = [
     "detect_format",
     "dof_labels",
     "fit_radiation",
+    "frequency_domain",
     "kramers_kronig_error",
     "make_hydrodb",
+    "motion_rao",
     "move_reference_point",
     "passivity",
     "read",
@@ -88,6 +95,9 @@ __all__ = [
     "repair",
     "retardation_function",
     "select_dofs",
+    "simulate_waves",
     "validate",
+    "vessel_from_hydrodb",
+    "waves",
     "write",
 ]

@@ -24,7 +24,9 @@ from cummins.cli_common import (
 )
 from cummins.cli_fit import fit_command
 from cummins.cli_kernel import kernel_command
+from cummins.cli_rao import rao_command
 from cummins.cli_reduce import reduce_command
+from cummins.cli_simulate import simulate_command
 
 
 @click.group(
@@ -43,6 +45,8 @@ def main() -> None:
       cummins kernel FILE      retardation functions K(t), A-infinity, causality diagnostics
       cummins fit FILE         stable, passive state-space models of the fluid memory
       cummins reduce MODEL     fewer states by balanced truncation, passive again
+      cummins rao DATA         coupled motion RAOs, frequency domain (the reference)
+      cummins simulate DATA    the vessel in regular or irregular waves, time domain
       cummins demo             run all of it on a bundled real vessel (WAMIT tanker)
 
     \b
@@ -245,6 +249,8 @@ main.add_command(bem_command)  # works without Capytaine: it then says how to in
 main.add_command(kernel_command)
 main.add_command(fit_command)
 main.add_command(reduce_command)
+main.add_command(rao_command)
+main.add_command(simulate_command)
 
 
 if __name__ == "__main__":  # pragma: no cover

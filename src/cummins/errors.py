@@ -11,7 +11,14 @@ import os
 
 
 class CumminsError(Exception):
-    """Base class of all errors raised by cummins on purpose."""
+    """Base class of all errors raised by cummins on purpose.
+
+    ``hint`` (keyword) says what to do; it is appended to the message.
+    """
+
+    def __init__(self, message: str = "", *args: object, hint: str | None = None) -> None:
+        self.hint = hint
+        super().__init__(f"{message}. {hint}" if hint else message, *args)
 
 
 class HydroDataError(CumminsError, ValueError):

@@ -207,3 +207,28 @@ def reduce_stage(
     r2_coupling = float(model.attrs.get("r2_coupling_target", 0.97))
     corrected = make_passive(reduced, reference, r2=r2, r2_coupling=r2_coupling, augment=False)
     return corrected, True, reference
+
+
+def write_simulation_plots(run, vessel, ds, sea, folder: Path, *, force: bool = False):
+    """``time_series.png``, and for irregular seas ``response_spectra.png``: the
+    simulation (Welch) against the frequency-domain spectrum of the same linear model."""
+    from cummins.excitation import excitation_transfer
+    from cummins.plots import plot_response_spectra, plot_time_series, save_figure
+
+    folder.mkdir(parents=True, exist_ok=True)
+    written = [save_figure(plot_time_series(run), folder / "time_series.png", force=force)]
+    if len(sea) > 1:
+        order = np.argsort(sea.omega)
+        w, a = sea.omega[order], sea.amplitude[order]
+        x = vessel.response(w, excitation_transfer(ds, w, sea.direction[order]))
+        width = float(getattr(sea, "bin_width", None) or np.median(np.diff(w)))
+        density = (0.5 * a[:, None] ** 2 * np.abs(x) ** 2) / width
+        references = {"frequency domain (same model)": (w, density)}
+        written.append(
+            save_figure(
+                plot_response_spectra(run, references),
+                folder / "response_spectra.png",
+                force=force,
+            )
+        )
+    return written

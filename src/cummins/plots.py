@@ -101,10 +101,7 @@ def plot_excitation(
         raise ValueError("the dataset has no excitation_force")
     dofs = _diagonal_dofs(ds, dofs)
     beta = np.degrees(ds.wave_direction.values)
-    if headings_deg is None:
-        picks = np.unique(np.linspace(0, beta.size - 1, min(5, beta.size)).round().astype(int))
-    else:
-        picks = [int(np.argmin(np.abs(beta - h))) for h in headings_deg]
+    picks = heading_picks(beta, headings_deg, 5)
     fig = Figure(figsize=(10, 2.2 * len(dofs) + 0.8), layout="constrained")
     axes = fig.subplots(len(dofs), 2, squeeze=False, sharex=True)
     w = ds.omega.values
@@ -130,6 +127,16 @@ def plot_excitation(
 def _title(ds: xr.Dataset) -> str:
     source = ds.attrs.get("source_file") or ds.attrs.get("source_format", "")
     return Path(str(source)).name or "dataset"
+
+
+def heading_picks(beta_deg, headings_deg=None, most: int = 5) -> list[int]:
+    """Indices of the headings to draw: those nearest ``headings_deg``, or ``most`` spread
+    evenly over ``beta_deg``."""
+    beta_deg = np.asarray(beta_deg, dtype=float)
+    if headings_deg is None:
+        spread = np.linspace(0, beta_deg.size - 1, min(most, beta_deg.size))
+        return [int(k) for k in np.unique(spread.round().astype(int))]
+    return [int(np.argmin(np.abs(beta_deg - h))) for h in headings_deg]
 
 
 def save_figure(
@@ -320,4 +327,62 @@ def plot_coupling_fit(
     )
     order = coupling.order if coupling is not None else 0
     fig.suptitle(f"{title}: order {order}; R² {r2}")
+    return fig
+
+
+def plot_time_series(run: xr.Dataset, window: float | None = 600.0) -> Figure:
+    """Wave elevation and the motions of a simulation (the last ``window`` seconds)."""
+    t = run.time.values
+    keep = t >= t[-1] - window if window else np.ones(t.size, dtype=bool)
+    dofs = [str(d) for d in run.dof.values]
+    units = run.motion.attrs.get("units", "").split(" | ")
+    fig = Figure(figsize=(11, 1.6 * (len(dofs) + 1)), layout="constrained")
+    axes = fig.subplots(len(dofs) + 1, 1, sharex=True)
+    axes[0].plot(t[keep], run.wave_elevation.values[keep], color="C0", lw=0.8)
+    axes[0].set_ylabel("ζ [m]")
+    for k, dof in enumerate(dofs):
+        axes[k + 1].plot(t[keep], run.motion.values[keep, k], color=f"C{k + 1}", lw=0.8)
+        axes[k + 1].set_ylabel(f"{dof} [{units[k] if k < len(units) else ''}]")
+    for ax in axes:
+        ax.grid(alpha=0.3)
+    axes[-1].set_xlabel("t [s]")
+    fig.suptitle(str(run.attrs.get("sea", "simulation")))
+    return fig
+
+
+def plot_response_spectra(
+    run: xr.Dataset, references: dict[str, tuple[np.ndarray, np.ndarray]]
+) -> Figure:
+    """Response spectra of a simulation (Welch) against frequency-domain ones.
+
+    ``references`` maps a label to (ω, S(ω) of shape (len(ω), n_dofs)), one-sided, per
+    rad/s.
+    """
+    from scipy.signal import welch
+
+    dt = float(run.attrs.get("dt", run.time.values[1] - run.time.values[0]))
+    dofs = [str(d) for d in run.dof.values]
+    f, p = welch(run.motion.values, fs=1 / dt, nperseg=min(4096, run.sizes["time"]), axis=0)
+    w, s_td = 2 * np.pi * f, p / (2 * np.pi)
+    fig = Figure(figsize=(11, 7.5), layout="constrained")
+    axes = fig.subplots(2, (len(dofs) + 1) // 2).ravel()
+    units = run.motion.attrs.get("units", "").split(" | ")
+    # up to where the responses hold 99.9 % of their variance, with a margin
+    share = np.cumsum(s_td / np.maximum(s_td.sum(axis=0), 1e-300), axis=0).min(axis=1)
+    top = 1.3 * float(w[min(np.searchsorted(share, 0.999), w.size - 1)])
+    for k, dof in enumerate(dofs):
+        ax = axes[k]
+        ax.plot(w, s_td[:, k], color="0.2", lw=1.0, label="time domain (Welch)")
+        for n, (label, (w_ref, s_ref)) in enumerate(references.items()):
+            ax.plot(w_ref, s_ref[:, k], "--", color=f"C{n}", lw=1.2, label=label)
+        ax.set_xlim(0, top)
+        ax.set_title(dof)
+        unit = units[k] if k < len(units) else ""
+        ax.set_ylabel(f"S [{unit}²·s/rad]")
+        ax.set_xlabel("ω [rad/s]")
+        ax.grid(alpha=0.3)
+    axes[0].legend(fontsize="small")
+    for ax in axes[len(dofs) :]:
+        ax.set_visible(False)
+    fig.suptitle(f"response spectra: {run.attrs.get('sea', '')}")
     return fig

@@ -56,8 +56,9 @@ def _single_speed(ds: xr.Dataset) -> xr.Dataset:
     if "forward_speed" in ds.dims:
         if ds.sizes["forward_speed"] == 1:
             return ds.isel(forward_speed=0)
+        speeds = ", ".join(f"{u:g}" for u in ds.forward_speed.values)
         raise HydroDataError(
-            f"the dataset has {ds.sizes['forward_speed']} forward speeds",
+            f"the dataset holds {ds.sizes['forward_speed']} forward speeds ({speeds} m/s)",
             hint="select one first, e.g. ds.sel(forward_speed=0.0)",
         )
     return ds

@@ -195,8 +195,8 @@ class _Problem:
     x: NDArray  # ω/ω_s
     a_data: NDArray  # (A − A∞_ref)·ω_s/κ  (scaled "added mass deviation")
     b_data: NDArray  # B/κ
-    sigma_a: float
-    sigma_b: float
+    sigma_a: NDArray  # per frequency: σ_A / weight
+    sigma_b: NDArray  # per frequency: σ_B / weight
     joint: bool
     dense: NDArray  # dense frequencies for the passivity constraints (scaled)
     prior_weight: float = 0.0  # weight of the row δ = 0 tying A∞ to its starting value
@@ -207,11 +207,11 @@ def _linear_system(problem: _Problem, poles: NDArray, n_real: int):
     s = 1j * problem.x
     basis = _basis(poles, s, n_real)  # K(jx) = basis @ coef
     # rows: B misfit (Re K − B)/σ_B, A misfit (Im K/x + δ − A)/σ_A  (δ: A∞ correction)
-    rows_b = basis.real / problem.sigma_b
-    rows_a = (basis.imag / problem.x[:, None]) / problem.sigma_a
+    rows_b = basis.real / problem.sigma_b[:, None]
+    rows_a = (basis.imag / problem.x[:, None]) / problem.sigma_a[:, None]
     if problem.joint:
         rows_b = np.hstack([rows_b, np.zeros((s.size, 1))])
-        rows_a = np.hstack([rows_a, np.full((s.size, 1), 1.0 / problem.sigma_a)])
+        rows_a = np.hstack([rows_a, (1.0 / problem.sigma_a)[:, None]])
     matrix = np.vstack([rows_b, rows_a])
     rhs = np.r_[problem.b_data / problem.sigma_b, problem.a_data / problem.sigma_a]
     if problem.joint and problem.prior_weight > 0:
@@ -288,8 +288,8 @@ def _rows(problem: _Problem, values: NDArray, at_zero: NDArray) -> NDArray:
     """Rows of the weighted least-squares problem for basis columns ``values`` (M × q)
     and their values at s = 0 (q,): B rows, A rows, the K(0) row, the prior row."""
     rows = [
-        values.real / problem.sigma_b,
-        values.imag / (problem.x[:, None] * problem.sigma_a),
+        values.real / problem.sigma_b[:, None],
+        values.imag / (problem.x * problem.sigma_a)[:, None],
         CONSTRAINT_WEIGHT * at_zero.real[None, :],
     ]
     if problem.joint and problem.prior_weight > 0:
@@ -309,7 +309,7 @@ def _varpro(params: NDArray, problem: _Problem, n_real: int) -> tuple[NDArray, N
     phi = _rows(problem, _basis(poles, s, n_real), _basis(poles, zero, n_real)[0])
     y = np.r_[problem.b_data / problem.sigma_b, problem.a_data / problem.sigma_a, 0.0]
     if problem.joint:
-        extra = np.r_[np.zeros(s.size), np.full(s.size, 1.0 / problem.sigma_a), 0.0]
+        extra = np.r_[np.zeros(s.size), 1.0 / problem.sigma_a, 0.0]
         if problem.prior_weight > 0:
             extra = np.r_[extra, problem.prior_weight]
             y = np.r_[y, 0.0]
@@ -391,6 +391,7 @@ def fit_frequency_domain(
     refine: bool | str = "auto",
     target: float = 0.99,
     initial_poles: ArrayLike | None = None,
+    weight: ArrayLike | None = None,
 ) -> FrequencyFit:
     """Fit K(s) of the given order to A(ω), B(ω) of one coupling.
 
@@ -421,6 +422,10 @@ def fit_frequency_domain(
     initial_poles
         Start from these poles (rad/s; ``order`` of them, conjugate pairs complete)
         instead of the Levy/Sanathanan–Koerner step.
+    weight
+        Relative weight of each frequency in the least squares (positive, normalised to
+        RMS 1): the frequency weighting W(ω) of seed 001 eq. 4.35. The reported R² stay
+        unweighted.
 
     Returns
     -------
@@ -453,11 +458,17 @@ def fit_frequency_domain(
     y = k_data / kappa
     sigma_b = max(float(np.std(b)), 1e-12 * np.abs(b).max(), np.finfo(float).tiny) / kappa
     sigma_a = max(float(np.std(a)), 1e-12 * np.abs(a).max(), np.finfo(float).tiny) * omega_s / kappa
+    if weight is None:
+        relative = np.ones(w.size)
+    else:
+        relative = np.asarray(weight, dtype=float).reshape(-1)
+        if relative.size != w.size or not np.all(np.isfinite(relative)) or np.any(relative <= 0):
+            raise FitError(f"the weights must be {w.size} positive finite numbers")
+        relative = relative / np.sqrt(np.mean(relative**2))
+    sigma_b, sigma_a = sigma_b / relative, sigma_a / relative
     # Step 1: Levy + SK on K (weights: B misfit / σ_B, A misfit = Im/ω / σ_A)
     if initial_poles is None:
-        den = _levy_sanathanan_koerner(
-            x, y, np.full(x.size, 1.0 / sigma_b), 1.0 / (x * sigma_a), order
-        )
+        den = _levy_sanathanan_koerner(x, y, 1.0 / sigma_b, 1.0 / (x * sigma_a), order)
         poles, notes = _stable_poles(den)
     else:
         start = np.asarray(initial_poles, dtype=complex) / omega_s

@@ -1,0 +1,256 @@
+"""``cummins simulate``: the vessel in waves, in the time domain."""
+
+from __future__ import annotations
+
+from pathlib import Path
+
+import click
+import numpy as np
+
+from cummins.cli_common import (
+    console,
+    prepare_outputs,
+    progress_bar,
+    read_hydrodb,
+    read_options,
+    reports_errors,
+    select_speed,
+)
+
+
+@click.command(name="simulate")
+@click.argument("path", metavar="DATA|MODEL", type=click.Path(exists=True))
+@read_options
+@click.option(
+    "-o", "--output", type=click.Path(dir_okay=False), required=True, help="NetCDF file of the run."
+)
+@click.option("--hs", type=float, default=None, metavar="M", help="Significant wave height.")
+@click.option("--tp", type=float, default=None, metavar="S", help="Peak period.")
+@click.option(
+    "--spectrum",
+    type=click.Choice(["jonswap", "pm", "torsethaugen"]),
+    default="jonswap",
+    show_default=True,
+    help="Wave spectrum (pm: Pierson-Moskowitz / ITTC).",
+)
+@click.option("--gamma", type=float, default=3.3, show_default=True, help="JONSWAP peakedness.")
+@click.option(
+    "--heading",
+    type=float,
+    default=180.0,
+    show_default=True,
+    metavar="DEG",
+    help="Direction the waves travel, degrees: 0 following seas (along +x), 180 head seas.",
+)
+@click.option(
+    "--spreading",
+    type=float,
+    default=None,
+    metavar="S",
+    help="Short-crested seas: cos-2s spreading exponent s (with --directions).",
+)
+@click.option("--directions", type=int, default=9, show_default=True, help="With --spreading.")
+@click.option("--components", type=int, default=200, show_default=True, help="Wave components.")
+@click.option("--duration", type=float, default=3 * 3600.0, show_default=True, metavar="S")
+@click.option("--dt", type=float, default=0.05, show_default=True, metavar="S", help="Time step.")
+@click.option("--seed", type=int, default=None, help="Random phases (a run is repeatable).")
+@click.option(
+    "--regular", is_flag=True, help="Regular waves instead (--wave-period, --wave-amplitude)."
+)
+@click.option("--wave-period", type=float, default=None, metavar="S")
+@click.option("--wave-amplitude", type=float, default=1.0, show_default=True, metavar="M")
+@click.option(
+    "--viscous-damping",
+    type=(str, float),
+    multiple=True,
+    metavar="DOF VALUE",
+    help="Linear viscous damping B_v on a DOF (N s/m, N m s/rad), repeatable; surge, sway "
+    "and yaw have no restoring and drift without it.",
+)
+@click.option(
+    "--start",
+    type=click.Choice(["steady", "rest"]),
+    default="steady",
+    show_default=True,
+    help="steady: start on the stationary solution (no transient); rest: from rest.",
+)
+@click.option(
+    "--accurate",
+    is_flag=True,
+    help="Fit the radiation model for close agreement with the data's RAOs (tight R² "
+    "targets, higher orders, response weighting: minutes instead of a second).",
+)
+@click.option("--speed", type=float, default=None, metavar="M/S", help="Forward speed of DATA.")
+@click.option(
+    "--plot",
+    "plot_dir",
+    type=click.Path(file_okay=False),
+    default=None,
+    help="PNGs: time series and response spectra against the frequency domain.",
+)
+@click.option("--force", is_flag=True, help="Overwrite the output files.")
+@reports_errors
+def simulate_command(
+    path,
+    format_,
+    rho,
+    g,
+    ulen,
+    output,
+    hs,
+    tp,
+    spectrum,
+    gamma,
+    heading,
+    spreading,
+    directions,
+    components,
+    duration,
+    dt,
+    seed,
+    regular,
+    wave_period,
+    wave_amplitude,
+    viscous_damping,
+    start,
+    accurate,
+    speed,
+    plot_dir,
+    force,
+):
+    """Simulate the vessel in waves: the Cummins equation with a state-space fluid memory.
+
+    \b
+    DATA is a hydrodynamic database (any format cummins reads; the radiation model is
+    fitted on the fly, passive) or MODEL a model file from `cummins fit` (its data are
+    read from the file it was fitted to). The excitation is the first-order wave force
+    of the database; the run holds motion and velocity (time, dof) about the database's
+    reference point and axes, and the wave elevation at the origin.
+
+    \b
+    Examples:
+      cummins simulate tanker.1 --hs 4 --tp 10 --heading 150 --duration 1800 -o run.nc
+      cummins simulate tanker.1 --regular --wave-period 9 --wave-amplitude 1 -o reg.nc
+    """
+    from cummins import waves as wv
+    from cummins.simulate import simulate_waves
+    from cummins.vessel import vessel_from_hydrodb
+
+    if regular:
+        if wave_period is None:
+            raise click.UsageError("--regular needs --wave-period")
+    elif hs is None or tp is None:
+        raise click.UsageError("irregular waves need --hs and --tp (or use --regular)")
+    prepare_outputs(output, force=force)
+    model, data_path = _model_and_data(path)
+    ds = select_speed(read_hydrodb(data_path, format_, rho, g, ulen), speed)
+    dofs = [str(d) for d in ds.influenced_dof.values]
+    b_v = np.zeros(len(dofs))
+    for dof, value in viscous_damping:
+        if dof not in dofs:
+            raise click.BadParameter(
+                f"unknown DOF {dof!r}; use {', '.join(dofs)}", param_hint="--viscous-damping"
+            )
+        b_v[dofs.index(dof)] = value
+    direction = np.radians(heading)
+    if regular:
+        sea = wv.regular_wave(wave_amplitude, wave_period, direction)
+        title = f"regular waves, amplitude {wave_amplitude:g} m, period {wave_period:g} s"
+    else:
+        shape = wv.wave_spectrum(spectrum, hs, tp, gamma=gamma if spectrum == "jonswap" else None)
+        sea = wv.irregular_waves(
+            shape,
+            duration=duration,
+            n_components=components,
+            direction=direction,
+            spreading=spreading,
+            n_directions=directions if spreading else 1,
+            seed=seed,
+        )
+        title = f"{spectrum}, Hs {hs:g} m, Tp {tp:g} s, {len(sea)} components"
+    from cummins.fit import MOTION_ACCURACY
+
+    fit_options = MOTION_ACCURACY if accurate and model is None else {}
+    with console.status("fitting the radiation model" if model is None else "preparing"):
+        vessel = vessel_from_hydrodb(ds, model, viscous_damping=b_v, **fit_options)
+    with progress_bar() as bar:
+        task = bar.add_task(f"simulating {duration:g} s, {title}, heading {heading:g}°", total=1.0)
+        run = simulate_waves(
+            vessel,
+            ds,
+            sea,
+            duration=duration,
+            dt=dt,
+            initial=start,
+            progress=lambda fraction: bar.update(task, completed=fraction),
+        )
+    run.attrs.update(
+        {
+            "heading_deg": heading,
+            "sea": title,
+            "source_file": str(ds.attrs.get("source_file", "")),
+            "radiation_model_order": vessel.radiation.total_order,
+        }
+    )
+    _summary(run)
+    from cummins.io.netcdf import save_netcdf
+
+    save_netcdf(run, output)
+    console.print(f"wrote {output}")
+    if plot_dir:
+        from cummins.pipeline import write_simulation_plots
+
+        for file in write_simulation_plots(run, vessel, ds, sea, Path(plot_dir), force=force):
+            console.print(f"wrote {file}")
+
+
+def _model_and_data(path):
+    """(model or None, data path): a model file names the data it was fitted to."""
+    from cummins.io.model_netcdf import FORMAT_NAME
+    from cummins.radiation import RadiationModel
+
+    p = Path(path)
+    if p.is_file() and p.suffix.lower() == ".nc":
+        import h5py
+
+        try:
+            with h5py.File(p, "r") as f:
+                kind = f.attrs.get("cummins_format")
+        except OSError:
+            kind = None
+        if isinstance(kind, bytes):
+            kind = kind.decode()
+        if kind == FORMAT_NAME:
+            model = RadiationModel.load(p)
+            source = model.attrs.get("source_file")
+            if not source or not Path(source).exists():
+                raise click.UsageError(
+                    f"{p} does not name an existing data file ({source!r}): give the data "
+                    "file instead (the model is then fitted again)"
+                )
+            return model, source
+    return None, path
+
+
+def _summary(run) -> None:
+    from rich.table import Table
+
+    table = Table(title=f"{run.attrs.get('sea', '')}: {run.time.values[-1]:g} s")
+    for column in ("DOF", "significant amplitude (2σ)", "max |ξ|", "unit"):
+        table.add_column(column, justify="right")
+    units = run.motion.attrs.get("units", "").split(" | ")
+    for k, dof in enumerate(run.dof.values):
+        xi = run.motion.values[:, k]
+        table.add_row(
+            str(dof),
+            f"{2 * xi.std():.4g}",
+            f"{np.abs(xi).max():.4g}",
+            units[k] if k < len(units) else "",
+        )
+    console.print(table)
+    console.print(
+        f"energy: in {run.attrs['energy_input']:.4g} J, radiated "
+        f"{run.attrs['energy_radiated']:.4g} J, viscous {run.attrs['energy_viscous']:.4g} J, "
+        "balance error "
+        f"{run.attrs['energy_relative_residual']:.2g}"
+    )

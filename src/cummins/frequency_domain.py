@@ -1,0 +1,567 @@
+"""The frequency-domain model: motion RAOs, response spectra and significant amplitudes.
+
+For a harmonic wave of unit amplitude, frequency ω and direction β, with x(t) =
+Re{X e^{iωt}}, the linear equation of motion (seed 003 eqs. 2.3–2.4, digest §1.3) is
+
+    [−ω² (M_RB + A(ω) + A_add(ω)) + iω (B(ω) + B_add(ω) + B_v) + C + C_add] X = F(ω, β),
+
+with M_RB the ``inertia_matrix``, A, B the ``added_mass`` and ``radiation_damping``,
+A_add, B_add, C_add the ``additional_added_mass``, ``additional_damping`` and
+``additional_stiffness`` of the dataset when present (``additional=False`` leaves them
+out), C the ``hydrostatic_stiffness``, B_v a viscous damping matrix of one's own and F
+the ``excitation_force``. X is the coupled motion RAO: m/m for translations, rad/m for
+rotations, phase relative to the wave elevation at the origin; it is found by solving
+the 6N × 6N system at each (ω, β) (never by inverting a matrix).
+
+The RAO is computed, not interpolated: at frequencies between those of the data, A, B
+and F are interpolated (they are smooth; :mod:`cummins.excitation` for F) and the
+system is solved there. A lightly damped resonance (seed 003 §3.1.2: roll, with a 180°
+phase turn within one Δω of the database) is thereby resolved as finely as asked, which
+no interpolation of the RAO itself can do.
+
+The response spectrum of DOF j to a wave spectrum S(ω) in one direction is
+S_j(ω) = |X_j(ω, β)|² S(ω) (seed 003 eq. 2.5); in a short-crested sea with spreading
+D(θ), S_j(ω) = Σ_β w_β |X_j(ω, β)|² S(ω), w_β = ∫_bin D dθ. The significant amplitude is
+2√m₀ (m₀ = ∫S_j dω), the single amplitude equivalent of H_s/2 for the waves: half the
+significant double amplitude 4√m₀.
+"""
+
+from __future__ import annotations
+
+from collections.abc import Callable, Mapping
+from typing import Any
+
+import numpy as np
+import xarray as xr
+from matplotlib.figure import Figure
+from numpy.typing import ArrayLike, NDArray
+
+from cummins.errors import HydroDataError
+from cummins.excitation import (
+    INTERPOLATION_METHODS,
+    _interpolate_frequency,
+    _single_speed,
+    _where,
+    excitation_transfer,
+)
+from cummins.hydrodb import split_dof
+
+__all__ = [
+    "impedance",
+    "load_rao",
+    "motion_rao",
+    "motion_transfer",
+    "plot_rao",
+    "response_spectrum",
+    "save_rao",
+    "significant_amplitude",
+    "spectral_moment",
+]
+
+_RAO_UNITS = "m/m | rad/m (translation | rotation, per metre of wave amplitude)"
+
+
+def _matrix(ds: xr.Dataset, name: str) -> NDArray[np.float64]:
+    return ds[name].transpose(..., "influenced_dof", "radiating_dof").values.astype(float)
+
+
+def _viscous_matrix(ds: xr.Dataset, viscous_damping: Any) -> NDArray[np.float64] | None:
+    """B_v as an (n, n) array: a matrix, a DataArray with DOF dims, or {dof: value}."""
+    if viscous_damping is None:
+        return None
+    labels = [str(d) for d in ds.influenced_dof.values]
+    n = len(labels)
+    if isinstance(viscous_damping, Mapping):
+        out = np.zeros((n, n))
+        for dof, value in viscous_damping.items():
+            if str(dof) not in labels:
+                raise HydroDataError(
+                    f"viscous damping given for DOF {dof!r}, which is not in the data",
+                    hint=f"DOFs: {', '.join(labels)}",
+                )
+            k = labels.index(str(dof))
+            out[k, k] = float(value)
+        return out
+    if isinstance(viscous_damping, xr.DataArray):
+        viscous_damping = viscous_damping.sel(
+            influenced_dof=labels, radiating_dof=labels
+        ).transpose("influenced_dof", "radiating_dof")
+    arr = np.asarray(viscous_damping, dtype=float)
+    if arr.shape != (n, n):
+        raise HydroDataError(
+            f"viscous_damping has shape {arr.shape}, expected {(n, n)} for DOFs {', '.join(labels)}"
+        )
+    if not np.all(np.isfinite(arr)):
+        raise HydroDataError("viscous_damping has non-finite values")
+    return arr
+
+
+def _frequency_matrix(
+    ds: xr.Dataset, name: str, omega: NDArray[np.float64], method: str
+) -> NDArray[np.float64]:
+    """``ds[name]`` (omega, i, j) at the frequencies ``omega`` (within the data's range)."""
+    values = _matrix(ds, name)
+    w = ds.omega.values.astype(float)
+    same = omega.size == w.size and np.array_equal(omega, w)
+    if same:
+        return values
+    index = np.searchsorted(w, omega)
+    exact = (index < w.size) & (w[np.minimum(index, w.size - 1)] == omega)
+    out = np.empty((omega.size, *values.shape[1:]))
+    out[exact] = values[index[exact]]
+    if (~exact).any():
+        interp = _interpolate_frequency(w, values.astype(complex), omega[~exact], method)
+        out[~exact] = interp.real
+    return out
+
+
+def impedance(
+    ds: xr.Dataset,
+    omega: ArrayLike,
+    *,
+    viscous_damping: Any = None,
+    additional: bool = True,
+    method: str = "hermite",
+) -> NDArray[np.complex128]:
+    """Z(ω) = −ω²(M_RB + A + A_add) + iω(B + B_add + B_v) + C + C_add, shape (n, N, N).
+
+    Parameters
+    ----------
+    ds
+        A ``HydroDB`` (one forward speed) with ``inertia_matrix`` and
+        ``hydrostatic_stiffness``.
+    omega
+        Frequencies, rad/s, within the data's range (A and B are interpolated between
+        the data frequencies, by ``method`` as in :func:`cummins.excitation.excitation_transfer`).
+    viscous_damping
+        B_v: an (N, N) matrix, a DataArray with ``influenced_dof``/``radiating_dof``, or
+        ``{dof: value}`` for a diagonal one (kg/s, kg·m²/s …); None for none.
+    additional
+        Include the dataset's ``additional_added_mass``, ``additional_damping`` and
+        ``additional_stiffness`` (WAMIT external damping, MSS viscous damping, VERES roll
+        damping, moorings).
+
+    Raises
+    ------
+    HydroDataError
+        Missing inertia or restoring, frequency outside the data.
+    """
+    ds = _single_speed(ds)
+    where = _where(ds)
+    for name, hint in (
+        (
+            "inertia_matrix",
+            "WAMIT: the .frc file (IMASS); NEMOH: Hydrostatics/Inertia files; "
+            "or add it with ds['inertia_matrix'] = ...",
+        ),
+        (
+            "hydrostatic_stiffness",
+            "WAMIT: the .hst file; NEMOH: KH.dat; or add it with ds['hydrostatic_stiffness'] = ...",
+        ),
+    ):
+        if name not in ds:
+            raise HydroDataError(
+                f"the dataset has no {name!r}: the motions cannot be computed",
+                path=where,
+                hint=hint,
+            )
+    if method not in INTERPOLATION_METHODS:
+        raise ValueError(
+            f"unknown method {method!r}; use one of {', '.join(INTERPOLATION_METHODS)}"
+        )
+    w = np.asarray(omega, dtype=float).reshape(-1)
+    data_w = ds.omega.values
+    tol = 1e-9 * data_w[-1]
+    outside = (w < data_w[0] - tol) | (w > data_w[-1] + tol)
+    if outside.any():
+        raise HydroDataError(
+            f"frequency {w[outside][0]:.6g} rad/s is outside the data's range "
+            f"{data_w[0]:.6g} to {data_w[-1]:.6g} rad/s",
+            path=where,
+            hint="the added mass and damping are not known there: choose frequencies "
+            "within that range",
+        )
+    w = np.clip(w, data_w[0], data_w[-1])
+    mass = _matrix(ds, "inertia_matrix")[None] + _frequency_matrix(ds, "added_mass", w, method)
+    damping = _frequency_matrix(ds, "radiation_damping", w, method)
+    stiffness = _matrix(ds, "hydrostatic_stiffness")
+    if additional:
+        if "additional_added_mass" in ds:
+            mass = mass + _frequency_matrix(ds, "additional_added_mass", w, method)
+        if "additional_damping" in ds:
+            damping = damping + _frequency_matrix(ds, "additional_damping", w, method)
+        if "additional_stiffness" in ds:
+            stiffness = stiffness + _matrix(ds, "additional_stiffness")
+    bv = _viscous_matrix(ds, viscous_damping)
+    if bv is not None:
+        damping = damping + bv[None]
+    ww = w[:, None, None]
+    return -(ww**2) * mass + 1j * ww * damping + stiffness[None]
+
+
+def _solve(z: NDArray[np.complex128], f: NDArray[np.complex128], where, omega) -> NDArray:
+    """Solve z[k] x[k] = f[k] for every k; HydroDataError naming a singular frequency."""
+    try:
+        return np.linalg.solve(z, f[..., None])[..., 0]
+    except np.linalg.LinAlgError:
+        for k in range(z.shape[0]):
+            if np.linalg.matrix_rank(z[k]) < z.shape[-1]:
+                raise HydroDataError(
+                    f"the equation of motion is singular at omega = {omega[k]:.6g} rad/s",
+                    path=where,
+                    hint="a DOF has no mass, damping or restoring there; check inertia_matrix "
+                    "and hydrostatic_stiffness, or add viscous damping",
+                ) from None
+        raise
+
+
+def motion_transfer(
+    ds: xr.Dataset,
+    omega: ArrayLike,
+    direction: ArrayLike,
+    *,
+    viscous_damping: Any = None,
+    additional: bool = True,
+    method: str = "hermite",
+    mirror: bool | None = None,
+    extrapolate: str = "raise",
+) -> NDArray[np.complex128]:
+    """Motion RAOs at pairs (ω_k, β_k): solve the equation of motion at each, shape (n, N).
+
+    The frequency-domain counterpart of a time-domain run in the same sea:
+    ``cummins.excitation.wave_response(waves, motion_transfer(ds, waves.omega,
+    waves.direction), t)`` is the steady-state linear motion (m, rad). Arguments as
+    :func:`motion_rao` and :func:`cummins.excitation.excitation_transfer`; with
+    ``extrapolate="zero"`` the RAO is 0 at frequencies outside the data.
+    """
+    ds = _single_speed(ds)
+    w = np.asarray(omega, dtype=float).reshape(-1)
+    beta = np.broadcast_to(np.asarray(direction, dtype=float), np.shape(omega)).reshape(-1)
+    force = excitation_transfer(ds, w, beta, extrapolate=extrapolate, method=method, mirror=mirror)
+    out = np.zeros_like(force)
+    data_w = ds.omega.values
+    tol = 1e-9 * data_w[-1]
+    inside = (w >= data_w[0] - tol) & (w <= data_w[-1] + tol)
+    if inside.any():
+        z = impedance(
+            ds, w[inside], viscous_damping=viscous_damping, additional=additional, method=method
+        )
+        out[inside] = _solve(z, force[inside], _where(ds), w[inside])
+    return out
+
+
+def motion_rao(
+    ds: xr.Dataset,
+    omega: ArrayLike | None = None,
+    wave_direction: ArrayLike | None = None,
+    *,
+    viscous_damping: Any = None,
+    additional: bool = True,
+    method: str = "hermite",
+    mirror: bool | None = None,
+) -> xr.DataArray:
+    """Coupled motion RAOs X(ω, β) per metre of wave amplitude (module docstring).
+
+    Parameters
+    ----------
+    ds
+        A ``HydroDB`` (one forward speed) with ``inertia_matrix``,
+        ``hydrostatic_stiffness`` and ``excitation_force``.
+    omega
+        Frequencies, rad/s (default: the data's). Between the data frequencies A, B and
+        F are interpolated and the equation solved there; outside the range: error.
+    wave_direction
+        Directions of wave travel, rad (default: the data's; others are interpolated,
+        mirrored for port/starboard symmetric bodies, see
+        :func:`cummins.excitation.excitation_transfer`).
+    viscous_damping
+        Extra linear damping B_v: (N, N) matrix, DataArray, or ``{dof: value}``.
+    additional
+        Include the dataset's additional added mass, damping and stiffness.
+    method
+        Frequency interpolation of A, B and F (``"hermite"`` default).
+    mirror
+        Port/starboard mirroring of the headings (None: decide from the data).
+
+    Returns
+    -------
+    xarray.DataArray
+        ``rao``, complex, dims (omega, wave_direction, dof), m/m and rad/m, phase
+        relative to the wave elevation at the origin (x(t) = Re{X e^{iωt}}).
+
+    Raises
+    ------
+    HydroDataError
+        No inertia, restoring or excitation; frequency out of range; direction in a gap
+        of the headings; singular system.
+
+    Examples
+    --------
+    >>> import cummins
+    >>> from cummins.frequency_domain import motion_rao
+    >>> rao = motion_rao(cummins.demo_dataset(), wave_direction=[3.141592653589793])
+    >>> round(float(abs(rao.sel(dof="Heave")[0, 0])), 3)   # long waves: heave follows them
+    1.0
+    """
+    ds = _single_speed(ds)
+    w = ds.omega.values.astype(float) if omega is None else np.asarray(omega, float).reshape(-1)
+    if wave_direction is None:
+        if "wave_direction" not in ds.dims:
+            raise HydroDataError("the dataset has no wave directions", path=_where(ds))
+        beta = ds.wave_direction.values.astype(float)
+    else:
+        beta = np.asarray(wave_direction, dtype=float).reshape(-1)
+    if w.size == 0 or beta.size == 0:
+        raise ValueError("no frequencies or no directions asked for")
+    z = impedance(ds, w, viscous_damping=viscous_damping, additional=additional, method=method)
+    ww, bb = np.meshgrid(w, beta, indexing="ij")
+    force = excitation_transfer(
+        ds, ww.reshape(-1), bb.reshape(-1), method=method, mirror=mirror
+    ).reshape(w.size, beta.size, -1)
+    try:
+        x = np.linalg.solve(z[:, None], force[..., None])[..., 0]
+    except np.linalg.LinAlgError:
+        x = np.stack([_solve(z, force[:, j], _where(ds), w) for j in range(beta.size)], 1)
+    labels = [str(d) for d in ds.influenced_dof.values]
+    included = ["inertia_matrix", "added_mass", "radiation_damping", "hydrostatic_stiffness"]
+    if additional:
+        included += [
+            v
+            for v in ("additional_added_mass", "additional_damping", "additional_stiffness")
+            if v in ds
+        ]
+    if viscous_damping is not None:
+        included.append("viscous_damping (given)")
+    return xr.DataArray(
+        x,
+        dims=("omega", "wave_direction", "dof"),
+        coords={
+            "omega": ("omega", w, {"units": "rad/s", "long_name": "wave frequency"}),
+            "wave_direction": (
+                "wave_direction",
+                beta,
+                {"units": "rad", "long_name": "direction of wave propagation (0 = along +x)"},
+            ),
+            "dof": ("dof", labels),
+        },
+        name="rao",
+        attrs={
+            "units": _RAO_UNITS,
+            "long_name": "coupled motion RAO per metre of wave amplitude",
+            "time_convention": "x(t) = Re{X exp(i omega t)}",
+            "phase_reference": "incident wave elevation at the origin (0, 0)",
+            "terms": ", ".join(included),
+            "axis_convention": ds.attrs.get("axis_convention", "z-up"),
+            "reference_point": np.asarray(ds.attrs.get("reference_point", (0.0, 0.0, 0.0))),
+            "interpolation": method,
+            "source_file": str(ds.attrs.get("source_file", "")),
+        },
+    )
+
+
+# --------------------------------------------------------------------------- spectra
+
+
+def _spectrum_on(omega: NDArray, spectrum_values: ArrayLike | Callable) -> NDArray:
+    if callable(spectrum_values):
+        values = np.asarray(spectrum_values(omega), dtype=float)
+    else:
+        values = np.asarray(spectrum_values, dtype=float).reshape(-1)
+    if values.shape != omega.shape:
+        raise ValueError(
+            f"spectrum values have shape {values.shape}, the RAO has {omega.size} frequencies"
+        )
+    if not np.all(np.isfinite(values)) or np.any(values < 0):
+        raise ValueError("spectrum values must be finite and non-negative")
+    return values
+
+
+def response_spectrum(
+    rao: xr.DataArray,
+    spectrum_values: ArrayLike | Callable,
+    *,
+    direction_weights: ArrayLike | None = None,
+) -> xr.DataArray:
+    """Response spectra S_j(ω) = |X_j(ω)|² S(ω), dims (omega, dof).
+
+    Parameters
+    ----------
+    rao
+        From :func:`motion_rao`: dims (omega, dof) or (omega, wave_direction, dof).
+    spectrum_values
+        S(ω) at ``rao.omega`` (m²·s/rad), or a callable S(ω) such as
+        :func:`cummins.waves.wave_spectrum`.
+    direction_weights
+        Short-crested sea: w_β ≥ 0 for each ``rao.wave_direction``, summing to 1 (e.g.
+        :func:`cummins.waves.spreading_weights`); S_j = Σ_β w_β |X_j(ω, β)|² S(ω). Without
+        it the RAO must hold one direction.
+
+    Returns
+    -------
+    xarray.DataArray
+        ``response_spectrum``, m²·s/rad for translations, rad²·s/rad for rotations.
+    """
+    omega = rao.omega.values.astype(float)
+    s = _spectrum_on(omega, spectrum_values)
+    power = np.abs(rao) ** 2
+    if "wave_direction" in rao.dims:
+        n = rao.sizes["wave_direction"]
+        if direction_weights is None:
+            if n != 1:
+                raise ValueError(
+                    f"the RAO holds {n} wave directions: select one "
+                    "(rao.sel(wave_direction=...)) or give direction_weights"
+                )
+            power = power.isel(wave_direction=0, drop=True)
+        else:
+            wts = np.asarray(direction_weights, dtype=float).reshape(-1)
+            if wts.size != n or np.any(wts < 0) or not np.isclose(wts.sum(), 1.0, atol=1e-6):
+                raise ValueError(f"direction_weights must be {n} non-negative numbers summing to 1")
+            power = (power * xr.DataArray(wts, dims="wave_direction")).sum("wave_direction")
+    elif direction_weights is not None:
+        raise ValueError("direction_weights given but the RAO has no wave_direction dimension")
+    out = (power * xr.DataArray(s, dims="omega", coords={"omega": rao.omega})).transpose(
+        "omega", ...
+    )
+    out.name = "response_spectrum"
+    out.attrs = {
+        "units": "m^2 s/rad | rad^2 s/rad (translation | rotation)",
+        "long_name": "response spectrum |RAO|^2 S(omega)",
+    }
+    return out
+
+
+def spectral_moment(response_spectrum: xr.DataArray, order: int = 0) -> xr.DataArray:
+    """m_n = ∫ ωⁿ S(ω) dω by the trapezoidal rule on the spectrum's frequencies, dims (dof)."""
+    w = response_spectrum.omega
+    return (response_spectrum * w**order).integrate("omega")
+
+
+def significant_amplitude(response_spectrum: xr.DataArray) -> xr.DataArray:
+    """Significant (single) amplitude 2√m₀ of each response, dims (dof): m or rad.
+
+    m₀ = ∫ S_j(ω) dω (trapezoidal rule on the spectrum's frequencies: compute the RAO
+    on a grid fine enough for its peaks, which :func:`motion_rao` can do). 2√m₀ is the
+    single-amplitude counterpart of H_s/2 for the waves (the significant double
+    amplitude, crest to trough, is 4√m₀).
+    """
+    out = 2.0 * np.sqrt(spectral_moment(response_spectrum, 0))
+    out.name = "significant_amplitude"
+    out.attrs = {
+        "units": "m | rad (translation | rotation)",
+        "long_name": "significant single amplitude 2 sqrt(m0)",
+    }
+    return out
+
+
+# --------------------------------------------------------------------------- figure
+
+
+def plot_rao(
+    rao: xr.DataArray,
+    dofs: list[str] | None = None,
+    headings_deg: list[float] | None = None,
+) -> Figure:
+    """|RAO| and its phase per DOF, one line per heading (at most eight shown by default)."""
+    labels = [str(d) for d in rao.dof.values]
+    dofs = labels if dofs is None else [d for d in dofs if d in labels]
+    from cummins.plots import heading_picks
+
+    beta = np.degrees(rao.wave_direction.values)
+    picks = heading_picks(beta, headings_deg, 8)
+    fig = Figure(figsize=(10, 2.2 * len(dofs) + 0.8), layout="constrained")
+    axes = fig.subplots(len(dofs), 2, squeeze=False, sharex=True)
+    w = rao.omega.values
+    for row, dof in enumerate(dofs):
+        x = rao.sel(dof=dof)
+        rotation = split_dof(dof)[1] in ("Roll", "Pitch", "Yaw")
+        tiny = 1e-6 * float(np.abs(x.values).max())
+        for k in picks:
+            xk = x.isel(wave_direction=k).values
+            label = f"β = {beta[k]:.0f}°"
+            axes[row, 0].plot(w, np.abs(xk), label=label)
+            phase = np.where(np.abs(xk) > tiny, np.degrees(np.angle(xk)), np.nan)
+            axes[row, 1].plot(w, phase, ".", ms=3, label=label)
+        axes[row, 0].set_ylabel(f"|RAO| {dof} [{'rad/m' if rotation else 'm/m'}]")
+        axes[row, 1].set_ylabel(f"∠RAO {dof} [deg]")
+        axes[row, 1].set_ylim(-185, 185)
+        for ax in axes[row]:
+            ax.grid(alpha=0.3)
+    axes[0, 0].legend(fontsize="small")
+    for ax in axes[-1]:
+        ax.set_xlabel("ω [rad/s]")
+    source = str(rao.attrs.get("source_file", "")).rpartition("/")[2]
+    fig.suptitle(f"Motion RAOs (per metre of wave amplitude) {('— ' + source) if source else ''}")
+    return fig
+
+
+# --------------------------------------------------------------------------- files
+
+
+def save_rao(rao: xr.DataArray, path, *, force: bool = False):
+    """Write a RAO from :func:`motion_rao` to NetCDF-4 in Capytaine's layout.
+
+    As every NetCDF file cummins writes (:mod:`cummins.io.netcdf`): the complex values
+    are conjugated to Capytaine's time convention x(t) = Re{X e^{−iωt}} and split along a
+    leading dimension ``complex`` (``re``, ``im``), so ``xarray.open_dataset`` and
+    Capytaine's ``merge_complex_values`` read them; the attribute ``time_convention``
+    says so. :func:`load_rao` gives back the RAO in cummins' convention.
+    """
+    from cummins.errors import check_writable
+    from cummins.io.netcdf import FILE_TIME_CONVENTION, encode_attributes, save_netcdf
+
+    check_writable(path, force)
+    value = np.conj(rao.transpose("omega", "wave_direction", "dof").values)
+    attrs = dict(rao.attrs)
+    attrs["time_convention"] = FILE_TIME_CONVENTION
+    out = xr.Dataset(
+        {
+            "rao": xr.DataArray(
+                np.stack([value.real, value.imag]),
+                dims=("complex", "omega", "wave_direction", "dof"),
+                attrs=encode_attributes(attrs),
+            )
+        },
+        coords={
+            "complex": ("complex", ["re", "im"]),
+            "omega": ("omega", rao.omega.values, dict(rao.omega.attrs)),
+            "wave_direction": (
+                "wave_direction",
+                rao.wave_direction.values,
+                {
+                    **rao.wave_direction.attrs,
+                    "degrees": np.degrees(rao.wave_direction.values),
+                },
+            ),
+            "dof": ("dof", [str(d) for d in rao.dof.values]),
+        },
+    )
+    out.attrs = encode_attributes({"title": "cummins motion RAO", **_version_attr()})
+    return save_netcdf(out, path)
+
+
+def _version_attr() -> dict[str, str]:
+    from cummins._version import __version__
+
+    return {"cummins_version": __version__}
+
+
+def load_rao(path) -> xr.DataArray:
+    """Read a file written by :func:`save_rao` (cummins' convention x(t) = Re{X e^{iωt}})."""
+    from cummins.io.netcdf import CANONICAL_TIME_CONVENTION, decode_attributes
+
+    try:
+        with xr.open_dataset(path, engine="h5netcdf") as f:
+            raw = f.load()
+    except (OSError, ValueError) as exc:
+        raise HydroDataError(f"cannot read the RAO file ({exc})", path=path) from None
+    if "rao" not in raw or "complex" not in raw["rao"].dims:
+        raise HydroDataError("no complex 'rao' variable in the file", path=path)
+    var = raw["rao"]
+    value = var.sel(complex="re").values + 1j * var.sel(complex="im").values
+    attrs = decode_attributes(var.attrs, where=path)
+    attrs["time_convention"] = CANONICAL_TIME_CONVENTION
+    dims = tuple(d for d in var.dims if d != "complex")
+    coords = {d: (d, raw[d].values, dict(raw[d].attrs)) for d in dims}
+    coords["wave_direction"][2].pop("degrees", None)
+    return xr.DataArray(np.conj(value), dims=dims, coords=coords, name="rao", attrs=attrs)

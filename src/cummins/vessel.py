@@ -1,0 +1,237 @@
+"""The linear vessel model of the Cummins equation (seed 004 eqs. 32–39, seed 002 eq. 12).
+
+    (M_RB + A∞) ξ̈ + B_v ξ̇ + μ + C ξ = τ,      μ = C_r χ,   χ̇ = A_r χ + B_r ξ̇,
+
+with ξ the 6 (or 6N) generalized displacements about the database's reference point
+(m, rad, in its axes), M_RB the rigid-body inertia, A∞ the infinite-frequency added mass,
+B_v a linear viscous damping added by the user, C the restoring matrix (hydrostatic plus
+any additional stiffness of the database: moorings), μ the fluid-memory force of the
+radiation model (A_r, B_r, C_r) identified by :func:`cummins.fit.fit_radiation`, and τ the
+external (wave) force. With the state x = (ξ, ξ̇, χ):
+
+    ẋ = F x + G τ,   F = [[0, I, 0], [−M⁻¹C, −M⁻¹B_v, −M⁻¹C_r], [0, B_r, A_r]],
+                     G = [0; M⁻¹; 0],   M = M_RB + A∞.
+
+Its frequency response is that of the frequency-domain equation with the model's
+K(jω) = B(ω) + jω(A(ω) − A∞) in place of the data:
+[−ω²M + jω (B_v + K(jω)) + C] X = F, i.e. −ω²(M_RB + A(ω)) + jω(B(ω) + B_v) + C.
+"""
+
+from __future__ import annotations
+
+import warnings
+from collections.abc import Mapping
+from dataclasses import dataclass, field
+from typing import Any
+
+import numpy as np
+import xarray as xr
+from numpy.typing import ArrayLike, NDArray
+
+from cummins.errors import HydroDataError, SimulationError
+from cummins.radiation import RadiationModel
+
+
+@dataclass(frozen=True, eq=False)
+class Vessel:
+    """A rigid body with its hydrostatics and fluid memory, ready to simulate.
+
+    Attributes
+    ----------
+    dofs
+        DOF labels (``Surge`` … ``Yaw``).
+    rigid_body_mass
+        M_RB (n, n), kg, kg·m, kg·m².
+    stiffness
+        C (n, n), N/m, N, N·m/rad: hydrostatic plus additional (mooring) stiffness.
+    viscous_damping
+        B_v (n, n), linear, N·s/m …; zero by default.
+    radiation
+        The fluid-memory model; its ``added_mass_inf`` is the A∞ used.
+    attrs
+        Provenance: source file, reference point, axis convention.
+    """
+
+    dofs: tuple[str, ...]
+    rigid_body_mass: NDArray[np.float64]
+    stiffness: NDArray[np.float64]
+    viscous_damping: NDArray[np.float64]
+    radiation: RadiationModel
+    attrs: Mapping[str, Any] = field(default_factory=dict)
+
+    @property
+    def added_mass_inf(self) -> NDArray[np.float64]:
+        """A∞ (n, n) of the radiation model."""
+        return np.asarray(self.radiation.added_mass_inf, dtype=float)
+
+    @property
+    def mass(self) -> NDArray[np.float64]:
+        """M = M_RB + A∞ (n, n)."""
+        return self.rigid_body_mass + self.added_mass_inf
+
+    @property
+    def n_states(self) -> int:
+        """2n + the order of the radiation model."""
+        return 2 * len(self.dofs) + self.radiation.total_order
+
+    def state_space(self) -> tuple[NDArray[np.float64], NDArray[np.float64]]:
+        """(F, G) of ẋ = F x + G τ, x = (ξ, ξ̇, χ) (module docstring)."""
+        n, m = len(self.dofs), self.radiation.total_order
+        m_inv = np.linalg.inv(self.mass)
+        f = np.zeros((2 * n + m, 2 * n + m))
+        f[:n, n : 2 * n] = np.eye(n)
+        f[n : 2 * n, :n] = -m_inv @ self.stiffness
+        f[n : 2 * n, n : 2 * n] = -m_inv @ self.viscous_damping
+        if m:
+            f[n : 2 * n, 2 * n :] = -m_inv @ self.radiation.C
+            f[2 * n :, n : 2 * n] = self.radiation.B
+            f[2 * n :, 2 * n :] = self.radiation.A
+        g = np.zeros((2 * n + m, n))
+        g[n : 2 * n] = m_inv
+        return f, g
+
+    def impedance(self, omega: ArrayLike) -> NDArray[np.complex128]:
+        """Z(ω) = −ω²M + jω (B_v + K(jω)) + C, shape (len(omega), n, n): Z X = F
+        (the memory force is K(jω) times the velocity jωX)."""
+        w = np.asarray(omega, dtype=float).reshape(-1)
+        k = self.radiation.response(w)
+        return (
+            -(w**2)[:, None, None] * self.mass
+            + 1j * w[:, None, None] * (self.viscous_damping + k)
+            + self.stiffness
+        )
+
+    def response(self, omega: ArrayLike, force: ArrayLike) -> NDArray[np.complex128]:
+        """X(ω) = Z(ω)⁻¹ F for complex force amplitudes F, shape (len(omega), n)."""
+        z = self.impedance(omega)
+        f = np.asarray(force, dtype=complex).reshape(z.shape[0], -1)
+        return np.linalg.solve(z, f[..., None])[..., 0]
+
+    def stability(self) -> NDArray[np.complex128]:
+        """Eigenvalues of F; raises :class:`SimulationError` when one is in the right
+        half-plane (naming the DOF that dominates its mode)."""
+        f, _ = self.state_space()
+        lam, vec = np.linalg.eig(f)
+        scale = max(float(np.abs(lam).max()), 1e-12)
+        bad = np.flatnonzero(lam.real > 1e-9 * scale)
+        if bad.size:
+            k = bad[np.argmax(lam.real[bad])]
+            n = len(self.dofs)
+            dof = self.dofs[int(np.argmax(np.abs(vec[:n, k]) + np.abs(vec[n : 2 * n, k])))]
+            raise SimulationError(
+                f"the vessel model is unstable: eigenvalue {lam[k]:.4g} 1/s, mode dominated "
+                f"by {dof}",
+                hint="check the restoring matrix (negative stiffness?) and that the "
+                "radiation model is passive (cummins.passivity.passivity_test)",
+            )
+        return lam
+
+
+def vessel_from_hydrodb(
+    ds: xr.Dataset,
+    model: RadiationModel | None = None,
+    *,
+    viscous_damping: ArrayLike | None = None,
+    additional: bool = True,
+    **fit_options: Any,
+) -> Vessel:
+    """The :class:`Vessel` of a ``HydroDB``, fitting its radiation model when none is given.
+
+    Parameters
+    ----------
+    ds
+        One forward speed; needs ``inertia_matrix`` and ``hydrostatic_stiffness``;
+        ``additional_stiffness`` (moorings) is added to C when present.
+    model
+        A radiation model of the same DOFs (default: :func:`cummins.fit.fit_radiation` of
+        ``ds`` with ``fit_options``).
+    viscous_damping
+        B_v, an (n, n) matrix or the n diagonal values (added to the data's own, below).
+    additional
+        Take the database's ``additional_stiffness`` (moorings) into C and its
+        ``additional_damping`` (WAMIT external damping, MSS ``Bv``, VERES viscous roll
+        damping) into B_v — as :func:`cummins.frequency_domain.motion_rao` does. A linear
+        time-domain model has one constant B_v: entries of ``additional_damping`` that
+        vary with frequency (MSS's surge/sway/yaw estimates) are left out with a
+        warning naming them; give the value you want through ``viscous_damping``.
+        Frequency-dependent ``additional_added_mass`` is likewise left out.
+    fit_options
+        Passed to :func:`cummins.fit.fit_radiation` when ``model`` is None.
+
+    Returns
+    -------
+    Vessel
+        ``attrs["viscous_damping_source"]`` says where each part of B_v came from.
+    """
+    from cummins.fit import fit_radiation
+    from cummins.retardation import _single_speed
+
+    ds = _single_speed(ds)
+    dofs = tuple(str(d) for d in ds.influenced_dof.values)
+    for name in ("inertia_matrix", "hydrostatic_stiffness"):
+        if name not in ds:
+            raise HydroDataError(
+                f"the data have no {name}: a simulation needs the rigid-body inertia and the "
+                "restoring matrix",
+                hint="use a file set that includes them (WAMIT .hst/.frc, NEMOH Mesh/KH.dat, "
+                "MSS .mat) or add them with cummins.make_hydrodb",
+            )
+    m_rb = _matrix(ds, "inertia_matrix")
+    c = _matrix(ds, "hydrostatic_stiffness")
+    n = len(dofs)
+    if viscous_damping is None:
+        b_v = np.zeros((n, n))
+    else:
+        b_v = np.asarray(viscous_damping, dtype=float)
+        b_v = np.diag(b_v) if b_v.ndim == 1 else b_v
+        if b_v.shape != (n, n):
+            raise SimulationError(f"viscous damping must be ({n}, {n}) or {n} values")
+        if not np.all(np.isfinite(b_v)):
+            raise SimulationError("viscous damping has non-finite values")
+    sources = ["given" if viscous_damping is not None else "none given"]
+    if additional:
+        if "additional_stiffness" in ds:
+            c = c + _matrix(ds, "additional_stiffness")
+        if "additional_damping" in ds:
+            b_v = b_v + _constant_part(ds, "additional_damping", dofs)
+            sources.append("database additional_damping (frequency-independent entries)")
+    if model is None:
+        model = fit_radiation(ds, **fit_options)
+    if tuple(model.dofs) != dofs:
+        raise SimulationError(
+            f"the radiation model's DOFs {model.dofs} differ from the data's {dofs}"
+        )
+    attrs = {
+        "source_file": str(ds.attrs.get("source_file", "")),
+        "reference_point": np.asarray(ds.attrs.get("reference_point", (0.0, 0.0, 0.0))),
+        "axis_convention": str(ds.attrs.get("axis_convention", "z-up")),
+        "viscous_damping_source": "; ".join(sources),
+    }
+    return Vessel(dofs, m_rb, c, b_v, model, attrs)
+
+
+def _constant_part(ds: xr.Dataset, name: str, dofs: tuple[str, ...]) -> NDArray[np.float64]:
+    """The frequency-independent entries of ``ds[name]``; a warning names the others."""
+    values = ds[name]
+    if "omega" not in values.dims:
+        return _matrix(ds, name)
+    stack = values.transpose("omega", "influenced_dof", "radiating_dof").values.astype(float)
+    spread = stack.max(axis=0) - stack.min(axis=0)
+    constant = spread <= 1e-9 * np.maximum(np.abs(stack).max(axis=0), 1e-300)
+    varying = [
+        f"{dofs[i]}-{dofs[j]} ({stack[:, i, j].min():.3g} to {stack[:, i, j].max():.3g})"
+        for i, j in zip(*np.nonzero(~constant), strict=True)
+    ]
+    if varying:
+        warnings.warn(
+            f"{name} varies with frequency for {', '.join(varying)}: a linear time-domain "
+            "model cannot hold it and these entries are left out; pass the value you want "
+            "as viscous_damping",
+            UserWarning,
+            stacklevel=3,
+        )
+    return np.where(constant, stack[0], 0.0)
+
+
+def _matrix(ds: xr.Dataset, name: str) -> NDArray[np.float64]:
+    return np.array(ds[name].transpose("influenced_dof", "radiating_dof").values, dtype=float)
