@@ -14,12 +14,12 @@ from cummins.frequency_domain import (
     load_rao,
     motion_rao,
     motion_transfer,
-    plot_rao,
     response_spectrum,
     save_rao,
     significant_amplitude,
     spectral_moment,
 )
+from cummins.plots import plot_rao
 from cummins.waves import irregular_waves, spreading_weights, wave_spectrum
 
 

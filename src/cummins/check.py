@@ -35,7 +35,7 @@ from dataclasses import asdict, dataclass, field
 import numpy as np
 import xarray as xr
 
-from cummins.hydrodb import validate
+from cummins.hydrodb import is_rotation, validate
 from cummins.kinematics import center_of_gravity_from_inertia
 from cummins.repair import find_suspect_frequencies
 from cummins.retardation import retardation_diagnostics
@@ -344,7 +344,7 @@ def _negligible_dofs(diagonal: np.ndarray, labels: list[str]) -> np.ndarray:
     An axisymmetric body has no yaw added mass or damping; solvers then print noise
     (1e-8 where roll is 1e2), which must not be read as a physical value.
     """
-    rotation = np.array([label.rpartition("__")[2] in ("Roll", "Pitch", "Yaw") for label in labels])
+    rotation = np.array([is_rotation(label) for label in labels])
     peak = np.abs(diagonal)
     out = np.zeros(len(labels), dtype=bool)
     for kind in (rotation, ~rotation):

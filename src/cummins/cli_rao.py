@@ -16,6 +16,7 @@ from cummins.cli_common import (
     reports_errors,
     select_speed,
 )
+from cummins.hydrodb import is_rotation
 
 #: Options that take a list of numbers: ``--headings 0 45 90`` (as well as repeated).
 _LIST_OPTIONS = ("--headings",)
@@ -169,7 +170,7 @@ def rao_command(
           --omega-max 1.5 --n-omega 300 --viscous-damping Roll 5e8
     """
     from cummins.excitation import heading_coverage
-    from cummins.frequency_domain import motion_rao, plot_rao, save_rao
+    from cummins.frequency_domain import motion_rao, save_rao
 
     plot_file = str(Path(plot_dir) / "rao.png") if plot_dir else None
     prepare_outputs(output, plot_file, force=force)
@@ -207,7 +208,7 @@ def rao_command(
     save_rao(rao, output, force=force)
     console.print(f"wrote {output}")
     if plot_file:
-        from cummins.plots import save_figure
+        from cummins.plots import plot_rao, save_figure
 
         save_figure(plot_rao(rao), plot_file, force=force)
         console.print(f"wrote {plot_file}")
@@ -225,7 +226,7 @@ def rao_table(rao) -> Table:
     for dof in rao.dof.values:
         amp = np.abs(rao.sel(dof=dof).values)
         i, j = np.unravel_index(int(np.argmax(amp)), amp.shape)
-        rotation = str(dof).rpartition("__")[2] in ("Roll", "Pitch", "Yaw")
+        rotation = is_rotation(dof)
         table.add_row(
             str(dof),
             f"{amp[i, j]:.4g}",

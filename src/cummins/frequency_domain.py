@@ -33,7 +33,6 @@ from typing import Any
 
 import numpy as np
 import xarray as xr
-from matplotlib.figure import Figure
 from numpy.typing import ArrayLike, NDArray
 
 from cummins.errors import HydroDataError
@@ -44,14 +43,12 @@ from cummins.excitation import (
     _where,
     excitation_transfer,
 )
-from cummins.hydrodb import split_dof
 
 __all__ = [
     "impedance",
     "load_rao",
     "motion_rao",
     "motion_transfer",
-    "plot_rao",
     "response_spectrum",
     "save_rao",
     "significant_amplitude",
@@ -455,44 +452,6 @@ def significant_amplitude(response_spectrum: xr.DataArray) -> xr.DataArray:
 
 
 # --------------------------------------------------------------------------- figure
-
-
-def plot_rao(
-    rao: xr.DataArray,
-    dofs: list[str] | None = None,
-    headings_deg: list[float] | None = None,
-) -> Figure:
-    """|RAO| and its phase per DOF, one line per heading (at most eight shown by default)."""
-    labels = [str(d) for d in rao.dof.values]
-    dofs = labels if dofs is None else [d for d in dofs if d in labels]
-    from cummins.plots import heading_picks
-
-    beta = np.degrees(rao.wave_direction.values)
-    picks = heading_picks(beta, headings_deg, 8)
-    fig = Figure(figsize=(10, 2.2 * len(dofs) + 0.8), layout="constrained")
-    axes = fig.subplots(len(dofs), 2, squeeze=False, sharex=True)
-    w = rao.omega.values
-    for row, dof in enumerate(dofs):
-        x = rao.sel(dof=dof)
-        rotation = split_dof(dof)[1] in ("Roll", "Pitch", "Yaw")
-        tiny = 1e-6 * float(np.abs(x.values).max())
-        for k in picks:
-            xk = x.isel(wave_direction=k).values
-            label = f"β = {beta[k]:.0f}°"
-            axes[row, 0].plot(w, np.abs(xk), label=label)
-            phase = np.where(np.abs(xk) > tiny, np.degrees(np.angle(xk)), np.nan)
-            axes[row, 1].plot(w, phase, ".", ms=3, label=label)
-        axes[row, 0].set_ylabel(f"|RAO| {dof} [{'rad/m' if rotation else 'm/m'}]")
-        axes[row, 1].set_ylabel(f"∠RAO {dof} [deg]")
-        axes[row, 1].set_ylim(-185, 185)
-        for ax in axes[row]:
-            ax.grid(alpha=0.3)
-    axes[0, 0].legend(fontsize="small")
-    for ax in axes[-1]:
-        ax.set_xlabel("ω [rad/s]")
-    source = str(rao.attrs.get("source_file", "")).rpartition("/")[2]
-    fig.suptitle(f"Motion RAOs (per metre of wave amplitude) {('— ' + source) if source else ''}")
-    return fig
 
 
 # --------------------------------------------------------------------------- files

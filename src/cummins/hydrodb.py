@@ -144,6 +144,12 @@ def split_dof(label: str) -> tuple[str | None, str]:
     return (body if sep else None), name
 
 
+def is_rotation(label: str) -> bool:
+    """True for a rotational DOF (``Roll``, ``Pitch``, ``Yaw``, of any body): its
+    displacement is in rad, its moments in N·m."""
+    return split_dof(label)[1] in DOF_NAMES[3:]
+
+
 def dof_index(label: str) -> int:
     """Index 0…5 of a DOF label within its body (``"Pitch"`` → 4)."""
     _, name = split_dof(label)

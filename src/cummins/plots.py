@@ -15,6 +15,7 @@ import xarray as xr
 from matplotlib.figure import Figure
 
 from cummins.errors import check_writable
+from cummins.hydrodb import is_rotation
 
 
 def _diagonal_dofs(ds: xr.Dataset, dofs: Sequence[str] | None) -> list[str]:
@@ -25,7 +26,7 @@ def _diagonal_dofs(ds: xr.Dataset, dofs: Sequence[str] | None) -> list[str]:
 
 
 def _unit(dof: str, kind: str) -> str:
-    rotation = dof.rpartition("__")[2] in ("Roll", "Pitch", "Yaw")
+    rotation = is_rotation(dof)
     if kind == "added_mass":
         return "kg·m²" if rotation else "kg"
     if kind == "damping":
@@ -99,28 +100,66 @@ def plot_excitation(
         ds = ds.isel(forward_speed=0)
     if "excitation_force" not in ds:
         raise ValueError("the dataset has no excitation_force")
-    dofs = _diagonal_dofs(ds, dofs)
-    beta = np.degrees(ds.wave_direction.values)
-    picks = heading_picks(beta, headings_deg, 5)
+    force = ds.excitation_force.rename(influenced_dof="dof").transpose(
+        "omega", "wave_direction", "dof"
+    )
+    return _amplitude_phase_by_heading(
+        force,
+        _diagonal_dofs(ds, dofs),
+        heading_picks(np.degrees(ds.wave_direction.values), headings_deg, 5),
+        "X",
+        lambda dof: _unit(dof, "force"),
+        f"Wave excitation (per metre of wave amplitude) — {_title(ds)}",
+    )
+
+
+def plot_rao(
+    rao: xr.DataArray,
+    dofs: Sequence[str] | None = None,
+    headings_deg: Sequence[float] | None = None,
+) -> Figure:
+    """|RAO| and its phase per DOF, one line per heading (at most eight shown by default);
+    ``rao`` from :func:`cummins.frequency_domain.motion_rao`."""
+    labels = [str(d) for d in rao.dof.values]
+    source = str(rao.attrs.get("source_file", "")).rpartition("/")[2]
+    return _amplitude_phase_by_heading(
+        rao.transpose("omega", "wave_direction", "dof"),
+        labels if dofs is None else [d for d in dofs if d in labels],
+        heading_picks(np.degrees(rao.wave_direction.values), headings_deg, 8),
+        "RAO",
+        lambda dof: "rad/m" if is_rotation(dof) else "m/m",
+        f"Motion RAOs (per metre of wave amplitude) {('— ' + source) if source else ''}",
+    )
+
+
+def _amplitude_phase_by_heading(
+    values: xr.DataArray, dofs: Sequence[str], picks: Sequence[int], symbol: str, unit, title: str
+) -> Figure:
+    """|values| and phase (deg) against ω, a row per DOF, a line per picked heading;
+    ``values`` complex with dims (omega, wave_direction, dof). The phase is left out
+    where the magnitude is below 10⁻⁶ of the DOF's largest (it is noise there)."""
+    beta = np.degrees(values.wave_direction.values)
     fig = Figure(figsize=(10, 2.2 * len(dofs) + 0.8), layout="constrained")
     axes = fig.subplots(len(dofs), 2, squeeze=False, sharex=True)
-    w = ds.omega.values
+    w = values.omega.values
     for row, dof in enumerate(dofs):
-        x = ds.excitation_force.sel(influenced_dof=dof)
+        x = values.sel(dof=dof)
+        tiny = 1e-6 * float(np.abs(x.values).max())
         for k in picks:
             xk = x.isel(wave_direction=k).values
             label = f"β = {beta[k]:.0f}°"
             axes[row, 0].plot(w, np.abs(xk), label=label)
-            axes[row, 1].plot(w, np.degrees(np.angle(xk)), ".", ms=3, label=label)
-        axes[row, 0].set_ylabel(f"|X| {dof} [{_unit(dof, 'force')}]")
-        axes[row, 1].set_ylabel(f"∠X {dof} [deg]")
+            phase = np.where(np.abs(xk) > tiny, np.degrees(np.angle(xk)), np.nan)
+            axes[row, 1].plot(w, phase, ".", ms=3, label=label)
+        axes[row, 0].set_ylabel(f"|{symbol}| {dof} [{unit(dof)}]")
+        axes[row, 1].set_ylabel(f"∠{symbol} {dof} [deg]")
         axes[row, 1].set_ylim(-185, 185)
         for ax in axes[row]:
             ax.grid(alpha=0.3)
     axes[0, 0].legend(fontsize="small")
     for ax in axes[-1]:
         ax.set_xlabel("ω [rad/s]")
-    fig.suptitle(f"Wave excitation (per metre of wave amplitude) — {_title(ds)}")
+    fig.suptitle(title)
     return fig
 
 
@@ -158,7 +197,7 @@ def _pairs(kernel, couplings) -> list[tuple[str, str]]:
 
 
 def _k_unit(a: str, b: str) -> str:
-    rot = sum(x.rpartition("__")[2] in ("Roll", "Pitch", "Yaw") for x in (a, b))
+    rot = sum(is_rotation(x) for x in (a, b))
     return ("kg/s²", "kg·m/s²", "kg·m²/s²")[rot]
 
 
@@ -282,7 +321,7 @@ def plot_coupling_fit(
     ax_a, ax_b = fig.add_subplot(grid[0, 0]), fig.add_subplot(grid[0, 1])
     ax_m, ax_p = fig.add_subplot(grid[1, 0]), fig.add_subplot(grid[1, 1])
     ax_k = fig.add_subplot(grid[2, :])
-    rot = sum(d.rpartition("__")[2] in ("Roll", "Pitch", "Yaw") for d in (dof_i, dof_j))
+    rot = sum(is_rotation(d) for d in (dof_i, dof_j))
     mass_unit = ("kg", "kg·m", "kg·m²")[rot]
 
     def points(ax, values, plot="plot"):

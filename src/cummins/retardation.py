@@ -36,6 +36,7 @@ from scipy.interpolate import PchipInterpolator
 from scipy.special import sici
 
 from cummins.errors import HydroDataError
+from cummins.hydrodb import is_rotation
 from cummins.transforms import cosine_transform, hilbert_pv, sine_transform
 
 TAIL_KINDS = ("exponential", "power", "auto", "none")
@@ -756,7 +757,7 @@ def significant_couplings(ds: xr.Dataset, threshold: float = 0.01) -> list[tuple
     a = np.ptp(_matrix(ds, "added_mass"), axis=0)
     n = b.shape[0]
     labels = [str(d) for d in ds.influenced_dof.values]
-    rotation = np.array([lab.rpartition("__")[2] in ("Roll", "Pitch", "Yaw") for lab in labels])
+    rotation = np.array([is_rotation(lab) for lab in labels])
     out = []
     modelled = [b[i, i] > 1e-6 * np.diag(b)[rotation == rotation[i]].max() for i in range(n)]
     for i in range(n):

@@ -43,6 +43,7 @@ from numpy.typing import ArrayLike, NDArray
 from scipy.signal import lfilter
 
 from cummins.errors import SimulationError
+from cummins.hydrodb import is_rotation
 from cummins.vessel import Vessel
 
 #: A response larger than this many times the largest static response to the peak
@@ -526,4 +527,4 @@ def _result(vessel, t, xi, v, memory, tau, method, dt) -> xr.Dataset:
 
 
 def _unit(dof: str) -> str:
-    return "rad" if dof.rpartition("__")[2] in ("Roll", "Pitch", "Yaw") else "m"
+    return "rad" if is_rotation(dof) else "m"
