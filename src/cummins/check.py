@@ -35,7 +35,7 @@ from dataclasses import asdict, dataclass, field
 import numpy as np
 import xarray as xr
 
-from cummins.hydrodb import is_rotation, validate
+from cummins.hydrodb import dof_matrix, is_rotation, validate
 from cummins.kinematics import center_of_gravity_from_inertia
 from cummins.repair import find_suspect_frequencies
 from cummins.retardation import retardation_diagnostics
@@ -219,7 +219,7 @@ def _check_symmetry(ds: xr.Dataset) -> list[Finding]:
         for name in ("added_mass", "radiation_damping", "added_mass_inf"):
             if name not in sub:
                 continue
-            x = sub[name].transpose(..., "influenced_dof", "radiating_dof").values
+            x = dof_matrix(sub, name)
             x = x.reshape(-1, x.shape[-2], x.shape[-1])
             s = _diag_scale(x)
             scaled = x * s[:, None] * s[None, :]
@@ -359,7 +359,7 @@ def _check_added_mass_inf(ds: xr.Dataset) -> list[Finding]:
     labels = _labels(ds)
     out = []
     for sub in _speeds(ds):
-        a = sub.added_mass_inf.transpose("influenced_dof", "radiating_dof").values
+        a = dof_matrix(sub, "added_mass_inf")
         zero = _negligible_dofs(np.diag(a), labels)
         if zero.any():
             names = ", ".join(labels[k] for k in np.flatnonzero(zero))
@@ -400,7 +400,7 @@ def _check_added_mass_inf(ds: xr.Dataset) -> list[Finding]:
                 )
             )
         if "inertia_matrix" in sub:
-            m = sub.inertia_matrix.transpose("influenced_dof", "radiating_dof").values + a
+            m = dof_matrix(sub, "inertia_matrix") + a
             sm = _diag_scale(m)
             eig_m = np.linalg.eigvalsh(0.5 * (m + m.T) * sm[:, None] * sm[None, :])
             if eig_m[0] <= 1e-9:
@@ -488,7 +488,7 @@ def _check_rigid_body(ds: xr.Dataset) -> list[Finding]:
     out = []
     labels = _labels(ds)
     if "inertia_matrix" in ds:
-        m = ds.inertia_matrix.transpose("influenced_dof", "radiating_dof").values
+        m = dof_matrix(ds, "inertia_matrix")
         m = m.reshape(-1, m.shape[-2], m.shape[-1])[0]
         s = _diag_scale(m)
         scaled = m * s[:, None] * s[None, :]
@@ -509,7 +509,7 @@ def _check_rigid_body(ds: xr.Dataset) -> list[Finding]:
         if len(labels) == 6:
             out.extend(_rigid_body_consistency(m, labels))
     if "hydrostatic_stiffness" in ds:
-        c = ds.hydrostatic_stiffness.transpose("influenced_dof", "radiating_dof").values
+        c = dof_matrix(ds, "hydrostatic_stiffness")
         c = c.reshape(-1, c.shape[-2], c.shape[-1])[0]
         for k, label in enumerate(labels):
             name = label.rpartition("__")[2]

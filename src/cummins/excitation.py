@@ -76,8 +76,7 @@ from scipy.interpolate import (
 )
 
 from cummins.errors import HydroDataError
-from cummins.hydrodb import DOF_NAMES, bodies, split_dof
-from cummins.retardation import _single_speed
+from cummins.hydrodb import DOF_NAMES, bodies, single_speed, split_dof
 from cummins.waves import WaveComponents, harmonic_sum, wavenumber
 
 __all__ = [
@@ -238,7 +237,7 @@ def heading_coverage(ds: xr.Dataset, *, mirror: bool | None = None) -> HeadingCo
         None: mirror when the data cover one half-plane only and the body looks
         port/starboard symmetric; True: mirror (single body); False: never.
     """
-    ds = _single_speed(ds)
+    ds = single_speed(ds)
     if "wave_direction" not in ds.dims:
         raise HydroDataError("the dataset has no wave directions", path=_where(ds))
     beta = np.mod(ds.wave_direction.values.astype(float), _TWO_PI)
@@ -486,7 +485,7 @@ def excitation_transfer(
     HydroDataError
         No excitation in the data, frequency out of range, direction in a gap.
     """
-    ds = _single_speed(ds)
+    ds = single_speed(ds)
     where = _where(ds)
     force = _force(ds, variable)
     if extrapolate not in ("raise", "zero"):
@@ -651,7 +650,7 @@ def leave_one_out_error(
         and headings), dims (omega, wave_direction, influenced_dof); NaN where not
         evaluated (end frequencies, a heading whose removal opens a gap, DOFs not excited).
     """
-    ds = _single_speed(ds)
+    ds = single_speed(ds)
     force = _force(ds, variable)
     w = ds.omega.values
     beta = ds.wave_direction.values

@@ -39,10 +39,10 @@ from cummins.errors import HydroDataError
 from cummins.excitation import (
     INTERPOLATION_METHODS,
     _interpolate_frequency,
-    _single_speed,
     _where,
     excitation_transfer,
 )
+from cummins.hydrodb import dof_matrix, single_speed
 
 __all__ = [
     "impedance",
@@ -56,10 +56,6 @@ __all__ = [
 ]
 
 _RAO_UNITS = "m/m | rad/m (translation | rotation, per metre of wave amplitude)"
-
-
-def _matrix(ds: xr.Dataset, name: str) -> NDArray[np.float64]:
-    return ds[name].transpose(..., "influenced_dof", "radiating_dof").values.astype(float)
 
 
 def _viscous_matrix(ds: xr.Dataset, viscous_damping: Any) -> NDArray[np.float64] | None:
@@ -97,7 +93,7 @@ def _frequency_matrix(
     ds: xr.Dataset, name: str, omega: NDArray[np.float64], method: str
 ) -> NDArray[np.float64]:
     """``ds[name]`` (omega, i, j) at the frequencies ``omega`` (within the data's range)."""
-    values = _matrix(ds, name)
+    values = dof_matrix(ds, name)
     w = ds.omega.values.astype(float)
     same = omega.size == w.size and np.array_equal(omega, w)
     if same:
@@ -143,7 +139,7 @@ def impedance(
     HydroDataError
         Missing inertia or restoring, frequency outside the data.
     """
-    ds = _single_speed(ds)
+    ds = single_speed(ds)
     where = _where(ds)
     for name, hint in (
         (
@@ -179,16 +175,16 @@ def impedance(
             "within that range",
         )
     w = np.clip(w, data_w[0], data_w[-1])
-    mass = _matrix(ds, "inertia_matrix")[None] + _frequency_matrix(ds, "added_mass", w, method)
+    mass = dof_matrix(ds, "inertia_matrix")[None] + _frequency_matrix(ds, "added_mass", w, method)
     damping = _frequency_matrix(ds, "radiation_damping", w, method)
-    stiffness = _matrix(ds, "hydrostatic_stiffness")
+    stiffness = dof_matrix(ds, "hydrostatic_stiffness")
     if additional:
         if "additional_added_mass" in ds:
             mass = mass + _frequency_matrix(ds, "additional_added_mass", w, method)
         if "additional_damping" in ds:
             damping = damping + _frequency_matrix(ds, "additional_damping", w, method)
         if "additional_stiffness" in ds:
-            stiffness = stiffness + _matrix(ds, "additional_stiffness")
+            stiffness = stiffness + dof_matrix(ds, "additional_stiffness")
     bv = _viscous_matrix(ds, viscous_damping)
     if bv is not None:
         damping = damping + bv[None]
@@ -231,7 +227,7 @@ def motion_transfer(
     :func:`motion_rao` and :func:`cummins.excitation.excitation_transfer`; with
     ``extrapolate="zero"`` the RAO is 0 at frequencies outside the data.
     """
-    ds = _single_speed(ds)
+    ds = single_speed(ds)
     w = np.asarray(omega, dtype=float).reshape(-1)
     beta = np.broadcast_to(np.asarray(direction, dtype=float), np.shape(omega)).reshape(-1)
     force = excitation_transfer(ds, w, beta, extrapolate=extrapolate, method=method, mirror=mirror)
@@ -300,7 +296,7 @@ def motion_rao(
     >>> round(float(abs(rao.sel(dof="Heave")[0, 0])), 3)   # long waves: heave follows them
     1.0
     """
-    ds = _single_speed(ds)
+    ds = single_speed(ds)
     w = ds.omega.values.astype(float) if omega is None else np.asarray(omega, float).reshape(-1)
     if wave_direction is None:
         if "wave_direction" not in ds.dims:

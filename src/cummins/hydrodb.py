@@ -144,6 +144,26 @@ def split_dof(label: str) -> tuple[str | None, str]:
     return (body if sep else None), name
 
 
+def single_speed(ds: xr.Dataset) -> xr.Dataset:
+    """The dataset at its one forward speed (the ``forward_speed`` dimension dropped);
+    HydroDataError when it holds several: the caller must choose."""
+    if "forward_speed" in ds.dims:
+        if ds.sizes["forward_speed"] == 1:
+            return ds.isel(forward_speed=0)
+        speeds = ", ".join(f"{u:g}" for u in ds.forward_speed.values)
+        raise HydroDataError(
+            f"the dataset holds {ds.sizes['forward_speed']} forward speeds ({speeds} m/s)",
+            hint="select one first, e.g. ds.sel(forward_speed=0.0)",
+        )
+    return ds
+
+
+def dof_matrix(ds: xr.Dataset, name: str) -> NDArray[np.float64]:
+    """``ds[name]`` as a float array (…, influenced_dof, radiating_dof): (n, n), or
+    (nω, n, n) for frequency-dependent variables. Always a copy."""
+    return np.array(ds[name].transpose(..., "influenced_dof", "radiating_dof").values, dtype=float)
+
+
 def is_rotation(label: str) -> bool:
     """True for a rotational DOF (``Roll``, ``Pitch``, ``Yaw``, of any body): its
     displacement is in rad, its moments in N·m."""
@@ -700,6 +720,6 @@ def describe(ds: xr.Dataset) -> dict[str, Any]:
     if "displaced_volume" in ds.attrs:
         info["displaced_volume_m3"] = float(ds.attrs["displaced_volume"])
     if "inertia_matrix" in ds:
-        m = ds.inertia_matrix.transpose(..., "influenced_dof", "radiating_dof").values
+        m = dof_matrix(ds, "inertia_matrix")
         info["mass_kg"] = float(np.ravel(m)[0])
     return info

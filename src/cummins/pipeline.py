@@ -13,6 +13,8 @@ from pathlib import Path
 import numpy as np
 import xarray as xr
 
+from cummins.hydrodb import dof_matrix
+
 
 def kernel_stage(
     ds: xr.Dataset,
@@ -132,7 +134,7 @@ def write_model_mss_abc(model, ds: xr.Dataset, path: Path, *, force: bool = Fals
     def matrix(name):
         if name not in fossen:
             return None
-        return fossen[name].transpose("influenced_dof", "radiating_dof").values
+        return dof_matrix(fossen, name)
 
     return write_mss_abc(
         change_model_axes(model, "z-down"),

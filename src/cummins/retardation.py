@@ -36,7 +36,7 @@ from scipy.interpolate import PchipInterpolator
 from scipy.special import sici
 
 from cummins.errors import HydroDataError
-from cummins.hydrodb import is_rotation
+from cummins.hydrodb import dof_matrix, is_rotation, single_speed
 from cummins.transforms import cosine_transform, hilbert_pv, sine_transform
 
 TAIL_KINDS = ("exponential", "power", "auto", "none")
@@ -51,23 +51,6 @@ _K_UNITS = "kg/s^2 | kg m/s^2 | kg m^2/s^2 (translation | mixed | rotation)"
 
 
 # --------------------------------------------------------------------------- helpers
-
-
-def _single_speed(ds: xr.Dataset) -> xr.Dataset:
-    if "forward_speed" in ds.dims:
-        if ds.sizes["forward_speed"] == 1:
-            return ds.isel(forward_speed=0)
-        speeds = ", ".join(f"{u:g}" for u in ds.forward_speed.values)
-        raise HydroDataError(
-            f"the dataset holds {ds.sizes['forward_speed']} forward speeds ({speeds} m/s)",
-            hint="select one first, e.g. ds.sel(forward_speed=0.0)",
-        )
-    return ds
-
-
-def _matrix(ds: xr.Dataset, name: str) -> NDArray:
-    """(nω, n, n) or (n, n) array of a variable, influenced_dof before radiating_dof."""
-    return ds[name].transpose(..., "influenced_dof", "radiating_dof").values
 
 
 def _coupling_coords(ds: xr.Dataset) -> dict:
@@ -102,7 +85,7 @@ def default_retardation_function(
 
 
 def _default_kernel(ds: xr.Dataset, threshold: float, max_points: int):
-    ds = _single_speed(ds)
+    ds = single_speed(ds)
     w = ds.omega.values
     t_limit = 2 * np.pi / w[0]
     dt = max(np.pi / (4 * w[-1]), t_limit / max_points)
@@ -333,7 +316,7 @@ def _damping_grid(
         )
     w = ds.omega.values
     n = ds.sizes["influenced_dof"]
-    b = _matrix(ds, "radiation_damping").reshape(w.size, n * n)
+    b = dof_matrix(ds, "radiation_damping").reshape(w.size, n * n)
     if zero_frequency:
         w = np.r_[0.0, w]
         b = np.vstack([np.zeros((1, n * n)), b])
@@ -394,21 +377,21 @@ def retardation_function(
     >>> float(k.sel(time=0.0, influenced_dof="Heave", radiating_dof="Heave")) > 0
     True
     """
-    ds = _single_speed(ds)
+    ds = single_speed(ds)
     t = default_time_grid(ds) if t is None else np.asarray(t, dtype=float).reshape(-1)
     if np.any(t < 0) or not np.all(np.isfinite(t)):
         raise HydroDataError("times must be finite and non-negative")
     n = ds.sizes["influenced_dof"]
     if method == "trapezoid":
         w = ds.omega.values
-        b = _matrix(ds, "radiation_damping").reshape(w.size, n * n)
+        b = dof_matrix(ds, "radiation_damping").reshape(w.size, n * n)
         if zero_frequency:
             w, b = np.r_[0.0, w], np.vstack([np.zeros((1, n * n)), b])
         k = np.trapezoid(np.cos(np.outer(w, t))[:, :, None] * b[:, None, :], w, axis=0)
         tail_fit = fit_damping_tail(w, b, "none")
     elif method == "exact":
         w, b = _damping_grid(ds, interpolation, zero_frequency)
-        data = _matrix(ds, "radiation_damping").reshape(ds.sizes["omega"], n * n)
+        data = dof_matrix(ds, "radiation_damping").reshape(ds.sizes["omega"], n * n)
         tail_fit = fit_damping_tail(ds.omega.values, data, tail)
         k = cosine_transform(w, b, t) + tail_fit.cosine(t)
     else:
@@ -449,12 +432,12 @@ def retardation_function_from_added_mass(
     check causality (the two routes agree for t > 0 when A and B are a consistent
     pair), not as the retardation function. K(0) is 0 by construction.
     """
-    ds = _single_speed(ds)
+    ds = single_speed(ds)
     t = default_time_grid(ds) if t is None else np.asarray(t, dtype=float).reshape(-1)
     a_inf = added_mass_inf if added_mass_inf is not None else _added_mass_inf_matrix(ds)
     n = ds.sizes["influenced_dof"]
     w = ds.omega.values
-    f = w[:, None, None] * (_matrix(ds, "added_mass") - np.asarray(a_inf))
+    f = w[:, None, None] * (dof_matrix(ds, "added_mass") - np.asarray(a_inf))
     f = np.vstack([np.zeros((1, n, n)), f]).reshape(w.size + 1, n * n)
     k = -(2.0 / np.pi) * sine_transform(np.r_[0.0, w], f, t)
     return xr.DataArray(
@@ -473,7 +456,7 @@ def _kramers_kronig_integral(ds: xr.Dataset, tail: str) -> NDArray:
     """(2/π) PV ∫₀^∞ B(ν)/(ν² − ω²) dν at the data frequencies, shape (nω, n, n)."""
     w = ds.omega.values
     n = ds.sizes["influenced_dof"]
-    b = _matrix(ds, "radiation_damping").reshape(w.size, n * n)
+    b = dof_matrix(ds, "radiation_damping").reshape(w.size, n * n)
     x = np.r_[0.0, w]
     f = np.vstack([np.zeros((1, n * n)), b])
     total = hilbert_pv(x, f, w) + fit_damping_tail(w, b, tail).hilbert(w)
@@ -490,8 +473,8 @@ def added_mass_inf_per_frequency(ds: xr.Dataset, *, tail: str = "auto") -> xr.Da
     the data's inconsistency and the effect of the unknown tail (largest near the last
     frequency).
     """
-    ds = _single_speed(ds)
-    values = _matrix(ds, "added_mass") - _kramers_kronig_integral(ds, tail)
+    ds = single_speed(ds)
+    values = dof_matrix(ds, "added_mass") - _kramers_kronig_integral(ds, tail)
     return xr.DataArray(
         values,
         dims=("omega", "influenced_dof", "radiating_dof"),
@@ -511,8 +494,8 @@ def trusted_frequencies(ds: xr.Dataset) -> NDArray[np.bool_]:
     and every frequency where a diagonal damping term is negative (irregular
     frequencies of panel methods), unless that would leave fewer than three.
     """
-    ds = _single_speed(ds)
-    b = np.diagonal(_matrix(ds, "radiation_damping"), axis1=1, axis2=2)
+    ds = single_speed(ds)
+    b = np.diagonal(dof_matrix(ds, "radiation_damping"), axis1=1, axis2=2)
     peak = np.abs(b).max(axis=0)
     negative = np.any(b < -1e-3 * peak, axis=1)
     keep = ~negative
@@ -524,7 +507,7 @@ def trusted_frequencies(ds: xr.Dataset) -> NDArray[np.bool_]:
 
 def _added_mass_inf_matrix(ds: xr.Dataset) -> NDArray:
     if "added_mass_inf" in ds:
-        return _matrix(ds, "added_mass_inf")
+        return dof_matrix(ds, "added_mass_inf")
     return added_mass_inf(ds, method="ogilvie").values
 
 
@@ -558,7 +541,7 @@ def added_mass_inf(ds: xr.Dataset, method: str = "auto", *, tail: str = "auto") 
     >>> a.attrs["method"]
     'ogilvie'
     """
-    ds = _single_speed(ds)
+    ds = single_speed(ds)
     if method not in ("auto", "data", "ogilvie"):
         raise HydroDataError(f"unknown method {method!r}", hint="use 'auto', 'data' or 'ogilvie'")
     if method == "data" or (method == "auto" and "added_mass_inf" in ds):
@@ -568,7 +551,7 @@ def added_mass_inf(ds: xr.Dataset, method: str = "auto", *, tail: str = "auto") 
                 path=ds.attrs.get("source_file"),
                 hint="use method='ogilvie' to estimate it from A(ω) and B(ω)",
             )
-        values = _matrix(ds, "added_mass_inf")
+        values = dof_matrix(ds, "added_mass_inf")
         spread = np.zeros_like(values)
         used = "data"
     else:
@@ -594,7 +577,7 @@ def kramers_kronig_added_mass(
     ds: xr.Dataset, *, added_mass_inf: ArrayLike | None = None, tail: str = "auto"
 ) -> xr.DataArray:
     """A(ω) predicted from B by Kramers–Kronig: A∞ + (2/π) PV ∫ B(ν)/(ν² − ω²) dν (eq. 5.23)."""
-    ds = _single_speed(ds)
+    ds = single_speed(ds)
     a_inf = _added_mass_inf_matrix(ds) if added_mass_inf is None else np.asarray(added_mass_inf)
     values = a_inf[None] + _kramers_kronig_integral(ds, tail)
     return xr.DataArray(
@@ -616,9 +599,9 @@ def kramers_kronig_error(
     whose A − A∞ is negligible compared with the diagonal terms get the error scaled by
     √(|A_ii − A∞_ii| |A_jj − A∞_jj|) instead.
     """
-    ds = _single_speed(ds)
+    ds = single_speed(ds)
     a_inf = _added_mass_inf_matrix(ds) if added_mass_inf is None else np.asarray(added_mass_inf)
-    a = _matrix(ds, "added_mass")
+    a = dof_matrix(ds, "added_mass")
     predicted = kramers_kronig_added_mass(ds, added_mass_inf=a_inf, tail=tail).values
     keep = trusted_frequencies(ds)
     dev = np.sqrt(np.mean((a - a_inf[None])[keep] ** 2, axis=0))
@@ -687,14 +670,14 @@ def radiation_restoring(
     zero for consistent A, B, K and A∞; its size (N/m, N·m/rad) shows where they
     disagree (low-frequency truncation, irregular frequencies, an unsettled K).
     """
-    ds = _single_speed(ds)
+    ds = single_speed(ds)
     t = kernel.time.values
     k = kernel.transpose("time", "influenced_dof", "radiating_dof").values
     n = k.shape[1]
     w = ds.omega.values
     s = sine_transform(t, k.reshape(t.size, n * n), w).reshape(w.size, n, n)
     c = (
-        w[:, None, None] ** 2 * (np.asarray(added_mass_inf)[None] - _matrix(ds, "added_mass"))
+        w[:, None, None] ** 2 * (np.asarray(added_mass_inf)[None] - dof_matrix(ds, "added_mass"))
         - w[:, None, None] * s
     )
     return xr.DataArray(
@@ -752,9 +735,9 @@ def significant_couplings(ds: xr.Dataset, threshold: float = 0.01) -> list[tuple
     (e.g. the yaw of an axisymmetric body), and the couplings of such a DOF are left out
     too (a DOF without damping cannot have coupled damping in passive data).
     """
-    ds = _single_speed(ds)
-    b = np.abs(_matrix(ds, "radiation_damping")).max(axis=0)
-    a = np.ptp(_matrix(ds, "added_mass"), axis=0)
+    ds = single_speed(ds)
+    b = np.abs(dof_matrix(ds, "radiation_damping")).max(axis=0)
+    a = np.ptp(dof_matrix(ds, "added_mass"), axis=0)
     n = b.shape[0]
     labels = [str(d) for d in ds.influenced_dof.values]
     rotation = np.array([is_rotation(lab) for lab in labels])
@@ -796,13 +779,13 @@ def retardation_diagnostics(
         * ``kramers_kronig_error`` — see :func:`kramers_kronig_error`;
         * ``significant`` — the coupling is not negligible (:func:`significant_couplings`).
     """
-    ds = _single_speed(ds)
+    ds = single_speed(ds)
     t = default_time_grid(ds) if t is None else np.asarray(t, dtype=float)
     kernel = retardation_function(ds, t, tail=tail)
     k = kernel.values
     n = k.shape[1]
     w = ds.omega.values
-    data_b = _matrix(ds, "radiation_damping").reshape(w.size, n * n)
+    data_b = dof_matrix(ds, "radiation_damping").reshape(w.size, n * n)
     tail_fit = fit_damping_tail(w, data_b, tail)
     area_data = np.trapezoid(np.vstack([np.zeros((1, n * n)), data_b]), np.r_[0.0, w], axis=0)
     area_tail = tail_fit.area()
@@ -815,7 +798,7 @@ def retardation_diagnostics(
         peak = np.abs(k).max(axis=0)
         end_ratio = np.where(peak > 0, np.abs(k[-1]) / peak, 0.0)
     estimate = added_mass_inf(ds, method="ogilvie", tail=tail)
-    a_inf = _matrix(ds, "added_mass_inf") if "added_mass_inf" in ds else np.full((n, n), np.nan)
+    a_inf = dof_matrix(ds, "added_mass_inf") if "added_mass_inf" in ds else np.full((n, n), np.nan)
     kk = kramers_kronig_error(
         ds, added_mass_inf=estimate.values if "added_mass_inf" not in ds else None, tail=tail
     )
@@ -856,7 +839,7 @@ def retardation_dataset(
     and those of :func:`retardation_diagnostics`. Attributes carry the source file,
     its history and the options used.
     """
-    ds = _single_speed(ds)
+    ds = single_speed(ds)
     t = default_time_grid(ds) if t is None else np.asarray(t, dtype=float).reshape(-1)
     kernel = retardation_function(ds, t, tail=tail, interpolation=interpolation)
     used = added_mass_inf(ds, tail=tail)

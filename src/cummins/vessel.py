@@ -29,6 +29,7 @@ import xarray as xr
 from numpy.typing import ArrayLike, NDArray
 
 from cummins.errors import HydroDataError, SimulationError
+from cummins.hydrodb import dof_matrix, single_speed
 from cummins.radiation import RadiationModel
 
 
@@ -164,9 +165,8 @@ def vessel_from_hydrodb(
         ``attrs["viscous_damping_source"]`` says where each part of B_v came from.
     """
     from cummins.fit import fit_radiation
-    from cummins.retardation import _single_speed
 
-    ds = _single_speed(ds)
+    ds = single_speed(ds)
     dofs = tuple(str(d) for d in ds.influenced_dof.values)
     for name in ("inertia_matrix", "hydrostatic_stiffness"):
         if name not in ds:
@@ -176,8 +176,8 @@ def vessel_from_hydrodb(
                 hint="use a file set that includes them (WAMIT .hst/.frc, NEMOH Mesh/KH.dat, "
                 "MSS .mat) or add them with cummins.make_hydrodb",
             )
-    m_rb = _matrix(ds, "inertia_matrix")
-    c = _matrix(ds, "hydrostatic_stiffness")
+    m_rb = dof_matrix(ds, "inertia_matrix")
+    c = dof_matrix(ds, "hydrostatic_stiffness")
     n = len(dofs)
     if viscous_damping is None:
         b_v = np.zeros((n, n))
@@ -191,7 +191,7 @@ def vessel_from_hydrodb(
     sources = ["given" if viscous_damping is not None else "none given"]
     if additional:
         if "additional_stiffness" in ds:
-            c = c + _matrix(ds, "additional_stiffness")
+            c = c + dof_matrix(ds, "additional_stiffness")
         if "additional_damping" in ds:
             b_v = b_v + _constant_part(ds, "additional_damping", dofs)
             sources.append("database additional_damping (frequency-independent entries)")
@@ -214,7 +214,7 @@ def _constant_part(ds: xr.Dataset, name: str, dofs: tuple[str, ...]) -> NDArray[
     """The frequency-independent entries of ``ds[name]``; a warning names the others."""
     values = ds[name]
     if "omega" not in values.dims:
-        return _matrix(ds, name)
+        return dof_matrix(ds, name)
     stack = values.transpose("omega", "influenced_dof", "radiating_dof").values.astype(float)
     spread = stack.max(axis=0) - stack.min(axis=0)
     constant = spread <= 1e-9 * np.maximum(np.abs(stack).max(axis=0), 1e-300)
@@ -231,7 +231,3 @@ def _constant_part(ds: xr.Dataset, name: str, dofs: tuple[str, ...]) -> NDArray[
             stacklevel=3,
         )
     return np.where(constant, stack[0], 0.0)
-
-
-def _matrix(ds: xr.Dataset, name: str) -> NDArray[np.float64]:
-    return np.array(ds[name].transpose("influenced_dof", "radiating_dof").values, dtype=float)

@@ -40,6 +40,7 @@ from cummins.errors import FitError, HydroDataError
 from cummins.fit.frequency import FrequencyFit, fit_frequency_domain, pruned_poles
 from cummins.fit.metrics import coupling_metrics
 from cummins.fit.realization import modal_realization
+from cummins.hydrodb import dof_matrix, single_speed
 from cummins.passivity import augment_for_passivity, enforce_passivity
 from cummins.radiation import CouplingModel, RadiationModel, symmetric_couplings
 from cummins.repair import limit_frequency_range, remove_suspect_frequencies
@@ -170,13 +171,7 @@ def fit_radiation(
             f"unknown added_mass_inf option {added_mass_inf!r}; use one of "
             f"{', '.join(ADDED_MASS_INF)}"
         )
-    if "forward_speed" in ds.dims:
-        if ds.sizes["forward_speed"] != 1:
-            raise HydroDataError(
-                "the data hold several forward speeds",
-                hint="select one first, e.g. ds.sel(forward_speed=0.0)",
-            )
-        ds = ds.isel(forward_speed=0)
+    ds = single_speed(ds)
     say = progress or (lambda message: None)
     data, excluded, data_notes = _fit_data(ds, omega_min, omega_max, exclude_suspect)
     a_inf_mode = added_mass_inf
@@ -198,7 +193,7 @@ def fit_radiation(
     ogilvie = ogilvie_estimate.values
     # uncertainty of Ogilvie's estimate: its spread over frequency, at least 0.5 %
     ogilvie_spread = np.maximum(ogilvie_estimate.spread.values, 0.005 * np.abs(ogilvie))
-    a_inf = _matrix(data, "added_mass_inf") if a_inf_mode == "data" else ogilvie.copy()
+    a_inf = dof_matrix(data, "added_mass_inf") if a_inf_mode == "data" else ogilvie.copy()
 
     labels = [str(d) for d in data.influenced_dof.values]
     w = data.omega.values
@@ -418,7 +413,7 @@ def fit_data(data: xr.Dataset) -> FitData:
         data.assign(radiation_damping=(0.5 * (b + swapped)).transpose(*b.dims)),
         max_points=500,
     ).transpose("time", "influenced_dof", "radiating_dof")
-    a_all, b_all = _matrix(data, "added_mass"), _matrix(data, "radiation_damping")
+    a_all, b_all = dof_matrix(data, "added_mass"), dof_matrix(data, "radiation_damping")
     return FitData(
         data.omega.values,
         0.5 * (a_all + np.swapaxes(a_all, 1, 2)),
@@ -460,18 +455,13 @@ def _response_weights(data: xr.Dataset) -> NDArray[np.float64]:
                 hint="use weighting='uniform' or data with the rigid-body inertia and restoring",
             )
     w = data.omega.values
-    a = np.diagonal(_matrix(data, "added_mass"), axis1=1, axis2=2)
-    b = np.diagonal(_matrix(data, "radiation_damping"), axis1=1, axis2=2)
-    m = np.diag(_matrix(data, "inertia_matrix"))
-    c = np.diag(_matrix(data, "hydrostatic_stiffness"))
+    a = np.diagonal(dof_matrix(data, "added_mass"), axis1=1, axis2=2)
+    b = np.diagonal(dof_matrix(data, "radiation_damping"), axis1=1, axis2=2)
+    m = np.diag(dof_matrix(data, "inertia_matrix"))
+    c = np.diag(dof_matrix(data, "hydrostatic_stiffness"))
     z = np.abs(-(w**2)[:, None] * (m + a) + 1j * w[:, None] * b + c)
     sensitivity = w[:, None] / np.maximum(z, 1e-300)
     return sensitivity / np.sqrt(np.mean(sensitivity**2, axis=0))
-
-
-def _matrix(ds: xr.Dataset, name: str) -> np.ndarray:
-    """A copy (never a view: the caller's dataset must stay untouched)."""
-    return np.array(ds[name].transpose(..., "influenced_dof", "radiating_dof").values)
 
 
 def _fit_data(
