@@ -47,6 +47,35 @@ def reports_errors(func):
     return wrapper
 
 
+def viscous_damping_option(func):
+    """--viscous-damping DOF VALUE (repeatable), passed as ``viscous_damping``."""
+    return click.option(
+        "--viscous-damping",
+        "viscous_damping",
+        type=(str, float),
+        multiple=True,
+        metavar="DOF VALUE",
+        help="Linear viscous damping B_v on a DOF, e.g. --viscous-damping Roll 5e8 (kg/s, "
+        "kg m^2/s; repeatable, repeated values add up). Surge, sway and yaw have no "
+        "restoring: without it they drift in a simulation.",
+    )(func)
+
+
+def viscous_damping_values(pairs, labels) -> dict[str, float] | None:
+    """``{dof: value}`` from the --viscous-damping pairs (None when there are none)."""
+    if not pairs:
+        return None
+    values: dict[str, float] = {}
+    for dof, value in pairs:
+        if dof not in labels:
+            raise click.BadParameter(
+                f"unknown DOF {dof!r}; the data have {', '.join(labels)}",
+                param_hint="--viscous-damping",
+            )
+        values[dof] = values.get(dof, 0.0) + value
+    return values
+
+
 def read_options(func):
     """--format, --rho, --g, --ulen: how to read solver files."""
     decorators = [

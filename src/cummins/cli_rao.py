@@ -15,6 +15,8 @@ from cummins.cli_common import (
     read_options,
     reports_errors,
     select_speed,
+    viscous_damping_option,
+    viscous_damping_values,
 )
 from cummins.hydrodb import is_rotation
 
@@ -105,15 +107,7 @@ def parse_headings(values: tuple[str, ...]) -> list[float]:
     help="Number of frequencies, equally spaced (default: the data's frequencies, or 200 "
     "when --omega-min/--omega-max are given).",
 )
-@click.option(
-    "--viscous-damping",
-    "viscous",
-    type=(str, float),
-    multiple=True,
-    metavar="DOF VALUE",
-    help="Extra linear damping on the diagonal, e.g. --viscous-damping Roll 5e8 "
-    "(kg/s or kg m^2/s; repeatable).",
-)
+@viscous_damping_option
 @click.option(
     "--no-additional",
     is_flag=True,
@@ -147,7 +141,7 @@ def rao_command(
     omega_min,
     omega_max,
     n_omega,
-    viscous,
+    viscous_damping,
     no_additional,
     plot_dir,
     speed,
@@ -187,17 +181,7 @@ def rao_command(
             )
         omega = np.linspace(lo, hi, n)
     beta = np.radians(parse_headings(headings)) if headings else None
-    labels = [str(d) for d in ds.influenced_dof.values]
-    damping = None
-    if viscous:
-        damping = {}
-        for dof, value in viscous:
-            if dof not in labels:
-                raise click.BadParameter(
-                    f"unknown DOF {dof!r}; the data have {', '.join(labels)}",
-                    param_hint="--viscous-damping",
-                )
-            damping[dof] = damping.get(dof, 0.0) + value
+    damping = viscous_damping_values(viscous_damping, [str(d) for d in ds.influenced_dof.values])
     rao = motion_rao(ds, omega, beta, viscous_damping=damping, additional=not no_additional)
     if "excitation_force" in ds and "wave_direction" in ds.dims:
         coverage = heading_coverage(ds)

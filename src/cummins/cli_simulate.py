@@ -15,6 +15,8 @@ from cummins.cli_common import (
     read_options,
     reports_errors,
     select_speed,
+    viscous_damping_option,
+    viscous_damping_values,
 )
 
 
@@ -59,14 +61,7 @@ from cummins.cli_common import (
 )
 @click.option("--wave-period", type=float, default=None, metavar="S")
 @click.option("--wave-amplitude", type=float, default=1.0, show_default=True, metavar="M")
-@click.option(
-    "--viscous-damping",
-    type=(str, float),
-    multiple=True,
-    metavar="DOF VALUE",
-    help="Linear viscous damping B_v on a DOF (N s/m, N m s/rad), repeatable; surge, sway "
-    "and yaw have no restoring and drift without it.",
-)
+@viscous_damping_option
 @click.option(
     "--start",
     type=click.Choice(["steady", "rest"]),
@@ -144,14 +139,7 @@ def simulate_command(
     prepare_outputs(output, force=force)
     model, data_path = _model_and_data(path)
     ds = select_speed(read_hydrodb(data_path, format_, rho, g, ulen), speed)
-    dofs = [str(d) for d in ds.influenced_dof.values]
-    b_v = np.zeros(len(dofs))
-    for dof, value in viscous_damping:
-        if dof not in dofs:
-            raise click.BadParameter(
-                f"unknown DOF {dof!r}; use {', '.join(dofs)}", param_hint="--viscous-damping"
-            )
-        b_v[dofs.index(dof)] = value
+    b_v = viscous_damping_values(viscous_damping, [str(d) for d in ds.influenced_dof.values])
     direction = np.radians(heading)
     if regular:
         sea = wv.regular_wave(wave_amplitude, wave_period, direction)

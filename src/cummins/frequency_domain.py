@@ -28,7 +28,7 @@ significant double amplitude 4√m₀.
 
 from __future__ import annotations
 
-from collections.abc import Callable, Mapping
+from collections.abc import Callable
 from typing import Any
 
 import numpy as np
@@ -43,6 +43,7 @@ from cummins.excitation import (
     excitation_transfer,
 )
 from cummins.hydrodb import dof_matrix, single_speed
+from cummins.vessel import viscous_damping_matrix
 
 __all__ = [
     "impedance",
@@ -56,37 +57,6 @@ __all__ = [
 ]
 
 _RAO_UNITS = "m/m | rad/m (translation | rotation, per metre of wave amplitude)"
-
-
-def _viscous_matrix(ds: xr.Dataset, viscous_damping: Any) -> NDArray[np.float64] | None:
-    """B_v as an (n, n) array: a matrix, a DataArray with DOF dims, or {dof: value}."""
-    if viscous_damping is None:
-        return None
-    labels = [str(d) for d in ds.influenced_dof.values]
-    n = len(labels)
-    if isinstance(viscous_damping, Mapping):
-        out = np.zeros((n, n))
-        for dof, value in viscous_damping.items():
-            if str(dof) not in labels:
-                raise HydroDataError(
-                    f"viscous damping given for DOF {dof!r}, which is not in the data",
-                    hint=f"DOFs: {', '.join(labels)}",
-                )
-            k = labels.index(str(dof))
-            out[k, k] = float(value)
-        return out
-    if isinstance(viscous_damping, xr.DataArray):
-        viscous_damping = viscous_damping.sel(
-            influenced_dof=labels, radiating_dof=labels
-        ).transpose("influenced_dof", "radiating_dof")
-    arr = np.asarray(viscous_damping, dtype=float)
-    if arr.shape != (n, n):
-        raise HydroDataError(
-            f"viscous_damping has shape {arr.shape}, expected {(n, n)} for DOFs {', '.join(labels)}"
-        )
-    if not np.all(np.isfinite(arr)):
-        raise HydroDataError("viscous_damping has non-finite values")
-    return arr
 
 
 def _frequency_matrix(
@@ -185,9 +155,9 @@ def impedance(
             damping = damping + _frequency_matrix(ds, "additional_damping", w, method)
         if "additional_stiffness" in ds:
             stiffness = stiffness + dof_matrix(ds, "additional_stiffness")
-    bv = _viscous_matrix(ds, viscous_damping)
-    if bv is not None:
-        damping = damping + bv[None]
+    if viscous_damping is not None:
+        labels = [str(d) for d in ds.influenced_dof.values]
+        damping = damping + viscous_damping_matrix(labels, viscous_damping)[None]
     ww = w[:, None, None]
     return -(ww**2) * mass + 1j * ww * damping + stiffness[None]
 

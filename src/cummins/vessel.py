@@ -147,7 +147,8 @@ def vessel_from_hydrodb(
         A radiation model of the same DOFs (default: :func:`cummins.fit.fit_radiation` of
         ``ds`` with ``fit_options``).
     viscous_damping
-        B_v, an (n, n) matrix or the n diagonal values (added to the data's own, below).
+        B_v as :func:`viscous_damping_matrix` takes it: an (n, n) matrix, the n diagonal
+        values, a DataArray or ``{dof: value}`` (added to the data's own, below).
     additional
         Take the database's ``additional_stiffness`` (moorings) into C and its
         ``additional_damping`` (WAMIT external damping, MSS ``Bv``, VERES viscous roll
@@ -178,16 +179,7 @@ def vessel_from_hydrodb(
             )
     m_rb = dof_matrix(ds, "inertia_matrix")
     c = dof_matrix(ds, "hydrostatic_stiffness")
-    n = len(dofs)
-    if viscous_damping is None:
-        b_v = np.zeros((n, n))
-    else:
-        b_v = np.asarray(viscous_damping, dtype=float)
-        b_v = np.diag(b_v) if b_v.ndim == 1 else b_v
-        if b_v.shape != (n, n):
-            raise SimulationError(f"viscous damping must be ({n}, {n}) or {n} values")
-        if not np.all(np.isfinite(b_v)):
-            raise SimulationError("viscous damping has non-finite values")
+    b_v = viscous_damping_matrix(dofs, viscous_damping)
     sources = ["given" if viscous_damping is not None else "none given"]
     if additional:
         if "additional_stiffness" in ds:
@@ -208,6 +200,48 @@ def vessel_from_hydrodb(
         "viscous_damping_source": "; ".join(sources),
     }
     return Vessel(dofs, m_rb, c, b_v, model, attrs)
+
+
+def viscous_damping_matrix(dofs, viscous_damping: Any) -> NDArray[np.float64]:
+    """B_v as an (n, n) array for the DOF labels ``dofs``: from an (n, n) matrix, n
+    diagonal values, a DataArray with ``influenced_dof``/``radiating_dof``, or
+    ``{dof: value}`` for a diagonal one (kg/s, kg·m²/s …); zeros for None.
+
+    Raises
+    ------
+    HydroDataError
+        A DOF that is not in ``dofs``, a wrong shape, non-finite values.
+    """
+    labels = [str(d) for d in dofs]
+    n = len(labels)
+    if viscous_damping is None:
+        return np.zeros((n, n))
+    if isinstance(viscous_damping, Mapping):
+        out = np.zeros((n, n))
+        for dof, value in viscous_damping.items():
+            if str(dof) not in labels:
+                raise HydroDataError(
+                    f"viscous damping given for DOF {dof!r}, which is not in the data",
+                    hint=f"DOFs: {', '.join(labels)}",
+                )
+            k = labels.index(str(dof))
+            out[k, k] = float(value)
+        return out
+    if isinstance(viscous_damping, xr.DataArray):
+        viscous_damping = viscous_damping.sel(
+            influenced_dof=labels, radiating_dof=labels
+        ).transpose("influenced_dof", "radiating_dof")
+    arr = np.asarray(viscous_damping, dtype=float)
+    if arr.shape == (n,):
+        arr = np.diag(arr)
+    if arr.shape != (n, n):
+        raise HydroDataError(
+            f"viscous_damping has shape {arr.shape}, expected {(n, n)} or {(n,)} for DOFs "
+            f"{', '.join(labels)}"
+        )
+    if not np.all(np.isfinite(arr)):
+        raise HydroDataError("viscous_damping has non-finite values")
+    return arr
 
 
 def _constant_part(ds: xr.Dataset, name: str, dofs: tuple[str, ...]) -> NDArray[np.float64]:
