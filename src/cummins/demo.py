@@ -252,10 +252,9 @@ def _simulate_step(ds, model, out: Path, force: bool) -> DemoStep:
     """Half an hour in a JONSWAP sea from 150°, checked against the frequency domain."""
     import functools
 
-    from cummins.excitation import excitation_coefficients
     from cummins.io.netcdf import save_netcdf
     from cummins.pipeline import write_simulation_plots
-    from cummins.simulate import simulate_waves
+    from cummins.simulate import component_motions, simulate_waves
     from cummins.vessel import vessel_from_hydrodb
     from cummins.waves import irregular_waves, jonswap
 
@@ -272,7 +271,7 @@ def _simulate_step(ds, model, out: Path, force: bool) -> DemoStep:
     save_netcdf(run, out / "run.nc")
     plots = write_simulation_plots(run, vessel, ds, sea, out, force=force)
     # significant amplitudes: time domain against the frequency domain of the same model
-    x = vessel.response(sea.omega, excitation_coefficients(ds, sea))
+    x = component_motions(vessel, ds, sea)
     fd = 2 * np.sqrt(0.5 * (np.abs(x) ** 2).sum(axis=0))
     td = 2 * run.motion.values.std(axis=0)
     worst = float(np.max(np.abs(td / fd - 1)[2:5]))

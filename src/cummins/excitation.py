@@ -345,22 +345,24 @@ def _heading_weights(
         x = np.unwrap(b[order])
         x = x - _TWO_PI * np.floor(x[0] / _TWO_PI)
         tt = np.mod(t[todo] - x[0], _TWO_PI) + x[0]
-        eye = np.eye(nb)[order]
-        if nb >= 4 and method == "cubic":
-            w = CubicSpline(x, eye, bc_type="not-a-knot")(tt)
-        else:
-            w = np.stack([np.interp(tt, x, eye[:, j]) for j in range(nb)], axis=1)
-        weights[todo] = w
+        weights[todo] = _cardinal_weights(x, np.eye(nb)[order], tt, method, "not-a-knot")
         return weights
     x = np.append(b, b[0] + _TWO_PI)
     eye = np.vstack([np.eye(nb), np.eye(nb)[:1]])
     tt = np.mod(t[todo] - b[0], _TWO_PI) + b[0]
-    if nb >= 4 and method == "cubic":
-        w = CubicSpline(x, eye, bc_type="periodic")(tt)
-    else:
-        w = np.stack([np.interp(tt, x, eye[:, j]) for j in range(nb)], axis=1)
-    weights[todo] = w
+    weights[todo] = _cardinal_weights(x, eye, tt, method, "periodic")
     return weights
+
+
+def _cardinal_weights(x, unit_values, tt, method: str, boundary: str) -> NDArray[np.float64]:
+    """Weights of each heading's value at the angles ``tt``: the interpolants through
+    the unit vectors ``unit_values`` (one row per knot ``x``) — cubic spline with the
+    ``boundary`` condition when ``method == "cubic"`` and there are ≥ 4 headings, else
+    linear."""
+    nb = unit_values.shape[1]
+    if nb >= 4 and method == "cubic":
+        return CubicSpline(x, unit_values, bc_type=boundary)(tt)
+    return np.stack([np.interp(tt, x, unit_values[:, j]) for j in range(nb)], axis=1)
 
 
 # --------------------------------------------------------------------------- frequency

@@ -214,17 +214,17 @@ def reduce_stage(
 def write_simulation_plots(run, vessel, ds, sea, folder: Path, *, force: bool = False):
     """``time_series.png``, and for irregular seas ``response_spectra.png``: the
     simulation (Welch) against the frequency-domain spectrum of the same linear model."""
-    from cummins.excitation import excitation_transfer
     from cummins.plots import plot_response_spectra, plot_time_series, save_figure
+    from cummins.simulate import component_motions
 
     folder.mkdir(parents=True, exist_ok=True)
     written = [save_figure(plot_time_series(run), folder / "time_series.png", force=force)]
     if len(sea) > 1:
         order = np.argsort(sea.omega)
-        w, a = sea.omega[order], sea.amplitude[order]
-        x = vessel.response(w, excitation_transfer(ds, w, sea.direction[order]))
+        w = sea.omega[order]
+        x = component_motions(vessel, ds, sea)[order]
         width = float(getattr(sea, "bin_width", None) or np.median(np.diff(w)))
-        density = (0.5 * a[:, None] ** 2 * np.abs(x) ** 2) / width
+        density = 0.5 * np.abs(x) ** 2 / width
         references = {"frequency domain (same model)": (w, density)}
         written.append(
             save_figure(

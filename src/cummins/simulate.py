@@ -261,6 +261,17 @@ def steady_state(
     return x.real
 
 
+def component_motions(
+    vessel: Vessel, ds: xr.Dataset, waves, **excitation_options
+) -> NDArray[np.complex128]:
+    """Complex motion amplitudes x_k (n_components, n_dofs) of the vessel's linear model
+    in each wave component: its stationary response is ξ(t) = Re Σ_k x_k e^{iω_k t}, and
+    ½|x_k|² the share of component k in each DOF's variance (m², rad²)."""
+    from cummins.excitation import excitation_coefficients
+
+    return vessel.response(waves.omega, excitation_coefficients(ds, waves, **excitation_options))
+
+
 def simulate_convolution(
     vessel: Vessel,
     t: ArrayLike,
