@@ -14,6 +14,7 @@ import click
 from rich.table import Table
 
 from cummins._version import __version__
+from cummins.cli_batch import batch_command, report_command
 from cummins.cli_bem import bem_command
 from cummins.cli_common import (
     console,
@@ -27,6 +28,7 @@ from cummins.cli_kernel import kernel_command
 from cummins.cli_rao import rao_command
 from cummins.cli_reduce import reduce_command
 from cummins.cli_simulate import simulate_command
+from cummins.cli_sysid import identify_damping_command
 
 
 @click.group(
@@ -47,6 +49,10 @@ def main() -> None:
       cummins reduce MODEL     fewer states by balanced truncation, passive again
       cummins rao DATA         coupled motion RAOs, frequency domain (the reference)
       cummins simulate DATA    the vessel in regular or irregular waves, time domain
+      cummins identify-damping RECORDS --model DATA
+                               viscous (roll) damping from motion records or decays
+      cummins batch STUDY      many cases (headings x sea states) on Dask; operability
+      cummins report FILE      a self-contained HTML page of a data, model, run or results file
       cummins demo             run all of it on a bundled real vessel (WAMIT tanker)
 
     \b
@@ -251,6 +257,9 @@ main.add_command(fit_command)
 main.add_command(reduce_command)
 main.add_command(rao_command)
 main.add_command(simulate_command)
+main.add_command(identify_damping_command)
+main.add_command(batch_command)  # works without Dask: it then says how to install it
+main.add_command(report_command)
 
 
 if __name__ == "__main__":  # pragma: no cover

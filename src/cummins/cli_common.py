@@ -8,6 +8,7 @@ from pathlib import Path
 
 import click
 from rich.console import Console
+from rich.markup import escape
 from rich.progress import BarColumn, Progress, TaskProgressColumn, TextColumn, TimeElapsedColumn
 
 from cummins.errors import CumminsError
@@ -33,7 +34,7 @@ def run_reporting_errors(function, *args, **kwargs):
     try:
         return function(*args, **kwargs)
     except CumminsError as exc:
-        err_console.print(f"[bold red]error:[/] {exc}")
+        err_console.print(f"[bold red]error:[/] {escape(str(exc))}")
         sys.exit(2)
 
 
@@ -61,8 +62,11 @@ def viscous_damping_option(func):
     )(func)
 
 
-def viscous_damping_values(pairs, labels) -> dict[str, float] | None:
-    """``{dof: value}`` from the --viscous-damping pairs (None when there are none)."""
+def viscous_damping_values(
+    pairs, labels, option: str = "--viscous-damping"
+) -> dict[str, float] | None:
+    """``{dof: value}`` from the (DOF, value) pairs of ``option`` (None when there are
+    none)."""
     if not pairs:
         return None
     values: dict[str, float] = {}
@@ -70,7 +74,7 @@ def viscous_damping_values(pairs, labels) -> dict[str, float] | None:
         if dof not in labels:
             raise click.BadParameter(
                 f"unknown DOF {dof!r}; the data have {', '.join(labels)}",
-                param_hint="--viscous-damping",
+                param_hint=option,
             )
         values[dof] = values.get(dof, 0.0) + value
     return values
@@ -155,3 +159,31 @@ def select_speed(ds, speed: float | None):
     if not matches:
         raise click.UsageError(f"no data at --speed {speed:g} m/s; the data hold {listed} m/s")
     return ds.isel(forward_speed=matches[0])
+
+
+def model_and_data(path):
+    """(model or None, data path): a model file names the data it was fitted to."""
+    from cummins.io.model_netcdf import FORMAT_NAME
+    from cummins.radiation import RadiationModel
+
+    p = Path(path)
+    if p.is_file() and p.suffix.lower() == ".nc":
+        import h5py
+
+        try:
+            with h5py.File(p, "r") as f:
+                kind = f.attrs.get("cummins_format")
+        except OSError:
+            kind = None
+        if isinstance(kind, bytes):
+            kind = kind.decode()
+        if kind == FORMAT_NAME:
+            model = RadiationModel.load(p)
+            source = model.attrs.get("source_file")
+            if not source or not Path(source).exists():
+                raise click.UsageError(
+                    f"{p} does not name an existing data file ({source!r}): give the data "
+                    "file instead (the model is then fitted again)"
+                )
+            return model, source
+    return None, path

@@ -9,6 +9,7 @@ import numpy as np
 
 from cummins.cli_common import (
     console,
+    model_and_data,
     prepare_outputs,
     progress_bar,
     read_hydrodb,
@@ -63,6 +64,16 @@ from cummins.cli_common import (
 @click.option("--wave-amplitude", type=float, default=1.0, show_default=True, metavar="M")
 @viscous_damping_option
 @click.option(
+    "--quadratic-damping",
+    "quadratic_damping",
+    type=(str, float),
+    multiple=True,
+    metavar="DOF VALUE",
+    help="Quadratic viscous damping b2 |v| v on a DOF, e.g. --quadratic-damping Roll 2e10 "
+    "(kg m^2/rad for roll, kg/m for translations; repeatable; the run then uses the "
+    "Runge-Kutta path).",
+)
+@click.option(
     "--start",
     type=click.Choice(["steady", "rest"]),
     default="steady",
@@ -107,6 +118,7 @@ def simulate_command(
     wave_period,
     wave_amplitude,
     viscous_damping,
+    quadratic_damping,
     start,
     accurate,
     speed,
@@ -128,7 +140,7 @@ def simulate_command(
       cummins simulate tanker.1 --regular --wave-period 9 --wave-amplitude 1 -o reg.nc
     """
     from cummins import waves as wv
-    from cummins.simulate import simulate_waves
+    from cummins.simulate import quadratic_damping_force, simulate_waves
     from cummins.vessel import vessel_from_hydrodb
 
     if regular:
@@ -137,9 +149,11 @@ def simulate_command(
     elif hs is None or tp is None:
         raise click.UsageError("irregular waves need --hs and --tp (or use --regular)")
     prepare_outputs(output, force=force)
-    model, data_path = _model_and_data(path)
+    model, data_path = model_and_data(path)
     ds = select_speed(read_hydrodb(data_path, format_, rho, g, ulen), speed)
-    b_v = viscous_damping_values(viscous_damping, [str(d) for d in ds.influenced_dof.values])
+    labels = [str(d) for d in ds.influenced_dof.values]
+    b_v = viscous_damping_values(viscous_damping, labels)
+    b_q = viscous_damping_values(quadratic_damping, labels, "--quadratic-damping")
     direction = np.radians(heading)
     if regular:
         sea = wv.regular_wave(wave_amplitude, wave_period, direction)
@@ -170,6 +184,7 @@ def simulate_command(
             duration=duration,
             dt=dt,
             initial=start,
+            nonlinear_force=quadratic_damping_force(vessel.dofs, b_q) if b_q else None,
             progress=lambda fraction: bar.update(task, completed=fraction),
         )
     run.attrs.update(
@@ -178,6 +193,7 @@ def simulate_command(
             "sea": title,
             "source_file": str(ds.attrs.get("source_file", "")),
             "radiation_model_order": vessel.radiation.total_order,
+            **{f"quadratic_damping_{d}": b for d, b in (b_q or {}).items()},
         }
     )
     _summary(run)
@@ -190,34 +206,6 @@ def simulate_command(
 
         for file in write_simulation_plots(run, vessel, ds, sea, Path(plot_dir), force=force):
             console.print(f"wrote {file}")
-
-
-def _model_and_data(path):
-    """(model or None, data path): a model file names the data it was fitted to."""
-    from cummins.io.model_netcdf import FORMAT_NAME
-    from cummins.radiation import RadiationModel
-
-    p = Path(path)
-    if p.is_file() and p.suffix.lower() == ".nc":
-        import h5py
-
-        try:
-            with h5py.File(p, "r") as f:
-                kind = f.attrs.get("cummins_format")
-        except OSError:
-            kind = None
-        if isinstance(kind, bytes):
-            kind = kind.decode()
-        if kind == FORMAT_NAME:
-            model = RadiationModel.load(p)
-            source = model.attrs.get("source_file")
-            if not source or not Path(source).exists():
-                raise click.UsageError(
-                    f"{p} does not name an existing data file ({source!r}): give the data "
-                    "file instead (the model is then fitted again)"
-                )
-            return model, source
-    return None, path
 
 
 def _summary(run) -> None:

@@ -92,6 +92,11 @@ class SimulationError(CumminsError):
     """A time-domain simulation failed (diverged, bad input)."""
 
 
+class IdentificationError(CumminsError):
+    """Coefficients cannot be identified from the records given (too short, no excitation,
+    a DOF or term the records do not hold)."""
+
+
 class OutputExistsError(CumminsError, FileExistsError):
     """Refusing to overwrite an existing file without ``force=True`` / ``--force``."""
 

@@ -425,3 +425,160 @@ def plot_response_spectra(
         ax.set_visible(False)
     fig.suptitle(f"response spectra: {run.attrs.get('sea', '')}")
     return fig
+
+
+# --------------------------------------------------------------------------- damping identification
+
+
+def plot_residual_force(res: xr.Dataset, estimate, *, max_points: int = 4000) -> Figure:
+    """The residual force of a DOF against each regressor, with their correlation in
+    the titles (de Haan's screening plot, seed 003 Fig. 3.24), and against the DOF's
+    velocity with the identified damping curve and its confidence band of the linear
+    term.
+
+    ``res`` is a :func:`cummins.sysid.residual_force` result restricted to the samples
+    used; ``estimate`` the :class:`cummins.sysid.DampingEstimate` of that DOF.
+    """
+    from cummins.sysid.identify import regressor_matrix
+
+    dof = estimate.dof
+    y = res.residual_force.sel(dof=dof).values
+    x = regressor_matrix(res, estimate.regressors)
+    pick = np.linspace(0, y.size - 1, min(max_points, y.size)).astype(int)
+    n = len(estimate.regressors) + 1
+    cols = min(n, 3)
+    fig = Figure(figsize=(4 * cols, 3.4 * ((n + cols - 1) // cols)), layout="constrained")
+    axes = np.atleast_1d(fig.subplots((n + cols - 1) // cols, cols)).ravel()
+    force_unit = "N·m" if is_rotation(dof) else "N"
+    for k, r in enumerate(estimate.regressors):
+        ax = axes[k]
+        ax.plot(x[pick, k], y[pick], ".", ms=1.5, color="0.4")
+        corr = np.corrcoef(x[:, k], y)[0, 1] if np.std(x[:, k]) > 0 else float("nan")
+        ax.set_title(f"{r.name}: r = {corr:.2f}", fontsize="medium")
+        ax.set_xlabel(r.name)
+        ax.set_ylabel(f"residual [{force_unit}]")
+        ax.grid(alpha=0.3)
+    ax = axes[n - 1]
+    v = res.velocity.sel(dof=dof).values
+    ax.plot(v[pick], y[pick], ".", ms=1.5, color="0.6", label="residual force")
+    grid = np.linspace(v.min(), v.max(), 200)
+    ax.plot(grid, estimate.damping_force(grid), color="C3", lw=2, label="identified damping")
+    ax.set_xlabel(f"{dof} velocity [{'rad' if is_rotation(dof) else 'm'}/s]")
+    ax.set_ylabel(f"force [{force_unit}]")
+    ax.legend(fontsize="small")
+    ax.grid(alpha=0.3)
+    for extra in axes[n:]:
+        extra.set_visible(False)
+    fig.suptitle(
+        f"{dof}: residual force of the potential-flow model (R² of the fit {estimate.r2:.3f}, "
+        f"condition number {estimate.condition_number:.3g})"
+    )
+    return fig
+
+
+def plot_reprediction(
+    runs: dict[str, xr.Dataset], window: float | None = 300.0, dofs: Sequence[str] | None = None
+) -> Figure:
+    """Measured motions against re-predictions (:func:`cummins.sysid.repredict`), the
+    correlation of each in the legend; the last ``window`` seconds."""
+    first = next(iter(runs.values()))
+    dofs = [str(d) for d in first.dof.values] if dofs is None else list(dofs)
+    t = first.time.values
+    keep = t >= t[-1] - window if window else np.ones(t.size, dtype=bool)
+    fig = Figure(figsize=(11, 2.2 * len(dofs) + 0.6), layout="constrained")
+    axes = np.atleast_1d(fig.subplots(len(dofs), 1, sharex=True))
+    for ax, dof in zip(axes, dofs, strict=True):
+        scale = np.degrees(1.0) if is_rotation(dof) else 1.0
+        unit = "deg" if is_rotation(dof) else "m"
+        ax.plot(
+            t[keep],
+            scale * first.measured.sel(dof=dof).values[keep],
+            color="0.1",
+            lw=1.2,
+            label="measured",
+        )
+        for k, (label, run) in enumerate(runs.items()):
+            corr = float(run.correlation.sel(dof=dof))
+            ax.plot(
+                t[keep],
+                scale * run.motion.sel(dof=dof).values[keep],
+                "--",
+                color=f"C{k}",
+                lw=1.0,
+                label=f"{label} (r = {corr:.3f})",
+            )
+        ax.set_ylabel(f"{dof} [{unit}]")
+        ax.legend(fontsize="small", loc="upper right")
+        ax.grid(alpha=0.3)
+    axes[-1].set_xlabel("t [s]")
+    fig.suptitle("re-prediction of the recorded motions from the excitation force")
+    return fig
+
+
+def plot_segment_validation(validation: xr.Dataset) -> Figure:
+    """Coefficients per segment with their confidence intervals, and the correlations
+    of the re-predictions in sample, with the previous segment's coefficients and
+    without identified damping (seed 003 Figs. 3.25–3.27)."""
+    dofs = [str(d) for d in validation.dof.values]
+    terms = [str(t) for t in validation.term.values]
+    seg = validation.segment.values
+    fig = Figure(figsize=(4 * (len(terms) + 1), 3.2 * len(dofs)), layout="constrained")
+    axes = np.atleast_2d(fig.subplots(len(dofs), len(terms) + 1))
+    for i, dof in enumerate(dofs):
+        for j, term in enumerate(terms):
+            ax = axes[i, j]
+            c = validation.coefficient.values[:, i, j]
+            lo, hi = validation.lower.values[:, i, j], validation.upper.values[:, i, j]
+            ax.errorbar(seg, c, yerr=[c - lo, hi - c], fmt="o", capsize=3)
+            ax.axhline(0, color="0.5", lw=0.8)
+            bad = validation.negative.values[:, i] | validation.ill_conditioned.values[:, i]
+            ax.plot(seg[bad], c[bad], "x", color="C3", ms=10, label="flagged")
+            ax.set_title(f"{dof}: {term}", fontsize="medium")
+            ax.set_xlabel("segment")
+            ax.grid(alpha=0.3)
+        ax = axes[i, -1]
+        for k, name in enumerate(("in_sample", "previous", "baseline")):
+            ax.plot(seg, validation[name].values[:, i], "o-", color=f"C{k}", label=name)
+        ax.set_title(f"{dof}: correlation of re-predictions", fontsize="medium")
+        ax.set_xlabel("segment")
+        ax.legend(fontsize="small")
+        ax.grid(alpha=0.3)
+    return fig
+
+
+def plot_roll_decay(t, phi, decay) -> Figure:
+    """A free-decay record with the fitted decay, and the decrement Δφ against the mean
+    amplitude φ_m with the line of eq. (2) of :mod:`cummins.sysid.decay`."""
+    t = np.asarray(t, dtype=float)
+    phi = np.asarray(phi, dtype=float)
+    fig = Figure(figsize=(11, 4), layout="constrained")
+    ax1, ax2 = fig.subplots(1, 2, width_ratios=(2, 1))
+    ax1.plot(t, np.degrees(phi), color="0.2", lw=1.0, label="record")
+    ax1.plot(t, np.degrees(decay.simulate(t)), "--", color="C3", lw=1.0, label="fitted decay")
+    ax1.plot(
+        decay.extremes_time,
+        np.degrees(decay.extremes + decay.offset),
+        "o",
+        ms=3,
+        color="C0",
+        label="extremes",
+    )
+    ax1.set_xlabel("t [s]")
+    ax1.set_ylabel("roll [deg]")
+    ax1.legend(fontsize="small")
+    ax1.grid(alpha=0.3)
+    amp = np.degrees(decay.amplitudes)
+    ax2.plot(amp, np.degrees(decay.decrements), "o", color="C0", label="half cycles")
+    grid = np.linspace(0, amp.max() * 1.05, 50)
+    g = np.radians(grid)
+    line = np.pi * decay["p1"] / (2 * decay["omega0"]) * g + 4 / 3 * decay["p2"] * g**2
+    ax2.plot(grid, np.degrees(line), color="C3", label="p1, p2 of the fit")
+    ax2.set_xlabel("mean amplitude φ_m [deg]")
+    ax2.set_ylabel("decrement Δφ [deg]")
+    ax2.legend(fontsize="small")
+    ax2.grid(alpha=0.3)
+    fig.suptitle(
+        f"roll decay: p1 = {decay['p1']:.4g} 1/s, p2 = {decay['p2']:.4g} 1/rad, "
+        f"ω0 = {decay['omega0']:.4g} rad/s"
+    )
+    return fig

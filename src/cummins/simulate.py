@@ -245,6 +245,25 @@ def simulate_waves(
     return result
 
 
+def quadratic_damping_force(dofs, coefficients: dict[str, float]) -> NonlinearForce:
+    """τ_nl(t, ξ, ξ̇) = −b₂ |ξ̇_i| ξ̇_i on the DOFs of ``coefficients`` ({dof: b₂}, kg/m
+    for translations, kg·m²/rad for rotations): the viscous (drag) damping of roll, a
+    ``nonlinear_force`` for :func:`simulate`."""
+    dofs = list(dofs)
+    unknown = [d for d in coefficients if d not in dofs]
+    if unknown:
+        raise SimulationError(f"unknown DOF {unknown}; the vessel has {', '.join(dofs)}")
+    index = np.array([dofs.index(d) for d in coefficients], dtype=int)
+    b2 = np.array(list(coefficients.values()), dtype=float)
+
+    def force(t: float, xi: NDArray, v: NDArray) -> NDArray:
+        out = np.zeros(len(dofs))
+        out[index] = -b2 * np.abs(v[index]) * v[index]
+        return out
+
+    return force
+
+
 def steady_state(
     vessel: Vessel, omega: ArrayLike, force_amplitude: ArrayLike, t0: float = 0.0
 ) -> NDArray[np.float64]:

@@ -1,0 +1,200 @@
+"""HTML reports of a database, a model, RAOs, a run and batch results: self-contained,
+and shown by a real headless browser (Debian's Chromium) with their figures."""
+
+from __future__ import annotations
+
+import os
+import re
+import shutil
+from pathlib import Path
+
+import numpy as np
+import pytest
+from click.testing import CliRunner
+
+import cummins
+from cummins.batch import (
+    Study,
+    case_ids,
+    case_statistics,
+    gather_results,
+    prepare_study,
+    write_results,
+)
+from cummins.cli import main
+from cummins.report import detect_kind, write_report
+
+TANKER = cummins.demo_files() / "tanker.1"
+CHROMIUM = Path("/usr/bin/chromium")
+BROWSER_ARGS = [
+    "--no-sandbox",
+    "--disable-gpu",
+    "--disable-background-networking",
+    "--disable-component-update",
+    "--disable-sync",
+    "--no-first-run",
+]
+
+
+@pytest.fixture(scope="module")
+def files(tmp_path_factory):
+    """One file of each kind a report is made of (the bundled tanker)."""
+    from cummins.frequency_domain import motion_rao, save_rao
+    from cummins.io.netcdf import save_netcdf
+    from cummins.simulate import simulate_waves
+    from cummins.vessel import vessel_from_hydrodb
+    from cummins.waves import irregular_waves, wave_spectrum
+
+    folder = tmp_path_factory.mktemp("report")
+    for f in cummins.demo_files().glob("tanker.*"):
+        shutil.copy(f, folder / f.name)
+    ds = cummins.read(folder / "tanker.1")
+    # heave and pitch only for the data and model pages: fewer figures to draw
+    cummins.write(cummins.select_dofs(ds, ["Heave", "Pitch"]), folder / "heave_pitch.nc")
+    small = cummins.read(folder / "heave_pitch.nc")
+    cummins.fit_radiation(small).save(folder / "model.nc")
+    model = cummins.fit_radiation(ds)
+    save_rao(motion_rao(ds, wave_direction=np.radians([90, 180])), folder / "rao.nc")
+    vessel = vessel_from_hydrodb(ds, model, viscous_damping=[1e6, 1e6, 0, 0, 0, 1e10])
+    sea = irregular_waves(wave_spectrum("jonswap", 3, 9), duration=600, direction=2.6, seed=1)
+    run = simulate_waves(vessel, ds, sea, duration=600, dt=0.1)
+    run.attrs["sea"] = "JONSWAP Hs 3 m, Tp 9 s"
+    save_netcdf(run, folder / "run.nc")
+    # batch results made without a cluster: the same case function and gathering
+    study = Study(
+        data=folder / "tanker.1",
+        grid={"heading": [90, 180], "hs": [2, 4], "tp": [8, 11]},
+        n_omega=200,
+        limits={"Roll": "3 deg", "Heave": {"max": "2 m"}},
+    )
+    context, digest = prepare_study(study)
+    values = [case_statistics(context, c) for c in study.all_cases]
+    dofs = [str(d) for d in context.ds.influenced_dof.values]
+    results = gather_results(study, values, case_ids(study, digest), dofs)
+    write_results(results, folder / "results.nc")
+    return {
+        "data": folder / "heave_pitch.nc",
+        "model": folder / "model.nc",
+        "rao": folder / "rao.nc",
+        "run": folder / "run.nc",
+        "batch": folder / "results.nc",
+    }
+
+
+@pytest.fixture(scope="module")
+def reports(files, tmp_path_factory):
+    """The report of each file, written through the command line."""
+    folder = tmp_path_factory.mktemp("pages")
+    out = {}
+    for kind, path in files.items():
+        page = folder / f"{kind}.html"
+        result = CliRunner().invoke(main, ["report", str(path), "-o", str(page)])
+        assert result.exit_code == 0, result.output
+        out[kind] = page
+    return out
+
+
+@pytest.mark.parametrize("kind", ["data", "model", "rao", "run", "batch"])
+def test_kind_is_detected_from_the_content(files, kind):
+    assert detect_kind(files[kind]) == kind
+
+
+EXPECTED = {
+    "data": ("Data checks", "Retardation functions K(t)", "Motion RAOs", 4),
+    "model": ("Fitted couplings", "Fits against the data", "Heave–Pitch", 4),
+    "rao": ("Motion RAOs", "max |RAO|", "Roll", 1),
+    "run": ("Response statistics", "Time series", "Response spectra", 2),
+    "batch": ("Operability", "Limiting Hs", "Statistics per case", 2),
+}
+
+
+@pytest.mark.parametrize("kind", list(EXPECTED))
+def test_report_is_self_contained(reports, kind):
+    """Embedded PNG figures, inline style, no scripts, no address outside the page."""
+    page = reports[kind].read_text(encoding="utf-8")
+    *texts, n_figures = EXPECTED[kind]
+    for text in texts:
+        assert text in page
+    images = re.findall(r'<img src="([^"]+)"', page)
+    assert len(images) == n_figures
+    assert all(src.startswith("data:image/png;base64,") for src in images)
+    assert "<script" not in page.lower()
+    assert not re.search(r'(src|href)="(?!data:|#)', page), "a link out of the page"
+    assert "<style>" in page and "<link" not in page
+
+
+def test_batch_report_tables(reports, files):
+    """The operability table in the page is the one of cummins.operability."""
+    from cummins.batch import load_results
+    from cummins.operability import operability
+
+    page = reports["batch"].read_text(encoding="utf-8")
+    op = operability(load_results(files["batch"]))
+    for heading, value in zip(op.heading.values, op.values, strict=True):
+        assert f'<td>{heading:g}</td><td class="text">{100 * value:.1f} %</td>' in page
+
+
+def test_report_refuses_to_overwrite_and_names_bad_input(reports, tmp_path):
+    runner = CliRunner()
+    again = runner.invoke(main, ["report", str(TANKER), "-o", str(reports["data"])])
+    assert again.exit_code == 2 and "exists" in again.output
+    junk = tmp_path / "junk.txt"
+    junk.write_text("not a solver file\n", encoding="utf-8")
+    bad = runner.invoke(main, ["report", str(junk), "-o", str(tmp_path / "x.html")])
+    assert bad.exit_code == 2 and "junk.txt" in bad.output
+    with pytest.raises(cummins.CumminsError):
+        write_report(junk, tmp_path / "y.html")
+
+
+def _browser():
+    if not CHROMIUM.exists():
+        message = f"Chromium not found at {CHROMIUM} (apt-get install chromium)"
+        if os.environ.get("CI", "").lower() == "true":
+            pytest.fail(message + "; under CI=true the browser test must run")
+        pytest.skip(message)
+    sync_api = pytest.importorskip("playwright.sync_api")
+    return sync_api.sync_playwright()
+
+
+def _not_blank(png: Path) -> tuple[float, float]:
+    """(standard deviation of the grey levels, share of non-white pixels)."""
+    from matplotlib.image import imread
+
+    grey = imread(png)[..., :3].mean(axis=2)
+    return float(grey.std()), float((grey < 0.95).mean())
+
+
+def _open(browser, page_file: Path, shot: Path) -> tuple[list[str], list[int], list[str]]:
+    """Load a page: (console and page errors, widths of its decoded images, URLs asked)."""
+    page = browser.new_page(viewport={"width": 1200, "height": 1000})
+    errors: list[str] = []
+    requests: list[str] = []
+    page.on("console", lambda m: errors.append(m.text) if m.type == "error" else None)
+    page.on("pageerror", lambda e: errors.append(str(e)))
+    page.on("request", lambda r: requests.append(r.url))
+    page.goto(page_file.as_uri())
+    page.wait_for_load_state("load")
+    widths = page.evaluate("Array.from(document.images).map(i => i.complete ? i.naturalWidth : 0)")
+    page.screenshot(path=str(shot), full_page=False)
+    page.locator("img").first.screenshot(path=str(shot.with_suffix(".figure.png")))
+    page.close()
+    return errors, widths, requests
+
+
+def test_reports_open_in_chromium_with_their_figures(reports, tmp_path):
+    """Every page loads without console or page errors, every figure is decoded
+    (naturalWidth > 0) and the screenshot shows something (not a blank page)."""
+    with _browser() as p:
+        browser = p.chromium.launch(executable_path=str(CHROMIUM), args=BROWSER_ARGS)
+        try:
+            for kind, page_file in reports.items():
+                shot = tmp_path / f"{kind}.png"
+                errors, widths, requests = _open(browser, page_file, shot)
+                assert not errors, f"{kind}: {errors}"
+                assert widths and min(widths) > 0, f"{kind}: figures not shown {widths}"
+                assert all(u.startswith(("file:", "data:")) for u in requests), requests
+                for png in (shot, shot.with_suffix(".figure.png")):  # the page, its first figure
+                    spread, ink = _not_blank(png)
+                    assert spread > 0.05 and ink > 0.03, f"{kind}: blank {png.name} {spread} {ink}"
+        finally:
+            browser.close()
