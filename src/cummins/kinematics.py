@@ -130,3 +130,76 @@ def center_of_gravity_from_inertia(m_rb: ArrayLike) -> tuple[float, NDArray[np.f
     # −m S(r) = skew_part → S(r) = −skew_part / m; S(r)[2,1] = x, S(r)[0,2] = y, S(r)[1,0] = z
     s = -skew_part / mass if mass else np.zeros((3, 3))
     return mass, np.array([s[2, 1], s[0, 2], s[1, 0]]), inconsistency
+
+
+def rotation_matrix(attitude: ArrayLike) -> NDArray[np.float64]:
+    """R_b^n(Θ): body-fixed to north-east-down, zyx Euler angles Θ = (φ, θ, ψ), rad.
+
+    Seed 004 eq. (6); v^n = R v^b (eq. 5). Orthogonal: R⁻¹ = Rᵀ.
+
+    Examples
+    --------
+    >>> import numpy as np
+    >>> np.round(rotation_matrix([0, 0, np.pi / 2]) @ [1, 0, 0], 12)  # bow east
+    array([0., 1., 0.])
+    """
+    phi, theta, psi = (float(a) for a in np.asarray(attitude, dtype=float).reshape(3))
+    cf, sf = np.cos(phi), np.sin(phi)
+    ct, st = np.cos(theta), np.sin(theta)
+    cp, sp = np.cos(psi), np.sin(psi)
+    return np.array(
+        [
+            [cp * ct, -sp * cf + cp * st * sf, sp * sf + cp * cf * st],
+            [sp * ct, cp * cf + sf * st * sp, -cp * sf + st * sp * cf],
+            [-st, ct * sf, ct * cf],
+        ]
+    )
+
+
+def attitude_transform(attitude: ArrayLike) -> NDArray[np.float64]:
+    """T_Θ(Θ): body angular velocity (p, q, r) to Euler angle rates, Θ̇ = T_Θ ω (seed 004
+    eqs. 7–8); singular at θ = ±π/2 (raises ValueError there)."""
+    phi, theta, _ = (float(a) for a in np.asarray(attitude, dtype=float).reshape(3))
+    ct = np.cos(theta)
+    if abs(ct) < 1e-9:
+        raise ValueError("the Euler angle rates are undefined at pitch ±90°")
+    cf, sf, tt = np.cos(phi), np.sin(phi), np.tan(theta)
+    return np.array([[1.0, sf * tt, cf * tt], [0.0, cf, -sf], [0.0, sf / ct, cf / ct]])
+
+
+def velocity_transform(eta: ArrayLike) -> NDArray[np.float64]:
+    """J(Θ) = diag(R_b^n(Θ), T_Θ(Θ)) of η̇ = J(Θ)ν (seed 004 eqs. 9–10), from the pose
+    η = (N, E, D, φ, θ, ψ)."""
+    attitude = np.asarray(eta, dtype=float).reshape(6)[3:]
+    out = np.zeros((6, 6))
+    out[:3, :3] = rotation_matrix(attitude)
+    out[3:, 3:] = attitude_transform(attitude)
+    return out
+
+
+def point_motion(
+    eta: ArrayLike, nu: ArrayLike, r: ArrayLike
+) -> tuple[NDArray[np.float64], NDArray[np.float64]]:
+    """Position in the n-frame and velocity in the b-frame of the point at ``r`` (b-frame,
+    from O): x_p^n = η_{1:3} + R(Θ) r (seed 004 eq. 42), v_p^b = H(r) ν (eq. 43, its first
+    three components)."""
+    eta = np.asarray(eta, dtype=float).reshape(6)
+    position = eta[:3] + rotation_matrix(eta[3:]) @ np.asarray(r, dtype=float)
+    velocity = (screw_transform(r) @ np.asarray(nu, dtype=float).reshape(6))[:3]
+    return position, velocity
+
+
+def point_load(force: ArrayLike, r: ArrayLike, moment: ArrayLike | None = None):
+    """The generalized force at O of a force (and moment) acting at ``r``, all in the
+    b-frame: τ = Hᵀ(r) τ_p (seed 004 eq. 45), i.e. the force and the moment r × F (+ M).
+
+    Examples
+    --------
+    >>> point_load([0, 0, 1e6], [0, 15, 0])   # 1000 kN down at 15 m to starboard
+    array([       0.,        0.,  1000000., 15000000.,        0.,        0.])
+    """
+    tau_p = np.zeros(6)
+    tau_p[:3] = np.asarray(force, dtype=float).reshape(3)
+    if moment is not None:
+        tau_p[3:] = np.asarray(moment, dtype=float).reshape(3)
+    return screw_transform(r).T @ tau_p

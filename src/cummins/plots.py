@@ -582,3 +582,77 @@ def plot_roll_decay(t, phi, decay) -> Figure:
         f"ω0 = {decay['omega0']:.4g} rad/s"
     )
     return fig
+
+
+# --------------------------------------------------------------------------- unified (DP) model
+
+
+def _dof_axes(fig: Figure, n: int = 6):
+    return np.atleast_1d(fig.subplots(n, 1, sharex=True))
+
+
+def plot_pose(run: xr.Dataset, *, mark: float | None = None) -> Figure:
+    """The pose η (N, E, D in m; roll, pitch, yaw in degrees) of a unified-model run
+    (seed 004 Fig. 4); ``mark`` draws a vertical line (e.g. when a load is applied)."""
+    t = run.time.values
+    fig = Figure(figsize=(11, 11), layout="constrained")
+    axes = _dof_axes(fig)
+    for k, (ax, dof) in enumerate(zip(axes, run.dof.values, strict=True)):
+        values = run.eta.values[:, k]
+        rotation = k >= 3
+        ax.plot(t, np.degrees(values) if rotation else values, color=f"C{k}", lw=0.8)
+        ax.set_ylabel(f"{dof} [{'deg' if rotation else 'm'}]")
+        if mark is not None:
+            ax.axvline(mark, color="0.5", ls="--", lw=0.8)
+        ax.grid(alpha=0.3)
+    axes[-1].set_xlabel("t [s]")
+    fig.suptitle("pose η in the north-east-down frame")
+    return fig
+
+
+def plot_generalized_forces(
+    run: xr.Dataset, variables: Sequence[str], *, labels: Sequence[str] | None = None
+) -> Figure:
+    """Generalized forces of a unified-model run, one panel per DOF (N, kN·m scaled to
+    kN and MN·m), e.g. the first-order wave force and the fluid memory force (seed 004
+    Fig. 3) or every load with the thrust."""
+    t = run.time.values
+    labels = list(variables) if labels is None else list(labels)
+    fig = Figure(figsize=(11, 11), layout="constrained")
+    axes = _dof_axes(fig)
+    for k, (ax, dof) in enumerate(zip(axes, run.velocity.values, strict=True)):
+        scale, unit = (1e-6, "MN·m") if k >= 3 else (1e-3, "kN")
+        for n, (name, label) in enumerate(zip(variables, labels, strict=True)):
+            ax.plot(t, scale * run[name].values[:, k], lw=0.8, color=f"C{n}", label=label)
+        ax.set_ylabel(f"{dof} [{unit}]")
+        ax.grid(alpha=0.3)
+    axes[0].legend(fontsize="small", loc="upper right", ncols=min(len(variables), 4))
+    axes[-1].set_xlabel("t [s]")
+    fig.suptitle("generalized forces, body frame, about the origin")
+    return fig
+
+
+def plot_watch_circle(run: xr.Dataset, setpoint: Sequence[float] = (0.0, 0.0)) -> Figure:
+    """The track of the vessel's origin (east, north) and the watch circle: the largest
+    horizontal distance from the setpoint."""
+    n = run.eta.sel(dof="North").values - setpoint[0]
+    e = run.eta.sel(dof="East").values - setpoint[1]
+    radius = float(np.hypot(n, e).max())
+    fig = Figure(figsize=(6, 6), layout="constrained")
+    ax = fig.subplots()
+    ax.plot(e, n, lw=0.6, color="C0", label="track")
+    a = np.linspace(0, 2 * np.pi, 200)
+    ax.plot(
+        radius * np.sin(a),
+        radius * np.cos(a),
+        "--",
+        color="C3",
+        label=f"watch circle {radius:.2f} m",
+    )
+    ax.plot(0, 0, "k+", ms=12)
+    ax.set_aspect("equal")
+    ax.set_xlabel("East [m]")
+    ax.set_ylabel("North [m]")
+    ax.legend(fontsize="small")
+    ax.grid(alpha=0.3)
+    return fig
