@@ -26,6 +26,7 @@ from cummins.cli_common import (
 from cummins.cli_dp import dp_demo_command
 from cummins.cli_fit import fit_command
 from cummins.cli_kernel import kernel_command
+from cummins.cli_lfmodel import lf_model_command
 from cummins.cli_rao import rao_command
 from cummins.cli_reduce import reduce_command
 from cummins.cli_simulate import simulate_command
@@ -53,6 +54,7 @@ def main() -> None:
       cummins identify-damping RECORDS --model DATA
                                viscous (roll) damping from motion records or decays
       cummins dp-demo -o DIR   the nonlinear 6-DOF DP model (seed 004) on the S-175
+      cummins lf-model DATA    constant-coefficient manoeuvring model (seed 002)
       cummins batch STUDY      many cases (headings x sea states) on Dask; operability
       cummins report FILE      a self-contained HTML page of a data, model, run or results file
       cummins demo             run all of it on a bundled real vessel (WAMIT tanker)
@@ -261,6 +263,7 @@ main.add_command(rao_command)
 main.add_command(simulate_command)
 main.add_command(identify_damping_command)
 main.add_command(dp_demo_command)
+main.add_command(lf_model_command)
 main.add_command(batch_command)  # works without Dask: it then says how to install it
 main.add_command(report_command)
 

@@ -1,0 +1,49 @@
+"""`cummins lf-model`: the low-frequency model from the command line."""
+
+from __future__ import annotations
+
+import numpy as np
+import pytest
+import xarray as xr
+from click.testing import CliRunner
+
+import cummins
+from cummins.cli import main
+from cummins.lfmodel import lf_model_from_frequency_data
+
+
+def test_cli_writes_the_model_of_the_python_api(tmp_path):
+    tanker = cummins.demo_files() / "tanker.1"
+    out = tmp_path / "lf.nc"
+    args = [
+        "lf-model",
+        str(tanker),
+        "-o",
+        str(out),
+        "--plot",
+        str(tmp_path / "lf.png"),
+        "--roll-damping",
+        "0.05",
+        "--compare",
+        str(tmp_path / "cmp"),
+    ]
+    result = CliRunner().invoke(main, args)
+    assert result.exit_code == 0, result.output
+    written = xr.open_dataset(out, engine="h5netcdf")
+    from cummins.lfmodel import CriticalDampingFraction
+
+    same = lf_model_from_frequency_data(
+        cummins.read(tanker), viscous={"Roll": CriticalDampingFraction(0.05)}
+    )
+    np.testing.assert_allclose(written.added_mass.values, same.added_mass)
+    np.testing.assert_allclose(written.damping.values, same.damping)
+    np.testing.assert_allclose(written.frequency.values, same.frequencies)
+    # surge, sway, yaw at ω = 0; heave, roll, pitch at their natural frequency (eq. 24)
+    assert list(written.frequency.values[[0, 1, 5]]) == [0.0, 0.0, 0.0]
+    assert written.frequency.sel(dof="Roll") == pytest.approx(0.489, abs=0.002)
+    # the steps of the zero-frequency DOFs agree with the Cummins model to a few per cent
+    for dof in ("Surge", "Sway", "Yaw"):
+        line = next(s for s in result.output.splitlines() if s.startswith(f"step of {dof}"))
+        assert float(line.split("difference ")[1].split(" %")[0]) < 3.0
+    assert (tmp_path / "cmp" / "decay_Roll.png").stat().st_size > 10_000
+    assert (tmp_path / "lf.png").stat().st_size > 10_000
