@@ -198,3 +198,32 @@ def test_reports_open_in_chromium_with_their_figures(reports, tmp_path):
                     assert spread > 0.05 and ink > 0.03, f"{kind}: blank {png.name} {spread} {ink}"
         finally:
             browser.close()
+
+
+def test_reports_of_dp_runs_and_lf_models(tmp_path):
+    """`cummins report` on the outputs of `cummins dp-demo` and `cummins lf-model`: the
+    kinds are detected from the content, and the pages hold their checks, tables and
+    figures, self-contained."""
+    from cummins.report import detect_kind
+
+    runner = CliRunner()
+    dp = tmp_path / "dp"
+    assert runner.invoke(main, ["dp-demo", "-o", str(dp), "--duration", "30"]).exit_code == 0
+    lf = tmp_path / "lf.nc"
+    assert runner.invoke(main, ["lf-model", str(TANKER), "-o", str(lf)]).exit_code == 0
+    assert detect_kind(dp / "run.nc") == "dp"
+    assert detect_kind(lf) == "lf"
+    for source, texts, n_figures in (
+        (dp / "run.nc", ("Pose statistics", "Checks", "watch circle m", "Loads"), 3),
+        (lf, ("Coefficients (diagonal)", "natural-frequency model"), 0),
+    ):
+        out = tmp_path / f"{source.stem}.html"
+        result = runner.invoke(main, ["report", str(source), "-o", str(out)])
+        assert result.exit_code == 0, result.output
+        page = out.read_text(encoding="utf-8")
+        for text in texts:
+            assert text in page
+        images = re.findall(r'<img src="([^"]+)"', page)
+        assert len(images) == n_figures
+        assert all(src.startswith("data:image/png;base64,") for src in images)
+        assert "<script" not in page.lower()

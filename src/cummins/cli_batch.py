@@ -181,6 +181,8 @@ def report_command(path, output, kind, force):
       model (cummins fit) per-coupling orders and R², K(t), data against the model
       RAO file (rao)     RAOs and their largest values
       run (simulate)     statistics, time series, response spectra
+      run (dp-demo)      checks (heel, watch circle), pose, every load, track
+      LF model (lf-model) the constant coefficients and where each was taken
       results (batch)    the study, operability per heading, limiting Hs, cases
     The figures are embedded PNGs and the style is inline: the page opens offline.
 

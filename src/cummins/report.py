@@ -53,6 +53,8 @@ KINDS: dict[str, str] = {
     "model": "radiation model",
     "rao": "motion RAOs",
     "run": "time-domain simulation",
+    "dp": "nonlinear 6-DOF (DP) simulation",
+    "lf": "low-frequency manoeuvring model",
     "batch": "batch study results",
 }
 _DPI = 80
@@ -206,6 +208,10 @@ def detect_kind(path: str | os.PathLike[str]) -> str:
         return "rao"
     if {"motion", "time", "wave_elevation"} <= names:
         return "run"
+    if {"eta", "nu", "time"} <= names:
+        return "dp"
+    if {"added_mass", "damping", "stiffness", "frequency", "provenance"} <= names:
+        return "lf"
     return "data"
 
 
@@ -425,6 +431,80 @@ def run_sections(path: Path) -> list[Section]:
     ]
 
 
+def dp_sections(path: Path) -> list[Section]:
+    """Checks, pose, forces and watch circle of a run of :mod:`cummins.unified`
+    (``cummins dp-demo``)."""
+    from cummins.plots import plot_generalized_forces, plot_pose, plot_watch_circle
+
+    with xr.open_dataset(path, engine="h5netcdf") as f:
+        run = f.load()
+    checks = [[k[6:].replace("_", " "), v] for k, v in run.attrs.items() if k.startswith("check_")]
+    rows = []
+    for k, dof in enumerate(run.dof.values):
+        x = run.eta.values[:, k]
+        scale, unit = (np.degrees(1.0), "deg") if k >= 3 else (1.0, "m")
+        rows.append(
+            [
+                str(dof),
+                float(scale * x.mean()),
+                float(scale * 2 * x.std()),
+                float(scale * np.abs(x).max()),
+                unit,
+            ]
+        )
+    forces = [v for v in run.data_vars if str(v).startswith("force_")]
+    sections = [
+        Section(
+            "Pose statistics",
+            _note(str(run.attrs.get("scenario", run.attrs.get("method", ""))))
+            + table_html(["DOF", "mean", "2σ", "max |η|", "unit"], rows),
+        ),
+        Section("Pose", figure_html(plot_pose(run), "Pose η in the north-east-down frame")),
+    ]
+    if checks:
+        sections.insert(1, Section("Checks", table_html(["check", "value"], checks)))
+    if forces:
+        extra = ["thrust"] if "thrust" in run else []
+        sections.append(
+            Section(
+                "Loads",
+                figure_html(
+                    plot_generalized_forces(
+                        run, [*forces, *extra], labels=[str(f)[6:] for f in forces] + extra
+                    ),
+                    "Generalized forces of every load (body frame, about the origin)",
+                ),
+            )
+        )
+    sections.append(Section("Watch circle", figure_html(plot_watch_circle(run), "Track")))
+    return sections
+
+
+def lf_sections(path: Path) -> list[Section]:
+    """The coefficients of a low-frequency model file (``cummins lf-model``)."""
+    with xr.open_dataset(path, engine="h5netcdf") as f:
+        lf = f.load()
+    rows = []
+    for dof in lf.dof.values:
+        pick = {"influenced_dof": dof, "radiating_dof": dof}
+        rows.append(
+            [
+                str(dof),
+                float(lf.frequency.sel(dof=dof)),
+                float(lf.inertia_matrix.sel(pick) + lf.added_mass.sel(pick)),
+                float(lf.damping.sel(pick)),
+                float(lf.stiffness.sel(pick)),
+                str(lf.provenance.sel(dof=dof).values),
+            ]
+        )
+    return [
+        Section(
+            "Coefficients (diagonal)",
+            table_html(["DOF", "taken at ω [rad/s]", "M_RB + M_A", "D", "G", "provenance"], rows),
+        )
+    ]
+
+
 def batch_sections(results: xr.Dataset) -> list[Section]:
     """The study, operability, limiting H_s and the statistics of the cases."""
     import json
@@ -577,6 +657,8 @@ def report_sections(
         "model": lambda: model_sections(p),
         "rao": lambda: rao_sections(p),
         "run": lambda: run_sections(p),
+        "dp": lambda: dp_sections(p),
+        "lf": lambda: lf_sections(p),
         "batch": lambda: batch_sections(_load_batch(p)),
     }
     if kind not in builders:
