@@ -121,3 +121,19 @@ def test_report_formats(tanker_wamit):
     assert {"check", "severity", "message", "where", "value", "advice"} <= set(data["findings"][0])
     text = report.to_text()
     assert "WARNING damping_positive [Heave]" in text and "Result: usable" in text
+
+
+def test_wave_parity_flags_the_mss_drift_tables(shared_data):
+    """Wave forces of a port/starboard symmetric hull mirror with the heading (sway, roll,
+    yaw change sign). MSS's processed S-175 and supply structs store a yaw drift moment
+    that does not (the raw `driftfrc.amp{3}` is the same at 90° and 270°): flagged with
+    the DOF and the headings; the excitation of the same files mirrors, and so does the
+    WAMIT tanker's."""
+    s175 = cummins.check(cummins.read(shared_data / "mss" / "s175" / "s175.mat"))
+    flagged = [f for f in s175.by_check("wave_parity") if f.severity == "warning"]
+    assert any(f.where == "Yaw" and "drift_force" in f.message for f in flagged)
+    assert not any("excitation_force" in f.message for f in flagged)
+    supply = cummins.check(cummins.read(shared_data / "mss" / "supply" / "supply.mat"))
+    assert [f.where for f in supply.by_check("wave_parity") if f.severity == "warning"] == ["Yaw"]
+    tanker = cummins.check(cummins.demo_dataset())
+    assert [f.severity for f in tanker.by_check("wave_parity")] == ["ok"]

@@ -35,7 +35,7 @@ from dataclasses import asdict, dataclass, field
 import numpy as np
 import xarray as xr
 
-from cummins.hydrodb import dof_matrix, is_rotation, validate
+from cummins.hydrodb import DOF_NAMES, dof_matrix, is_rotation, split_dof, validate
 from cummins.kinematics import center_of_gravity_from_inertia
 from cummins.repair import find_suspect_frequencies
 from cummins.retardation import retardation_diagnostics
@@ -52,6 +52,7 @@ K_INTEGRAL_TOL = 0.1  # |∫K dt| / ∫|K| dt
 TAIL_TOL = 0.2  # share of ∫B dω in the extrapolated tail
 A_INF_TOL = 0.05  # relative spread, or distance from the data row
 KK_TOL = 0.1  # relative Kramers-Kronig error
+PARITY_TOL = 0.05  # |F(β) − T F(−β)| / max|F| of a DOF, port/starboard symmetric body
 
 
 @dataclass(frozen=True)
@@ -746,6 +747,82 @@ def _constant_ratio(x: np.ndarray, y: np.ndarray) -> float | None:
     return None
 
 
+def _mirror_pairs(beta: np.ndarray) -> list[tuple[int, int]]:
+    """Index pairs (k, m) of headings with β_m = −β_k (mod 2π), k ≤ m (k = m on the x
+    axis)."""
+    b = np.mod(beta, 2 * np.pi)
+    pairs = []
+    for k, bk in enumerate(b):
+        mirror = np.mod(-bk, 2 * np.pi)
+        gap = np.abs(np.angle(np.exp(1j * (b - mirror))))
+        m = int(np.argmin(gap))
+        if gap[m] < 1e-6 and k <= m:
+            pairs.append((k, m))
+    return pairs
+
+
+def _check_wave_parity(ds: xr.Dataset) -> list[Finding]:
+    """Wave forces of a port/starboard symmetric body mirror with the heading:
+    F(ω, −β) = T F(ω, β), T = diag(1, −1, 1, −1, 1, −1) (surge, heave, pitch keep their
+    sign; sway, roll, yaw change it). A file that breaks this for a symmetric body holds
+    magnitudes instead of signed values, or a sign error (the MSS S-175's yaw drift)."""
+    from cummins.excitation import MIRROR_SIGNS, _symmetry_evidence
+
+    out: list[Finding] = []
+    for sub in _speeds(ds):
+        names = [v for v in ("excitation_force", "drift_force") if v in sub]
+        if not names or "wave_direction" not in sub.dims:
+            continue
+        symmetric, _ = _symmetry_evidence(sub)
+        pairs = _mirror_pairs(sub.wave_direction.values)
+        if not symmetric or not any(k != m for k, m in pairs):
+            continue
+        suffix = _speed_suffix(sub)
+        labels = [str(d) for d in sub.influenced_dof.values]
+        for name in names:
+            f = sub[name].transpose("omega", "wave_direction", "influenced_dof").values
+            for i, label in enumerate(labels):
+                dof = split_dof(label)[1]
+                sign = MIRROR_SIGNS[DOF_NAMES.index(dof)]
+                peak = float(np.abs(f[:, :, i]).max())
+                if peak == 0:
+                    continue
+                worst, where = 0.0, None
+                for k, m in pairs:
+                    mismatch = float(np.abs(f[:, m, i] - sign * f[:, k, i]).max()) / peak
+                    if mismatch > worst:
+                        worst, where = mismatch, (k, m)
+                if worst > PARITY_TOL and where is not None:
+                    k, m = where
+                    bk, bm = np.degrees(sub.wave_direction.values[[k, m]])
+                    out.append(
+                        Finding(
+                            "wave_parity",
+                            "warning",
+                            f"{name} of {label}{suffix} does not mirror with the heading "
+                            f"although the body is port/starboard symmetric: at {bk:g}° and "
+                            f"{bm:g}° it differs from "
+                            f"{'the same' if sign > 0 else 'the opposite'} value by "
+                            f"{worst:.0%} of its largest value",
+                            where=label,
+                            value=worst,
+                            advice="the file may hold magnitudes instead of signed values, "
+                            "or a sign error: check the source (cummins uses the values as "
+                            "given; drift and excitation at mirrored headings will differ)",
+                        )
+                    )
+    if not out:
+        out.append(
+            Finding(
+                "wave_parity",
+                "ok",
+                "wave forces mirror with the heading "
+                "(or the body is not symmetric, or no mirrored headings)",
+            )
+        )
+    return out
+
+
 def check(ds: xr.Dataset) -> CheckReport:
     """Run all diagnostics on a ``HydroDB``.
 
@@ -781,6 +858,7 @@ def check(ds: xr.Dataset) -> CheckReport:
         copied_dofs,
         _check_suspect_frequencies,
         _check_retardation,
+        _check_wave_parity,
     ):
         findings.extend(part(ds))
     return CheckReport(source=str(source), findings=tuple(findings))
