@@ -54,6 +54,13 @@ DEMO_FILES = (
     "run.nc",
     "time_series.png",
     "response_spectra.png",
+    "lf_model.nc",
+    "lf_model.png",
+    "dp/run.nc",
+    "dp/pose.png",
+    "dp/wave_and_radiation_forces.png",
+    "dp/loads.png",
+    "dp/watch_circle.png",
 )
 
 #: Folder (inside the output folder) of the per-coupling fit plots, ``fit_<coupling>.png``.
@@ -173,6 +180,12 @@ def run_demo(
     say("the tanker in a sea state, time domain, against the frequency domain")
     steps.append(_simulate_step(ds, model, out, force))
 
+    say("the low-frequency manoeuvring model (seed 002)")
+    steps.append(_lf_step(ds, out, force))
+
+    say("dynamic positioning of the S-175 with a crane load (seed 004, 5 minutes)")
+    steps.append(_dp_step(out, force))
+
     (out / "demo_summary.json").write_text(
         json.dumps(
             [
@@ -281,4 +294,44 @@ def _simulate_step(ds, model, out: Path, force: bool) -> DemoStep:
         f"{td[2]:.3g} m, roll {np.degrees(td[3]):.3g}°, pitch {np.degrees(td[4]):.3g}°; "
         f"heave, roll, pitch within {worst:.1%} of the frequency domain",
         (out / "run.nc", *plots),
+    )
+
+
+def _lf_step(ds, out: Path, force: bool) -> DemoStep:
+    """Constant coefficients at ω = 0 (surge, sway, yaw) and at ω₀ (heave, roll, pitch)."""
+    from cummins.io.netcdf import save_netcdf
+    from cummins.lfmodel import lf_model_from_frequency_data
+    from cummins.plots import plot_lf_model
+
+    lf = lf_model_from_frequency_data(ds)
+    save_netcdf(lf.to_dataset(), out / "lf_model.nc")
+    figure = save_figure(plot_lf_model(ds, lf), out / "lf_model.png", force=force)
+    w0 = {d: lf.frequencies[lf.index(d)] for d in ("Heave", "Roll", "Pitch")}
+    return DemoStep(
+        "lf-model",
+        "manoeuvring model: surge, sway, yaw at ω = 0 (A(0) from WAMIT's ω = 0 row), "
+        + ", ".join(f"{d} at ω₀ = {w:.3g} rad/s" for d, w in w0.items())
+        + " (eq. 24 iterated)",
+        (out / "lf_model.nc", figure),
+    )
+
+
+def _dp_step(out: Path, force: bool) -> DemoStep:
+    """The S-175 on DP, a 1000 kN crane load at t = 100 s (bundled MSS data)."""
+    from cummins.dp_scenario import run_scenario, write_scenario_plots
+    from cummins.io.netcdf import save_netcdf
+
+    folder = out / "dp"
+    folder.mkdir(exist_ok=True)
+    scenario = run_scenario(duration=300.0)
+    save_netcdf(scenario.run, folder / "run.nc")
+    plots = write_scenario_plots(scenario, folder, force=force)
+    a = scenario.run.attrs
+    return DemoStep(
+        "dp",
+        f"nonlinear 6-DOF model, Hs 4 m from 45° off the bow: watch circle "
+        f"{a['check_watch_circle_m']:.2f} m; the crane load heels the ship by "
+        f"{a['check_mean_roll_after_deg'] - a['check_mean_roll_before_deg']:.2f}° "
+        f"(static heel {a['check_static_heel_deg']:.2f}°)",
+        (folder / "run.nc", *plots),
     )
