@@ -665,7 +665,8 @@ def plot_lf_model(ds: xr.Dataset, model, dofs: Sequence[str] | None = None) -> F
     (ω_i, B_p,ii) of a :class:`cummins.lfmodel.LowFrequencyModel` — at ω = 0 for
     surge, sway and yaw, at the natural frequency ω₀ (seed 002 eq. 24) for heave, roll
     and pitch; a diamond marks the total damping D_ii = B_p,ii + B_v,ii when viscous
-    damping is present, and dashed lines A(∞) and A(0) when the data hold them.
+    damping is present, on the curves of :func:`plot_added_mass_damping` (with A(∞) and
+    A(0) when the data hold them).
 
     Parameters
     ----------
@@ -679,35 +680,18 @@ def plot_lf_model(ds: xr.Dataset, model, dofs: Sequence[str] | None = None) -> F
     if "forward_speed" in ds.dims:
         ds = ds.isel(forward_speed=0)
     labels = list(model.dofs) if dofs is None else [d for d in dofs if d in model.dofs]
-    fig = Figure(figsize=(10, 2.2 * len(labels) + 0.8), layout="constrained")
-    axes = fig.subplots(len(labels), 2, squeeze=False, sharex=True)
-    w = ds.omega.values
-    for row, dof in enumerate(labels):
+    fig = plot_added_mass_damping(ds, labels)
+    axes = np.asarray(fig.get_axes()).reshape(len(labels), 2)
+    for (ax_a, ax_b), dof in zip(axes, labels, strict=True):
         i = model.dofs.index(dof)
-        sel = {"influenced_dof": dof, "radiating_dof": dof}
         w0 = float(model.frequencies[i])
-        ax_a, ax_b = axes[row]
-        ax_a.plot(w, ds.added_mass.sel(sel).values, ".-", ms=3, color="C0", label="A(ω)")
-        for name, style, text in (
-            ("added_mass_inf", "--", "A(∞)"),
-            ("added_mass_zero", ":", "A(0)"),
-        ):
-            if name in ds:
-                ax_a.axhline(float(ds[name].sel(sel)), color="0.5", ls=style, lw=0.9, label=text)
         ax_a.plot([w0], [model.added_mass[i, i]], "x", color="C3", ms=10, mew=2, label="M_A")
-        ax_b.plot(w, ds.radiation_damping.sel(sel).values, ".-", ms=3, color="C1", label="B(ω)")
         ax_b.plot([w0], [model.potential_damping[i, i]], "x", color="C3", ms=10, mew=2, label="B_p")
         if model.viscous_damping[i, i] != 0:
             ax_b.plot([w0], [model.damping[i, i]], "D", color="C2", ms=6, label="D = B_p + B_v")
-        ax_b.axhline(0.0, color="0.6", lw=0.8)
         where = "ω = 0" if w0 == 0 else f"ω₀ = {w0:.3f} rad/s"
         ax_a.set_title(f"{dof}: {where}", fontsize="medium", loc="left")
-        ax_a.set_ylabel(f"A {dof} [{_unit(dof, 'added_mass')}]")
-        ax_b.set_ylabel(f"B {dof} [{_unit(dof, 'damping')}]")
         for ax in (ax_a, ax_b):
-            ax.grid(alpha=0.3)
             ax.legend(fontsize="small", loc="best")
-    for ax in axes[-1]:
-        ax.set_xlabel("ω [rad/s]")
     fig.suptitle(f"Low-frequency model coefficients (seed 002) — {_title(ds)}")
     return fig
