@@ -25,7 +25,7 @@ import warnings
 
 import numpy as np
 
-from cummins.dp_scenario import build_scenario, s175_data
+from cummins.dp_scenario import build_scenario, s175_data, simulate_scenario
 from cummins.unified import simulate_unified
 
 DURATION, DT = 3600.0, 0.2
@@ -44,14 +44,7 @@ def main() -> None:
     )
 
     start = time.perf_counter()
-    fast = simulate_unified(
-        model,
-        duration=DURATION,
-        dt=DT,
-        loads=loads[:1],
-        slow_loads=loads[1:],
-        controller=controller,
-    )
+    fast = simulate_scenario(model, loads, controller, duration=DURATION, dt=DT)
     t_fast = time.perf_counter() - start
     controller.reset()
     start = time.perf_counter()

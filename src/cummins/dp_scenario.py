@@ -164,20 +164,9 @@ def run_scenario(
     **options,
 ) -> Scenario:
     """Build (:func:`build_scenario`) and simulate the scenario for ``duration`` s."""
-    from cummins.unified import simulate_unified
-
     ds = s175_data() if ds is None else ds
     model, loads, controller, sea = build_scenario(ds, duration=duration, seed=seed, **options)
-    # the first-order wave force at every Runge-Kutta stage, the slow loads once a step
-    run = simulate_unified(
-        model,
-        duration=duration,
-        dt=dt,
-        loads=loads[:1],
-        slow_loads=loads[1:],
-        controller=controller,
-        progress=progress,
-    )
+    run = simulate_scenario(model, loads, controller, duration=duration, dt=dt, progress=progress)
     run["wave_elevation"] = ("time", sea.elevation(run.time.values), {"units": "m"})
     run.attrs.update(
         {
@@ -191,6 +180,24 @@ def run_scenario(
     )
     run.attrs.update({f"check_{k}": v for k, v in scenario_checks(run, model).items()})
     return Scenario(model, loads, controller, sea, run)
+
+
+def simulate_scenario(
+    model, loads, controller, *, duration: float, dt: float, progress=None
+) -> xr.Dataset:
+    """Run the loads of :func:`build_scenario`: the first-order wave force at every
+    Runge–Kutta stage, the slow loads (drift, drag, wind, crane) once a step."""
+    from cummins.unified import simulate_unified
+
+    return simulate_unified(
+        model,
+        duration=duration,
+        dt=dt,
+        loads=loads[:1],
+        slow_loads=loads[1:],
+        controller=controller,
+        progress=progress,
+    )
 
 
 def static_heel(model, force: np.ndarray) -> np.ndarray:

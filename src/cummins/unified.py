@@ -296,9 +296,12 @@ def simulate_unified(
     out_loads = np.zeros((len(loads), t.size, 6))
     out_thrust = np.zeros((t.size, 6))
 
-    def load_at(tk, xk, record=None, which=slice(None)):
+    indexed = list(enumerate(loads))
+    every_stage, once_a_step = indexed[:fast], indexed[fast:]
+
+    def load_at(tk, xk, which, record=None):
         total = np.zeros(6)
-        for k, load in list(enumerate(loads))[which]:
+        for k, load in which:
             f = np.asarray(load.force(tk, xk[:6], xk[6:12]), dtype=float)
             if f.shape != (6,) or not np.all(np.isfinite(f)):
                 raise SimulationError(
@@ -317,19 +320,19 @@ def simulate_unified(
             measured = x[:6] if noise is None else x[:6] + noise * rng.standard_normal(6)
             thrust = np.asarray(controller.update(tk, measured), dtype=float).reshape(6)
         out_thrust[k] = thrust
-        held = thrust + load_at(tk, x, k, slice(fast, None))
-        k1, mu = model.rates(tk, x, load_at(tk, x, k, slice(0, fast)) + held)
+        held = thrust + load_at(tk, x, once_a_step, k)
+        k1, mu = model.rates(tk, x, load_at(tk, x, every_stage, k) + held)
         out_x[k] = x[:12]
         out_mu[k] = mu
         if k == t.size - 1:
             break
         half = tk + 0.5 * dt
         x2 = x + 0.5 * dt * k1
-        k2, _ = model.rates(half, x2, load_at(half, x2, None, slice(0, fast)) + held)
+        k2, _ = model.rates(half, x2, load_at(half, x2, every_stage) + held)
         x3 = x + 0.5 * dt * k2
-        k3, _ = model.rates(half, x3, load_at(half, x3, None, slice(0, fast)) + held)
+        k3, _ = model.rates(half, x3, load_at(half, x3, every_stage) + held)
         x4 = x + dt * k3
-        k4, _ = model.rates(tk + dt, x4, load_at(tk + dt, x4, None, slice(0, fast)) + held)
+        k4, _ = model.rates(tk + dt, x4, load_at(tk + dt, x4, every_stage) + held)
         x = x + dt / 6.0 * (k1 + 2 * k2 + 2 * k3 + k4)
         if not np.all(np.isfinite(x[:12])) or abs(x[3]) > 1.2 or abs(x[4]) > 1.2:
             i = int(np.argmax(~np.isfinite(x[:12]) | (np.abs(x[:12]) > 1e9)))
