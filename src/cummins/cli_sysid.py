@@ -255,8 +255,11 @@ def identify_damping_command(
         err_console.print(f"[yellow]warning:[/] {w.message}")
     _print_estimates(result)
     with console.status("re-predicting"):
-        runs = {"potential flow only": repredict(recs[0], vessel, None, cutoff=cutoff)}
-        runs["with identified damping"] = repredict(recs[0], vessel, result, cutoff=cutoff)
+        res = residual_force(recs[0], vessel, cutoff=cutoff)
+        runs = {
+            label: repredict(recs[0], vessel, model, residual=res)
+            for label, model in (("potential flow only", None), ("with identified damping", result))
+        }
     summary = result.to_dict()
     summary["reprediction"] = {
         label: {d: float(run.correlation.sel(dof=d)) for d in run.dof.values}
@@ -267,7 +270,6 @@ def identify_damping_command(
         text = ", ".join(f"{d} {c:.3f}" for d, c in scores.items() if d in dofs)
         console.print(f"correlation, {label}: {text}")
     save_figure(plot_reprediction(runs, dofs=dofs), report / "reprediction.png", force=force)
-    res = residual_force(recs[0], vessel, cutoff=cutoff)
     res = res.isel(time=np.flatnonzero(trusted_samples(res, burn_in)))
     for est in result.estimates:
         save_figure(plot_residual_force(res, est), report / f"residual_{est.dof}.png", force=force)

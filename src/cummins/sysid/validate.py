@@ -12,6 +12,7 @@ with a :class:`~cummins.errors.SimulationError` naming the DOF, never a run full
 from __future__ import annotations
 
 import dataclasses
+import warnings
 from collections.abc import Sequence
 
 import numpy as np
@@ -122,6 +123,7 @@ def repredict(
     *,
     cutoff: float | None = None,
     history: xr.Dataset | None = None,
+    residual: xr.Dataset | None = None,
 ) -> xr.Dataset:
     """Re-predict a record's motions from its excitation force with the vessel model and
     the identified damping (none: the potential-flow model alone, the baseline).
@@ -130,7 +132,9 @@ def repredict(
     smoothed record and the memory state χ from the measured velocity history (de Haan:
     "in the field, the measured motion history plays this role"); ``history`` is a longer
     record that contains this one (its earlier samples load the memory; default: the
-    record itself, whose memory then starts empty at its first sample).
+    record itself, whose memory then starts empty at its first sample). ``residual`` is
+    :func:`~cummins.sysid.identify.residual_force` of that history (or record) when it has
+    been computed already: the smoothed signals and the memory states are taken from it.
 
     Returns
     -------
@@ -148,7 +152,7 @@ def repredict(
     from cummins.sysid.identify import full_motions
 
     source = record if history is None else history
-    res = residual_force(source, vessel, cutoff=cutoff)
+    res = residual_force(source, vessel, cutoff=cutoff) if residual is None else residual
     t_all = res.time.values
     start = int(np.argmin(np.abs(t_all - float(record.time.values[0]))))
     stop = start + record.sizes["time"]
@@ -175,13 +179,6 @@ def repredict(
         attrs={"method": run.attrs["method"], "identified": model is not None},
     )
     return out
-
-
-def _damping_coefficient(model: DampingModel, dof: str, kind: str) -> float:
-    try:
-        return model[dof][kind]
-    except KeyError:
-        return float("nan")
 
 
 def validate_segments(
@@ -220,8 +217,8 @@ def validate_segments(
         name: np.zeros((n_seg, n_dof), bool) for name in ("unstable", "ill_conditioned", "negative")
     }
     models: list[DampingModel | None] = []
-    import warnings
-
+    # the signals and memory states of the whole record, for every re-prediction
+    history = residual_force(record, vessel, cutoff=identify_options.get("cutoff"))
     for k, part in enumerate(parts):
         with warnings.catch_warnings():
             warnings.simplefilter("ignore")
@@ -243,7 +240,7 @@ def validate_segments(
             if name == "previous" and k == 0:
                 continue
             try:
-                run = repredict(part, vessel, m, history=record)
+                run = repredict(part, vessel, m, history=record, residual=history)
             except SimulationError:
                 if name == "in_sample":
                     flags["unstable"][k] = True
