@@ -766,14 +766,14 @@ def _check_wave_parity(ds: xr.Dataset) -> list[Finding]:
     F(ω, −β) = T F(ω, β), T = diag(1, −1, 1, −1, 1, −1) (surge, heave, pitch keep their
     sign; sway, roll, yaw change it). A file that breaks this for a symmetric body holds
     magnitudes instead of signed values, or a sign error (the MSS S-175's yaw drift)."""
-    from cummins.excitation import MIRROR_SIGNS, _symmetry_evidence
+    from cummins.excitation import MIRROR_SIGNS, symmetry_evidence
 
     out: list[Finding] = []
     for sub in _speeds(ds):
         names = [v for v in ("excitation_force", "drift_force") if v in sub]
         if not names or "wave_direction" not in sub.dims:
             continue
-        symmetric, _ = _symmetry_evidence(sub)
+        symmetric, _ = symmetry_evidence(sub)
         pairs = _mirror_pairs(sub.wave_direction.values)
         if not symmetric or not any(k != m for k, m in pairs):
             continue

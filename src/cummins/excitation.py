@@ -166,7 +166,7 @@ class HeadingCoverage:
         return [(s, e) for s, e in zip(b, ends, strict=True) if e - s > max_gap + 1e-12]
 
 
-def _symmetry_evidence(ds: xr.Dataset) -> tuple[bool, str]:
+def symmetry_evidence(ds: xr.Dataset) -> tuple[bool, str]:
     """Is the body port/starboard symmetric, judged from the data? (ok, reason)."""
     labels = [str(d) for d in ds.influenced_dof.values]
     if len(bodies(ds)) != 1:
@@ -261,7 +261,7 @@ def heading_coverage(ds: xr.Dataset, *, mirror: bool | None = None) -> HeadingCo
             return HeadingCoverage(
                 beta, source, mirrored, False, "the data cover both sides of the x axis"
             )
-        ok, why = _symmetry_evidence(ds)
+        ok, why = symmetry_evidence(ds)
         if not ok:
             return HeadingCoverage(
                 beta,
