@@ -163,7 +163,7 @@ _COMPARISONS = (
 
 def _compare(ds, model, folder: Path, force: bool) -> None:
     from cummins.lfmodel import compare_with_cummins
-    from cummins.plots import save_figure
+    from cummins.plots import plot_lf_comparison, save_figure
     from cummins.vessel import vessel_from_hydrodb
 
     with console.status("fitting the Cummins model for the comparison"):
@@ -176,28 +176,9 @@ def _compare(ds, model, folder: Path, force: bool) -> None:
             continue
         result = compare_with_cummins(model, vessel, dof, kind=kind)
         file = save_figure(
-            _comparison_figure(result, dof, kind), folder / f"{kind}_{dof}.png", force=force
+            plot_lf_comparison(result, dof, kind), folder / f"{kind}_{dof}.png", force=force
         )
         console.print(
             f"{kind} of {dof}: RMS difference {100 * result.attrs['rms_relative']:.1f} %"
             f" of the Cummins response; wrote {file}"
         )
-
-
-def _comparison_figure(result, dof: str, kind: str):
-    from matplotlib.figure import Figure
-
-    fig = Figure(figsize=(9, 3.5), layout="constrained")
-    ax = fig.subplots()
-    for n, (name, label) in enumerate(
-        (("cummins", "Cummins model (fluid memory)"), ("lf", "low-frequency model"))
-    ):
-        ax.plot(
-            result.time.values, result[name].sel(dof=dof).values, lw=1.0, color=f"C{n}", label=label
-        )
-    ax.set_xlabel("t [s]")
-    ax.set_ylabel(dof)
-    ax.set_title(f"{kind} of {dof}: low-frequency model against the Cummins model")
-    ax.legend(fontsize="small")
-    ax.grid(alpha=0.3)
-    return fig

@@ -695,3 +695,22 @@ def plot_lf_model(ds: xr.Dataset, model, dofs: Sequence[str] | None = None) -> F
             ax.legend(fontsize="small", loc="best")
     fig.suptitle(f"Low-frequency model coefficients (seed 002) — {_title(ds)}")
     return fig
+
+
+def plot_lf_comparison(result: xr.Dataset, dof: str, kind: str) -> Figure:
+    """A decay or step response of the low-frequency model against the Cummins model
+    (:func:`cummins.lfmodel.compare_with_cummins`)."""
+    fig = Figure(figsize=(9, 3.5), layout="constrained")
+    ax = fig.subplots()
+    for n, (name, label) in enumerate(
+        (("cummins", "Cummins model (fluid memory)"), ("lf", "low-frequency model"))
+    ):
+        ax.plot(
+            result.time.values, result[name].sel(dof=dof).values, lw=1.0, color=f"C{n}", label=label
+        )
+    ax.set_xlabel("t [s]")
+    ax.set_ylabel(dof)
+    ax.set_title(f"{kind} of {dof}: low-frequency model against the Cummins model")
+    ax.legend(fontsize="small")
+    ax.grid(alpha=0.3)
+    return fig
