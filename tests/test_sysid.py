@@ -41,6 +41,7 @@ from cummins.sysid import (
 )
 
 NOISE = 0.02  # standard deviation of the measurement noise, share of the signal's
+SIX_DOF_DAMPING = {"Surge": 1e6, "Sway": 1e6, "Yaw": 1e10}
 
 
 @pytest.fixture(scope="module")
@@ -371,11 +372,16 @@ def test_negative_estimates_flagged_and_bounded_never_negative(sea_state_records
     assert bounded.at_bound == ("Roll velocity",)
 
 
-def test_coupled_six_dof_record(true_damping):
-    """Roll of the full 6-DOF tanker: the memory couples sway, roll and yaw."""
+@pytest.fixture(scope="module")
+def tanker_vessel():
+    """The bundled tanker, 6 DOFs, with linear damping on the DOFs without restoring."""
     ds = cummins.demo_dataset()
-    damping = {"Surge": 1e6, "Sway": 1e6, "Yaw": 1e10}
-    vessel = cummins.vessel_from_hydrodb(ds, viscous_damping=damping)
+    return ds, cummins.vessel_from_hydrodb(ds, viscous_damping=SIX_DOF_DAMPING)
+
+
+def test_coupled_six_dof_record(true_damping, tanker_vessel):
+    """Roll of the full 6-DOF tanker: the memory couples sway, roll and yaw."""
+    ds, vessel = tanker_vessel
     rng = np.random.default_rng(3)
     records = _sea_records(
         vessel,
@@ -546,16 +552,14 @@ def test_coupling_term_finds_a_wrong_metacentric_height(roll_data, roll_vessel, 
     assert lo <= true_damping[0] <= hi
 
 
-def test_cli_aligns_scaled_and_shifted_forces(tmp_path, true_damping):
+def test_cli_aligns_scaled_and_shifted_forces(tmp_path, true_damping, tanker_vessel):
     """Field data: the predicted force is 3 times too large and 2 s late; --align Heave
     (insensitive to the missing viscous damping, as de Haan chose it) finds both before
     identifying (seed 003 §3.2.1)."""
     from cummins.io.netcdf import save_netcdf
     from cummins.sysid.records import shift_signal
 
-    ds = cummins.demo_dataset()
-    damping = {"Surge": 1e6, "Sway": 1e6, "Yaw": 1e10}
-    vessel = cummins.vessel_from_hydrodb(ds, viscous_damping=damping)
+    ds, vessel = tanker_vessel
     sea = wv.irregular_waves(
         wv.wave_spectrum("jonswap", 6.0, 11.0, gamma=1.0),
         duration=1800,
@@ -584,7 +588,7 @@ def test_cli_aligns_scaled_and_shifted_forces(tmp_path, true_damping):
         "--report",
         str(tmp_path / "rep"),
     ]
-    for dof, value in damping.items():
+    for dof, value in SIX_DOF_DAMPING.items():
         args += ["--viscous-damping", dof, str(value)]
     result = CliRunner().invoke(main, args)
     assert result.exit_code == 0, result.output
