@@ -13,6 +13,10 @@ MSS's FDI (its own order search, run non-interactively under Octave on this mach
 issue 4) takes 6.2 s for the 18 couplings, with 5 of them unstable and none passive as
 a MIMO model; the ratio of the identification against that figure is printed too.
 
+A second part times the two realization methods on one long kernel (2000 samples of a
+two-mode K(t) with 1 % noise, order 10): ERA and Prony, and their ratio (until issue 13's
+CI these were timing assertions in the tests; the project keeps timings here).
+
 Run: ``python benchmarks/bench_fit.py``.
 """
 
@@ -23,9 +27,12 @@ import os
 os.environ.setdefault("OPENBLAS_NUM_THREADS", "1")
 
 
+import numpy as np
+
 import cummins
 from _timing import SHARED_DATA, timed
 from cummins.fit import fit_radiation
+from cummins.fit.realization import era, prony
 from cummins.passivity import is_passive
 
 DATA = SHARED_DATA / "mss" / "tanker" / "tanker.mat"
@@ -63,6 +70,22 @@ def main() -> None:
     print(f"ratio fd MIMO passive / fd identification  {t_mimo / t_fd:6.2f}")
     print(f"ratio MSS FDI (6.2 s, issue 4) / fd ident. {MSS_FDI_SECONDS / t_fd:6.2f}")
     print(f"ratio MSS FDI / fd MIMO passive            {MSS_FDI_SECONDS / t_mimo:6.2f}")
+    long_kernel()
+
+
+def long_kernel() -> None:
+    """ERA and Prony on 2000 samples (one kernel, order 10)."""
+    t = np.arange(2000) * 0.02
+    rng = np.random.default_rng(0)
+    k = (
+        np.exp(-0.24 * t) * np.cos(0.76 * t)
+        + 0.6 * np.exp(-0.3 * t) * np.cos(1.98 * t)
+        + 0.01 * rng.standard_normal(t.size)
+    )
+    t_era, _ = timed(lambda: era(t, k, 10), repeat=5)
+    t_prony, _ = timed(lambda: prony(t, k, 10), repeat=5)
+    print(f"2000-sample kernel, order 10: ERA {1e3 * t_era:.1f} ms, Prony {1e3 * t_prony:.1f} ms")
+    print(f"ratio Prony / ERA                          {t_prony / t_era:6.2f}")
 
 
 if __name__ == "__main__":

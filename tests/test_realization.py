@@ -7,11 +7,6 @@ the gramians (scipy's Lyapunov solver), and the tanker's frequency-domain data (
 
 from __future__ import annotations
 
-import json
-import os
-import subprocess
-import sys
-
 import numpy as np
 import pytest
 import scipy.linalg
@@ -411,36 +406,6 @@ def test_bad_input_is_refused_with_a_fit_error():
     # noise-free data of order 2: a higher order is capped at the Hankel matrix's rank
     model = era(t, k, 4)
     assert model.order == 2 and "numerical rank" in model.note
-
-
-_TIMING = """
-import json, time
-import numpy as np
-from cummins.fit.realization import era, prony
-t = np.arange(2000) * 0.02
-k = (np.exp(-0.24 * t) * np.cos(0.76 * t) + 0.6 * np.exp(-0.3 * t) * np.cos(1.98 * t)
-     + 0.01 * np.random.default_rng(0).standard_normal(t.size))
-out = {}
-for name, call in (("era", lambda: era(t, k, 10)), ("prony", lambda: prony(t, k, 10))):
-    best = np.inf
-    for _ in range(5):
-        start = time.perf_counter()
-        call()
-        best = min(best, time.perf_counter() - start)
-    out[name] = best
-print(json.dumps(out))
-"""
-
-
-def test_a_realization_of_2000_samples_takes_well_under_50_ms():
-    """Single-threaded BLAS: with two busy cores OpenBLAS threads make any timing erratic."""
-    env = dict(os.environ, OPENBLAS_NUM_THREADS="1", OMP_NUM_THREADS="1", MKL_NUM_THREADS="1")
-    result = subprocess.run(
-        [sys.executable, "-c", _TIMING], capture_output=True, text=True, env=env, check=True
-    )
-    times = json.loads(result.stdout)
-    assert times["era"] < 0.05, times
-    assert times["prony"] < 0.05, times
 
 
 # ----------------------------------------------------------------------------- real data
