@@ -44,6 +44,7 @@ def workdir(tmp_path, shared_data, monkeypatch):
     for f in cummins.demo_files().glob("tanker.*"):
         shutil.copy(f, tmp_path / f.name)
     shutil.copytree(shared_data / "mss" / "supply", tmp_path / "supply")
+    shutil.copy(cummins.demo_files().parent / "s175" / "s175.mat", tmp_path / "s175.mat")
     monkeypatch.chdir(tmp_path)
     return tmp_path
 

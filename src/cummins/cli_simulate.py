@@ -86,7 +86,32 @@ from cummins.cli_common import (
     help="Fit the radiation model for close agreement with the data's RAOs (tight R² "
     "targets, higher orders, response weighting: minutes instead of a second).",
 )
-@click.option("--speed", type=float, default=None, metavar="M/S", help="Forward speed of DATA.")
+@click.option(
+    "--speed",
+    type=float,
+    default=None,
+    metavar="M/S",
+    help="Forward speed of DATA. The waves are met at the encounter frequencies; when DATA "
+    "hold zero speed too, the speed terms (U D1, U G1 + U^2 G2, U K1, Hjulstad) are kept "
+    "apart from the fitted memory (cummins.speed.vessel_at_speed).",
+)
+@click.option(
+    "--dof",
+    "dofs",
+    multiple=True,
+    metavar="NAME",
+    help="Simulate only these DOFs (repeatable), e.g. --dof Heave --dof Pitch: the vertical "
+    "plane of a ship in head or following seas.",
+)
+@click.option(
+    "--soft-springs",
+    type=float,
+    default=None,
+    metavar="S",
+    help="At speed: springs of this period in surge, sway and yaw (with 0.7 of critical "
+    "damping), cancelling the yaw Munk moment first: what the autopilot does; without them "
+    "a free 6-DOF ship at speed is unstable and refused.",
+)
 @click.option(
     "--plot",
     "plot_dir",
@@ -122,6 +147,8 @@ def simulate_command(
     start,
     accurate,
     speed,
+    dofs,
+    soft_springs,
     plot_dir,
     force,
 ):
@@ -138,6 +165,7 @@ def simulate_command(
     Examples:
       cummins simulate tanker.1 --hs 4 --tp 10 --heading 150 --duration 1800 -o run.nc
       cummins simulate tanker.1 --regular --wave-period 9 --wave-amplitude 1 -o reg.nc
+      cummins simulate s175.mat --speed 10.29 --dof Heave --dof Pitch --hs 4 --tp 10 -o s.nc
     """
     from cummins import waves as wv
     from cummins.simulate import quadratic_damping_force, simulate_waves
@@ -150,7 +178,22 @@ def simulate_command(
         raise click.UsageError("irregular waves need --hs and --tp (or use --regular)")
     prepare_outputs(output, force=force)
     model, data_path = model_and_data(path)
-    ds = select_speed(read_hydrodb(data_path, format_, rho, g, ulen), speed)
+    data = read_hydrodb(data_path, format_, rho, g, ulen)
+    if dofs:
+        from cummins.hydrodb import select_dofs
+
+        data = select_dofs(data, list(dofs))
+    ds = select_speed(data, speed)
+    at_speed = (
+        model is None
+        and speed
+        and "forward_speed" in data.dims
+        and bool(np.any(np.abs(data.forward_speed.values) <= 1e-3))
+    )
+    if soft_springs is not None and not at_speed:
+        raise click.UsageError(
+            "--soft-springs applies to a ship at --speed U > 0 whose data hold zero speed too"
+        )
     labels = [str(d) for d in ds.influenced_dof.values]
     b_v = viscous_damping_values(viscous_damping, labels)
     b_q = viscous_damping_values(quadratic_damping, labels, "--quadratic-damping")
@@ -160,9 +203,20 @@ def simulate_command(
         title = f"regular waves, amplitude {wave_amplitude:g} m, period {wave_period:g} s"
     else:
         shape = wv.wave_spectrum(spectrum, hs, tp, gamma=gamma if spectrum == "jonswap" else None)
+        lo, hi = wv.energy_range(shape)
+        w_data = ds.omega.values
+        band = (max(lo, float(w_data[0])), min(hi, float(w_data[-1])))
+        if band != (lo, hi):
+            console.print(
+                f"note: wave components limited to the data's frequencies, {band[0]:.4g} to "
+                f"{band[1]:.4g} rad/s (the spectrum's energy lies within {lo:.4g} to "
+                f"{hi:.4g} rad/s)"
+            )
         sea = wv.irregular_waves(
             shape,
             duration=duration,
+            omega_min=band[0],
+            omega_max=band[1],
             n_components=components,
             direction=direction,
             spreading=spreading,
@@ -174,7 +228,14 @@ def simulate_command(
 
     fit_options = MOTION_ACCURACY if accurate and model is None else {}
     with console.status("fitting the radiation model" if model is None else "preparing"):
-        vessel = vessel_from_hydrodb(ds, model, viscous_damping=b_v, **fit_options)
+        if at_speed:
+            from cummins.speed import vessel_at_speed
+
+            vessel = vessel_at_speed(
+                data, speed, soft_springs=soft_springs, viscous_damping=b_v, **fit_options
+            )
+        else:
+            vessel = vessel_from_hydrodb(ds, model, viscous_damping=b_v, **fit_options)
     with progress_bar() as bar:
         task = bar.add_task(f"simulating {duration:g} s, {title}, heading {heading:g}°", total=1.0)
         run = simulate_waves(

@@ -83,9 +83,13 @@ __all__ = [
     "FORCE_VARIABLES",
     "INTERPOLATION_METHODS",
     "HeadingCoverage",
+    "encounter_coefficients",
+    "encounter_excitation",
+    "encounter_frequencies",
     "excitation_coefficients",
     "excitation_force",
     "excitation_transfer",
+    "forward_speed",
     "heading_coverage",
     "leave_one_out_error",
     "wave_response",
@@ -553,7 +557,12 @@ def excitation_transfer(
 # --------------------------------------------------------------------------- time series
 
 
-def wave_response(waves: WaveComponents, transfer: ArrayLike, t: ArrayLike) -> NDArray[np.float64]:
+def wave_response(
+    waves: WaveComponents,
+    transfer: ArrayLike,
+    t: ArrayLike,
+    encounter_frequency: ArrayLike | None = None,
+) -> NDArray[np.float64]:
     """Σ_k a_k Re{H_k e^{i(ω_k t + φ_k)}}: the linear response to a sea of components.
 
     Parameters
@@ -567,6 +576,10 @@ def wave_response(waves: WaveComponents, transfer: ArrayLike, t: ArrayLike) -> N
         elevation at the origin.
     t
         Times, s, shape (nt,).
+    encounter_frequency
+        For a ship at speed, ω_e of each component (:func:`encounter_frequencies`), with
+        H referred to e^{iω_e t} (as :func:`cummins.frequency_domain.motion_transfer`
+        gives it): the response is then Σ_k a_k Re{H_k e^{i(ω_e,k t + φ_k)}}.
 
     Returns
     -------
@@ -577,7 +590,98 @@ def wave_response(waves: WaveComponents, transfer: ArrayLike, t: ArrayLike) -> N
     if h.shape[0] != len(waves):
         raise ValueError(f"transfer has {h.shape[0]} rows for {len(waves)} wave components")
     c = waves.complex_amplitude.reshape((-1,) + (1,) * (h.ndim - 1)) * h
-    return harmonic_sum(t, waves.omega, c)
+    w = waves.omega if encounter_frequency is None else encounter_frequency
+    return harmonic_sum(t, np.asarray(w, dtype=float).reshape(-1), c)
+
+
+def forward_speed(ds: xr.Dataset) -> float:
+    """The forward speed U of a one-speed ``HydroDB`` (its ``forward_speed`` coordinate),
+    m/s; 0 when it has none."""
+    ds = single_speed(ds)
+    if "forward_speed" in ds.coords and ds.forward_speed.ndim == 0:
+        return float(ds.forward_speed)
+    return 0.0
+
+
+def encounter_frequencies(
+    ds: xr.Dataset, omega: ArrayLike, direction: ArrayLike
+) -> NDArray[np.float64]:
+    """Encounter frequency ω_e = ω − k(ω) U cos β of the dataset's forward speed, rad/s.
+
+    Parameters
+    ----------
+    ds
+        A ``HydroDB`` of one forward speed U (m/s, the ``forward_speed`` coordinate; 0 or
+        none: ω_e = ω exactly).
+    omega
+        Wave frequencies ω, rad/s.
+    direction
+        Directions of wave travel β, rad (0 following seas, π head seas), broadcast
+        against ``omega``.
+
+    Returns
+    -------
+    numpy.ndarray
+        ω_e, signed (negative where following waves overtake the ship faster than their
+        phase passes it; module docstring), shape of the broadcast inputs. k from the
+        dispersion relation at the data's ``water_depth`` and ``g``
+        (:func:`cummins.waves.wavenumber`), as :func:`cummins.speed.encounter_frequency`
+        does in deep water.
+
+    Examples
+    --------
+    >>> import cummins, numpy as np
+    >>> from importlib import resources
+    >>> s175 = cummins.read(str(resources.files("cummins") / "data" / "s175" / "s175.mat"))
+    >>> ds = s175.isel(forward_speed=4)   # 10.29 m/s (20 kn); head seas: beta = pi
+    >>> round(float(encounter_frequencies(ds, 0.5, np.pi)), 3)
+    0.762
+    """
+    w, beta = np.broadcast_arrays(
+        np.asarray(omega, dtype=float), np.asarray(direction, dtype=float)
+    )
+    speed = forward_speed(ds)
+    if speed == 0.0:
+        return w.copy()
+    g = float(ds.attrs.get("g", 9.81))
+    depth = float(ds.attrs.get("water_depth", np.inf))
+    return w - wavenumber(w, depth, g) * speed * np.cos(beta)
+
+
+def encounter_excitation(
+    force: ArrayLike, encounter_frequency: ArrayLike
+) -> NDArray[np.complex128]:
+    """Excitation amplitudes of data at speed referred to e^{iω_e t}: F̄ where ω_e < 0.
+
+    Strip-theory codes (ShipX/VERES) tabulate the force of a wave met at a negative
+    encounter frequency against |ω_e|, i.e. referred to e^{i|ω_e|t}; the force on the
+    ship is then Re{F a e^{i|ω_e|t}} for the wave Re{ā e^{i|ω_e|t}} = Re{a e^{iω_e t}}
+    at its origin. Conjugating F there puts force and wave on one convention,
+    Re{F̄ a e^{iω_e t}} (:mod:`cummins.frequency_domain`, forward speed).
+
+    Parameters
+    ----------
+    force
+        F(ω, β), shape (..., n_dofs), N/m, N·m/m.
+    encounter_frequency
+        ω_e of each (ω, β), shape ``force.shape[:-1]``, rad/s.
+    """
+    f = np.asarray(force, dtype=complex)
+    negative = np.asarray(encounter_frequency, dtype=float) < 0
+    return np.where(negative[..., None], np.conj(f), f)
+
+
+def encounter_coefficients(
+    ds: xr.Dataset, waves: WaveComponents, **options
+) -> tuple[NDArray[np.float64], NDArray[np.complex128]]:
+    """(ω_e, c): the wave force on the ship at the data's forward speed,
+    τ(t) = Re Σ_k c_k e^{iω_e,k t}, with c_k = a_k e^{iφ_k} F(ω_k, β_k) (F̄ where
+    ω_e < 0, :func:`encounter_excitation`), shapes (n,) and (n, n_dofs). At zero speed
+    ω_e = ω and c is :func:`excitation_coefficients`. ``options`` go to
+    :func:`excitation_transfer`."""
+    we = encounter_frequencies(ds, waves.omega, waves.direction)
+    f = excitation_transfer(ds, waves.omega, waves.direction, **options)
+    return we, waves.complex_amplitude[:, None] * encounter_excitation(f, we)
 
 
 def excitation_coefficients(
@@ -597,6 +701,9 @@ def excitation_force(
     ds: xr.Dataset, waves: WaveComponents, t: ArrayLike, **options
 ) -> NDArray[np.float64]:
     """First-order wave excitation τ(t) = Σ_k a_k Re{F(ω_k, β_k) e^{i(ω_k t + φ_k)}}.
+
+    At a forward speed (data with a ``forward_speed``), the force on the moving ship:
+    ω_e in place of ω (:func:`encounter_coefficients`).
 
     Parameters
     ----------
@@ -620,8 +727,8 @@ def excitation_force(
     no Python loop over times (200 components × 200 000 uniform times × 6 DOFs: about
     0.25 s).
     """
-    c = excitation_coefficients(ds, waves, **options)
-    return harmonic_sum(np.asarray(t, dtype=float).reshape(-1), waves.omega, c)
+    we, c = encounter_coefficients(ds, waves, **options)
+    return harmonic_sum(np.asarray(t, dtype=float).reshape(-1), we, c)
 
 
 # --------------------------------------------------------------------------- diagnostics

@@ -19,6 +19,30 @@ system is solved there. A lightly damped resonance (seed 003 §3.1.2: roll, with
 phase turn within one Δω of the database) is thereby resolved as finely as asked, which
 no interpolation of the RAO itself can do.
 
+**Forward speed.** For data at a forward speed U (a ``forward_speed`` coordinate, e.g. the
+MSS S-175 from ShipX/VERES), the vessel meets a wave of frequency ω and direction β at
+the encounter frequency ω_e = ω − k(ω) U cos β (seed 000 §3; deep water k = ω²/g): the
+excitation F(ω, β) is tabulated per *wave* frequency, while the radiation coefficients
+A, B are functions of the frequency of the motion, ω_e. So the RAO at speed is
+
+    [−ω_e² (M_RB + A(|ω_e|)) + iω_e B(|ω_e|) + C] X = F(ω, β),   x(t) = Re{X e^{iω_e t}}
+
+(:func:`cummins.excitation.encounter_frequencies`). A negative ω_e (waves overtaking the
+ship in following seas) is allowed: A and B are even in ω, so Z(−|ω_e|) is the conjugate
+of Z(|ω_e|). Strip-theory tables at speed refer F (and their RAOs) to e^{i|ω_e|t}, i.e.
+they hold the conjugate of F where ω_e < 0; cummins takes F̄ there
+(:func:`cummins.excitation.encounter_excitation`), so that every RAO and every time
+series refers to e^{iω_e t} and to the same wave phase. Checked against ShipX/VERES: the
+S-175 heave and pitch RAOs of ``s175.mat`` at all 5 speeds and 36 headings are
+reproduced, complex, within 1 % (heave) and 2.5 % (pitch) of their peaks (VERES' own RAO
+conjugated where ω_e < 0; tests/test_frequency_domain.py), where the same data solved at
+ω are off by up to 68 %; taking F as printed for ω_e < 0 instead gives 3 % in heave.
+Where |ω_e| lies outside the frequencies of the data (long waves in following seas,
+short waves in head seas) A and B are held at the nearest data frequency, and the RAO
+says so (attribute ``encounter_outside_data``). The response spectrum and the
+significant amplitudes below stay on the wave-frequency axis: the variance is the same
+on either axis.
+
 The response spectrum of DOF j to a wave spectrum S(ω) in one direction is
 S_j(ω) = |X_j(ω, β)|² S(ω) (seed 003 eq. 2.5); in a short-crested sea with spreading
 D(θ), S_j(ω) = Σ_β w_β |X_j(ω, β)|² S(ω), w_β = ∫_bin D dθ. The significant amplitude is
@@ -40,7 +64,10 @@ from cummins.excitation import (
     INTERPOLATION_METHODS,
     _interpolate_frequency,
     _where,
+    encounter_excitation,
+    encounter_frequencies,
     excitation_transfer,
+    forward_speed,
 )
 from cummins.hydrodb import dof_matrix, single_speed
 from cummins.vessel import viscous_damping_matrix
@@ -85,6 +112,7 @@ def impedance(
     viscous_damping: Any = None,
     additional: bool = True,
     method: str = "hermite",
+    outside: str = "raise",
 ) -> NDArray[np.complex128]:
     """Z(ω) = −ω²(M_RB + A + A_add) + iω(B + B_add + B_v) + C + C_add, shape (n, N, N).
 
@@ -94,8 +122,10 @@ def impedance(
         A ``HydroDB`` (one forward speed) with ``inertia_matrix`` and
         ``hydrostatic_stiffness``.
     omega
-        Frequencies, rad/s, within the data's range (A and B are interpolated between
-        the data frequencies, by ``method`` as in :func:`cummins.excitation.excitation_transfer`).
+        Frequencies of the motion, rad/s, within the data's range (A and B are
+        interpolated between the data frequencies, by ``method`` as in
+        :func:`cummins.excitation.excitation_transfer`). A negative ω (an encounter
+        frequency in following seas) takes A and B at |ω|: Z(−ω) is the conjugate of Z(ω).
     viscous_damping
         B_v: an (N, N) matrix, a DataArray with ``influenced_dof``/``radiating_dof``, or
         ``{dof: value}`` for a diagonal one (kg/s, kg·m²/s …); None for none.
@@ -103,6 +133,10 @@ def impedance(
         Include the dataset's ``additional_added_mass``, ``additional_damping`` and
         ``additional_stiffness`` (WAMIT external damping, MSS viscous damping, VERES roll
         damping, moorings).
+    outside
+        ``"raise"`` (default) for |ω| outside the data's frequencies; ``"hold"``: take A
+        and B (and the additional terms) at the nearest data frequency there (the
+        encounter frequencies of a ship at speed, :func:`motion_rao`).
 
     Raises
     ------
@@ -132,27 +166,29 @@ def impedance(
         raise ValueError(
             f"unknown method {method!r}; use one of {', '.join(INTERPOLATION_METHODS)}"
         )
+    if outside not in ("raise", "hold"):
+        raise ValueError(f"outside must be 'raise' or 'hold', not {outside!r}")
     w = np.asarray(omega, dtype=float).reshape(-1)
     data_w = ds.omega.values
     tol = 1e-9 * data_w[-1]
-    outside = (w < data_w[0] - tol) | (w > data_w[-1] + tol)
-    if outside.any():
+    beyond = (np.abs(w) < data_w[0] - tol) | (np.abs(w) > data_w[-1] + tol)
+    if beyond.any() and outside == "raise":
         raise HydroDataError(
-            f"frequency {w[outside][0]:.6g} rad/s is outside the data's range "
+            f"frequency {w[beyond][0]:.6g} rad/s is outside the data's range "
             f"{data_w[0]:.6g} to {data_w[-1]:.6g} rad/s",
             path=where,
             hint="the added mass and damping are not known there: choose frequencies "
             "within that range",
         )
-    w = np.clip(w, data_w[0], data_w[-1])
-    mass = dof_matrix(ds, "inertia_matrix")[None] + _frequency_matrix(ds, "added_mass", w, method)
-    damping = _frequency_matrix(ds, "radiation_damping", w, method)
+    at = np.clip(np.abs(w), data_w[0], data_w[-1])
+    mass = dof_matrix(ds, "inertia_matrix")[None] + _frequency_matrix(ds, "added_mass", at, method)
+    damping = _frequency_matrix(ds, "radiation_damping", at, method)
     stiffness = dof_matrix(ds, "hydrostatic_stiffness")
     if additional:
         if "additional_added_mass" in ds:
-            mass = mass + _frequency_matrix(ds, "additional_added_mass", w, method)
+            mass = mass + _frequency_matrix(ds, "additional_added_mass", at, method)
         if "additional_damping" in ds:
-            damping = damping + _frequency_matrix(ds, "additional_damping", w, method)
+            damping = damping + _frequency_matrix(ds, "additional_damping", at, method)
         if "additional_stiffness" in ds:
             stiffness = stiffness + dof_matrix(ds, "additional_stiffness")
     if viscous_damping is not None:
@@ -193,7 +229,9 @@ def motion_transfer(
 
     The frequency-domain counterpart of a time-domain run in the same sea:
     ``cummins.excitation.wave_response(waves, motion_transfer(ds, waves.omega,
-    waves.direction), t)`` is the steady-state linear motion (m, rad). Arguments as
+    waves.direction), t)`` is the steady-state linear motion (m, rad); at a forward
+    speed, the motion oscillates at the encounter frequencies (module docstring:
+    Re Σ x_k e^{iω_e,k t}, :func:`encounter_frequencies`). Arguments as
     :func:`motion_rao` and :func:`cummins.excitation.excitation_transfer`; with
     ``extrapolate="zero"`` the RAO is 0 at frequencies outside the data.
     """
@@ -206,10 +244,18 @@ def motion_transfer(
     tol = 1e-9 * data_w[-1]
     inside = (w >= data_w[0] - tol) & (w <= data_w[-1] + tol)
     if inside.any():
+        moving = forward_speed(ds) != 0.0
+        we = encounter_frequencies(ds, w[inside], beta[inside])
+        force[inside] = encounter_excitation(force[inside], we)
         z = impedance(
-            ds, w[inside], viscous_damping=viscous_damping, additional=additional, method=method
+            ds,
+            we,
+            viscous_damping=viscous_damping,
+            additional=additional,
+            method=method,
+            outside="hold" if moving else "raise",
         )
-        out[inside] = _solve(z, force[inside], _where(ds), w[inside])
+        out[inside] = _solve(z, force[inside], _where(ds), we)
     return out
 
 
@@ -250,7 +296,10 @@ def motion_rao(
     -------
     xarray.DataArray
         ``rao``, complex, dims (omega, wave_direction, dof), m/m and rad/m, phase
-        relative to the wave elevation at the origin (x(t) = Re{X e^{iωt}}).
+        relative to the wave elevation at the origin (x(t) = Re{X e^{iωt}}). At a
+        forward speed: the coordinate ``encounter_frequency`` (omega, wave_direction),
+        x(t) = Re{X e^{iω_e t}} at the origin moving with the ship, and the attributes
+        ``forward_speed`` and ``encounter_outside_data`` (module docstring).
 
     Raises
     ------
@@ -276,15 +325,24 @@ def motion_rao(
         beta = np.asarray(wave_direction, dtype=float).reshape(-1)
     if w.size == 0 or beta.size == 0:
         raise ValueError("no frequencies or no directions asked for")
-    z = impedance(ds, w, viscous_damping=viscous_damping, additional=additional, method=method)
     ww, bb = np.meshgrid(w, beta, indexing="ij")
     force = excitation_transfer(
         ds, ww.reshape(-1), bb.reshape(-1), method=method, mirror=mirror
     ).reshape(w.size, beta.size, -1)
-    try:
-        x = np.linalg.solve(z[:, None], force[..., None])[..., 0]
-    except np.linalg.LinAlgError:
-        x = np.stack([_solve(z, force[:, j], _where(ds), w) for j in range(beta.size)], 1)
+    speed = forward_speed(ds)
+    options = {"viscous_damping": viscous_damping, "additional": additional, "method": method}
+    if speed == 0.0:
+        z = impedance(ds, w, **options)
+        try:
+            x = np.linalg.solve(z[:, None], force[..., None])[..., 0]
+        except np.linalg.LinAlgError:
+            x = np.stack([_solve(z, force[:, j], _where(ds), w) for j in range(beta.size)], 1)
+    else:
+        we = encounter_frequencies(ds, ww, bb)
+        force = encounter_excitation(force, we)
+        z = impedance(ds, we.reshape(-1), outside="hold", **options)
+        n = force.shape[-1]
+        x = _solve(z, force.reshape(-1, n), _where(ds), we.reshape(-1)).reshape(force.shape)
     labels = [str(d) for d in ds.influenced_dof.values]
     included = ["inertia_matrix", "added_mass", "radiation_damping", "hydrostatic_stiffness"]
     if additional:
@@ -295,6 +353,25 @@ def motion_rao(
         ]
     if viscous_damping is not None:
         included.append("viscous_damping (given)")
+    attrs = {}
+    coords = {}
+    if speed != 0.0:
+        data_w = ds.omega.values
+        tol = 1e-9 * data_w[-1]
+        held = (np.abs(we) < data_w[0] - tol) | (np.abs(we) > data_w[-1] + tol)
+        attrs = {
+            "forward_speed": speed,
+            "encounter_outside_data": int(held.sum()),
+            "encounter_note": "x(t) = Re{X exp(i omega_e t)}, omega_e the encounter frequency; "
+            f"A and B held at the nearest data frequency for {int(held.sum())} of "
+            f"{held.size} (omega, wave_direction) pairs whose |omega_e| is outside "
+            f"{data_w[0]:.4g} to {data_w[-1]:.4g} rad/s",
+        }
+        coords["encounter_frequency"] = (
+            ("omega", "wave_direction"),
+            we,
+            {"units": "rad/s", "long_name": "encounter frequency (signed)"},
+        )
     return xr.DataArray(
         x,
         dims=("omega", "wave_direction", "dof"),
@@ -306,6 +383,7 @@ def motion_rao(
                 {"units": "rad", "long_name": "direction of wave propagation (0 = along +x)"},
             ),
             "dof": ("dof", labels),
+            **coords,
         },
         name="rao",
         attrs={
@@ -318,6 +396,7 @@ def motion_rao(
             "reference_point": np.asarray(ds.attrs.get("reference_point", (0.0, 0.0, 0.0))),
             "interpolation": method,
             "source_file": str(ds.attrs.get("source_file", "")),
+            **attrs,
         },
     )
 

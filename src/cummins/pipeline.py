@@ -220,11 +220,22 @@ def write_simulation_plots(run, vessel, ds, sea, folder: Path, *, force: bool = 
     folder.mkdir(parents=True, exist_ok=True)
     written = [save_figure(plot_time_series(run), folder / "time_series.png", force=force)]
     if len(sea) > 1:
-        order = np.argsort(sea.omega)
-        w = sea.omega[order]
+        from cummins.excitation import encounter_frequencies
+
+        width = float(getattr(sea, "bin_width", None) or np.median(np.diff(np.sort(sea.omega))))
+        # at a forward speed the run is on the encounter-frequency axis: the density of
+        # each component's variance there is divided by |dω_e/dω| (1 at zero speed)
+        we = encounter_frequencies(ds, sea.omega, sea.direction)
+        step = 1e-6 * sea.omega
+        slope = (
+            encounter_frequencies(ds, sea.omega + step, sea.direction)
+            - encounter_frequencies(ds, sea.omega - step, sea.direction)
+        ) / (2 * step)
+        order = np.argsort(np.abs(we))
+        w = np.abs(we)[order]
         x = component_motions(vessel, ds, sea)[order]
-        width = float(getattr(sea, "bin_width", None) or np.median(np.diff(w)))
-        density = 0.5 * np.abs(x) ** 2 / width
+        jacobian = np.maximum(np.abs(slope[order]), 1e-3)[:, None]
+        density = 0.5 * np.abs(x) ** 2 / (width * jacobian)
         references = {"frequency domain (same model)": (w, density)}
         written.append(
             save_figure(

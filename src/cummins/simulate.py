@@ -204,11 +204,13 @@ def simulate_waves(
     Returns
     -------
     xarray.Dataset
-        :func:`simulate`'s variables and ``wave_elevation`` (time) at the origin, m;
+        :func:`simulate`'s variables and ``wave_elevation`` (time) at the origin, m (at a
+        forward speed: the origin moving with the ship, and the force and motions at the
+        encounter frequencies, :func:`cummins.excitation.encounter_coefficients`);
         attributes describing the sea (``n_components``, ``seed`` …) and the energy
         balance (``energy_*``, J).
     """
-    from cummins.excitation import excitation_coefficients
+    from cummins.excitation import encounter_coefficients, forward_speed
     from cummins.waves import harmonic_sum
 
     if initial not in ("steady", "rest"):
@@ -216,11 +218,11 @@ def simulate_waves(
     if not duration > 0:
         raise SimulationError(f"the duration must be positive, not {duration}")
     t = np.arange(0.0, duration + 0.5 * dt, dt)
-    coefficients = excitation_coefficients(ds, waves, **excitation_options)
+    omega_e, coefficients = encounter_coefficients(ds, waves, **excitation_options)
     report = progress or _no_progress
-    force = harmonic_sum(t, waves.omega, coefficients)
+    force = harmonic_sum(t, omega_e, coefficients)
     report(0.2)
-    x0 = steady_state(vessel, waves.omega, coefficients) if initial == "steady" else None
+    x0 = steady_state(vessel, omega_e, coefficients) if initial == "steady" else None
     result = simulate(
         vessel,
         t,
@@ -229,11 +231,17 @@ def simulate_waves(
         nonlinear_force=nonlinear_force,
         progress=lambda fraction: report(0.2 + 0.8 * fraction),
     )
-    result["wave_elevation"] = ("time", waves.elevation(t))
+    result["wave_elevation"] = ("time", harmonic_sum(t, omega_e, waves.complex_amplitude))
     result.wave_elevation.attrs["units"] = "m"
+    speed = forward_speed(ds)
+    if speed:
+        result.wave_elevation.attrs["long_name"] = (
+            "wave elevation at the origin moving with the ship"
+        )
     balance = energy_balance(vessel, result)
     attrs = {
         "initial": initial,
+        "forward_speed": speed,
         "n_components": len(waves),
         **{f"energy_{key}": value for key, value in balance.items()},
     }
@@ -284,11 +292,12 @@ def component_motions(
     vessel: Vessel, ds: xr.Dataset, waves, **excitation_options
 ) -> NDArray[np.complex128]:
     """Complex motion amplitudes x_k (n_components, n_dofs) of the vessel's linear model
-    in each wave component: its stationary response is ξ(t) = Re Σ_k x_k e^{iω_k t}, and
+    in each wave component: its stationary response is ξ(t) = Re Σ_k x_k e^{iω_k t}
+    (ω_e,k at a forward speed, :func:`cummins.excitation.encounter_coefficients`), and
     ½|x_k|² the share of component k in each DOF's variance (m², rad²)."""
-    from cummins.excitation import excitation_coefficients
+    from cummins.excitation import encounter_coefficients
 
-    return vessel.response(waves.omega, excitation_coefficients(ds, waves, **excitation_options))
+    return vessel.response(*encounter_coefficients(ds, waves, **excitation_options))
 
 
 def simulate_convolution(
