@@ -418,7 +418,7 @@ def plot_response_spectra(
         ax.set_title(dof)
         unit = units[k] if k < len(units) else ""
         ax.set_ylabel(f"S [{unit}²·s/rad]")
-        ax.set_xlabel("ω [rad/s]")
+        ax.set_xlabel("ω_e [rad/s] (encounter)" if run.attrs.get("forward_speed") else "ω [rad/s]")
         ax.grid(alpha=0.3)
     axes[0].legend(fontsize="small")
     for ax in axes[len(dofs) :]:
