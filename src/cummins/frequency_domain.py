@@ -34,8 +34,8 @@ they hold the conjugate of F where ω_e < 0; cummins takes F̄ there
 (:func:`cummins.excitation.encounter_excitation`), so that every RAO and every time
 series refers to e^{iω_e t} and to the same wave phase. Checked against ShipX/VERES: the
 S-175 heave and pitch RAOs of ``s175.mat`` at all 5 speeds and 36 headings are
-reproduced, complex, within 1 % (heave) and 2.5 % (pitch) of their peaks (VERES' own RAO
-conjugated where ω_e < 0; tests/test_frequency_domain.py), where the same data solved at
+reproduced, complex, within 0.85 % (heave) and 2.2 % (pitch) of their peaks (VERES' own
+RAO conjugated where ω_e < 0; tests/test_encounter.py), where the same data solved at
 ω are off by up to 68 %; taking F as printed for ω_e < 0 instead gives 3 % in heave.
 Where |ω_e| lies outside the frequencies of the data (long waves in following seas,
 short waves in head seas) A and B are held at the nearest data frequency, and the RAO
@@ -105,6 +105,14 @@ def _frequency_matrix(
     return out
 
 
+def _outside_data(ds: xr.Dataset, omega: NDArray[np.float64]) -> NDArray[np.bool_]:
+    """True where |ω| lies outside the data's frequencies (by more than 1e-9 of the last)."""
+    data_w = ds.omega.values
+    tol = 1e-9 * data_w[-1]
+    w = np.abs(omega)
+    return (w < data_w[0] - tol) | (w > data_w[-1] + tol)
+
+
 def impedance(
     ds: xr.Dataset,
     omega: ArrayLike,
@@ -170,8 +178,7 @@ def impedance(
         raise ValueError(f"outside must be 'raise' or 'hold', not {outside!r}")
     w = np.asarray(omega, dtype=float).reshape(-1)
     data_w = ds.omega.values
-    tol = 1e-9 * data_w[-1]
-    beyond = (np.abs(w) < data_w[0] - tol) | (np.abs(w) > data_w[-1] + tol)
+    beyond = _outside_data(ds, w)
     if beyond.any() and outside == "raise":
         raise HydroDataError(
             f"frequency {w[beyond][0]:.6g} rad/s is outside the data's range "
@@ -230,8 +237,9 @@ def motion_transfer(
     The frequency-domain counterpart of a time-domain run in the same sea:
     ``cummins.excitation.wave_response(waves, motion_transfer(ds, waves.omega,
     waves.direction), t)`` is the steady-state linear motion (m, rad); at a forward
-    speed, the motion oscillates at the encounter frequencies (module docstring:
-    Re Σ x_k e^{iω_e,k t}, :func:`encounter_frequencies`). Arguments as
+    speed the motion oscillates at the encounter frequencies: pass
+    ``cummins.excitation.encounter_frequencies(ds, waves.omega, waves.direction)`` as
+    ``wave_response``'s fourth argument (module docstring). Arguments as
     :func:`motion_rao` and :func:`cummins.excitation.excitation_transfer`; with
     ``extrapolate="zero"`` the RAO is 0 at frequencies outside the data.
     """
@@ -240,9 +248,7 @@ def motion_transfer(
     beta = np.broadcast_to(np.asarray(direction, dtype=float), np.shape(omega)).reshape(-1)
     force = excitation_transfer(ds, w, beta, extrapolate=extrapolate, method=method, mirror=mirror)
     out = np.zeros_like(force)
-    data_w = ds.omega.values
-    tol = 1e-9 * data_w[-1]
-    inside = (w >= data_w[0] - tol) & (w <= data_w[-1] + tol)
+    inside = ~_outside_data(ds, w)
     if inside.any():
         moving = forward_speed(ds) != 0.0
         we = encounter_frequencies(ds, w[inside], beta[inside])
@@ -357,8 +363,7 @@ def motion_rao(
     coords = {}
     if speed != 0.0:
         data_w = ds.omega.values
-        tol = 1e-9 * data_w[-1]
-        held = (np.abs(we) < data_w[0] - tol) | (np.abs(we) > data_w[-1] + tol)
+        held = _outside_data(ds, we)
         attrs = {
             "forward_speed": speed,
             "encounter_outside_data": int(held.sum()),
