@@ -37,6 +37,18 @@ def shared_data() -> Path:
 
 
 @pytest.fixture(scope="session")
+def corpus(shared_data) -> Path:
+    """Path of ``../shared/data/corpus``: 32 cases of public solver output (see its README)."""
+    path = shared_data / "corpus"
+    if not path.is_dir():
+        message = f"the public corpus is not at {path}"
+        if os.environ.get("CI", "").lower() == "true":
+            pytest.fail(message + "; under CI=true every real-data test must run")
+        pytest.skip(message)
+    return path
+
+
+@pytest.fixture(scope="session")
 def tanker_wamit(shared_data):
     """The MSS tanker read from its WAMIT numeric files (.1/.3/.hst + .frc, .out)."""
     import cummins

@@ -24,9 +24,12 @@ from cummins import frequency_domain, passivity, reduce, repair, waves
 from cummins._version import __version__
 from cummins.check import CheckReport, Finding, check
 from cummins.errors import (
+    ArgumentError,
     CumminsError,
+    CumminsWarning,
     FitError,
     HydroDataError,
+    HydroDataWarning,
     OutputExistsError,
     SimulationError,
 )
@@ -65,12 +68,15 @@ def demo_dataset() -> xr.Dataset:
 __all__ = [
     "DOF_NAMES",
     "FORMATS",
+    "ArgumentError",
     "CheckReport",
     "CouplingModel",
     "CumminsError",
+    "CumminsWarning",
     "Finding",
     "FitError",
     "HydroDataError",
+    "HydroDataWarning",
     "OutputExistsError",
     "RadiationModel",
     "SimulationError",

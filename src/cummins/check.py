@@ -823,6 +823,21 @@ def _check_wave_parity(ds: xr.Dataset) -> list[Finding]:
     return out
 
 
+def _check_read_warnings(ds: xr.Dataset) -> list[Finding]:
+    """Damage the reader worked around (``read_warnings``), repeated as warnings."""
+    lines = [w for w in str(ds.attrs.get("read_warnings", "")).splitlines() if w.strip()]
+    return [
+        Finding(
+            "read_damage",
+            "warning",
+            line,
+            advice="the data were read without the damaged part: check the file, or "
+            "re-run the solver",
+        )
+        for line in lines
+    ]
+
+
 def check(ds: xr.Dataset) -> CheckReport:
     """Run all diagnostics on a ``HydroDB``.
 
@@ -849,6 +864,7 @@ def check(ds: xr.Dataset) -> CheckReport:
     source = ds.attrs.get("source_file") or ds.attrs.get("source_format", "dataset")
     findings: list[Finding] = [Finding("finite", "ok", "no NaN or Inf values")]
     for part in (
+        _check_read_warnings,
         _check_grid,
         _check_symmetry,
         _check_damping,

@@ -97,6 +97,29 @@ class IdentificationError(CumminsError):
     a DOF or term the records do not hold)."""
 
 
+class ArgumentError(CumminsError, ValueError):
+    """A value given by the user (a function argument or a command-line option) is not
+    usable: not finite, out of range, of the wrong unit or too large to compute.
+
+    The message names the argument, the value given, the accepted range with its unit,
+    and what to pass instead. The command line prints it on one line and exits with
+    status 2, as for any other usage error.
+    """
+
+
+class CumminsWarning(UserWarning):
+    """Base class of the warnings cummins issues on purpose."""
+
+
+class HydroDataWarning(CumminsWarning):
+    """The data were read, but part of them is damaged or suspect (a sibling file that
+    cannot be parsed, a table shorter than its header announces …).
+
+    Readers also record the text in the dataset's ``read_warnings`` attribute, so that
+    ``cummins check`` repeats it as a finding long after the warning scrolled by.
+    """
+
+
 class OutputExistsError(CumminsError, FileExistsError):
     """Refusing to overwrite an existing file without ``force=True`` / ``--force``."""
 

@@ -123,19 +123,96 @@ _LONG_NAMES = {
 # --------------------------------------------------------------------------- DOF labels
 
 
-def dof_labels(bodies: Sequence[str] | None = None) -> list[str]:
-    """DOF labels for one body (``Surge`` … ``Yaw``) or several (``name__Surge`` …).
+def dof_labels(
+    bodies: Sequence[str] | int | None = None, modes: int | Sequence[int] = 6
+) -> list[str]:
+    """DOF labels for one body (``Surge`` … ``Yaw``) or several (``body1__Surge`` …).
+
+    Every reader labels the DOFs this way, whatever names the solver gives its bodies,
+    so that the same body reads with the same labels from every format: several bodies
+    are ``body1``, ``body2`` … in the order of the file, and the names the file gives
+    them are kept in the dataset's ``body_names`` attribute (see :func:`body_names`;
+    :func:`rename_bodies` relabels).
+
+    Parameters
+    ----------
+    bodies
+        The number of bodies (labels ``body1`` …), or their names; ``None`` or one body:
+        labels without a prefix.
+    modes
+        Modes per body (one int for all, or one per body): the six rigid-body modes,
+        then generalized modes (flexible, piston …) labelled ``Mode7``, ``Mode8`` … by
+        their mode number within the body, as WAMIT numbers them.
 
     Examples
     --------
     >>> dof_labels()[:3]
     ['Surge', 'Sway', 'Heave']
+    >>> dof_labels(2)[6]
+    'body2__Surge'
     >>> dof_labels(["buoy", "float"])[6]
     'float__Surge'
+    >>> dof_labels(modes=8)[6:]
+    ['Mode7', 'Mode8']
     """
-    if not bodies or len(bodies) == 1:
-        return list(DOF_NAMES)
-    return [f"{b}__{d}" for b in bodies for d in DOF_NAMES]
+    if isinstance(bodies, int | np.integer):
+        names: list[str] = [f"body{k + 1}" for k in range(int(bodies))]
+    else:
+        names = list(bodies or [])
+    count = max(len(names), 1)
+    per_body = [int(modes)] * count if isinstance(modes, int | np.integer) else list(modes)
+    if len(per_body) != count:
+        raise HydroDataError(f"{len(per_body)} mode counts given for {count} bodies")
+    if any(m < 1 for m in per_body):
+        raise HydroDataError(f"a body needs at least one mode, got {per_body}")
+    labels: list[str] = []
+    for k in range(count):
+        body_modes = list(DOF_NAMES[: per_body[k]]) + [
+            f"Mode{j + 1}" for j in range(len(DOF_NAMES), per_body[k])
+        ]
+        prefix = f"{names[k]}__" if len(names) > 1 else ""
+        labels.extend(prefix + m for m in body_modes)
+    return labels
+
+
+def body_names(ds: xr.Dataset) -> list[str]:
+    """The names the solver file gave its bodies (``body_names`` attribute, one line per
+    body), or the labels' body prefixes (``body1`` …) when it gave none."""
+    stored = [b for b in str(ds.attrs.get("body_names", "")).splitlines() if b]
+    found = [b for b in bodies(ds) if b is not None]
+    if stored and len(stored) == max(len(found), 1):
+        return stored
+    return found
+
+
+def rename_bodies(ds: xr.Dataset, names: Sequence[str] | None = None) -> xr.Dataset:
+    """Relabel the DOFs of a multi-body dataset ``body1__Heave`` → ``<name>__Heave``.
+
+    ``names`` defaults to the names the file gave (``body_names`` attribute). A copy is
+    returned; the relabelling is written to ``history``.
+    """
+    current = [b for b in bodies(ds) if b is not None]
+    if not current:
+        return ds
+    names = list(names) if names is not None else body_names(ds)
+    if len(names) != len(current) or len(set(names)) != len(names):
+        raise HydroDataError(
+            f"{len(names)} body names given ({', '.join(map(str, names))}) for "
+            f"{len(current)} bodies ({', '.join(map(str, current))})",
+            hint="give one distinct name per body, in the order of the DOFs",
+        )
+    mapping = dict(zip(current, names, strict=True))
+
+    def relabel(label: str) -> str:
+        body, name = split_dof(label)
+        return f"{mapping[body]}__{name}" if body is not None else name
+
+    out = ds.copy()
+    for dim in ("influenced_dof", "radiating_dof"):
+        if dim in out.coords:
+            out = out.assign_coords({dim: [relabel(str(v)) for v in out[dim].values]})
+    add_history(out, "bodies renamed: " + ", ".join(f"{a} -> {b}" for a, b in mapping.items()))
+    return out
 
 
 def split_dof(label: str) -> tuple[str | None, str]:
@@ -171,14 +248,22 @@ def is_rotation(label: str) -> bool:
 
 
 def dof_index(label: str) -> int:
-    """Index 0…5 of a DOF label within its body (``"Pitch"`` → 4)."""
+    """Index of a DOF label within its body: 0…5 for ``Surge`` … ``Yaw`` (``"Pitch"`` → 4),
+    6, 7 … for the generalized modes ``Mode7``, ``Mode8`` …"""
     _, name = split_dof(label)
-    try:
+    if name in DOF_NAMES:
         return DOF_NAMES.index(name)
-    except ValueError:
-        raise HydroDataError(
-            f"unknown DOF label {label!r}", hint=f"DOF labels are {', '.join(DOF_NAMES)}"
-        ) from None
+    if name.startswith("Mode") and name[4:].isdigit() and int(name[4:]) > len(DOF_NAMES):
+        return int(name[4:]) - 1
+    raise HydroDataError(
+        f"unknown DOF label {label!r}",
+        hint=f"DOF labels are {', '.join(DOF_NAMES)}, then Mode7, Mode8 … for generalized modes",
+    )
+
+
+def is_rigid_body_dof(label: str) -> bool:
+    """True for the six rigid-body modes (``Surge`` … ``Yaw``, of any body)."""
+    return split_dof(label)[1] in DOF_NAMES
 
 
 def bodies(ds: xr.Dataset) -> list[str | None]:
@@ -222,6 +307,7 @@ def make_hydrodb(
     reference_point: ArrayLike = (0.0, 0.0, 0.0),
     axis_convention: str = "z-up",
     history: Iterable[str] = (),
+    read_warnings: Iterable[str] = (),
     **attrs: Any,
 ) -> xr.Dataset:
     """Assemble and validate a canonical hydrodynamic dataset from arrays.
@@ -270,6 +356,10 @@ def make_hydrodb(
         ``"z-up"`` or ``"z-down"``, see :data:`AXIS_CONVENTIONS`.
     history
         Lines describing conversions and assumptions (e.g. default density used).
+    read_warnings
+        Damage the reader worked around (see :func:`cummins.io._common.warn_damage`),
+        stored as the ``read_warnings`` attribute (one line each) and repeated by
+        ``cummins check`` as findings.
     **attrs
         Further attributes (``body_name``, ``center_of_gravity`` …).
 
@@ -392,6 +482,9 @@ def make_hydrodb(
         time_convention="x(t) = Re{X exp(i omega t)}",
         history="\n".join(history),
     )
+    read_warnings = [str(w) for w in read_warnings]
+    if read_warnings:
+        ds.attrs["read_warnings"] = "\n".join(read_warnings)
     for key, value in attrs.items():
         if value is not None:
             ds.attrs[key] = value

@@ -3,10 +3,11 @@
 from __future__ import annotations
 
 import os
+import warnings
 
 import numpy as np
 
-from cummins.errors import HydroDataError
+from cummins.errors import HydroDataError, HydroDataWarning
 
 #: Sea-water density and gravity used when a nondimensional file does not record them.
 DEFAULT_RHO = 1025.0
@@ -111,3 +112,28 @@ def length_exponents(n: int, offset: int) -> np.ndarray:
 def force_exponents(n: int, offset: int) -> np.ndarray:
     """Exponent of L for each entry of a force vector: ``offset`` + 1 for moments."""
     return offset + (np.arange(n) % 6 >= 3).astype(int)
+
+
+def warn_damage(
+    message: str,
+    *,
+    path: str | os.PathLike[str] | None,
+    notes: list[str],
+    line: int | None = None,
+    hint: str | None = None,
+) -> str:
+    """Report damage a reader could work around: a :class:`HydroDataWarning` now, and
+    the same text appended to ``notes``, which the reader stores as the dataset's
+    ``read_warnings`` attribute (``make_hydrodb(read_warnings=notes)``) so that
+    ``cummins check`` repeats it as a finding.
+
+    Use it only where the rest of the data is usable and what was lost is said in the
+    message (never a silent zero or a silently dropped variable); damage that leaves
+    the data unusable is a :class:`~cummins.errors.HydroDataError`.
+
+    Returns the text, formatted like a ``HydroDataError`` (file, line, message, hint).
+    """
+    text = str(HydroDataError(message, path=path, line=line, hint=hint))
+    warnings.warn(HydroDataWarning(text), stacklevel=3)
+    notes.append(text)
+    return text
