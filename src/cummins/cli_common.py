@@ -87,14 +87,14 @@ _EOM_OPTIONS = (
     "center_of_gravity",
     "radii_of_gyration",
     "inertia_matrix",
-    "stiffness",
-    "damping",
+    "external_stiffness",
+    "external_damping",
 )
 
 
 def read_options(func):
     """--format, --rho, --g, --ulen: how to read solver files; --mass,
-    --center-of-gravity, --radii-of-gyration, --inertia-matrix, --stiffness, --damping:
+    --center-of-gravity, --radii-of-gyration, --inertia-matrix, --external-stiffness, --external-damping:
     what to complete them with (the terms of the equation of motion that the files lack),
     applied by :func:`read_hydrodb`."""
     decorators = [
@@ -166,21 +166,21 @@ def read_options(func):
             "point (kg, kg m, kg m^2).",
         ),
         click.option(
-            "--stiffness",
+            "--external-stiffness",
             type=(str, str, float),
             multiple=True,
             metavar="DOF DOF VALUE",
             help="External stiffness (moorings, a PTO spring) added to the restoring, e.g. "
-            "--stiffness Surge Surge 8e4 (N/m, N m/rad; repeatable; give both (i, j) and "
+            "--external-stiffness Surge Surge 8e4 (N/m, N m/rad; repeatable; give both (i, j) and "
             "(j, i) for a symmetric coupling).",
         ),
         click.option(
-            "--damping",
+            "--external-damping",
             type=(str, str, float),
             multiple=True,
             metavar="DOF DOF VALUE",
-            help="External linear damping (a PTO, dampers) between two DOFs, e.g. --damping "
-            "body1__Pitch body1__Pitch 1e6 (kg/s, kg m^2/s; repeatable).",
+            help="External linear damping (a PTO, dampers) between two DOFs, e.g. "
+            "--external-damping body1__Pitch body1__Pitch 1e6 (kg/s, kg m^2/s; repeatable).",
         ),
     ]
 
@@ -215,8 +215,8 @@ def complete_equation_of_motion(
     center_of_gravity=(),
     radii_of_gyration=(),
     inertia_matrix=None,
-    stiffness=(),
-    damping=(),
+    external_stiffness=(),
+    external_damping=(),
 ):
     """``ds`` with the inertia and external terms of the command-line options."""
     from cummins.mass_properties import read_matrix_file, with_external_terms, with_inertia
@@ -242,7 +242,7 @@ def complete_equation_of_motion(
         )
     labels = [str(d) for d in ds.influenced_dof.values]
     terms = {}
-    for name, given in (("stiffness", stiffness), ("damping", damping)):
+    for name, given in (("stiffness", external_stiffness), ("damping", external_damping)):
         if given:
             values: dict[tuple[str, str], float] = {}
             for i, j, value in given:
@@ -250,7 +250,7 @@ def complete_equation_of_motion(
                     if dof not in labels:
                         raise click.BadParameter(
                             f"unknown DOF {dof!r}; the data have {', '.join(labels)}",
-                            param_hint=f"--{name}",
+                            param_hint=f"--external-{name}",
                         )
                 values[(i, j)] = values.get((i, j), 0.0) + value
             terms[name] = values
