@@ -378,12 +378,20 @@ def test_shuffled_frequency_column(nemoh_copy):
         nemoh.read_nemoh(nemoh_copy)
 
 
-def test_results_of_another_run(nemoh_copy, run_dir):
-    """Nemoh.cal asking for other frequencies than the results: different runs."""
+def test_frequency_count_of_nemoh_cal_edited_after_the_run(cylinder, nemoh_copy):
+    """Nemoh.cal asking for other frequencies than the results hold (as the OC3 spar of
+    the corpus, edited after its run): the results' 525 frequencies are what the solver
+    computed, so they are read, and history says which count was used and why."""
     cal = nemoh_copy / "Nemoh.cal"
     cal.write_text(cal.read_text().replace("1\t525\t0.04\t21.0", "1\t100\t0.04\t21.0"))
-    with pytest.raises(HydroDataError, match=r"Nemoh\.cal asks for 100"):
-        nemoh.read_nemoh(nemoh_copy)
+    with pytest.warns(UserWarning, match="IRF.tec"):
+        ds = nemoh.read_nemoh(nemoh_copy)
+    assert ds.sizes["omega"] == cylinder.sizes["omega"] == 525
+    xr.testing.assert_equal(ds.added_mass, cylinder.added_mass)
+    assert re.search(
+        r"Nemoh\.cal asks for 100 .* holds 525 .* results' frequencies are used",
+        ds.attrs["history"],
+    )
 
 
 def test_missing_and_foreign_files(tmp_path, run_dir, nemoh_copy):
