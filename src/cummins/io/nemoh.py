@@ -47,7 +47,6 @@ from __future__ import annotations
 
 import os
 import re
-import warnings
 from dataclasses import dataclass, field
 from pathlib import Path
 
@@ -82,7 +81,7 @@ _NUMBER = r"[-+]?(?:\d+\.?\d*|\.\d+)(?:[EeDd][-+]?\d+)?"
 
 def _head(path: Path, size: int = 4096) -> str:
     with open(path, "rb") as f:
-        return f.read(size).decode("utf-8", errors="replace")
+        return f.read(size).decode("utf-8-sig", errors="replace")
 
 
 def _is_tecplot(head: str) -> bool:
@@ -781,7 +780,8 @@ def _irf_added_mass(
         worst = max(worst, mismatch)
     if worst > IRF_TOLERANCE:
         return None, (
-            f"{path.name} not used: its K(t) differs from (2/pi)∫B cos(wt)dw of "
+            f"{path.name} not used, so no added_mass_inf: its K(t) differs from "
+            "(2/pi)∫B cos(wt)dw of "
             f"{RADIATION_FILE} by {worst:.3g} (relative; {IRF_TOLERANCE:g} allowed), "
             "so it belongs to another run"
         )
@@ -982,10 +982,10 @@ def read_nemoh(
         try:
             a_inf, note = _irf_added_mass(irf, omega, table[:, 2::2, :], n_dofs, n_forces)
         except HydroDataError as exc:  # optional file: the rest of the run is still good
-            a_inf, note = None, f"{irf.name} not used: unreadable ({exc})"
+            a_inf, note = None, f"{irf.name} not used, so no added_mass_inf: unreadable ({exc})"
         history.append(note)
         if a_inf is None:
-            warnings.warn(f"{irf}: {note}", UserWarning, stacklevel=2)
+            warn_damage(note, path=irf, notes=notes)
         else:
             extra["added_mass_inf"] = a_inf[pick, :]
 
