@@ -575,7 +575,7 @@ def test_hydrostatics_of_another_mesh_are_refused_with_a_warning(corpus, case, r
 
 def test_froude_krylov_limit_confirms_matching_hydrostatics(cylinder):
     """The cylinder's KH.dat C33 and its own Froude-Krylov heave force at 0.04 rad/s
-    agree (measured within 0.2 %), so the stiffness is kept and history says it was
+    agree (3764.56 vs 3764.21 N/m, 0.01 %), so the stiffness is kept and history says it was
     checked."""
     assert "agrees with the run's own Froude-Krylov heave force" in cylinder.attrs["history"]
     c33 = float(cylinder.hydrostatic_stiffness.sel(influenced_dof="Heave", radiating_dof="Heave"))
