@@ -25,6 +25,21 @@ Files and what cummins takes from them (all dimensional, SI):
 * ``KH.dat``: the 6×6 hydrostatic stiffness per body (N/m, N, N·m/rad), as NEMOH wrote
   it; ``Hydrostatics.dat``: centre of buoyancy ``XF YF ZF``, centre of gravity
   ``XG YG ZG``, displaced volume (m³) and, in v3, the mass.
+* ``Mechanics/Inertia.dat`` (v3) → ``inertia_matrix`` about the rotation point (NEMOH
+  requires the matrices there; when the user gives none NEMOH writes its own estimate,
+  ρ∇ and a uniform hull shell, which ``history`` then says), ``Km.dat`` →
+  ``additional_stiffness``, ``Badd.dat`` → ``additional_damping`` (when not zero),
+  ``Kh.dat`` checked against the mesh folder's ``KH.dat``. Without ``Inertia.dat`` there
+  is no ``inertia_matrix``: ρ∇ is the mass only of a freely floating body, and the
+  inertia tensor cannot come from the volume (``history`` says so).
+* Several bodies: ``KH_0.dat`` … per body in the order of ``Nemoh.cal`` (a ``KH.dat``
+  beside them is the mesher's file of the last mesh it processed), labels
+  ``body1__Surge`` …, the mesh names in ``body_names``. C33 of each body is checked
+  against ρ g A_wp, the ω → 0 limit of the run's own Froude-Krylov heave force: files
+  of another mesh (the corpus Cubes and bemio two-body runs) are not read, with a
+  warning.
+* ``Nemoh.cal`` edited after the run (other frequency or direction counts than the
+  results): the results are read, ``history`` says so. QTF output is not read.
 * ``IRF.tec`` (if the post-processor was run with IRF on): NEMOH's own A(∞), column
   "AddedMass k" of zone "DoF j" being ``added_mass_inf[influenced=k, radiating=j]``.
   It is only used after checking that the file belongs to the run: its K(t) must be the
