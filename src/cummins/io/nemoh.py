@@ -1215,7 +1215,7 @@ def _hydrostatics(run: _Run, bodies: _BodyInfo, omega, forces: dict, constants, 
                 "buoyancy and gravity and volumes from them not read",
                 path=kh_files[0],
                 notes=notes,
-                hint="give the hydrostatic stiffness yourself (--stiffness, "
+                hint="give the hydrostatic stiffness yourself (--external-stiffness, "
                 "cummins.with_external_terms or ds['hydrostatic_stiffness'] = ...)",
             )
             c, values = None, []
