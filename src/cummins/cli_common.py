@@ -94,9 +94,9 @@ _EOM_OPTIONS = (
 
 def read_options(func):
     """--format, --rho, --g, --ulen: how to read solver files; --mass,
-    --center-of-gravity, --radii-of-gyration, --inertia-matrix, --external-stiffness, --external-damping:
-    what to complete them with (the terms of the equation of motion that the files lack),
-    applied by :func:`read_hydrodb`."""
+    --center-of-gravity, --radii-of-gyration, --inertia-matrix, --external-stiffness,
+    --external-damping: what to complete them with (the terms of the equation of motion
+    that the files lack), applied by :func:`read_hydrodb`."""
     decorators = [
         click.option(
             "--format",
