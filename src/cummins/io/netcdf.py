@@ -1482,7 +1482,7 @@ def encode_attributes(attrs: dict) -> dict:
     special: dict[str, Any] = {}
     for key, value in attrs.items():
         if _is_native(key, value):
-            native[key] = value
+            native[key] = str(value) if isinstance(value, np.str_) else value
         else:
             special[str(key)] = encode_attribute(value, str(key))
     if special:
@@ -1606,15 +1606,20 @@ def write_netcdf(ds: xr.Dataset, path: str | os.PathLike[str]) -> Path:
     return save_netcdf(to_capytaine_layout(ds), path)
 
 
-def save_netcdf(ds: xr.Dataset, path: str | os.PathLike[str]) -> Path:
+def save_netcdf(ds: xr.Dataset, path: str | os.PathLike[str], *, checksum: bool = True) -> Path:
     """Write ``ds`` (h5netcdf) to a temporary name, then rename it to ``path``: a failure
-    leaves no half-written file. No overwrite check (the callers do it)."""
+    leaves no half-written file. No overwrite check (the callers do it).
+
+    With ``checksum`` every numeric array carries HDF5's Fletcher-32 checksum filter
+    (a standard HDF5 filter that netCDF-C, h5py and MATLAB read transparently), so a
+    damaged copy is refused on reading instead of giving different numbers."""
     path = Path(path)
     tmp = path.with_name(f".{path.name}.tmp")
+    encoding = _checksum_encoding(ds) if checksum else None
     try:
         with warnings.catch_warnings():
             warnings.simplefilter("ignore", category=FutureWarning)
-            ds.to_netcdf(tmp, engine="h5netcdf")
+            ds.to_netcdf(tmp, engine="h5netcdf", encoding=encoding)
         os.replace(tmp, path)
     except OSError as exc:
         raise HydroDataError(f"cannot write the file ({exc})", path=path) from None
@@ -1622,3 +1627,12 @@ def save_netcdf(ds: xr.Dataset, path: str | os.PathLike[str]) -> Path:
         if tmp.exists():
             tmp.unlink()
     return path
+
+
+def _checksum_encoding(ds: xr.Dataset) -> dict[str, dict[str, Any]]:
+    """Fletcher-32 for every non-scalar numeric variable (HDF5 filters need chunks)."""
+    encoding: dict[str, dict[str, Any]] = {}
+    for name, var in ds.variables.items():
+        if var.ndim >= 1 and var.size > 0 and var.dtype.kind in "biufc":
+            encoding[str(name)] = {"fletcher32": True}
+    return encoding
