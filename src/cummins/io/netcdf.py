@@ -948,10 +948,17 @@ def _numbered(folder: Path, stem: str) -> list[Path]:
     return [single] if single.is_file() else []
 
 
+def _without_bom(text):
+    """The text without a UTF-8 byte-order mark (an encoding, not damage)."""
+    if text.lines and text.lines[0].startswith("\ufeff"):
+        return type(text)(text.path, (text.lines[0][1:], *text.lines[1:]))
+    return text
+
+
 def _read_kh(path: Path) -> np.ndarray:
     from cummins.io._text import TextFile
 
-    text = TextFile.read(path)
+    text = _without_bom(TextFile.read(path))
     rows = [k for k, line in enumerate(text.lines) if line.strip()]
     if len(rows) != 6:
         raise text.error(
@@ -973,7 +980,7 @@ def _read_hydrostatics(path: Path) -> tuple[np.ndarray, np.ndarray, float]:
 
     from cummins.io._text import TextFile
 
-    text = TextFile.read(path)
+    text = _without_bom(TextFile.read(path))
     pattern = re.compile(r"^\s*[XYZ]F\s*=\s*(\S+)\s*-\s*[XYZ]G\s*=\s*(\S+)\s*$", re.IGNORECASE)
     buoyancy, gravity, volume = [], [], None
     for k, line in enumerate(text.lines):
