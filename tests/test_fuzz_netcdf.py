@@ -113,17 +113,23 @@ def test_damaged_capytaine_netcdf3_outside_the_unprotected_payload(shared_data):
     assert not failures(outcomes)
 
 
+def _float_datasets(f) -> list:
+    import h5py
+
+    found = []
+
+    def visit(_, obj):
+        if isinstance(obj, h5py.Dataset) and obj.dtype.kind == "f" and obj.ndim > 0:
+            found.append(obj)
+
+    f.visititems(visit)
+    return found
+
+
 def test_written_files_are_checksummed(written_root):
     import h5py
 
     for name in ("tanker.nc", "tanker.h5"):
         with h5py.File(written_root / "written" / name) as f:
-            flags = []
-            f.visititems(
-                lambda _, o: (
-                    flags.append(o.fletcher32)
-                    if isinstance(o, h5py.Dataset) and o.dtype.kind == "f" and o.ndim > 0
-                    else None
-                )
-            )
-            assert flags and all(flags), name
+            datasets = _float_datasets(f)
+            assert datasets and all(d.fletcher32 for d in datasets), name

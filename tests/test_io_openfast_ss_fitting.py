@@ -82,7 +82,7 @@ def test_both_ssexctn_layouts(corpus):
 
 def test_damaged_ssexctn_is_refused(corpus, tmp_path):
     lines = (corpus / SEMI / "marin_semi.ssexctn").read_text().splitlines()
-    for k, damaged in enumerate((lines[:-1], lines[:5] + lines[6:], [lines[0], "x"] + lines[2:])):
+    for k, damaged in enumerate((lines[:-1], lines[:5] + lines[6:], [lines[0], "x", *lines[2:]])):
         path = tmp_path / f"d{k}.ssexctn"
         path.write_text("\n".join(damaged) + "\n")
         with pytest.raises(HydroDataError):
