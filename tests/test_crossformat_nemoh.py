@@ -51,10 +51,6 @@ def band_error(a, b, variable, band, index):
     return float(np.abs(xa - xb).max() / np.abs(xb).max())
 
 
-def _positional(ds) -> bool:
-    return all(str(d).startswith(("body1__", "body2__")) for d in ds.influenced_dof.values)
-
-
 # --------------------------------------------------------------------------- COER
 
 
@@ -132,9 +128,8 @@ def test_oswec_bodies_are_labelled_by_position(oswec):
     assert list(nemoh.influenced_dof.values) == cummins.hydrodb.dof_labels(2)
     assert cummins.hydrodb.body_names(nemoh) == ["flap", "base"]
     assert list(oswec["wamit"].influenced_dof.values) == cummins.hydrodb.dof_labels(2)
-    if not _positional(oswec["capytaine"]):
-        pytest.xfail("the NetCDF reader of this branch still labels bodies by name")
     assert list(oswec["capytaine"].influenced_dof.values) == cummins.hydrodb.dof_labels(2)
+    assert cummins.hydrodb.body_names(oswec["capytaine"]) == ["oswec_flap", "oswec_base_shift"]
 
 
 #: OSWEC flap (surge, heave, pitch; DOF index order), NEMOH v2.3 against Capytaine
