@@ -62,7 +62,7 @@ def test_capytaine_inertia_is_rebuilt_from_its_mass_properties(corpus, case):
 
 def test_inertia_about_another_point_follows_the_parallel_axis_theorem():
     """Roll inertia about a point 10 m below G: I_g + m·10²; the surge–pitch coupling is
-    m·z_g (Fossen (2011) eq. 3.44)."""
+    m·z_g (Smogeli et al. (2004) eq. 25)."""
     m = inertia_from_radii(2.0e6, [0.0, 0.0, 0.0], [5.0, 20.0, 21.0], reference_point=[0, 0, -10])
     assert m[3, 3] == pytest.approx(2.0e6 * (25.0 + 100.0))
     assert m[4, 4] == pytest.approx(2.0e6 * (400.0 + 100.0))

@@ -9,7 +9,7 @@ and :func:`cummins.vessel_from_hydrodb` have the equation of motion
 
     [−ω²(M_RB + A(ω)) + iω(B(ω) + B_ext) + C + C_ext] ξ = F(ω, β)
 
-with M_RB built from the mass properties of each body (Fossen (2011) eq. 3.44: the
+with M_RB built from the mass properties of each body (Smogeli et al. (2004) eq. 25: the
 rigid-body inertia about a point other than the centre of gravity), and external
 stiffness C_ext and damping B_ext per DOF pair (``additional_stiffness``,
 ``additional_damping``). Every value given or assumed is written to ``history``.
@@ -68,7 +68,7 @@ def inertia_from_radii(
     Returns
     -------
     (6, 6) ndarray
-        kg, kg·m, kg·m² (Fossen (2011) eq. 3.44, the parallel-axis theorem).
+        kg, kg·m, kg·m² (Smogeli et al. (2004) eq. 25, the parallel-axis theorem).
 
     Examples
     --------
