@@ -7,6 +7,7 @@ format     files                                                        module
 ========== ============================================================ ==============
 wamit      WAMIT ``.1`` (+ ``.3``, ``.hst``, ``.frc``, ``.out``)         :mod:`.wamit`
 wamit-out  WAMIT ``.out`` log on its own                                :mod:`.wamit`
+hams       HAMS project (``Input/ControlFile.in`` + ``Output*/Wamit_format``) :mod:`.hams`
 nemoh      NEMOH v2/v3 ``RadiationCoefficients.tec`` … (file or folder)  :mod:`.nemoh`
 aqwa       ANSYS AQWA ``.LIS`` (or ``.AH1``)                            :mod:`.aqwa`
 veres      ShipX/VERES ``.re7`` (+ ``.re8``, ``.re1``)                  :mod:`.veres`
@@ -100,6 +101,13 @@ FORMATS: dict[str, Format] = {
             nondimensional=True,
             sniff_function="is_out_file",
             sniff_dir_function=None,
+        ),
+        Format(
+            "hams",
+            "HAMS project (Input/ControlFile.in + Output*/Wamit_format)",
+            "cummins.io.hams",
+            "read_hams",
+            nondimensional=True,
         ),
         Format(
             "nemoh",

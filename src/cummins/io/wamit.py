@@ -987,23 +987,28 @@ def _read_wave_file(path: Path, first_values: np.ndarray, n: int, *, what: str):
             f"wave heading {headings[np.argmax(np.abs(headings) > 720)]:g} deg is not an angle",
             where[0],
         )
-    periods_here = np.unique(per)
-    wanted = set(first_values.tolist())
-    extra = sorted(set(periods_here.tolist()) - wanted)
-    missing = sorted(wanted - set(periods_here.tolist()))
-    if extra:
-        r = int(np.argmax(per == extra[0]))
+    by_value = np.argsort(first_values)
+    sorted_values = first_values[by_value]
+    pos = np.clip(np.searchsorted(sorted_values, per), 1, max(sorted_values.size - 1, 1))
+    pos = np.where(sorted_values.size == 1, 0, pos)
+    left = np.clip(pos - 1, 0, None)
+    nearer = np.abs(sorted_values[left] - per) <= np.abs(sorted_values[pos] - per)
+    pos = np.where(nearer, left, pos)
+    matched = np.abs(sorted_values[pos] - per) <= 1e-5 * np.maximum(np.abs(per), 1e-12)
+    if not matched.all():
+        r = int(np.argmax(~matched))
         raise text.error(
-            f"frequency {extra[0]:g} is not in the .1 file",
+            f"frequency {per[r]:g} is not in the .1 file",
             where[r],
             hint="the .1 and the " + path.suffix + " files must come from the same run",
         )
-    if missing:
+    k = by_value[pos]
+    missing = np.setdiff1d(np.arange(first_values.size), k)
+    if missing.size:
         raise text.error(
-            f"no {what} at {missing[0]:g} of the .1 file (truncated file?)", len(text) - 1
+            f"no {what} at {first_values[missing[0]]:g} of the .1 file (truncated file?)",
+            len(text) - 1,
         )
-    by_value = np.argsort(first_values)
-    k = by_value[np.searchsorted(first_values[by_value], per)]
     h = np.searchsorted(headings, beta)
     d = dof.astype(int) - 1
     count = np.zeros((first_values.size, headings.size), dtype=int)
