@@ -11,6 +11,10 @@ files, read here with :func:`cummins.io.wamit.read_wamit_run`, with three differ
 * ρ and g are not in those files: HAMS prints them in its ``Hydrostar_format``
   headers (ρ = 1025 kg/m³, g printed 9.8066, the standard 9.80665 rounded); without
   them they are taken as those values, and ``history`` says so;
+* the ``.4`` holds i·ξ/(ρg), not the motion RAO ξ (found by solving the equation of
+  motion with the run's own matrices: −iρg × ``.4`` agrees with
+  :func:`cummins.frequency_domain.motion_rao` to 3e-5 in modulus and 0.03° in phase on
+  HAMS/Cylinder and DeepCwind, see ``tests/test_io_hams.py``); it is converted here;
 * the mass matrix, external linear damping and external restoring matrices are
   inputs in ``Input/Hydrostatic.in`` (about the reference body centre): they become
   ``inertia_matrix``, ``additional_damping`` and ``additional_stiffness``. The
@@ -264,6 +268,7 @@ def read_hams(
         water_depth=depth,
         history=history,
         reference_point=np.asarray(control.get("center", [0.0, 0.0, 0.0]), dtype=float),
+        rao_times_rho_g=True,
     )
     hydrostatic = project / "Input" / "Hydrostatic.in"
     if hydrostatic.is_file() and hydrostatic.stat().st_size:

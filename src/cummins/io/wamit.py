@@ -1096,6 +1096,8 @@ class RunSettings:
         Matrices the run's input holds (n×n, dimensional).
     reference_point
         Point about which the run's moments are taken, m.
+    rao_times_rho_g
+        The ``.4`` holds i·ξ/(ρg) instead of the RAO ξ (HAMS does so).
     """
 
     source_format: str = "wamit"
@@ -1109,6 +1111,7 @@ class RunSettings:
     additional_damping: np.ndarray | None = None
     additional_stiffness: np.ndarray | None = None
     reference_point: np.ndarray | None = None
+    rao_times_rho_g: bool = False
 
 
 def _hams_project(dot1: Path) -> Path | None:
@@ -1362,6 +1365,9 @@ def read_wamit_run(
             ):
                 raise HydroDataError("its headings differ from the excitation headings", path=dot4)
             extra["rao"] = rao_bar / L ** rotation_flags(n, layout)
+            if settings.rao_times_rho_g:
+                extra["rao"] = extra["rao"] * (-1j * rho_v * g_v)
+                history.append(f"{dot4.name}: RAOs written as i·ξ/(rho g) by HAMS, multiplied back")
             extra.setdefault("wave_direction", beta4)
             history.append(f"motion RAOs from {dot4.name} (the solver's own)")
         except HydroDataError as exc:
