@@ -149,11 +149,15 @@ def detect_format(path: str | os.PathLike[str]) -> tuple[str, Path]:
             )
         if len(found) > 1:
             listing = ", ".join(f"{name}: {f.name}" for name, f in found)
-            raise HydroDataError(
-                f"this folder holds several runs ({listing})",
-                path=p,
-                hint="pass one file, or format= (--format) to choose the solver",
-            )
+            if len({name for name, _ in found}) == 1:
+                example = p / found[0][1].relative_to(p)
+                hint = (
+                    f"read one run by its file, e.g. cummins.read('{example}') "
+                    f"or `cummins info {example}`"
+                )
+            else:
+                hint = "pass one file, or format= (--format) to choose the solver"
+            raise HydroDataError(f"this folder holds several runs ({listing})", path=p, hint=hint)
         return found[0]
     if p.stat().st_size == 0:
         raise HydroDataError("the file is empty", path=p)
