@@ -110,5 +110,5 @@ def test_damaged_control_file_is_an_error(corpus, tmp_path):
             "Output_frequency_type       2", "Output_frequency_type       9"
         )
     )
-    with pytest.raises(cummins.HydroDataError, match="ControlFile.in, line"):
+    with pytest.raises(cummins.HydroDataError, match=r"ControlFile\.in, line"):
         cummins.read(tmp_path / "run")

@@ -280,7 +280,7 @@ def test_owc_is_one_body_with_a_piston_mode(corpus):
     assert list(ds.influenced_dof.values) == [*cummins.hydrodb.DOF_NAMES, "Mode7"]
     assert "written twice (identical)" in ds.attrs["history"]
     moved = cummins.move_reference_point(ds, [0.0, 0.0, -1.0])
-    a77 = dict(influenced_dof="Mode7", radiating_dof="Mode7")
+    a77 = {"influenced_dof": "Mode7", "radiating_dof": "Mode7"}
     np.testing.assert_array_equal(moved.added_mass.sel(**a77), ds.added_mass.sel(**a77))
     assert cummins.check(ds) is not None
 

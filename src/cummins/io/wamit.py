@@ -132,12 +132,12 @@ def _numeric_rows(text: TextFile, start: int, columns, value_columns: Sequence[i
 
 def _check_cut_numbers(text: TextFile, where: np.ndarray, columns: Sequence[int]) -> None:
     """Error on a number shorter than the others of its column (fixed-format output)."""
-    if len(where) < 20:
+    if len(where) < 10:
         return
     fields = [text.lines[i].split() for i in where]
     for c in columns:
         rows = [k for k, f in enumerate(fields) if len(f) > c]
-        if len(rows) < 20:
+        if len(rows) < 10:
             continue
         lengths = np.fromiter((len(fields[k][c].lstrip("+-")) for k in rows), int, len(rows))
         values, counts = np.unique(lengths, return_counts=True)
