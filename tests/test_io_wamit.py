@@ -9,6 +9,7 @@ import pytest
 
 import cummins
 from cummins import HydroDataError
+from cummins.frequency_domain import motion_rao
 
 
 @pytest.fixture(scope="module")
@@ -155,6 +156,7 @@ def test_out_file_has_raos_and_drift(tanker_out):
 
 
 def _copy_run(src_dir, dst_dir, stem="tanker"):
+    dst_dir.mkdir(parents=True, exist_ok=True)
     for suffix in (".1", ".3", ".hst", ".frc", ".out"):
         shutil.copy(src_dir / f"{stem}{suffix}", dst_dir / f"{stem}{suffix}")
     return dst_dir / f"{stem}.1"
@@ -235,3 +237,165 @@ def test_folder_reading(tmp_path, tanker_dir):
     ds = cummins.read(tmp_path)
     assert ds.attrs["source_format"] == "wamit"
     assert "excitation_force" in ds
+
+
+# --------------------------------------------------------------------------- corpus variants
+
+
+def test_generalized_modes_barge(corpus):
+    """6 + 4 beam modes (NEWMDS=4 in barge.cfg): labels Mode7…Mode10, the 10×10 IMASS and
+    ISTIF of the .frc (form 2) as inertia and additional stiffness, and the .1 against the
+    dimensional-free values the .out prints for the beam modes (same 7 digits)."""
+    run = corpus / "WEC-Sim_Applications" / "wamit_generalized_modes_barge"
+    ds = cummins.read(run)
+    assert list(ds.influenced_dof.values[6:]) == ["Mode7", "Mode8", "Mode9", "Mode10"]
+    assert ds.inertia_matrix.sel(influenced_dof="Mode7", radiating_dof="Mode7") == 1.079216e06
+    assert (
+        ds.additional_stiffness.sel(influenced_dof="Mode10", radiating_dof="Mode10") == 4.664370e08
+    )
+    out = cummins.read(run / "barge.out")
+    np.testing.assert_allclose(out.added_mass_inf.values, ds.added_mass_inf.values, rtol=1e-6)
+    np.testing.assert_allclose(out.added_mass.values, ds.added_mass.values, rtol=2e-6, atol=1e-3)
+
+
+def test_barge_motion_rao_reproduces_the_dot4(corpus):
+    """motion_rao of the barge (rigid + beam modes, IMASS and ISTIF of its .frc) against
+    WAMIT's own .4: measured worst difference 3e-4 of the peak for the rigid modes, 0.9 %
+    for the beam modes (the .4 prints 6 digits, phases to 1e-4 deg)."""
+    ds = cummins.read(corpus / "WEC-Sim_Applications" / "wamit_generalized_modes_barge")
+    ours = motion_rao(ds).transpose("omega", "wave_direction", "dof").values
+    ref = ds.rao.transpose("omega", "wave_direction", "radiating_dof").values
+    for j, label in enumerate(ds.radiating_dof.values):
+        peak = np.abs(ref[:, :, j]).max()
+        if peak == 0:
+            continue
+        err = np.abs(ours[:, :, j] - ref[:, :, j]).max() / peak
+        assert err < (2e-3 if j < 6 else 3e-2), (label, err)
+
+
+def test_owc_is_one_body_with_a_piston_mode(corpus):
+    """test17a.out: one XBODY, an 'Extra Mode' file and indices 1…7: one body, Mode7;
+    the ω = 0 block written twice (identical) is read once."""
+    ds = cummins.read(corpus / "WEC-Sim_Applications" / "wamit_OWC_Triton_GBM")
+    assert list(ds.influenced_dof.values) == [*cummins.hydrodb.DOF_NAMES, "Mode7"]
+    assert "written twice (identical)" in ds.attrs["history"]
+    moved = cummins.move_reference_point(ds, [0.0, 0.0, -1.0])
+    a77 = {"influenced_dof": "Mode7", "radiating_dof": "Mode7"}
+    np.testing.assert_array_equal(moved.added_mass.sel(**a77), ds.added_mass.sel(**a77))
+    assert cummins.check(ds) is not None
+
+
+def test_two_bodies_take_the_geometry_names(corpus):
+    ds = cummins.read(corpus / "WEC-Sim" / "wamit_OSWEC_2015_with_bemio_h5" / "oswec.out")
+    assert ds.influenced_dof.values[6] == "body2__Surge"
+    assert ds.attrs["body_names"].splitlines() == ["flap", "base"]
+
+
+def test_inertia_from_the_out_agrees_with_wamit_mmx(corpus):
+    """Mean-drift sphere: radii of gyration 0.4 m in the .out; WAMIT's own normalized
+    mass matrix in sphere.mmx is 2.072930 (translation) and 0.3316688 (rotation):
+    m = ρ·mean(VOL), I = m r|r| reproduce them to the 7 digits printed."""
+    ds = cummins.read(corpus / "WEC-Sim_Applications" / "wamit_mean_drift_sphere", rho=1000.0)
+    m = ds.inertia_matrix.values / 1000.0
+    np.testing.assert_allclose(np.diag(m), [2.07293] * 3 + [0.3316688] * 3, rtol=2e-6)
+
+
+def test_zero_radii_give_no_inertia_but_the_mass_agrees_with_capytaine(corpus):
+    """COER: WAMIT's radii of gyration are all zero (WEC-Sim's placeholder): no inertia
+    matrix, said in the history. The displaced volume ρ∇ agrees with Capytaine's mass of
+    the same body (26.8178 kg at ρ = 1000; measured 4e-6)."""
+    ds = cummins.read(corpus / "WEC-Sim" / "wamit_COER_comp", rho=1000.0)
+    assert "inertia_matrix" not in ds and "radii of gyration all zero" in ds.attrs["history"]
+    capy = cummins.read(
+        corpus / "WEC-Sim" / "capytaine_COER_comp" / "outputs" / "coer_comp_hydrodynamics.nc"
+    )
+    mass = float(capy.inertia_matrix.values[0, 0])
+    np.testing.assert_allclose(1000.0 * ds.attrs["displaced_volume"], mass, rtol=1e-4)
+    # no .3 file: the excitation comes from the .out
+    assert "excitation_force" in ds and "no .3 file" in ds.attrs["history"]
+
+
+def test_blank_fixed_width_cg_fields(corpus, tmp_path):
+    """A .out whose CG line has only Zg filled reads: Xg, Yg from the CB above."""
+    run = corpus / "WEC-Sim_Applications" / "wamit_mean_drift_sphere" / "outputFiles"
+    target = tmp_path / "sphere.out"
+    lines = (run / "sphere.out").read_text().splitlines()
+    k = next(i for i, line in enumerate(lines) if "Center of Gravity" in line)
+    head, _, tail = lines[k].partition("0.000000     0.000000")
+    lines[k] = head + " " * len("0.000000     0.000000") + tail
+    target.write_text("\n".join(lines) + "\n")
+    ds = cummins.read(target)
+    assert "inertia_matrix" in ds and "leaves Xg blank" in ds.attrs["history"]
+
+
+def test_two_runs_in_a_folder_name_both_and_how_to_choose(corpus):
+    folder = corpus / "bemio" / "wamit_COER_comp_f2"
+    with pytest.raises(HydroDataError, match=r"coer_comp_f\.out.*coer_comp_f2\.out.*cummins info"):
+        cummins.read(folder)
+
+
+def test_damage_is_noticed(tanker_dir, tmp_path, corpus):
+    """Issue 17's cases on copies of real files."""
+    # a .out cut after 19 of its 58 frequencies
+    lines = (tanker_dir / "tanker.out").read_text().splitlines()
+    starts = [i for i, line in enumerate(lines) if "Wave period" in line]
+    (tmp_path / "cut.out").write_text("\n".join(lines[: starts[21]]) + "\n")
+    with pytest.warns(cummins.HydroDataWarning, match="truncated"):
+        ds = cummins.read(tmp_path / "cut.out")
+    assert "read_warnings" in ds.attrs
+    # a .hst cut before C33: hydrostatics not read, with a warning, never zeros
+    target = _copy_run(tanker_dir, tmp_path / "hst")
+    hst = target.with_suffix(".hst")
+    hst.write_text("\n".join(hst.read_text().splitlines()[:14]) + "\n")
+    with pytest.warns(cummins.HydroDataWarning, match="C\\(3,3\\) missing"):
+        ds = cummins.read(target)
+    assert "hydrostatic_stiffness" not in ds
+    # a .3 line deleted: an error naming the line, never 0j
+    target = _copy_run(tanker_dir, tmp_path / "dot3")
+    dot3 = target.with_suffix(".3")
+    rows = dot3.read_text().splitlines()
+    dot3.write_text("\n".join(rows[:100] + rows[101:]) + "\n")
+    with pytest.raises(HydroDataError, match=r"tanker\.3, line \d+.*missing"):
+        cummins.read(target)
+    # a damaged .frc: a warning, not a silently missing inertia matrix
+    target = _copy_run(tanker_dir, tmp_path / "frc")
+    frc = target.with_suffix(".frc")
+    frc.write_text(
+        frc.read_text().replace("94620210.00 0.00 0.00 0.00 236550525.00", "94620210.00 0.00", 1)
+    )
+    with pytest.warns(cummins.HydroDataWarning, match="tanker.frc"):
+        ds = cummins.read(target)
+    assert "inertia_matrix" not in ds
+    # a corrupted DOF index: an error, neither 12 DOFs nor a huge allocation
+    text = (tanker_dir / "tanker.out").read_text()
+    for bad in ("    7     1", " 9999     1"):
+        (tmp_path / "dof.out").write_text(text.replace("     1     1", bad, 1))
+        with pytest.raises(HydroDataError):
+            cummins.read(tmp_path / "dof.out")
+    # a missing-value marker
+    target = _copy_run(tanker_dir, tmp_path / "big")
+    dot1 = target
+    rows = dot1.read_text().splitlines()
+    fields = rows[40].split()
+    fields[-1] = "-0.999000E+100"
+    rows[40] = "  ".join(fields)
+    dot1.write_text("\n".join(rows) + "\n")
+    with pytest.raises(HydroDataError, match="implausible"):
+        cummins.read(target)
+
+
+def test_encodings_read_identically(tanker_dir, tmp_path):
+    """UTF-8 BOM, CRLF and CR-only line ends are not damage."""
+    base = cummins.read(tanker_dir / "tanker.1")
+    for name, convert in (
+        ("bom", lambda b: b"\xef\xbb\xbf" + b),
+        ("crlf", lambda b: b.replace(b"\n", b"\r\n")),
+        ("cr", lambda b: b.replace(b"\n", b"\r")),
+    ):
+        folder = tmp_path / name
+        folder.mkdir()
+        for f in tanker_dir.glob("tanker.*"):
+            (folder / f.name).write_bytes(convert(f.read_bytes().replace(b"\r\n", b"\n")))
+        ds = cummins.read(folder / "tanker.1")
+        np.testing.assert_array_equal(ds.added_mass.values, base.added_mass.values)
+        np.testing.assert_array_equal(ds.inertia_matrix.values, base.inertia_matrix.values)

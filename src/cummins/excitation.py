@@ -176,6 +176,8 @@ def symmetry_evidence(ds: xr.Dataset) -> tuple[bool, str]:
     if len(bodies(ds)) != 1:
         return False, "several bodies: mirroring would exchange them"
     names = [split_dof(label)[1] for label in labels]
+    if any(d not in DOF_NAMES for d in names):
+        return False, "generalized modes: their port/starboard parity is not known"
     sym = [i for i, d in enumerate(names) if d in ("Surge", "Heave", "Pitch")]
     anti = [i for i, d in enumerate(names) if d in ("Sway", "Roll", "Yaw")]
     if not anti:

@@ -652,17 +652,29 @@ def select_dofs(ds: xr.Dataset, dofs: Sequence[str]) -> xr.Dataset:
 
 
 def _per_body_transform(ds: xr.Dataset, block) -> NDArray[np.float64]:
-    """Block-diagonal 6N×6N matrix with ``block(body_index)`` for each body."""
+    """Block-diagonal matrix with ``block(body_index)`` (6×6) on the six rigid-body modes of
+    each body and the identity on its generalized modes (``Mode7`` …), which stay as they
+    are: their amplitudes are defined by the solver's mode shapes, not by the axes."""
     labels = [str(d) for d in ds.influenced_dof.values]
-    groups = bodies(ds)
-    for k, body in enumerate(groups):
+    blocks = []
+    start = 0
+    for k, body in enumerate(bodies(ds)):
+        own = [lab for lab in labels if split_dof(lab)[0] == body]
         expected = [f"{body}__{d}" if body else d for d in DOF_NAMES]
-        if labels[6 * k : 6 * k + 6] != expected:
+        extra = own[6:]
+        if (
+            labels[start : start + len(own)] != own
+            or own[:6] != expected
+            or any(is_rigid_body_dof(lab) for lab in extra)
+        ):
             raise HydroDataError(
-                "this transform needs all six DOFs of each body in the order Surge … Yaw",
+                "this transform needs all six DOFs of each body in the order Surge … Yaw "
+                "(then its generalized modes)",
                 hint="read the full 6-DOF data, transform, then select_dofs",
             )
-    return scipy.linalg.block_diag(*[block(k) for k in range(len(groups))])
+        blocks.append(scipy.linalg.block_diag(block(k), np.eye(len(extra))))
+        start += len(own)
+    return scipy.linalg.block_diag(*blocks)
 
 
 def _apply(ds: xr.Dataset, left: NDArray, right: NDArray, motion: NDArray) -> xr.Dataset:

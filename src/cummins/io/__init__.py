@@ -7,6 +7,7 @@ format     files                                                        module
 ========== ============================================================ ==============
 wamit      WAMIT ``.1`` (+ ``.3``, ``.hst``, ``.frc``, ``.out``)         :mod:`.wamit`
 wamit-out  WAMIT ``.out`` log on its own                                :mod:`.wamit`
+hams       HAMS project (``Input/ControlFile.in`` + ``Output*/Wamit_format``) :mod:`.hams`
 nemoh      NEMOH v2/v3 ``RadiationCoefficients.tec`` … (file or folder)  :mod:`.nemoh`
 aqwa       ANSYS AQWA ``.LIS`` (or ``.AH1``)                            :mod:`.aqwa`
 veres      ShipX/VERES ``.re7`` (+ ``.re8``, ``.re1``)                  :mod:`.veres`
@@ -104,6 +105,13 @@ FORMATS: dict[str, Format] = {
             sniff_dir_function=None,
         ),
         Format(
+            "hams",
+            "HAMS project (Input/ControlFile.in + Output*/Wamit_format)",
+            "cummins.io.hams",
+            "read_hams",
+            nondimensional=True,
+        ),
+        Format(
             "nemoh",
             "NEMOH v2/v3 results (RadiationCoefficients.tec, ...)",
             "cummins.io.nemoh",
@@ -144,11 +152,15 @@ def detect_format(path: str | os.PathLike[str]) -> tuple[str, Path]:
             )
         if len(found) > 1:
             listing = ", ".join(f"{name}: {f.name}" for name, f in found)
-            raise HydroDataError(
-                f"this folder holds several runs ({listing})",
-                path=p,
-                hint="pass one file, or format= (--format) to choose the solver",
-            )
+            if len({name for name, _ in found}) == 1:
+                example = p / found[0][1].relative_to(p)
+                hint = (
+                    f"read one run by its file, e.g. cummins.read('{example}') "
+                    f"or `cummins info {example}`"
+                )
+            else:
+                hint = "pass one file, or format= (--format) to choose the solver"
+            raise HydroDataError(f"this folder holds several runs ({listing})", path=p, hint=hint)
         return found[0]
     if p.stat().st_size == 0:
         raise HydroDataError("the file is empty", path=p)

@@ -4,6 +4,7 @@ from __future__ import annotations
 
 import os
 import warnings
+from collections.abc import Sequence
 
 import numpy as np
 
@@ -98,20 +99,39 @@ def resolve_rho_g(
     return rho_v, g_v
 
 
-def length_exponents(n: int, offset: int) -> np.ndarray:
+def rotation_flags(n: int, modes: Sequence[int] | None = None) -> np.ndarray:
+    """1 for the rotational DOFs (Roll, Pitch, Yaw of each body), else 0, for n DOFs.
+
+    ``modes`` gives the number of modes of each body (six rigid-body modes, then the
+    generalized modes of that body); by default six per body (one body when n is not a
+    multiple of six). Generalized modes (7, 8 … of a body) count as translations: WAMIT
+    normalizes them like modes 1–3 (WAMIT User Manual v7, ch. 8, generalized modes:
+    the mode amplitude has the dimension of length).
+    """
+    if modes is None:
+        modes = [6] * (n // 6) if n % 6 == 0 and n else [n]
+    modes = [int(m) for m in modes]
+    if sum(modes) != n:
+        raise HydroDataError(f"{n} DOFs do not split into bodies of {modes} modes")
+    flags = [1 if 3 <= k < 6 else 0 for m in modes for k in range(m)]
+    return np.asarray(flags, dtype=int)
+
+
+def length_exponents(n: int, offset: int, modes: Sequence[int] | None = None) -> np.ndarray:
     """Exponent of the length scale L for each (i, j) entry of an n×n matrix.
 
     WAMIT-style nondimensionalization scales an entry by L^(offset + a_i + a_j), where
-    a = 0 for translations and 1 for rotations (DOF index mod 6 ≥ 3). For added mass
-    ``offset`` is 3 (L³, L⁴, L⁵); for hydrostatics 2 (L², L³, L⁴).
+    a = 0 for translations and generalized modes, 1 for rotations (see
+    :func:`rotation_flags`). For added mass ``offset`` is 3 (L³, L⁴, L⁵); for
+    hydrostatics 2 (L², L³, L⁴).
     """
-    rot = (np.arange(n) % 6 >= 3).astype(int)
+    rot = rotation_flags(n, modes)
     return offset + rot[:, None] + rot[None, :]
 
 
-def force_exponents(n: int, offset: int) -> np.ndarray:
+def force_exponents(n: int, offset: int, modes: Sequence[int] | None = None) -> np.ndarray:
     """Exponent of L for each entry of a force vector: ``offset`` + 1 for moments."""
-    return offset + (np.arange(n) % 6 >= 3).astype(int)
+    return offset + rotation_flags(n, modes)
 
 
 def warn_damage(
