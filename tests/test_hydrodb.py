@@ -159,3 +159,21 @@ def test_transforms_need_six_dofs(tanker_wamit):
     sub = cummins.select_dofs(tanker_wamit, ["Heave", "Pitch"])
     with pytest.raises(HydroDataError, match="all six DOFs"):
         cummins.move_reference_point(sub, [1.0, 0.0, 0.0])
+
+
+def test_axis_change_of_models_matches_the_data_with_generalized_modes(corpus):
+    """The generalized-mode barge (6 rigid + 4 beam modes): the radiation model's axis
+    signs are those hydrodb.change_axes applies to the data (rigid modes T, beam modes 1),
+    and check's rigid-body consistency runs on the six rigid modes only."""
+    import cummins
+    from cummins.radiation import _axis_signs
+
+    ds = cummins.read(corpus / "WEC-Sim_Applications" / "wamit_generalized_modes_barge")
+    labels = [str(d) for d in ds.influenced_dof.values]
+    flipped = cummins.change_axes(ds, "z-down")
+    t = _axis_signs(labels)
+    a, b = ds.added_mass.values, flipped.added_mass.values
+    np.testing.assert_allclose(b, t[None, :, None] * a * t[None, None, :], rtol=0, atol=0)
+    assert list(t[6:]) == [1.0] * 4
+    findings = [f for f in cummins.check(ds).findings if f.check == "inertia"]
+    assert any("rigid body" in f.message for f in findings)

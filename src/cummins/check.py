@@ -507,8 +507,9 @@ def _check_rigid_body(ds: xr.Dataset) -> list[Finding]:
             )
         else:
             out.append(Finding("inertia", "ok", "inertia matrix symmetric positive definite"))
-        if len(labels) == 6:
-            out.extend(_rigid_body_consistency(m, labels))
+        for index in _rigid_blocks(labels):
+            block_labels = [labels[i] for i in index]
+            out.extend(_rigid_body_consistency(m[np.ix_(index, index)], block_labels))
     if "hydrostatic_stiffness" in ds:
         c = dof_matrix(ds, "hydrostatic_stiffness")
         c = c.reshape(-1, c.shape[-2], c.shape[-1])[0]
@@ -543,6 +544,21 @@ def _check_rigid_body(ds: xr.Dataset) -> list[Finding]:
     return out
 
 
+def _rigid_blocks(labels: list[str]) -> list[list[int]]:
+    """Indices of the six rigid-body modes of each body that has all six (its generalized
+    modes, ``Mode7`` …, left out)."""
+    blocks = []
+    for body in dict.fromkeys(split_dof(label)[0] for label in labels):
+        index = [
+            labels.index(f"{body}__{name}" if body else name)
+            for name in DOF_NAMES
+            if (f"{body}__{name}" if body else name) in labels
+        ]
+        if len(index) == len(DOF_NAMES):
+            blocks.append(index)
+    return blocks
+
+
 def _rigid_body_consistency(m: np.ndarray, labels: list[str]) -> list[Finding]:
     """The mass-moment coupling block of a rigid body is −m S(r_g): skew-symmetric."""
     mass, r_g, inconsistency = center_of_gravity_from_inertia(m)
@@ -553,6 +569,7 @@ def _rigid_body_consistency(m: np.ndarray, labels: list[str]) -> list[Finding]:
                 "ok",
                 "inertia matrix is that of a rigid body "
                 f"(centre of gravity {np.round(r_g, 4).tolist()} m from the reference point)",
+                where=split_dof(labels[0])[0],
             )
         ]
     block = m[:3, 3:]
@@ -573,7 +590,8 @@ def _rigid_body_consistency(m: np.ndarray, labels: list[str]) -> list[Finding]:
             value=inconsistency,
             advice="a coupling term was probably left out when the matrix was typed in; "
             "rebuild it from mass, centre of gravity and radii of gyration "
-            "(cummins.kinematics.rigid_body_inertia)",
+            "(cummins.with_inertia; --mass, --radii-of-gyration)",
+            where=split_dof(labels[0])[0],
         )
     ]
 

@@ -389,6 +389,21 @@ POSITION_ATTRS: tuple[str, ...] = (
 MATRIX_ATTRS: tuple[str, ...] = ("inertia_matrix", "hydrostatic_stiffness")
 
 
+def _axis_signs(dofs) -> NDArray[np.float64]:
+    """T of the axis change per DOF label: (1, −1, −1, 1, −1, −1) on each body's rigid
+    modes, 1 on generalized modes (``Mode7`` …: their amplitude is defined by the solver's
+    mode shape, which turns with the axes), as :func:`cummins.hydrodb.change_axes` does."""
+    from cummins.hydrodb import dof_index, is_rigid_body_dof
+    from cummins.kinematics import Z_UP_TO_Z_DOWN
+
+    try:
+        return np.array(
+            [Z_UP_TO_Z_DOWN[dof_index(d)] if is_rigid_body_dof(d) else 1.0 for d in dofs]
+        )
+    except CumminsError as exc:
+        raise CumminsError(f"cannot change the axes of this model: {exc}") from None
+
+
 def change_model_axes(
     model: RadiationModel, to: str, *, current: str | None = None
 ) -> RadiationModel:
@@ -411,7 +426,6 @@ def change_model_axes(
         (default ``"z-up"`` then).
     """
     from cummins.hydrodb import AXIS_CONVENTIONS
-    from cummins.kinematics import Z_UP_TO_Z_DOWN
 
     for value in (to, current):
         if value is not None and value not in AXIS_CONVENTIONS:
@@ -423,10 +437,8 @@ def change_model_axes(
     attrs["axis_convention"] = to
     if current == to:
         return replace(model, attrs=attrs)
-    n = len(model.dofs)
-    if n % 6:
-        raise CumminsError(f"cannot change the axes of a model with {n} DOFs: six per body needed")
-    t = np.tile(Z_UP_TO_Z_DOWN, n // 6)
+    t = _axis_signs(model.dofs)
+    n = t.size
     couplings = tuple(
         replace(k, c=np.asarray(k.c, dtype=float) * (t[k.influenced] * t[k.radiating]))
         for k in model.couplings
