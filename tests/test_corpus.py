@@ -42,7 +42,29 @@ CASES = _case_names()
 
 #: Cases whose files hold the mass properties (the corpus README and the files say
 #: which): each must read with an ``inertia_matrix``.
-WITH_MASS_PROPERTIES: tuple[str, ...] = ()
+WITH_MASS_PROPERTIES: tuple[str, ...] = (
+    "HAMS/Cylinder",  # Input/Hydrostatic.in
+    "HAMS/DeepCwind",
+    "HAMS/HywindSpar",
+    "WEC-Sim/aqwa_19.1_PEND_hull",  # the .LIS mass and inertia table
+    "WEC-Sim/capytaine_COER_comp",  # Capytaine's inertia_matrix
+    "WEC-Sim/capytaine_OSWEC_flap",
+    "WEC-Sim/nemoh_v3.0.2_OC3_Hywind_spar",  # Mechanics/Inertia.dat
+    "WEC-Sim_Applications/aqwa_floating_OWC_AH1only",  # the .AH1 MASS section
+    "WEC-Sim_Applications/wamit_generalized_modes_barge",  # .frc form 2, 10 x 10
+    "WEC-Sim_Applications/wamit_mean_drift_sphere",  # .out volume and radii of gyration
+)
+
+#: Cases whose files give a mass (rho V) but radii of gyration of zero, WAMIT's
+#: placeholder when nobody gave the rotational inertia: no inertia_matrix is made up,
+#: and the history says what to give.
+ZERO_RADII: tuple[str, ...] = (
+    "WEC-Sim/wamit_COER_comp",
+    "WEC-Sim_Applications/wamit_WaveBot",
+    "WEC-Sim_Applications/wamit_wavestar_NMPC_with_h5",
+    "bemio/wamit_WEC3_single_body",
+    "bemio/wamit_plate_24headings",
+)
 
 
 def _read(path: Path):
@@ -83,6 +105,20 @@ def test_case_with_mass_properties_has_its_inertia(corpus, name):
     m = ds.inertia_matrix.values
     assert np.allclose(m, m.T, rtol=0, atol=1e-9 * np.abs(m).max())
     assert np.all(np.linalg.eigvalsh(m) > 0)
+
+
+@pytest.mark.parametrize("name", ZERO_RADII)
+def test_case_with_placeholder_radii_says_what_to_give(corpus, name, tmp_path):
+    """No inertia from zero radii; the history names the option, and with the radii
+    given on the command line `cummins rao` runs (the mass defaults to ρ∇)."""
+    ds = _read(corpus / name)
+    assert "inertia_matrix" not in ds
+    assert "--radii-of-gyration" in ds.attrs["history"]
+    result = CliRunner().invoke(
+        main, ["info", str(corpus / name), "--radii-of-gyration", "1", "1", "1"]
+    )
+    assert result.exit_code == 0, result.output
+    assert "rho * volume" in result.output
 
 
 def _runnable() -> list[str]:

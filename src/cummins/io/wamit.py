@@ -747,8 +747,10 @@ def _inertia_from_mass_properties(
         if not np.any(radii):
             history.append(
                 f"no inertia matrix: {label}{source} gives radii of gyration all zero "
-                "(WAMIT's placeholder when the rotational inertia is not given); give it "
-                "yourself (inertia_matrix)"
+                "(WAMIT's placeholder when the rotational inertia is not given); give the "
+                "radii (cummins.with_inertia(ds, radii_of_gyration=...), or "
+                "--radii-of-gyration RXX RYY RZZ; the mass defaults to rho*volume) or the "
+                "whole matrix (--inertia-matrix FILE)"
             )
             return None
         if volume is None or cg is None:
