@@ -152,3 +152,18 @@ def test_rao_and_simulate_run_on_the_case(corpus, name, tmp_path):
     run = CliRunner().invoke(main, args)
     assert run.exit_code == 0, run.output
     assert "Traceback" not in run.output
+
+
+def test_oc3_spar_copies_of_weis_and_raft_agree(corpus):
+    """The OC3 spar as WEIS ships it (CRLF, with the ω = 0/∞ rows and .hst) and as RAFT
+    ships it (LF, limit rows removed, no .hst) read as the same body: the same labels,
+    frequencies and numbers; A∞ only where its row is; the assumed constants said."""
+    weis = _read(corpus / "WEIS" / "ss_fitting_OC3_spar")
+    raft = _read(corpus / "RAFT" / "wamit_OC3_spar_no_A0_Ainf_rows")
+    assert list(weis.influenced_dof.values) == list(raft.influenced_dof.values)
+    np.testing.assert_array_equal(weis.omega.values, raft.omega.values)
+    for name in ("added_mass", "radiation_damping", "excitation_force"):
+        np.testing.assert_array_equal(weis[name].values, raft[name].values)
+    assert "added_mass_inf" in weis and "added_mass_inf" not in raft
+    for ds in (weis, raft):
+        assert "rho = 1025 kg/m^3 (not recorded in the file: default" in ds.attrs["history"]
