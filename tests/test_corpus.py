@@ -121,6 +121,10 @@ def test_case_with_placeholder_radii_says_what_to_give(corpus, name, tmp_path):
     assert "rho * volume" in result.output
 
 
+#: Below this many frequencies a state-space model of the fluid memory cannot be fitted.
+MIN_FREQUENCIES = 8
+
+
 def _runnable() -> list[str]:
     """Cases with inertia, restoring and excitation (decided by reading them)."""
     out = []
@@ -150,8 +154,14 @@ def test_rao_and_simulate_run_on_the_case(corpus, name, tmp_path):
             "--heading", f"{heading:g}", "--duration", f"{20 * period:.6g}",
             "--dt", f"{period / 40:.6g}", "-o", str(tmp_path / "run.nc")]  # fmt: skip
     run = CliRunner().invoke(main, args)
-    assert run.exit_code == 0, run.output
     assert "Traceback" not in run.output
+    if ds.sizes["omega"] < MIN_FREQUENCIES:
+        # HAMS's DeepCwind and HywindSpar test runs hold 3 and 2 frequencies: RAOs at
+        # those, but no fluid-memory model can be identified from them
+        assert run.exit_code == 1, run.output
+        assert "too few" in run.output
+        return
+    assert run.exit_code == 0, run.output
 
 
 def test_oc3_spar_copies_of_weis_and_raft_agree(corpus):

@@ -44,6 +44,10 @@ def test_h5_agrees_with_its_wamit_out_twin(corpus, folder, h5, out, rho, g):
     ):
         if name in h and name in o:
             a, b = h[name].values, o[name].values
+            if name == "hydrostatic_stiffness":
+                # the .out prints C's upper triangle; BEMIO leaves the lower one zero where
+                # cummins mirrors it (C54 = C45 = -rho g ∫xy dS): compare what was printed
+                a, b = np.triu(a), np.triu(b)
             assert np.abs(a - b).max() <= 1e-12 * np.abs(b).max(), name
             compared += 1
     assert compared >= 4
