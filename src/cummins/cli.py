@@ -18,6 +18,7 @@ from cummins.cli_batch import batch_command, report_command
 from cummins.cli_bem import bem_command
 from cummins.cli_common import (
     console,
+    finite,
     prepare_outputs,
     read_hydrodb,
     read_options,
@@ -189,7 +190,7 @@ def _print_report(report) -> None:
 @click.option(
     "--reference-point",
     nargs=3,
-    type=float,
+    type=finite("m"),
     default=None,
     metavar="X Y Z",
     help="Move the reference point to X Y Z (m, in the axes written).",

@@ -11,7 +11,11 @@ from rich.progress import BarColumn, Progress, TextColumn, TimeElapsedColumn
 from rich.table import Table
 
 from cummins.cli_common import (
+    Number,
     console,
+    finite,
+    non_negative,
+    positive,
     prepare_outputs,
     read_hydrodb,
     read_options,
@@ -40,23 +44,29 @@ from cummins.cli_common import (
 )
 @click.option(
     "--r2",
-    type=float,
+    type=Number(0.0, 1.0, min_open=True, max_open=True),
     default=0.99,
     show_default=True,
     help="Target R-squared of A(w) and B(w) for the diagonal terms.",
 )
 @click.option(
     "--r2-coupling",
-    type=float,
+    type=Number(0.0, 1.0, min_open=True, max_open=True),
     default=0.97,
     show_default=True,
     help="Target for the off-diagonal couplings.",
 )
-@click.option("--max-order", type=int, default=10, show_default=True, help="Highest order tried.")
+@click.option(
+    "--max-order",
+    type=click.IntRange(1, 50),
+    default=10,
+    show_default=True,
+    help="Highest order tried.",
+)
 @click.option(
     "--order",
     "orders",
-    type=(str, str, int),
+    type=(str, str, click.IntRange(1, 50)),
     multiple=True,
     metavar="DOF DOF N",
     help="Fix the order of a coupling, e.g. --order Heave Pitch 4 (repeatable).",
@@ -69,8 +79,12 @@ from cummins.cli_common import (
     help="A-infinity: the data row (auto when present), a joint estimate (fit), or "
     "Ogilvie's relation.",
 )
-@click.option("--omega-min", type=float, default=None, metavar="RAD/S", help="Fitting range.")
-@click.option("--omega-max", type=float, default=None, metavar="RAD/S", help="Fitting range.")
+@click.option(
+    "--omega-min", type=non_negative("rad/s"), default=None, metavar="RAD/S", help="Fitting range."
+)
+@click.option(
+    "--omega-max", type=positive("rad/s"), default=None, metavar="RAD/S", help="Fitting range."
+)
 @click.option(
     "--keep-suspect",
     is_flag=True,
@@ -78,7 +92,7 @@ from cummins.cli_common import (
 )
 @click.option(
     "--threshold",
-    type=float,
+    type=Number(0.0, 1.0, max_open=True),
     default=0.01,
     show_default=True,
     help="Couplings below this fraction of the diagonal terms are left out.",
@@ -112,7 +126,7 @@ from cummins.cli_common import (
 )
 @click.option(
     "--speed",
-    type=float,
+    type=finite("m/s"),
     default=None,
     metavar="M/S",
     help="Forward speed to use when the data hold several.",

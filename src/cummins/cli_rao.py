@@ -10,6 +10,9 @@ from rich.table import Table
 
 from cummins.cli_common import (
     console,
+    finite,
+    non_negative,
+    positive,
     prepare_outputs,
     read_hydrodb,
     read_options,
@@ -97,11 +100,19 @@ def parse_headings(values: tuple[str, ...]) -> list[float]:
     "following seas; 180 = head seas): --headings 0 45 90, or comma-separated. "
     "Default: the data's headings.",
 )
-@click.option("--omega-min", type=float, default=None, metavar="RAD/S", help="Lowest frequency.")
-@click.option("--omega-max", type=float, default=None, metavar="RAD/S", help="Highest frequency.")
+@click.option(
+    "--omega-min",
+    type=non_negative("rad/s"),
+    default=None,
+    metavar="RAD/S",
+    help="Lowest frequency.",
+)
+@click.option(
+    "--omega-max", type=positive("rad/s"), default=None, metavar="RAD/S", help="Highest frequency."
+)
 @click.option(
     "--n-omega",
-    type=int,
+    type=click.IntRange(1, 100_000),
     default=None,
     metavar="N",
     help="Number of frequencies, equally spaced (default: the data's frequencies, or 200 "
@@ -123,7 +134,7 @@ def parse_headings(values: tuple[str, ...]) -> list[float]:
 )
 @click.option(
     "--speed",
-    type=float,
+    type=finite("m/s"),
     default=None,
     metavar="M/S",
     help="Forward speed to use when the data hold several.",

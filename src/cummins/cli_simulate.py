@@ -8,8 +8,12 @@ import click
 import numpy as np
 
 from cummins.cli_common import (
+    Number,
     console,
+    finite,
     model_and_data,
+    non_negative,
+    positive,
     prepare_outputs,
     progress_bar,
     read_hydrodb,
@@ -27,8 +31,10 @@ from cummins.cli_common import (
 @click.option(
     "-o", "--output", type=click.Path(dir_okay=False), required=True, help="NetCDF file of the run."
 )
-@click.option("--hs", type=float, default=None, metavar="M", help="Significant wave height.")
-@click.option("--tp", type=float, default=None, metavar="S", help="Peak period.")
+@click.option(
+    "--hs", type=positive("m"), default=None, metavar="M", help="Significant wave height."
+)
+@click.option("--tp", type=positive("s"), default=None, metavar="S", help="Peak period.")
 @click.option(
     "--spectrum",
     type=click.Choice(["jonswap", "pm", "torsethaugen"]),
@@ -36,10 +42,12 @@ from cummins.cli_common import (
     show_default=True,
     help="Wave spectrum (pm: Pierson-Moskowitz / ITTC).",
 )
-@click.option("--gamma", type=float, default=3.3, show_default=True, help="JONSWAP peakedness.")
+@click.option(
+    "--gamma", type=Number(1.0), default=3.3, show_default=True, help="JONSWAP peakedness."
+)
 @click.option(
     "--heading",
-    type=float,
+    type=finite("deg"),
     default=180.0,
     show_default=True,
     metavar="DEG",
@@ -47,26 +55,48 @@ from cummins.cli_common import (
 )
 @click.option(
     "--spreading",
-    type=float,
+    type=non_negative(),
     default=None,
     metavar="S",
     help="Short-crested seas: cos-2s spreading exponent s (with --directions).",
 )
-@click.option("--directions", type=int, default=9, show_default=True, help="With --spreading.")
-@click.option("--components", type=int, default=200, show_default=True, help="Wave components.")
-@click.option("--duration", type=float, default=3 * 3600.0, show_default=True, metavar="S")
-@click.option("--dt", type=float, default=0.05, show_default=True, metavar="S", help="Time step.")
-@click.option("--seed", type=int, default=None, help="Random phases (a run is repeatable).")
+@click.option(
+    "--directions",
+    type=click.IntRange(min=2),
+    default=9,
+    show_default=True,
+    help="With --spreading.",
+)
+@click.option(
+    "--components",
+    type=click.IntRange(min=1),
+    default=200,
+    show_default=True,
+    help="Wave components.",
+)
+@click.option("--duration", type=positive("s"), default=3 * 3600.0, show_default=True, metavar="S")
+@click.option(
+    "--dt", type=positive("s"), default=0.05, show_default=True, metavar="S", help="Time step."
+)
+@click.option(
+    "--seed",
+    type=click.IntRange(0, 2**63 - 1),
+    default=None,
+    help="Random phases (a run is repeatable); without it a seed is drawn, printed and "
+    "recorded in the run (attribute seed).",
+)
 @click.option(
     "--regular", is_flag=True, help="Regular waves instead (--wave-period, --wave-amplitude)."
 )
-@click.option("--wave-period", type=float, default=None, metavar="S")
-@click.option("--wave-amplitude", type=float, default=1.0, show_default=True, metavar="M")
+@click.option("--wave-period", type=positive("s"), default=None, metavar="S")
+@click.option(
+    "--wave-amplitude", type=non_negative("m"), default=1.0, show_default=True, metavar="M"
+)
 @viscous_damping_option
 @click.option(
     "--quadratic-damping",
     "quadratic_damping",
-    type=(str, float),
+    type=(str, non_negative()),
     multiple=True,
     metavar="DOF VALUE",
     help="Quadratic viscous damping b2 |v| v on a DOF, e.g. --quadratic-damping Roll 2e10 "
@@ -88,7 +118,7 @@ from cummins.cli_common import (
 )
 @click.option(
     "--speed",
-    type=float,
+    type=finite("m/s"),
     default=None,
     metavar="M/S",
     help="Forward speed of DATA. The waves are met at the encounter frequencies; when DATA "
@@ -105,7 +135,7 @@ from cummins.cli_common import (
 )
 @click.option(
     "--soft-springs",
-    type=float,
+    type=positive("s"),
     default=None,
     metavar="S",
     help="At speed: springs of this period in surge, sway and yaw (with 0.7 of critical "
