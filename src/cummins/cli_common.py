@@ -261,7 +261,7 @@ def prepare_outputs(*paths, force: bool, folders=()) -> None:
         if path.is_dir():
             raise ArgumentError(
                 f"{path} is a folder: cannot write a file there",
-                hint="give the name of a file",
+                hint="Give the name of a file",
             )
         check_writable(path, force)
     for path in [*files, *dirs]:
@@ -269,7 +269,7 @@ def prepare_outputs(*paths, force: bool, folders=()) -> None:
     for path in dirs:
         if path.exists() and not path.is_dir():
             raise ArgumentError(
-                f"{path} is a file, not a folder", hint="give the name of a folder for the output"
+                f"{path} is a file, not a folder", hint="Give the name of a folder for the output"
             )
     for path in files:
         path.parent.mkdir(parents=True, exist_ok=True)
@@ -282,12 +282,12 @@ def _check_parents(path: Path) -> None:
             if not parent.is_dir():
                 raise ArgumentError(
                     f"cannot write {path}: {parent} is a file, not a folder",
-                    hint="choose an output path in a folder",
+                    hint="Choose an output path in a folder",
                 )
             if not os.access(parent, os.W_OK | os.X_OK):
                 raise ArgumentError(
                     f"cannot write {path}: the folder {parent} is not writable",
-                    hint="choose an output path in a folder you may write to",
+                    hint="Choose an output path in a folder you may write to",
                 )
             return
 

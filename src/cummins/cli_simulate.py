@@ -23,6 +23,7 @@ from cummins.cli_common import (
     viscous_damping_option,
     viscous_damping_values,
 )
+from cummins.validation import check_simulation_size
 
 
 @click.command(name="simulate")
@@ -206,7 +207,10 @@ def simulate_command(
             raise click.UsageError("--regular needs --wave-period")
     elif hs is None or tp is None:
         raise click.UsageError("irregular waves need --hs and --tp (or use --regular)")
-    prepare_outputs(output, force=force)
+    prepare_outputs(output, force=force, folders=[plot_dir])
+    # the run's size before any work: the states are at least the DOFs' positions and
+    # velocities (the fluid memory adds its own, checked again once it is fitted)
+    check_simulation_size(duration, dt, 12, 6, option="--duration")
     model, data_path = model_and_data(path)
     data = read_hydrodb(data_path, format_, rho, g, ulen)
     if dofs:
@@ -219,6 +223,9 @@ def simulate_command(
         and speed
         and "forward_speed" in data.dims
         and bool(np.any(np.abs(data.forward_speed.values) <= 1e-3))
+    )
+    check_simulation_size(
+        duration, dt, 2 * ds.sizes["influenced_dof"], ds.sizes["influenced_dof"], "--duration"
     )
     if soft_springs is not None and not at_speed:
         raise click.UsageError(
@@ -254,6 +261,8 @@ def simulate_command(
             seed=seed,
         )
         title = f"{spectrum}, Hs {hs:g} m, Tp {tp:g} s, {len(sea)} components"
+        if seed is None:
+            console.print(f"seed {sea.seed} drawn (repeat this sea with --seed {sea.seed})")
     from cummins.fit import MOTION_ACCURACY
 
     fit_options = MOTION_ACCURACY if accurate and model is None else {}
@@ -278,6 +287,8 @@ def simulate_command(
             nonlinear_force=quadratic_damping_force(vessel.dofs, b_q) if b_q else None,
             progress=lambda fraction: bar.update(task, completed=fraction),
         )
+    if sea.seed is not None:
+        run.attrs["seed"] = int(sea.seed)  # an int64: HDF5 stores it; --seed repeats the run
     run.attrs.update(
         {
             "heading_deg": heading,
@@ -287,7 +298,7 @@ def simulate_command(
             **{f"quadratic_damping_{d}": b for d, b in (b_q or {}).items()},
         }
     )
-    _summary(run)
+    _summary(run, regular=regular)
     from cummins.io.netcdf import save_netcdf
 
     save_netcdf(run, output)
@@ -299,18 +310,26 @@ def simulate_command(
             console.print(f"wrote {file}")
 
 
-def _summary(run) -> None:
+def _summary(run, regular: bool = False) -> None:
+    """Per DOF: the significant amplitude 2σ of an irregular sea, or the amplitude of the
+    steady oscillation in a regular wave (half the range over the last wave period, or
+    over the whole run when it is shorter), the largest |ξ| and the unit."""
     from rich.table import Table
 
     table = Table(title=f"{run.attrs.get('sea', '')}: {run.time.values[-1]:g} s")
-    for column in ("DOF", "significant amplitude (2σ)", "max |ξ|", "unit"):
+    first = "amplitude" if regular else "significant amplitude (2σ)"
+    for column in ("DOF", first, "max |ξ|", "unit"):
         table.add_column(column, justify="right")
     units = run.motion.attrs.get("units", "").split(" | ")
+    t = run.time.values
+    period = float(run.attrs.get("tp", np.nan)) if regular else np.nan
+    last = t >= t[-1] - period if np.isfinite(period) and period < t[-1] else np.ones(t.size, bool)
     for k, dof in enumerate(run.dof.values):
         xi = run.motion.values[:, k]
+        size = 0.5 * np.ptp(xi[last]) if regular else 2 * xi.std()
         table.add_row(
             str(dof),
-            f"{2 * xi.std():.4g}",
+            f"{size:.4g}",
             f"{np.abs(xi).max():.4g}",
             units[k] if k < len(units) else "",
         )

@@ -810,7 +810,7 @@ def irregular_waves(
     check_memory(
         n * (16 * 3 * 8 + n_dirs * 6 * 8),
         f"a sea of {n:g} components x {n_dirs} directions",
-        hint="ask for fewer components (--components) or directions (--directions)",
+        hint="Ask for fewer components (--components) or directions (--directions)",
     )
     if omega_min is None or omega_max is None:
         lo, hi = energy_range(spectrum)
