@@ -1,7 +1,10 @@
 """The ``cummins`` command line.
 
-Every command prints what it did; errors in the data are reported in one line naming
-the file, line or quantity at fault, without a traceback (exit status 2).
+Every command prints what it did; errors are reported in one line naming the file, line,
+option or quantity at fault, without a traceback: exit status 2 for a bad option or
+argument (a value out of range, an output that exists without --force, a path under a
+file), 1 for data that cannot be used (and for `check`, data that fail it). Warnings are
+shown once each as one-line notes.
 """
 
 from __future__ import annotations
@@ -11,6 +14,7 @@ import sys
 from pathlib import Path
 
 import click
+from rich.markup import escape
 from rich.table import Table
 
 from cummins._version import __version__
@@ -130,12 +134,14 @@ def info(path, format_, rho, g, ulen, as_json):
     "--json",
     "json_path",
     metavar="FILE",
+    type=click.Path(dir_okay=False, allow_dash=True),
     default=None,
     help="Also write the report as JSON to FILE ('-' for standard output only).",
 )
 @click.option("--strict", is_flag=True, help="Exit with status 1 on warnings too, not only errors.")
+@click.option("--force", is_flag=True, help="Overwrite the --json FILE if it exists.")
 @reports_errors
-def check_command(path, format_, rho, g, ulen, json_path, strict):
+def check_command(path, format_, rho, g, ulen, json_path, strict, force):
     """Check that the data in PATH are physically usable, and say where not.
 
     \b
@@ -151,6 +157,8 @@ def check_command(path, format_, rho, g, ulen, json_path, strict):
     """
     from cummins.check import check
 
+    if json_path and json_path != "-":
+        prepare_outputs(json_path, force=force)
     ds = read_hydrodb(path, format_, rho, g, ulen)
     report = check(ds)
     if json_path == "-":
@@ -166,12 +174,16 @@ def check_command(path, format_, rho, g, ulen, json_path, strict):
 
 def _print_report(report) -> None:
     styles = {"ok": "green", "info": "cyan", "warning": "yellow", "error": "bold red"}
-    console.print(f"[bold]Checks of {report.source}[/]")
+    console.print(f"[bold]Checks of {escape(report.source)}[/]")
     for f in report:
-        where = f" [{f.where}]" if f.where else ""
-        console.print(f"  [{styles[f.severity]}]{f.severity:7}[/] {f.check}{where}: {f.message}")
+        # escaped: "[body1__Heave]" is no markup tag (rich would drop it)
+        where = escape(f" [{f.where}]") if f.where else ""
+        console.print(
+            f"  [{styles[f.severity]}]{f.severity:7}[/] {escape(f.check)}{where}: "
+            f"{escape(f.message)}"
+        )
         if f.advice:
-            console.print(f"          → {f.advice}", style="dim")
+            console.print(f"          → {escape(f.advice)}", style="dim")
     verdict = "[green]usable[/]" if report.ok else "[bold red]NOT usable as it is[/]"
     console.print(f"Result: {verdict} (worst finding: {report.worst()})")
 
