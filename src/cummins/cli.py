@@ -11,6 +11,7 @@ from __future__ import annotations
 
 import json
 import sys
+import warnings
 from pathlib import Path
 
 import click
@@ -27,6 +28,7 @@ from cummins.cli_common import (
     read_hydrodb,
     read_options,
     reports_errors,
+    select_body,
 )
 from cummins.cli_dp import dp_demo_command
 from cummins.cli_fit import fit_command
@@ -36,6 +38,7 @@ from cummins.cli_rao import rao_command
 from cummins.cli_reduce import reduce_command
 from cummins.cli_simulate import simulate_command
 from cummins.cli_sysid import identify_damping_command
+from cummins.errors import CumminsWarning
 
 
 @click.group(
@@ -207,9 +210,16 @@ def _print_report(report) -> None:
     metavar="X Y Z",
     help="Move the reference point to X Y Z (m, in the axes written).",
 )
+@click.option(
+    "--body",
+    metavar="N|NAME",
+    default=None,
+    help="Of several bodies, write only this one (1-based number or name): its six DOFs "
+    "as Surge … Yaw, e.g. for an MSS .mat, which holds one body.",
+)
 @click.option("--force", is_flag=True, help="Overwrite DESTINATION if it exists.")
 @reports_errors
-def convert(source, destination, format_, rho, g, ulen, axes, reference_point, force):
+def convert(source, destination, format_, rho, g, ulen, axes, reference_point, body, force):
     """Convert SOURCE to canonical NetCDF (.nc) or an MSS vessel struct (.mat).
 
     \b
@@ -224,9 +234,19 @@ def convert(source, destination, format_, rho, g, ulen, axes, reference_point, f
     from cummins.hydrodb import change_axes, move_reference_point
     from cummins.io import write
 
+    to_mat = Path(destination).suffix.lower() == ".mat"
+    if Path(destination).suffix.lower() not in (".nc", ".mat"):
+        raise click.BadParameter(
+            f"{destination}: write .nc (canonical NetCDF) or .mat (MSS vessel struct)",
+            param_hint="DESTINATION",
+        )
     prepare_outputs(destination, force=force)
     ds = read_hydrodb(source, format_, rho, g, ulen)
-    if axes is None and Path(destination).suffix.lower() == ".mat":
+    if body is not None:
+        ds = select_body(ds, body)
+    if to_mat:
+        _check_mss_body(ds)
+    if axes is None and to_mat:
         axes = "z-down"
     if axes is not None:
         ds = change_axes(ds, axes)
@@ -237,6 +257,38 @@ def convert(source, destination, format_, rho, g, ulen, axes, reference_point, f
         f"wrote {destination} ({ds.attrs.get('axis_convention')} axes, reference point "
         f"{[float(x) for x in ds.attrs['reference_point']]} m)"
     )
+
+
+def _check_mss_body(ds) -> None:
+    """An MSS struct holds one rigid body: say how to choose one, and what it will lack."""
+    from cummins.hydrodb import DOF_NAMES, bodies
+
+    labels = [str(d) for d in ds.influenced_dof.values]
+    if labels != list(DOF_NAMES):
+        groups = bodies(ds)
+        several = groups != [None]
+        raise click.BadParameter(
+            f"an MSS vessel struct holds one body with six DOFs (Surge … Yaw); the data "
+            f"have {len(labels)} DOFs"
+            + (
+                f" of {len(groups)} bodies: choose one with --body 1 … {len(groups)}"
+                if several
+                else ""
+            ),
+            param_hint="DESTINATION",
+        )
+    for name, what in (
+        ("inertia_matrix", "MRB (the rigid-body inertia) is written as zeros"),
+        ("hydrostatic_stiffness", "C (the restoring) is written as zeros"),
+    ):
+        if name not in ds:
+            warnings.warn(
+                f"the data have no {name}: {what}; MSS needs it to simulate. Give it with "
+                "cummins.with_inertia(...) / --mass … --radii-of-gyration … (inertia) or "
+                "the solver's hydrostatics file",
+                CumminsWarning,
+                stacklevel=2,
+            )
 
 
 @main.command()

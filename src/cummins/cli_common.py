@@ -345,3 +345,54 @@ def model_and_data(path):
                 )
             return model, source
     return None, path
+
+
+def select_body(ds, body: str, option: str = "--body"):
+    """The six rigid-body DOFs of one body of a multi-body dataset (``--body N``, 1-based,
+    or the body's label prefix or name), relabelled ``Surge`` … ``Yaw``, with that body's
+    reference point, centre of gravity and buoyancy (:func:`cummins.select_dofs`)."""
+    from cummins.hydrodb import DOF_NAMES, bodies, body_names, select_dofs
+
+    groups = bodies(ds)
+    if groups == [None]:
+        raise click.BadParameter("the data hold one body: leave --body out", param_hint=option)
+    names = body_names(ds)
+    choices = [str(g) for g in groups]
+    if str(body).isdigit() and 1 <= int(body) <= len(groups):
+        k = int(body) - 1
+    elif str(body) in choices:
+        k = choices.index(str(body))
+    elif str(body) in names and len(names) == len(groups):
+        k = names.index(str(body))
+    else:
+        listed = ", ".join(
+            f"{n + 1} ({c}{'' if len(names) != len(groups) or names[n] == c else ', ' + names[n]})"
+            for n, c in enumerate(choices)
+        )
+        raise click.BadParameter(f"no body {body!r}; the data hold {listed}", param_hint=option)
+    prefix = choices[k]
+    labels = [f"{prefix}__{name}" for name in DOF_NAMES]
+    have = [str(d) for d in ds.influenced_dof.values]
+    missing = [label for label in labels if label not in have]
+    if missing:
+        raise click.BadParameter(
+            f"body {prefix} lacks {', '.join(missing)}: it has no six rigid-body DOFs",
+            param_hint=option,
+        )
+    out = select_dofs(ds, labels)
+    out = out.assign_coords(
+        {dim: list(DOF_NAMES) for dim in ("influenced_dof", "radiating_dof") if dim in out.coords}
+    )
+    for key in ("reference_point", "center_of_gravity", "center_of_buoyancy"):
+        if key in out.attrs:
+            values = np.asarray(out.attrs[key], dtype=float).reshape(-1)
+            if values.size == 3 * len(groups):
+                out.attrs[key] = values[3 * k : 3 * k + 3]
+    name = names[k] if len(names) == len(groups) else prefix
+    out.attrs["body_name"] = name
+    out.attrs.pop("body_names", None)
+    history = str(out.attrs.get("history", ""))
+    out.attrs["history"] = (history + "\n" if history else "") + (
+        f"body {k + 1} of {len(groups)} ({name}) selected: its six DOFs relabelled Surge … Yaw"
+    )
+    return out

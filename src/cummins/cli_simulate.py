@@ -218,6 +218,9 @@ def simulate_command(
 
         data = select_dofs(data, list(dofs))
     ds = select_speed(data, speed)
+    from cummins.vessel import missing_data_message
+
+    missing_data_message(ds, ("inertia_matrix", "hydrostatic_stiffness"), "a simulation")
     at_speed = (
         model is None
         and speed
