@@ -20,6 +20,7 @@ from cummins.cli_common import (
     read_hydrodb,
     read_options,
     reports_errors,
+    select_body,
     select_speed,
 )
 
@@ -138,6 +139,12 @@ from cummins.cli_common import (
     help="Make the MIMO model passive (K + K^H >= 0 at every frequency) by the smallest "
     "data-weighted change of the residues. Diagonal models are positive real either way.",
 )
+@click.option(
+    "--body",
+    metavar="N|NAME",
+    default=None,
+    help="Of several bodies, fit only this one (1-based number or name), e.g. for --mss.",
+)
 @click.option("--force", is_flag=True, help="Overwrite the output files.")
 @reports_errors
 def fit_command(
@@ -163,6 +170,7 @@ def fit_command(
     mss_path,
     speed,
     passive,
+    body,
     force,
 ):
     """Identify stable state-space models of the fluid memory, for every significant coupling.
@@ -181,9 +189,12 @@ def fit_command(
     """
     from cummins.fit import fit_radiation
 
-    prepare_outputs(output, json_path, openfast, mss_path, force=force)
+    prepare_outputs(output, json_path, openfast, mss_path, force=force, folders=[plot_dir])
     ds = select_speed(read_hydrodb(path, format_, rho, g, ulen), speed)
+    if body is not None:
+        ds = select_body(ds, body)
     labels = [str(d) for d in ds.influenced_dof.values]
+    check_model_outputs(labels, mss_path=mss_path, openfast=openfast)
     fixed = {}
     for a, b, n in orders:
         for label in (a, b):
@@ -262,6 +273,26 @@ def fit_command(
 
         for file in write_fit_plots(model, ds, Path(plot_dir), force=force):
             console.print(f"wrote {file}")
+
+
+def check_model_outputs(labels, *, mss_path=None, openfast=None) -> None:
+    """Before the fit: the model files asked for can hold a model of these DOFs (an MSS
+    vesselABC one body of six, HydroDyn six per body)."""
+    from cummins.hydrodb import DOF_NAMES
+
+    n = len(labels)
+    several = len({label.rpartition("__")[0] for label in labels}) > 1
+    if mss_path and [label.rpartition("__")[2] for label in labels] != list(DOF_NAMES):
+        raise click.BadParameter(
+            f"an MSS vesselABC holds one body with six DOFs; the data have {n} DOFs"
+            + (": fit one body with --body N" if several else ""),
+            param_hint="--mss",
+        )
+    if openfast and (n == 0 or n % 6):
+        raise click.BadParameter(
+            f"HydroDyn needs all six DOFs of each body; the data have {n} DOFs",
+            param_hint="--openfast",
+        )
 
 
 def fit_summary(model, elapsed: float) -> dict:

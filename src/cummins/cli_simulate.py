@@ -216,6 +216,13 @@ def simulate_command(
     if dofs:
         from cummins.hydrodb import select_dofs
 
+        unknown = [d for d in dofs if d not in [str(x) for x in data.influenced_dof.values]]
+        if unknown:
+            raise click.BadParameter(
+                f"unknown DOF {unknown[0]!r}; the data have "
+                + ", ".join(str(x) for x in data.influenced_dof.values),
+                param_hint="--dof",
+            )
         data = select_dofs(data, list(dofs))
     ds = select_speed(data, speed)
     from cummins.vessel import missing_data_message
