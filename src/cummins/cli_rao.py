@@ -74,11 +74,14 @@ def parse_headings(values: tuple[str, ...]) -> list[float]:
             if not part.strip():
                 continue
             try:
-                out.append(float(part))
+                value = float(part)
             except ValueError:
+                value = float("nan")
+            if not np.isfinite(value):
                 raise click.BadParameter(
-                    f"{part!r} is not a number of degrees", param_hint="--headings"
-                ) from None
+                    f"{part!r} is not a finite number of degrees", param_hint="--headings"
+                )
+            out.append(value)
     return out
 
 

@@ -129,7 +129,8 @@ def finite_values(values: Iterable[Any], name: str, unit: str = "") -> np.ndarra
         where = tuple(int(i) for i in np.argwhere(bad)[0])
         index = where[0] if len(where) == 1 else where
         raise ArgumentError(
-            f"{name} must hold finite numbers{_unit(unit)}; value {index} is {_show(arr[where])}"
+            f"{name} must hold finite numbers{f' (in {unit})' if unit else ''}; value {index} "
+            f"is {_show(arr[where])}"
         )
     return arr
 
