@@ -311,6 +311,7 @@ def demo(outdir, force):
     """
     from cummins.demo import run_demo
 
+    prepare_outputs(force=force, folders=[outdir])
     with console.status("starting") as status:
         steps = run_demo(outdir, force=force, progress=lambda m: status.update(m))
     for step in steps:

@@ -15,6 +15,7 @@ from cummins.cli_common import (
     progress_bar,
     reports_errors,
 )
+from cummins.validation import check_simulation_size
 
 
 @click.command(name="dp-demo")
@@ -110,6 +111,8 @@ def dp_demo_command(
     out = Path(folder)
     names = ["run.nc", "pose.png", "wave_and_radiation_forces.png", "loads.png", "watch_circle.png"]
     prepare_outputs(*(out / n for n in names), force=force)
+    # before the model is built: the run's size (the S-175 model has about 60 states)
+    check_simulation_size(duration, dt, 60, 54, option="--duration")
     ds = s175_data(data_path)
     with progress_bar() as bar:
         task = bar.add_task(f"simulating {duration:g} s of DP", total=1.0)

@@ -71,7 +71,7 @@ from cummins.excitation import (
 )
 from cummins.hydrodb import dof_matrix, single_speed
 from cummins.validation import check_memory, finite_values
-from cummins.vessel import viscous_damping_matrix
+from cummins.vessel import missing_data_message, viscous_damping_matrix
 
 __all__ = [
     "impedance",
@@ -154,23 +154,7 @@ def impedance(
     """
     ds = single_speed(ds)
     where = _where(ds)
-    for name, hint in (
-        (
-            "inertia_matrix",
-            "WAMIT: the .frc file (IMASS); NEMOH: Hydrostatics/Inertia files; "
-            "or add it with ds['inertia_matrix'] = ...",
-        ),
-        (
-            "hydrostatic_stiffness",
-            "WAMIT: the .hst file; NEMOH: KH.dat; or add it with ds['hydrostatic_stiffness'] = ...",
-        ),
-    ):
-        if name not in ds:
-            raise HydroDataError(
-                f"the dataset has no {name!r}: the motions cannot be computed",
-                path=where,
-                hint=hint,
-            )
+    missing_data_message(ds, ("inertia_matrix", "hydrostatic_stiffness"), "the motions")
     if method not in INTERPOLATION_METHODS:
         raise ArgumentError(
             f"unknown method {method!r}; use one of {', '.join(INTERPOLATION_METHODS)}"
