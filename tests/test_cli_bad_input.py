@@ -84,6 +84,7 @@ CASES: dict[str, tuple[list[str], int, str]] = {
     "info-rho-negative": (["info", T, "--rho", "-1025"], 2, "--rho"),
     "info-g-zero": (["info", T, "--g", "0"], 2, "--g"),
     "info-ulen-inf": (["info", T, "--ulen", "inf"], 2, "--ulen"),
+    "info-format-unknown": (["info", T, "--format", "bogus"], 2, "unknown format"),
     # check
     "check-json-exists": (["check", T, "--json", "old.json"], 2, "refusing to overwrite"),
     "check-json-under-file": (["check", T, "--json", "afile/r.json"], 2, "is a file"),
@@ -137,6 +138,8 @@ CASES: dict[str, tuple[list[str], int, str]] = {
     "kernel-huge": (["kernel", T, "-o", "k.nc", "--t-max", "1e7", "--dt", "1e-3"], 2, "TiB"),
     "kernel-dt-above-t-max": (["kernel", T, "-o", "k.nc", "--t-max", "10", "--dt", "100"], 2, ""),
     "kernel-under-file": (["kernel", T, "-o", "afile/sub/k.nc"], 2, "is a file"),
+    "kernel-plot-under-file": (["kernel", T, "-o", "k.nc", "--plot", "afile/p"], 2, "is a file"),
+    "rao-omega-outside-data": (["rao", T, "-o", "r.nc", "--omega-max", "9"], 2, "outside"),
     "kernel-exists": (["kernel", T, "-o", "old.nc"], 2, "refusing to overwrite"),
     "kernel-omega-max-nan": (["kernel", T, "-o", "k.nc", "--omega-max", "nan"], 2, ""),
     "kernel-speed": (["kernel", T, "-o", "k.nc", "--speed", "3"], 2, "one forward speed"),

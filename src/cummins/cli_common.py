@@ -199,6 +199,18 @@ def viscous_damping_values(
     return values
 
 
+def _check_format(ctx, param, value):
+    """--format NAME: one of the readers' names (a usage error otherwise)."""
+    if value is None:
+        return None
+    from cummins.io import FORMATS
+
+    names = [str(name) for name in FORMATS]
+    if value.lower() not in names:
+        raise click.BadParameter(f"unknown format {value!r}; choose one of {', '.join(names)}")
+    return value.lower()
+
+
 def read_options(func):
     """--format, --rho, --g, --ulen: how to read solver files."""
     decorators = [
@@ -207,6 +219,7 @@ def read_options(func):
             "format_",
             metavar="NAME",
             default=None,
+            callback=_check_format,
             help="Solver format (wamit, wamit-out, nemoh, aqwa, veres, netcdf, mss); "
             "detected from the content by default.",
         ),
@@ -258,7 +271,7 @@ def prepare_outputs(*paths, force: bool, folders=()) -> None:
     files = [Path(p) for p in paths if p]
     dirs = [Path(p) for p in folders if p]
     for path in files:
-        if path.is_dir():
+        if path.is_dir() and path.suffix.lower() != ".zarr":  # a Zarr store is a folder
             raise ArgumentError(
                 f"{path} is a folder: cannot write a file there",
                 hint="Give the name of a file",

@@ -134,7 +134,7 @@ def kernel_command(
     """
     from cummins.pipeline import kernel_stage, write_kernel_plots
 
-    prepare_outputs(output, force=force)
+    prepare_outputs(output, force=force, folders=[plot_dir])
     ds = select_speed(read_hydrodb(path, format_, rho, g, ulen), speed)
     result, ds = kernel_stage(
         ds,

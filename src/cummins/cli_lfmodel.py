@@ -130,7 +130,7 @@ def lf_model_command(
     outputs = [output, plot_file]
     if compare_dir:
         outputs += [Path(compare_dir) / f"{kind}_{d}.png" for kind, d in _COMPARISONS]
-    prepare_outputs(*outputs, force=force)
+    prepare_outputs(*outputs, force=force, folders=[compare_dir])
     ds = select_speed(read_hydrodb(path, format_, rho, g, ulen), speed)
     viscous = {}
     for dof, spec in (("Surge", surge_damping), ("Sway", sway_damping), ("Yaw", yaw_damping)):

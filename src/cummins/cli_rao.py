@@ -181,7 +181,7 @@ def rao_command(
     from cummins.frequency_domain import motion_rao, save_rao
 
     plot_file = str(Path(plot_dir) / "rao.png") if plot_dir else None
-    prepare_outputs(output, plot_file, force=force)
+    prepare_outputs(output, plot_file, force=force, folders=[plot_dir])
     ds = select_speed(read_hydrodb(path, format_, rho, g, ulen), speed)
     omega = None
     if omega_min is not None or omega_max is not None or n_omega is not None:
@@ -194,6 +194,14 @@ def rao_command(
                 "need --n-omega >= 1 and --omega-max >= --omega-min", param_hint="--n-omega"
             )
         omega = np.linspace(lo, hi, n)
+        from cummins.frequency_domain import _outside_data
+
+        if _outside_data(ds, np.array([lo, hi])).any():
+            raise click.BadParameter(
+                f"{lo:.4g} to {hi:.4g} rad/s reaches outside the data's range, "
+                f"{w[0]:.4g} to {w[-1]:.4g} rad/s (A, B and F are not extrapolated)",
+                param_hint="--omega-min/--omega-max",
+            )
     beta = np.radians(parse_headings(headings)) if headings else None
     damping = viscous_damping_values(viscous_damping, [str(d) for d in ds.influenced_dof.values])
     rao = motion_rao(ds, omega, beta, viscous_damping=damping, additional=not no_additional)
