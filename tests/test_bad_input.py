@@ -250,6 +250,6 @@ def test_missing_inertia_names_what_and_how():
     with pytest.raises(HydroDataError) as info:
         vessel_from_hydrodb(ds)
     message = str(info.value)
-    assert "no inertia_matrix (they have hydrostatic_stiffness)" in message
+    assert "no 'inertia_matrix' (they have hydrostatic_stiffness)" in message
     assert "cummins.with_inertia(" in message and "--mass" in message
     assert "--radii-of-gyration" in message

@@ -331,7 +331,7 @@ def test_warnings_are_one_line_notes_without_source_paths(work, monkeypatch):
     each, once, without the path."""
     result, changed = _run(work, ["convert", "sphere.out", "sphere.mat"], monkeypatch)
     assert result.exit_code == 0, result.output
-    assert "warning: the data have no inertia_matrix" in result.output
+    assert "warning: the data have no inertia_matrix: MRB" in result.output
     assert "UserWarning" not in result.output and ".py:" not in result.output
     assert not changed
 

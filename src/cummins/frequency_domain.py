@@ -154,7 +154,7 @@ def impedance(
     """
     ds = single_speed(ds)
     where = _where(ds)
-    missing_data_message(ds, ("inertia_matrix", "hydrostatic_stiffness"), "the motions")
+    missing_data_message(ds, ("inertia_matrix", "hydrostatic_stiffness"), "computing the motions")
     if method not in INTERPOLATION_METHODS:
         raise ArgumentError(
             f"unknown method {method!r}; use one of {', '.join(INTERPOLATION_METHODS)}"

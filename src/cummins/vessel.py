@@ -158,7 +158,7 @@ def missing_data_message(ds: xr.Dataset, names, what: str) -> None:
         have = [n for n in _HOW_TO_GIVE if n in ds]
         also = f" (they have {', '.join(have)})" if have else ""
         raise HydroDataError(
-            f"the data have no {name}{also}: {what} needs {meaning}; {where}",
+            f"the data have no {name!r}{also}: {what} needs {meaning}; {where}",
             path=source,
             hint=how[0].upper() + how[1:],
         )
