@@ -69,6 +69,7 @@ from cummins.errors import CumminsWarning, FitError, HydroDataError, SimulationE
 from cummins.hydrodb import dof_matrix, single_speed, split_dof
 from cummins.radiation import RadiationModel
 from cummins.transforms import cosine_transform, sine_transform
+from cummins.validation import check_simulation_size
 from cummins.vessel import Vessel, vessel_from_hydrodb
 
 #: DOFs of the zero-frequency sub-model (seed 002 Definition 1, item 1).
@@ -874,8 +875,9 @@ def compare_with_cummins(
         dt = period / 40 if period else 0.5
     if duration is None:
         duration = 10 * period if (period and kind == "decay") else 300.0
-    t = np.arange(0.0, duration + 0.5 * dt, dt)
     n = len(model.dofs)
+    check_simulation_size(duration, dt, vessel.n_states, n)
+    t = np.arange(0.0, float(duration) + 0.5 * float(dt), float(dt))
     lf_vessel = model.to_vessel()
     force = np.zeros((t.size, n))
     x_lf = np.zeros(lf_vessel.n_states)
