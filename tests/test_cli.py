@@ -98,7 +98,7 @@ def test_broken_file_gives_one_line_error(runner, tanker_copy):
     lines[10] = "  0.1000E+01   1   garbage"
     tanker_copy.write_text("\n".join(lines) + "\n")
     result = runner.invoke(main, ["info", str(tanker_copy)])
-    assert result.exit_code == 2
+    assert result.exit_code == 1  # data that cannot be read: status 1 (2 is for bad options)
     assert "error:" in result.output and "line 11" in result.output
     assert "Traceback" not in result.output
 

@@ -146,7 +146,7 @@ def test_report_refuses_to_overwrite_and_names_bad_input(reports, tmp_path):
     junk = tmp_path / "junk.txt"
     junk.write_text("not a solver file\n", encoding="utf-8")
     bad = runner.invoke(main, ["report", str(junk), "-o", str(tmp_path / "x.html")])
-    assert bad.exit_code == 2 and "junk.txt" in bad.output
+    assert bad.exit_code == 1 and "junk.txt" in bad.output
     with pytest.raises(cummins.CumminsError):
         write_report(junk, tmp_path / "y.html")
 

@@ -493,7 +493,7 @@ def test_cli_bad_record_is_one_line(tmp_path):
             str(tmp_path / "r"),
         ],
     )
-    assert result.exit_code == 2
+    assert result.exit_code == 1  # a damaged record is data: status 1
     assert "line 3" in result.output and "'oops'" in result.output
     assert "Traceback" not in result.output
 

@@ -51,7 +51,7 @@ import numpy as np
 import xarray as xr
 from numpy.typing import ArrayLike
 
-from cummins.errors import CumminsError, HydroDataError
+from cummins.errors import ArgumentError, CumminsError, HydroDataError
 from cummins.io._common import DEFAULT_G, DEFAULT_RHO
 from cummins.kinematics import screw_transform
 
@@ -485,9 +485,11 @@ def compute_hydrodb(
 def default_omegas(omega_min: float, omega_max: float, n_omega: int) -> np.ndarray:
     """``n_omega`` frequencies evenly spaced from ``omega_min`` to ``omega_max`` (rad/s)."""
     if not (0 < omega_min < omega_max) or not math.isfinite(omega_max):
-        raise CumminsError(f"need 0 < omega_min < omega_max, got {omega_min!r}, {omega_max!r}")
+        raise ArgumentError(
+            f"need 0 < omega_min < omega_max (rad/s), got {omega_min!r} and {omega_max!r}"
+        )
     if n_omega < 1:
-        raise CumminsError(f"n_omega must be >= 1, got {n_omega!r}")
+        raise ArgumentError(f"n_omega must be >= 1, got {n_omega!r}")
     return np.linspace(omega_min, omega_max, int(n_omega))
 
 

@@ -9,11 +9,17 @@ changed in the data. Each finding says what was measured, where, and what to do.
   pair, |X_ij − X_ji| / √(max|X_ii| · max|X_jj|).
 * ``damping_positive`` — B(ω) positive semidefinite at each frequency: eigenvalues of
   the symmetric part of the diagonally scaled matrix D^{-1/2} B D^{-1/2}
-  (D = peak |B_ii|), not determinants; negative diagonal entries are named.
+  (D = peak |B_ii|), not determinants; negative diagonal entries are named, and a
+  diagonal term negative at most frequencies, its largest magnitude included (the sign
+  flipped, not irregular frequencies), is an error.
 * ``added_mass_inf`` — A∞ symmetric positive definite (eigenvalues, scaled likewise).
 * ``damping_decay`` — |B_ii(ω_max)| / max_ω |B_ii|: the retardation function needs
   B to have decayed at the end of the data; and |B_ii(ω_min)| / max|B_ii|, since it
   assumes B(0) = 0 below the first frequency.
+* ``physical`` — what no floating body has (errors): non-finite coordinates or positions,
+  a negative mass, masses, inertias, added masses or dampings beyond any floating body
+  (10¹² kg, 10¹⁸ kg·m², :func:`cummins.validation.coefficient_limit`); the numerical
+  checks below are skipped then.
 * ``inertia``, ``hydrostatics`` — M_RB symmetric positive definite; C33, C44, C55 > 0.
 * ``copied_dof`` — a DOF that is an exact scaled copy of another (strip-theory codes
   approximate surge by scaling sway).
@@ -39,6 +45,7 @@ from cummins.hydrodb import DOF_NAMES, dof_matrix, is_rotation, split_dof, valid
 from cummins.kinematics import center_of_gravity_from_inertia
 from cummins.repair import find_suspect_frequencies
 from cummins.retardation import retardation_diagnostics
+from cummins.validation import coefficient_limit
 
 SEVERITIES = ("ok", "info", "warning", "error")
 
@@ -277,7 +284,25 @@ def _check_damping(ds: xr.Dataset) -> list[Finding]:
                 continue
             rel = diag[:, k] / peak[k]
             neg = rel < -NEGATIVE_DAMPING_TOL
-            if neg.any():
+            if _sign_flipped(rel, w) and peak[k] >= SIGNIFICANT_DOF * _kind_peak(peak, labels, k):
+                # negative at most frequencies, its largest magnitude included: not the
+                # spikes of irregular frequencies but damping of the wrong sign
+                out.append(
+                    Finding(
+                        "damping_positive",
+                        "error",
+                        f"B_{label} is negative at {int(neg.sum())} of {w.size} frequencies"
+                        f"{suffix}, its largest value included ({diag[:, k].min():.4g} at "
+                        f"{w[int(np.argmin(rel))]:.4g} rad/s): the body would draw energy from "
+                        "the waves it radiates",
+                        where=label,
+                        value=float(rel.min()),
+                        advice="the damping's sign is flipped (a time convention or axis "
+                        "error in the file or the reader): check the file and the solver's "
+                        "output settings",
+                    )
+                )
+            elif neg.any():
                 worst = int(np.argmin(rel))
                 out.append(
                     Finding(
@@ -331,6 +356,30 @@ def _check_damping(ds: xr.Dataset) -> list[Finding]:
                 )
             )
     return out
+
+
+#: A DOF whose peak |B_ii| is below this fraction of the largest of its kind (translation
+#: or rotation) is too small for its sign to be an error (a bottom-mounted base, noise).
+SIGNIFICANT_DOF = 1e-3
+
+
+def _kind_peak(peak: np.ndarray, labels: list[str], k: int) -> float:
+    """The largest peak |B_jj| of the DOFs of the kind of DOF k (translation or rotation)."""
+    same = [j for j, label in enumerate(labels) if is_rotation(label) == is_rotation(labels[k])]
+    return float(np.max(peak[same]))
+
+
+def _sign_flipped(rel: np.ndarray, w: np.ndarray) -> bool:
+    """B_ii / max|B_ii| negative at most frequencies, at its largest magnitude, and over
+    at least four times the area where it is positive: damping of the wrong sign."""
+    negative = rel < -NEGATIVE_DAMPING_TOL
+    if negative.sum() <= 0.5 * w.size or rel.min() > -1.0 + 1e-12:
+        return False
+    if w.size < 2:
+        return True
+    below = np.trapezoid(np.clip(-rel, 0.0, None), w)
+    above = np.trapezoid(np.clip(rel, 0.0, None), w)
+    return bool(below >= 4.0 * above)
 
 
 def _frequency_span(w: np.ndarray) -> str:
@@ -841,6 +890,105 @@ def _check_wave_parity(ds: xr.Dataset) -> list[Finding]:
     return out
 
 
+def _check_physical(ds: xr.Dataset) -> list[Finding]:
+    """What no floating body can have: non-finite coordinates or positions, a negative
+    mass, masses, inertias, added masses or dampings beyond any floating body
+    (:func:`cummins.validation.coefficient_limit`: 10¹² kg, 10¹⁸ kg·m²)."""
+    out: list[Finding] = []
+    for name, coord in ds.coords.items():
+        if not np.issubdtype(coord.dtype, np.number):
+            continue
+        values = np.asarray(coord.values, dtype=complex if coord.dtype.kind == "c" else float)
+        bad = ~np.isfinite(values)
+        if bad.any():
+            out.append(
+                Finding(
+                    "physical",
+                    "error",
+                    f"the coordinate {name} holds {int(bad.sum())} non-finite value(s) "
+                    f"(position {int(np.argwhere(bad.reshape(-1))[0][0])})",
+                    where=str(name),
+                    advice="the file is damaged: every frequency, direction and speed must "
+                    "be a finite number",
+                )
+            )
+    for key in ("reference_point", "center_of_gravity", "center_of_buoyancy"):
+        if key in ds.attrs:
+            try:
+                values = np.asarray(ds.attrs[key], dtype=float).reshape(-1)
+            except (TypeError, ValueError):
+                values = np.array([np.nan])
+            if not np.all(np.isfinite(values)):
+                out.append(
+                    Finding(
+                        "physical",
+                        "error",
+                        f"the {key.replace('_', ' ')} is not a finite position: "
+                        f"{values.tolist()} m",
+                        where=key,
+                        advice="give the position in metres (the file is damaged)",
+                    )
+                )
+    labels = _labels(ds)
+    if "inertia_matrix" in ds:
+        m = dof_matrix(ds, "inertia_matrix")
+        m = m.reshape(-1, m.shape[-2], m.shape[-1])[0]
+        for k, label in enumerate(labels):
+            name = split_dof(label)[1]
+            if name in ("Surge", "Sway", "Heave") and m[k, k] < 0:
+                out.append(
+                    Finding(
+                        "physical",
+                        "error",
+                        f"the mass in {label} is negative ({m[k, k]:.4g} kg)",
+                        where=label,
+                        value=float(m[k, k]),
+                        advice="give the body's mass (cummins.with_inertia(...) / --mass)",
+                    )
+                )
+    for var, kind, what in (
+        ("inertia_matrix", "mass", "inertia"),
+        ("added_mass", "mass", "added mass"),
+        ("added_mass_inf", "mass", "added mass A∞"),
+        ("added_mass_zero", "mass", "added mass A(0)"),
+        ("radiation_damping", "damping", "damping"),
+    ):
+        if var not in ds:
+            continue
+        values = ds[var].transpose(..., "influenced_dof", "radiating_dof").values
+        peak = np.max(np.abs(values.reshape(-1, len(labels), len(labels))), axis=0)
+        for i, row in enumerate(labels):
+            for j, col in enumerate(labels):
+                if j < i:
+                    continue
+                limit = coefficient_limit(row, col, kind)
+                if peak[i, j] > limit or (j != i and peak[j, i] > limit):
+                    size = max(peak[i, j], peak[j, i])
+                    pair = row if i == j else f"{row}-{col}"
+                    out.append(
+                        Finding(
+                            "physical",
+                            "error",
+                            f"the {what} [{pair}] reaches {size:.4g} in SI units, beyond any "
+                            f"floating body (at most {limit:.0e})",
+                            where=pair,
+                            value=float(size),
+                            advice="the file is damaged or not in SI units (a WAMIT file "
+                            "read with the wrong --ulen/--rho?): check it, or rerun the solver",
+                        )
+                    )
+    if not out:
+        out.append(
+            Finding(
+                "physical",
+                "ok",
+                "coordinates finite; masses, inertias, added masses and dampings within the "
+                "range of floating bodies",
+            )
+        )
+    return out
+
+
 def _check_read_warnings(ds: xr.Dataset) -> list[Finding]:
     """Damage the reader worked around (``read_warnings``), repeated as warnings."""
     lines = [w for w in str(ds.attrs.get("read_warnings", "")).splitlines() if w.strip()]
@@ -881,6 +1029,13 @@ def check(ds: xr.Dataset) -> CheckReport:
     validate(ds)
     source = ds.attrs.get("source_file") or ds.attrs.get("source_format", "dataset")
     findings: list[Finding] = [Finding("finite", "ok", "no NaN or Inf values")]
+    physical = _check_physical(ds)
+    findings.extend(physical)
+    if any(f.severity == "error" for f in physical):
+        # values no floating body has: the numerical checks would only repeat them in
+        # overflows and failed eigenvalue problems
+        findings.extend(_check_read_warnings(ds))
+        return CheckReport(source=str(source), findings=tuple(findings))
     for part in (
         _check_read_warnings,
         _check_grid,

@@ -1,16 +1,21 @@
 """The ``cummins`` command line.
 
-Every command prints what it did; errors in the data are reported in one line naming
-the file, line or quantity at fault, without a traceback (exit status 2).
+Every command prints what it did; errors are reported in one line naming the file, line,
+option or quantity at fault, without a traceback: exit status 2 for a bad option or
+argument (a value out of range, an output that exists without --force, a path under a
+file), 1 for data that cannot be used (and for `check`, data that fail it). Warnings are
+shown once each as one-line notes.
 """
 
 from __future__ import annotations
 
 import json
 import sys
+import warnings
 from pathlib import Path
 
 import click
+from rich.markup import escape
 from rich.table import Table
 
 from cummins._version import __version__
@@ -18,10 +23,12 @@ from cummins.cli_batch import batch_command, report_command
 from cummins.cli_bem import bem_command
 from cummins.cli_common import (
     console,
+    finite,
     prepare_outputs,
     read_hydrodb,
     read_options,
     reports_errors,
+    select_body,
 )
 from cummins.cli_dp import dp_demo_command
 from cummins.cli_fit import fit_command
@@ -31,6 +38,7 @@ from cummins.cli_rao import rao_command
 from cummins.cli_reduce import reduce_command
 from cummins.cli_simulate import simulate_command
 from cummins.cli_sysid import identify_damping_command
+from cummins.errors import CumminsWarning
 
 
 @click.group(
@@ -129,12 +137,14 @@ def info(path, format_, rho, g, ulen, as_json):
     "--json",
     "json_path",
     metavar="FILE",
+    type=click.Path(dir_okay=False, allow_dash=True),
     default=None,
     help="Also write the report as JSON to FILE ('-' for standard output only).",
 )
 @click.option("--strict", is_flag=True, help="Exit with status 1 on warnings too, not only errors.")
+@click.option("--force", is_flag=True, help="Overwrite the --json FILE if it exists.")
 @reports_errors
-def check_command(path, format_, rho, g, ulen, json_path, strict):
+def check_command(path, format_, rho, g, ulen, json_path, strict, force):
     """Check that the data in PATH are physically usable, and say where not.
 
     \b
@@ -150,6 +160,8 @@ def check_command(path, format_, rho, g, ulen, json_path, strict):
     """
     from cummins.check import check
 
+    if json_path and json_path != "-":
+        prepare_outputs(json_path, force=force)
     ds = read_hydrodb(path, format_, rho, g, ulen)
     report = check(ds)
     if json_path == "-":
@@ -165,12 +177,16 @@ def check_command(path, format_, rho, g, ulen, json_path, strict):
 
 def _print_report(report) -> None:
     styles = {"ok": "green", "info": "cyan", "warning": "yellow", "error": "bold red"}
-    console.print(f"[bold]Checks of {report.source}[/]")
+    console.print(f"[bold]Checks of {escape(report.source)}[/]")
     for f in report:
-        where = f" [{f.where}]" if f.where else ""
-        console.print(f"  [{styles[f.severity]}]{f.severity:7}[/] {f.check}{where}: {f.message}")
+        # escaped: "[body1__Heave]" is no markup tag (rich would drop it)
+        where = escape(f" [{f.where}]") if f.where else ""
+        console.print(
+            f"  [{styles[f.severity]}]{f.severity:7}[/] {escape(f.check)}{where}: "
+            f"{escape(f.message)}"
+        )
         if f.advice:
-            console.print(f"          → {f.advice}", style="dim")
+            console.print(f"          → {escape(f.advice)}", style="dim")
     verdict = "[green]usable[/]" if report.ok else "[bold red]NOT usable as it is[/]"
     console.print(f"Result: {verdict} (worst finding: {report.worst()})")
 
@@ -189,14 +205,21 @@ def _print_report(report) -> None:
 @click.option(
     "--reference-point",
     nargs=3,
-    type=float,
+    type=finite("m"),
     default=None,
     metavar="X Y Z",
     help="Move the reference point to X Y Z (m, in the axes written).",
 )
+@click.option(
+    "--body",
+    metavar="N|NAME",
+    default=None,
+    help="Of several bodies, write only this one (1-based number or name): its six DOFs "
+    "as Surge … Yaw, e.g. for an MSS .mat, which holds one body.",
+)
 @click.option("--force", is_flag=True, help="Overwrite DESTINATION if it exists.")
 @reports_errors
-def convert(source, destination, format_, rho, g, ulen, axes, reference_point, force):
+def convert(source, destination, format_, rho, g, ulen, axes, reference_point, body, force):
     """Convert SOURCE to canonical NetCDF (.nc), a BEMIO .h5 for WEC-Sim, or an MSS
     vessel struct (.mat).
 
@@ -214,9 +237,20 @@ def convert(source, destination, format_, rho, g, ulen, axes, reference_point, f
     from cummins.hydrodb import change_axes, move_reference_point
     from cummins.io import write
 
+    to_mat = Path(destination).suffix.lower() == ".mat"
+    if Path(destination).suffix.lower() not in (".nc", ".mat", ".h5"):
+        raise click.BadParameter(
+            f"{destination}: write .nc (canonical NetCDF), .h5 (BEMIO, for WEC-Sim) or .mat "
+            "(MSS vessel struct)",
+            param_hint="DESTINATION",
+        )
     prepare_outputs(destination, force=force)
     ds = read_hydrodb(source, format_, rho, g, ulen)
-    if axes is None and Path(destination).suffix.lower() == ".mat":
+    if body is not None:
+        ds = select_body(ds, body)
+    if to_mat:
+        _check_mss_body(ds)
+    if axes is None and to_mat:
         axes = "z-down"
     if axes is not None:
         ds = change_axes(ds, axes)
@@ -227,6 +261,38 @@ def convert(source, destination, format_, rho, g, ulen, axes, reference_point, f
         f"wrote {destination} ({ds.attrs.get('axis_convention')} axes, reference point "
         f"{[float(x) for x in ds.attrs['reference_point']]} m)"
     )
+
+
+def _check_mss_body(ds) -> None:
+    """An MSS struct holds one rigid body: say how to choose one, and what it will lack."""
+    from cummins.hydrodb import DOF_NAMES, bodies
+
+    labels = [str(d) for d in ds.influenced_dof.values]
+    if labels != list(DOF_NAMES):
+        groups = bodies(ds)
+        several = groups != [None]
+        raise click.BadParameter(
+            f"an MSS vessel struct holds one body with six DOFs (Surge … Yaw); the data "
+            f"have {len(labels)} DOFs"
+            + (
+                f" of {len(groups)} bodies: choose one with --body 1 … {len(groups)}"
+                if several
+                else ""
+            ),
+            param_hint="DESTINATION",
+        )
+    for name, what in (
+        ("inertia_matrix", "MRB (the rigid-body inertia) is written as zeros"),
+        ("hydrostatic_stiffness", "C (the restoring) is written as zeros"),
+    ):
+        if name not in ds:
+            warnings.warn(
+                f"the data have no {name}: {what}; MSS needs it to simulate. Give it with "
+                "cummins.with_inertia(...) / --mass … --radii-of-gyration … (inertia) or "
+                "the solver's hydrostatics file",
+                CumminsWarning,
+                stacklevel=2,
+            )
 
 
 @main.command()
@@ -249,6 +315,7 @@ def demo(outdir, force):
     """
     from cummins.demo import run_demo
 
+    prepare_outputs(force=force, folders=[outdir])
     with console.status("starting") as status:
         steps = run_demo(outdir, force=force, progress=lambda m: status.update(m))
     for step in steps:

@@ -13,6 +13,7 @@ from cummins.cli_common import (
     console,
     prepare_outputs,
     progress_bar,
+    read_options,
     reports_errors,
     run_reporting_errors,
 )
@@ -166,13 +167,15 @@ def _print_tables(results) -> None:
 )
 @click.option(
     "--kind",
-    type=click.Choice(["data", "model", "rao", "run", "batch"]),
+    type=click.Choice(["data", "model", "rao", "run", "dp", "lf", "kernel", "batch"]),
     default=None,
-    help="What PATH is (default: detected from its content).",
+    help="What PATH is (default: detected from its content); a kind given must be what "
+    "the file holds.",
 )
+@read_options
 @click.option("--force", is_flag=True, help="Overwrite OUTPUT.")
 @reports_errors
-def report_command(path, output, kind, force):
+def report_command(path, output, kind, format_, rho, g, ulen, force):
     """Write a self-contained HTML report of a file: figures and tables, no links out.
 
     \b
@@ -183,6 +186,7 @@ def report_command(path, output, kind, force):
       run (simulate)     statistics, time series, response spectra
       run (dp-demo)      checks (heel, watch circle), pose, every load, track
       LF model (lf-model) the constant coefficients and where each was taken
+      K(t) (kernel)      the diagnostics of every significant coupling, K(t)
       results (batch)    the study, operability per heading, limiting Hs, cases
     The figures are embedded PNGs and the style is inline: the page opens offline.
 
@@ -196,6 +200,12 @@ def report_command(path, output, kind, force):
 
     prepare_outputs(output, force=force)
     with console.status("drawing the report"):
-        written = write_report(path, output, force=force, kind=kind)
+        written = write_report(
+            path,
+            output,
+            force=force,
+            kind=kind,
+            read_options={"format": format_, "rho": rho, "g": g, "ulen": ulen},
+        )
     size = written.stat().st_size / 1e6
     console.print(f"wrote {written} ({size:.1f} MB)")

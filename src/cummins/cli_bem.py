@@ -9,8 +9,7 @@ from pathlib import Path
 import click
 import numpy as np
 
-from cummins.cli_common import prepare_outputs
-from cummins.errors import CumminsError
+from cummins.cli_common import Number, finite, positive, prepare_outputs, reports_errors
 from cummins.io._common import DEFAULT_G, DEFAULT_RHO
 
 
@@ -20,11 +19,14 @@ def _headings(values: tuple[str, ...]) -> list[float]:
     for value in values:
         for part in value.replace(",", " ").split():
             try:
-                out.append(float(part))
+                value = float(part)
             except ValueError:
+                value = math.nan
+            if not math.isfinite(value):
                 raise click.BadParameter(
-                    f"{part!r} is not a number of degrees", param_hint="--headings"
-                ) from None
+                    f"{part!r} is not a finite number of degrees", param_hint="--headings"
+                )
+            out.append(value)
     return out or [180.0]
 
 
@@ -35,35 +37,59 @@ def _headings(values: tuple[str, ...]) -> list[float]:
     type=click.Choice(["box", "wigley"]),
     help="Parametric hull instead of a mesh file (needs --length, --beam, --draft).",
 )
-@click.option("--length", type=float, help="Hull length L, m.")
-@click.option("--beam", type=float, help="Hull beam B, m.")
-@click.option("--draft", type=float, help="Hull draft T, m.")
+@click.option("--length", type=positive("m"), help="Hull length L, m.")
+@click.option("--beam", type=positive("m"), help="Hull beam B, m.")
+@click.option("--draft", type=positive("m"), help="Hull draft T, m.")
 @click.option(
     "--resolution",
-    type=int,
+    type=click.IntRange(2, 400),
     default=20,
     show_default=True,
     help="Panels along the length of a parametric hull.",
 )
-@click.option("--omega-min", type=float, required=True, help="Lowest wave frequency, rad/s.")
-@click.option("--omega-max", type=float, required=True, help="Highest wave frequency, rad/s.")
-@click.option("--n-omega", type=int, default=40, show_default=True, help="Number of frequencies.")
+@click.option(
+    "--omega-min", type=positive("rad/s"), required=True, help="Lowest wave frequency, rad/s."
+)
+@click.option(
+    "--omega-max", type=positive("rad/s"), required=True, help="Highest wave frequency, rad/s."
+)
+@click.option(
+    "--n-omega",
+    type=click.IntRange(1, 10_000),
+    default=40,
+    show_default=True,
+    help="Number of frequencies.",
+)
 @click.option(
     "--headings",
     multiple=True,
     help="Wave directions in degrees (0 = waves travelling along +x, 180 = head "
     "seas); repeat the option or separate by commas. Default 180.",
 )
-@click.option("--depth", type=float, default=math.inf, help="Water depth, m (default: deep water).")
 @click.option(
-    "--rho", type=float, default=DEFAULT_RHO, show_default=True, help="Water density, kg/m^3."
+    "--depth",
+    type=Number(0.0, min_open=True, unit="m", infinite=True),
+    default=math.inf,
+    help="Water depth, m (default: deep water).",
 )
 @click.option(
-    "--g", "gravity", type=float, default=DEFAULT_G, show_default=True, help="Gravity, m/s^2."
+    "--rho",
+    type=positive("kg/m^3"),
+    default=DEFAULT_RHO,
+    show_default=True,
+    help="Water density, kg/m^3.",
+)
+@click.option(
+    "--g",
+    "gravity",
+    type=positive("m/s^2"),
+    default=DEFAULT_G,
+    show_default=True,
+    help="Gravity, m/s^2.",
 )
 @click.option(
     "--cog",
-    type=float,
+    type=finite("m"),
     nargs=3,
     default=None,
     metavar="X Y Z",
@@ -79,6 +105,7 @@ def _headings(values: tuple[str, ...]) -> list[float]:
     help="Output NetCDF file (.nc).",
 )
 @click.option("--force", is_flag=True, help="Overwrite the output file if it exists.")
+@reports_errors
 def bem_command(
     mesh,
     hull,
@@ -119,28 +146,25 @@ def bem_command(
         ]
         if missing:
             raise click.UsageError(f"--hull {hull} needs {', '.join(missing)}")
-    try:
-        prepare_outputs(output, force=force)
-        omega = bem.default_omegas(omega_min, omega_max, n_omega)
-        if hull is not None:
-            geometry = bem.hull_mesh(hull, length, beam, draft, resolution=resolution)
-        else:
-            geometry = mesh
-        started = time.perf_counter()
-        ds = bem.compute_hydrodb(
-            geometry,
-            omega,
-            wave_direction=np.radians(_headings(headings)),
-            water_depth=depth,
-            rho=rho,
-            g=gravity,
-            center_of_mass=cog,
-            limits=not no_limits,
-            progress=True,
-        )
-        write_netcdf(ds, output)
-    except CumminsError as exc:
-        raise click.ClickException(str(exc)) from None
+    prepare_outputs(output, force=force)
+    omega = bem.default_omegas(omega_min, omega_max, n_omega)
+    if hull is not None:
+        geometry = bem.hull_mesh(hull, length, beam, draft, resolution=resolution)
+    else:
+        geometry = mesh
+    started = time.perf_counter()
+    ds = bem.compute_hydrodb(
+        geometry,
+        omega,
+        wave_direction=np.radians(_headings(headings)),
+        water_depth=depth,
+        rho=rho,
+        g=gravity,
+        center_of_mass=cog,
+        limits=not no_limits,
+        progress=True,
+    )
+    write_netcdf(ds, output)
     for line in bem.describe(ds):
         click.echo(line)
     click.echo(f"saved {output} ({time.perf_counter() - started:.1f} s)")

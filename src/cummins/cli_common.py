@@ -2,16 +2,29 @@
 
 from __future__ import annotations
 
+import contextlib
 import functools
+import math
+import os
 import sys
+import warnings
+from collections.abc import Iterator
 from pathlib import Path
+from typing import NoReturn
 
 import click
+import numpy as np
 from rich.console import Console
 from rich.markup import escape
 from rich.progress import BarColumn, Progress, TaskProgressColumn, TextColumn, TimeElapsedColumn
 
-from cummins.errors import CumminsError
+from cummins.errors import (
+    ArgumentError,
+    CumminsError,
+    CumminsWarning,
+    OutputExistsError,
+    check_writable,
+)
 
 console = Console(highlight=False, soft_wrap=True)
 err_console = Console(stderr=True, highlight=False, soft_wrap=True)
@@ -29,13 +42,68 @@ def progress_bar() -> Progress:
     )
 
 
+def exit_status(exc: BaseException) -> int:
+    """2 for a bad argument or option (``ArgumentError``, an output that exists), 1 for
+    data that cannot be used and every other error of cummins."""
+    return 2 if isinstance(exc, (ArgumentError, OutputExistsError)) else 1
+
+
+def report_error(exc: BaseException) -> NoReturn:
+    """Print ``exc`` as one line on standard error and exit with :func:`exit_status`: the
+    one place where the commands report their errors."""
+    err_console.print(f"[bold red]error:[/] {escape(_one_line(exc))}")
+    sys.exit(exit_status(exc))
+
+
+def _one_line(exc: BaseException) -> str:
+    if isinstance(exc, MemoryError):
+        return (
+            "not enough memory for this request"
+            + (f" ({exc})" if str(exc) else "")
+            + ": ask for less (a shorter run, a coarser grid, fewer DOFs)"
+        )
+    if isinstance(exc, OSError) and not isinstance(exc, CumminsError):
+        where = f"{exc.filename}: " if getattr(exc, "filename", None) else ""
+        return f"{where}{exc.strerror or exc}"
+    return " ".join(str(exc).split())
+
+
+@contextlib.contextmanager
+def warnings_as_notes() -> Iterator[None]:
+    """Show the warnings raised inside as one-line notes on standard error, each text
+    once, without the source line and path Python prints."""
+    seen: set[str] = set()
+
+    def show(message, category, filename, lineno, file=None, line=None) -> None:
+        text = " ".join(str(message).split())
+        if text in seen:
+            return
+        seen.add(text)
+        label = "warning" if issubclass(category, CumminsWarning) else "note"
+        err_console.print(f"[yellow]{label}:[/] {escape(text)}")
+
+    with warnings.catch_warnings():
+        warnings.simplefilter("always")
+        for quiet in (
+            DeprecationWarning,
+            PendingDeprecationWarning,
+            ImportWarning,
+            ResourceWarning,
+        ):
+            warnings.simplefilter("ignore", quiet)
+        warnings.showwarning = show
+        yield
+
+
 def run_reporting_errors(function, *args, **kwargs):
-    """Call ``function``; turn a CumminsError into a one-line message and exit status 2."""
+    """Call ``function`` with warnings shown as notes; a CumminsError (or an error of the
+    file system, or a lack of memory) becomes a one-line message and the exit status of
+    :func:`exit_status`."""
     try:
-        return function(*args, **kwargs)
-    except CumminsError as exc:
-        err_console.print(f"[bold red]error:[/] {escape(str(exc))}")
-        sys.exit(2)
+        with warnings_as_notes():
+            return function(*args, **kwargs)
+    except (CumminsError, OSError, MemoryError) as exc:
+        report_error(exc)
 
 
 def reports_errors(func):
@@ -48,12 +116,63 @@ def reports_errors(func):
     return wrapper
 
 
+class Number(click.FloatRange):
+    """A finite float in a range, with its unit in the messages (``--dt 0`` → "0.0 is not
+    in the range x>0 s"); NaN is refused, and infinity unless ``infinite`` (a water depth)."""
+
+    def __init__(
+        self,
+        min: float | None = None,
+        max: float | None = None,
+        *,
+        min_open: bool = False,
+        max_open: bool = False,
+        unit: str = "",
+        infinite: bool = False,
+    ) -> None:
+        super().__init__(min, max, min_open=min_open, max_open=max_open)
+        self.unit = unit
+        self.infinite = infinite
+
+    def convert(self, value, param, ctx):
+        x = click.FLOAT.convert(value, param, ctx)
+        if math.isnan(x) or (math.isinf(x) and not self.infinite):
+            self.fail(f"{value!r} is not a finite number{_unit(self.unit)}", param, ctx)
+        if self.min is None and self.max is None:
+            return x
+        return super().convert(x, param, ctx)
+
+    def _describe_range(self) -> str:
+        if self.min is None and self.max is None:
+            return f"finite{_unit(self.unit)}"
+        return super()._describe_range() + _unit(self.unit)
+
+
+def _unit(unit: str) -> str:
+    return f" {unit}" if unit else ""
+
+
+def positive(unit: str = "") -> Number:
+    """Finite and > 0 (durations, time steps, periods, lengths)."""
+    return Number(0.0, min_open=True, unit=unit)
+
+
+def non_negative(unit: str = "") -> Number:
+    """Finite and >= 0 (wave heights, amplitudes, damping)."""
+    return Number(0.0, unit=unit)
+
+
+def finite(unit: str = "") -> Number:
+    """Any finite number (headings, coordinates)."""
+    return Number(unit=unit)
+
+
 def viscous_damping_option(func):
     """--viscous-damping DOF VALUE (repeatable), passed as ``viscous_damping``."""
     return click.option(
         "--viscous-damping",
         "viscous_damping",
-        type=(str, float),
+        type=(str, non_negative()),
         multiple=True,
         metavar="DOF VALUE",
         help="Linear viscous damping B_v on a DOF, e.g. --viscous-damping Roll 5e8 (kg/s, "
@@ -92,6 +211,18 @@ _EOM_OPTIONS = (
 )
 
 
+def _check_format(ctx, param, value):
+    """--format NAME: one of the readers' names (a usage error otherwise)."""
+    if value is None:
+        return None
+    from cummins.io import FORMATS
+
+    names = [str(name) for name in FORMATS]
+    if value.lower() not in names:
+        raise click.BadParameter(f"unknown format {value!r}; choose one of {', '.join(names)}")
+    return value.lower()
+
+
 def read_options(func):
     """--format, --rho, --g, --ulen: how to read solver files; --mass,
     --center-of-gravity, --radii-of-gyration, --inertia-matrix, --external-stiffness,
@@ -103,12 +234,13 @@ def read_options(func):
             "format_",
             metavar="NAME",
             default=None,
+            callback=_check_format,
             help="Solver format (wamit, wamit-out, nemoh, aqwa, veres, netcdf, mss); "
             "detected from the content by default.",
         ),
         click.option(
             "--rho",
-            type=float,
+            type=positive("kg/m^3"),
             default=None,
             metavar="KG/M3",
             help="Water density for nondimensional formats (WAMIT does not record it "
@@ -117,7 +249,7 @@ def read_options(func):
         click.option(
             "--g",
             "g",
-            type=float,
+            type=positive("m/s^2"),
             default=None,
             metavar="M/S2",
             help="Acceleration of gravity for nondimensional formats (default 9.81, or "
@@ -125,14 +257,14 @@ def read_options(func):
         ),
         click.option(
             "--ulen",
-            type=float,
+            type=positive("m"),
             default=None,
             metavar="M",
             help="WAMIT length scale ULEN (default: from the .out, else 1).",
         ),
         click.option(
             "--mass",
-            type=float,
+            type=positive("kg"),
             multiple=True,
             metavar="KG",
             help="Mass of the body (repeat once per body, in their order). With "
@@ -142,7 +274,7 @@ def read_options(func):
         ),
         click.option(
             "--center-of-gravity",
-            type=(float, float, float),
+            type=(finite("m"), finite("m"), finite("m")),
             multiple=True,
             metavar="X Y Z",
             help="Centre of gravity in m, in the data's axes (once per body; default: the "
@@ -150,7 +282,7 @@ def read_options(func):
         ),
         click.option(
             "--radii-of-gyration",
-            type=(float, float, float),
+            type=(positive("m"), positive("m"), positive("m")),
             multiple=True,
             metavar="RXX RYY RZZ",
             help="Radii of gyration about the centre of gravity in m (once per body), e.g. "
@@ -167,7 +299,7 @@ def read_options(func):
         ),
         click.option(
             "--external-stiffness",
-            type=(str, str, float),
+            type=(str, str, finite()),
             multiple=True,
             metavar="DOF DOF VALUE",
             help="External stiffness (moorings, a PTO spring) added to the restoring, e.g. "
@@ -176,7 +308,7 @@ def read_options(func):
         ),
         click.option(
             "--external-damping",
-            type=(str, str, float),
+            type=(str, str, finite()),
             multiple=True,
             metavar="DOF DOF VALUE",
             help="External linear damping (a PTO, dampers) between two DOFs, e.g. "
@@ -257,22 +389,61 @@ def complete_equation_of_motion(
     return with_external_terms(ds, **terms) if terms else ds
 
 
-def prepare_outputs(*paths, force: bool) -> None:
-    """Before any work: refuse to overwrite without ``--force``, create missing folders."""
-    from cummins.errors import check_writable
+def prepare_outputs(*paths, force: bool, folders=()) -> None:
+    """Before any work: refuse to overwrite without ``--force``, refuse a path under an
+    existing file (or a folder where a file is to be written), create missing folders.
 
-    for path in paths:
-        if path:
-            check_writable(path, force)
-    for path in paths:
-        if path:
-            Path(path).parent.mkdir(parents=True, exist_ok=True)
+    ``folders`` are output folders (``--plot DIR``): checked the same way, not created.
+    """
+    files = [Path(p) for p in paths if p]
+    dirs = [Path(p) for p in folders if p]
+    for path in files:
+        if path.is_dir() and path.suffix.lower() != ".zarr":  # a Zarr store is a folder
+            raise ArgumentError(
+                f"{path} is a folder: cannot write a file there",
+                hint="Give the name of a file",
+            )
+        check_writable(path, force)
+    for path in [*files, *dirs]:
+        _check_parents(path)
+    for path in dirs:
+        if path.exists() and not path.is_dir():
+            raise ArgumentError(
+                f"{path} is a file, not a folder", hint="Give the name of a folder for the output"
+            )
+    for path in files:
+        path.parent.mkdir(parents=True, exist_ok=True)
+
+
+def _check_parents(path: Path) -> None:
+    """ArgumentError when a folder above ``path`` exists as a file or is not writable."""
+    for parent in path.parents:
+        if parent.exists():
+            if not parent.is_dir():
+                raise ArgumentError(
+                    f"cannot write {path}: {parent} is a file, not a folder",
+                    hint="Choose an output path in a folder",
+                )
+            if not os.access(parent, os.W_OK | os.X_OK):
+                raise ArgumentError(
+                    f"cannot write {path}: the folder {parent} is not writable",
+                    hint="Choose an output path in a folder you may write to",
+                )
+            return
 
 
 def select_speed(ds, speed: float | None):
     """The data at one forward speed (``--speed``): required when there are several, and
     one of them (within 1 mm/s), never the nearest."""
     if "forward_speed" not in ds.dims:
+        if speed is not None:
+            held = float(ds.forward_speed) if "forward_speed" in ds.coords else 0.0
+            if not np.isfinite(speed) or abs(speed - held) > 1e-3:
+                raise click.BadParameter(
+                    f"the data hold one forward speed, {held:g} m/s, not {speed:g} m/s: "
+                    "give data computed at that speed, or leave --speed out",
+                    param_hint="--speed",
+                )
         return ds
     speeds = ds.forward_speed.values
     listed = ", ".join(f"{u:g}" for u in speeds)
@@ -314,3 +485,54 @@ def model_and_data(path):
                 )
             return model, source
     return None, path
+
+
+def select_body(ds, body: str, option: str = "--body"):
+    """The six rigid-body DOFs of one body of a multi-body dataset (``--body N``, 1-based,
+    or the body's label prefix or name), relabelled ``Surge`` … ``Yaw``, with that body's
+    reference point, centre of gravity and buoyancy (:func:`cummins.select_dofs`)."""
+    from cummins.hydrodb import DOF_NAMES, bodies, body_names, select_dofs
+
+    groups = bodies(ds)
+    if groups == [None]:
+        raise click.BadParameter("the data hold one body: leave --body out", param_hint=option)
+    names = body_names(ds)
+    choices = [str(g) for g in groups]
+    if str(body).isdigit() and 1 <= int(body) <= len(groups):
+        k = int(body) - 1
+    elif str(body) in choices:
+        k = choices.index(str(body))
+    elif str(body) in names and len(names) == len(groups):
+        k = names.index(str(body))
+    else:
+        listed = ", ".join(
+            f"{n + 1} ({c}{'' if len(names) != len(groups) or names[n] == c else ', ' + names[n]})"
+            for n, c in enumerate(choices)
+        )
+        raise click.BadParameter(f"no body {body!r}; the data hold {listed}", param_hint=option)
+    prefix = choices[k]
+    labels = [f"{prefix}__{name}" for name in DOF_NAMES]
+    have = [str(d) for d in ds.influenced_dof.values]
+    missing = [label for label in labels if label not in have]
+    if missing:
+        raise click.BadParameter(
+            f"body {prefix} lacks {', '.join(missing)}: it has no six rigid-body DOFs",
+            param_hint=option,
+        )
+    out = select_dofs(ds, labels)
+    out = out.assign_coords(
+        {dim: list(DOF_NAMES) for dim in ("influenced_dof", "radiating_dof") if dim in out.coords}
+    )
+    for key in ("reference_point", "center_of_gravity", "center_of_buoyancy"):
+        if key in out.attrs:
+            values = np.asarray(out.attrs[key], dtype=float).reshape(-1)
+            if values.size == 3 * len(groups):
+                out.attrs[key] = values[3 * k : 3 * k + 3]
+    name = names[k] if len(names) == len(groups) else prefix
+    out.attrs["body_name"] = name
+    out.attrs.pop("body_names", None)
+    history = str(out.attrs.get("history", ""))
+    out.attrs["history"] = (history + "\n" if history else "") + (
+        f"body {k + 1} of {len(groups)} ({name}) selected: its six DOFs relabelled Surge … Yaw"
+    )
+    return out

@@ -6,7 +6,16 @@ from pathlib import Path
 
 import click
 
-from cummins.cli_common import console, prepare_outputs, progress_bar, reports_errors
+from cummins.cli_common import (
+    console,
+    finite,
+    non_negative,
+    positive,
+    prepare_outputs,
+    progress_bar,
+    reports_errors,
+)
+from cummins.validation import check_simulation_size
 
 
 @click.command(name="dp-demo")
@@ -18,36 +27,42 @@ from cummins.cli_common import console, prepare_outputs, progress_bar, reports_e
     required=True,
     help="Folder for run.nc and the PNG figures.",
 )
-@click.option("--duration", type=float, default=600.0, show_default=True, metavar="S")
+@click.option("--duration", type=positive("s"), default=600.0, show_default=True, metavar="S")
 @click.option(
     "--dt",
-    type=float,
+    type=positive("s"),
     default=0.2,
     show_default=True,
     metavar="S",
     help="Time step (Runge-Kutta 4).",
 )
-@click.option("--seed", type=int, default=1, show_default=True, help="Random wave phases.")
+@click.option(
+    "--seed",
+    type=click.IntRange(0, 2**63 - 1),
+    default=1,
+    show_default=True,
+    help="Random wave phases.",
+)
 @click.option(
     "--current",
     "current_speed",
-    type=float,
+    type=non_negative("m/s"),
     default=0.0,
     show_default=True,
     metavar="M/S",
     help="Current speed (from --current-from).",
 )
-@click.option("--current-from", type=float, default=0.0, show_default=True, metavar="DEG")
+@click.option("--current-from", type=finite("deg"), default=0.0, show_default=True, metavar="DEG")
 @click.option(
     "--wind",
     "wind_speed",
-    type=float,
+    type=non_negative("m/s"),
     default=0.0,
     show_default=True,
     metavar="M/S",
     help="Mean wind speed at 10 m, with NORSOK gusts.",
 )
-@click.option("--wind-from", type=float, default=30.0, show_default=True, metavar="DEG")
+@click.option("--wind-from", type=finite("deg"), default=30.0, show_default=True, metavar="DEG")
 @click.option(
     "--data",
     "data_path",
@@ -96,6 +111,8 @@ def dp_demo_command(
     out = Path(folder)
     names = ["run.nc", "pose.png", "wave_and_radiation_forces.png", "loads.png", "watch_circle.png"]
     prepare_outputs(*(out / n for n in names), force=force)
+    # before the model is built: the run's size (the S-175 model has about 60 states)
+    check_simulation_size(duration, dt, 60, 54, option="--duration")
     ds = s175_data(data_path)
     with progress_bar() as bar:
         task = bar.add_task(f"simulating {duration:g} s of DP", total=1.0)

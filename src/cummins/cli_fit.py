@@ -11,11 +11,16 @@ from rich.progress import BarColumn, Progress, TextColumn, TimeElapsedColumn
 from rich.table import Table
 
 from cummins.cli_common import (
+    Number,
     console,
+    finite,
+    non_negative,
+    positive,
     prepare_outputs,
     read_hydrodb,
     read_options,
     reports_errors,
+    select_body,
     select_speed,
 )
 
@@ -40,23 +45,29 @@ from cummins.cli_common import (
 )
 @click.option(
     "--r2",
-    type=float,
+    type=Number(0.0, 1.0, min_open=True, max_open=True),
     default=0.99,
     show_default=True,
     help="Target R-squared of A(w) and B(w) for the diagonal terms.",
 )
 @click.option(
     "--r2-coupling",
-    type=float,
+    type=Number(0.0, 1.0, min_open=True, max_open=True),
     default=0.97,
     show_default=True,
     help="Target for the off-diagonal couplings.",
 )
-@click.option("--max-order", type=int, default=10, show_default=True, help="Highest order tried.")
+@click.option(
+    "--max-order",
+    type=click.IntRange(1, 50),
+    default=10,
+    show_default=True,
+    help="Highest order tried.",
+)
 @click.option(
     "--order",
     "orders",
-    type=(str, str, int),
+    type=(str, str, click.IntRange(1, 50)),
     multiple=True,
     metavar="DOF DOF N",
     help="Fix the order of a coupling, e.g. --order Heave Pitch 4 (repeatable).",
@@ -69,8 +80,12 @@ from cummins.cli_common import (
     help="A-infinity: the data row (auto when present), a joint estimate (fit), or "
     "Ogilvie's relation.",
 )
-@click.option("--omega-min", type=float, default=None, metavar="RAD/S", help="Fitting range.")
-@click.option("--omega-max", type=float, default=None, metavar="RAD/S", help="Fitting range.")
+@click.option(
+    "--omega-min", type=non_negative("rad/s"), default=None, metavar="RAD/S", help="Fitting range."
+)
+@click.option(
+    "--omega-max", type=positive("rad/s"), default=None, metavar="RAD/S", help="Fitting range."
+)
 @click.option(
     "--keep-suspect",
     is_flag=True,
@@ -78,7 +93,7 @@ from cummins.cli_common import (
 )
 @click.option(
     "--threshold",
-    type=float,
+    type=Number(0.0, 1.0, max_open=True),
     default=0.01,
     show_default=True,
     help="Couplings below this fraction of the diagonal terms are left out.",
@@ -112,7 +127,7 @@ from cummins.cli_common import (
 )
 @click.option(
     "--speed",
-    type=float,
+    type=finite("m/s"),
     default=None,
     metavar="M/S",
     help="Forward speed to use when the data hold several.",
@@ -123,6 +138,12 @@ from cummins.cli_common import (
     show_default=True,
     help="Make the MIMO model passive (K + K^H >= 0 at every frequency) by the smallest "
     "data-weighted change of the residues. Diagonal models are positive real either way.",
+)
+@click.option(
+    "--body",
+    metavar="N|NAME",
+    default=None,
+    help="Of several bodies, fit only this one (1-based number or name), e.g. for --mss.",
 )
 @click.option("--force", is_flag=True, help="Overwrite the output files.")
 @reports_errors
@@ -149,6 +170,7 @@ def fit_command(
     mss_path,
     speed,
     passive,
+    body,
     force,
 ):
     """Identify stable state-space models of the fluid memory, for every significant coupling.
@@ -167,9 +189,12 @@ def fit_command(
     """
     from cummins.fit import fit_radiation
 
-    prepare_outputs(output, json_path, openfast, mss_path, force=force)
+    prepare_outputs(output, json_path, openfast, mss_path, force=force, folders=[plot_dir])
     ds = select_speed(read_hydrodb(path, format_, rho, g, ulen), speed)
+    if body is not None:
+        ds = select_body(ds, body)
     labels = [str(d) for d in ds.influenced_dof.values]
+    check_model_outputs(labels, mss_path=mss_path, openfast=openfast)
     fixed = {}
     for a, b, n in orders:
         for label in (a, b):
@@ -248,6 +273,26 @@ def fit_command(
 
         for file in write_fit_plots(model, ds, Path(plot_dir), force=force):
             console.print(f"wrote {file}")
+
+
+def check_model_outputs(labels, *, mss_path=None, openfast=None) -> None:
+    """Before the fit: the model files asked for can hold a model of these DOFs (an MSS
+    vesselABC one body of six, HydroDyn six per body)."""
+    from cummins.hydrodb import DOF_NAMES
+
+    n = len(labels)
+    several = len({label.rpartition("__")[0] for label in labels}) > 1
+    if mss_path and [label.rpartition("__")[2] for label in labels] != list(DOF_NAMES):
+        raise click.BadParameter(
+            f"an MSS vesselABC holds one body with six DOFs; the data have {n} DOFs"
+            + (": fit one body with --body N" if several else ""),
+            param_hint="--mss",
+        )
+    if openfast and (n == 0 or n % 6):
+        raise click.BadParameter(
+            f"HydroDyn needs all six DOFs of each body; the data have {n} DOFs",
+            param_hint="--openfast",
+        )
 
 
 def fit_summary(model, elapsed: float) -> dict:

@@ -10,6 +10,8 @@ from rich.table import Table
 
 from cummins.cli_common import (
     console,
+    finite,
+    positive,
     prepare_outputs,
     read_hydrodb,
     read_options,
@@ -37,14 +39,14 @@ from cummins.cli_common import (
 )
 @click.option(
     "--t-max",
-    type=float,
+    type=positive("s"),
     default=None,
     metavar="S",
     help="Length of K(t), s (default: 40/omega_c, at most 2 pi/omega_min).",
 )
 @click.option(
     "--dt",
-    type=float,
+    type=positive("s"),
     default=None,
     metavar="S",
     help="Time step of K(t), s (default: t_max/1000).",
@@ -65,7 +67,7 @@ from cummins.cli_common import (
 )
 @click.option(
     "--omega-max",
-    type=float,
+    type=positive("rad/s"),
     default=None,
     metavar="RAD/S",
     help="Ignore the data above this frequency (e.g. the first irregular frequency).",
@@ -89,7 +91,7 @@ from cummins.cli_common import (
 )
 @click.option(
     "--speed",
-    type=float,
+    type=finite("m/s"),
     default=None,
     metavar="M/S",
     help="Forward speed to use when the data hold several.",
@@ -132,7 +134,7 @@ def kernel_command(
     """
     from cummins.pipeline import kernel_stage, write_kernel_plots
 
-    prepare_outputs(output, force=force)
+    prepare_outputs(output, force=force, folders=[plot_dir])
     ds = select_speed(read_hydrodb(path, format_, rho, g, ulen), speed)
     result, ds = kernel_stage(
         ds,

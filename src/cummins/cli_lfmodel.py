@@ -9,7 +9,10 @@ import click
 import numpy as np
 
 from cummins.cli_common import (
+    Number,
     console,
+    finite,
+    non_negative,
     prepare_outputs,
     read_hydrodb,
     read_options,
@@ -38,17 +41,27 @@ from cummins.cli_common import (
 )
 @click.option(
     "--surge-damping",
-    type=(float, float),
+    type=(non_negative("kg/s"), non_negative("s/rad")),
     default=None,
     metavar="BETA ALPHA",
     help="Viscous surge damping beta exp(-alpha w) (kg/s, s/rad); also "
     "--sway-damping, --yaw-damping.",
 )
-@click.option("--sway-damping", type=(float, float), default=None, metavar="BETA ALPHA")
-@click.option("--yaw-damping", type=(float, float), default=None, metavar="BETA ALPHA")
+@click.option(
+    "--sway-damping",
+    type=(non_negative("kg/s"), non_negative("s/rad")),
+    default=None,
+    metavar="BETA ALPHA",
+)
+@click.option(
+    "--yaw-damping",
+    type=(non_negative("kg m^2/s"), non_negative("s/rad")),
+    default=None,
+    metavar="BETA ALPHA",
+)
 @click.option(
     "--roll-damping",
-    type=float,
+    type=Number(0.0, 1.0),
     default=None,
     metavar="ZETA",
     help="Viscous roll damping as a fraction of critical at the roll natural "
@@ -69,7 +82,9 @@ from cummins.cli_common import (
     default=None,
     help="PNG of A(w) and B(w) with the chosen values marked (seed Figs. 1-2).",
 )
-@click.option("--speed", type=float, default=None, metavar="M/S", help="Forward speed of DATA.")
+@click.option(
+    "--speed", type=finite("m/s"), default=None, metavar="M/S", help="Forward speed of DATA."
+)
 @click.option("--force", is_flag=True, help="Overwrite the output files.")
 @reports_errors
 def lf_model_command(
@@ -115,7 +130,7 @@ def lf_model_command(
     outputs = [output, plot_file]
     if compare_dir:
         outputs += [Path(compare_dir) / f"{kind}_{d}.png" for kind, d in _COMPARISONS]
-    prepare_outputs(*outputs, force=force)
+    prepare_outputs(*outputs, force=force, folders=[compare_dir])
     ds = select_speed(read_hydrodb(path, format_, rho, g, ulen), speed)
     viscous = {}
     for dof, spec in (("Surge", surge_damping), ("Sway", sway_damping), ("Yaw", yaw_damping)):

@@ -10,6 +10,9 @@ from rich.table import Table
 
 from cummins.cli_common import (
     console,
+    finite,
+    non_negative,
+    positive,
     prepare_outputs,
     read_hydrodb,
     read_options,
@@ -71,11 +74,14 @@ def parse_headings(values: tuple[str, ...]) -> list[float]:
             if not part.strip():
                 continue
             try:
-                out.append(float(part))
+                value = float(part)
             except ValueError:
+                value = float("nan")
+            if not np.isfinite(value):
                 raise click.BadParameter(
-                    f"{part!r} is not a number of degrees", param_hint="--headings"
-                ) from None
+                    f"{part!r} is not a finite number of degrees", param_hint="--headings"
+                )
+            out.append(value)
     return out
 
 
@@ -97,11 +103,19 @@ def parse_headings(values: tuple[str, ...]) -> list[float]:
     "following seas; 180 = head seas): --headings 0 45 90, or comma-separated. "
     "Default: the data's headings.",
 )
-@click.option("--omega-min", type=float, default=None, metavar="RAD/S", help="Lowest frequency.")
-@click.option("--omega-max", type=float, default=None, metavar="RAD/S", help="Highest frequency.")
+@click.option(
+    "--omega-min",
+    type=non_negative("rad/s"),
+    default=None,
+    metavar="RAD/S",
+    help="Lowest frequency.",
+)
+@click.option(
+    "--omega-max", type=positive("rad/s"), default=None, metavar="RAD/S", help="Highest frequency."
+)
 @click.option(
     "--n-omega",
-    type=int,
+    type=click.IntRange(1, 100_000),
     default=None,
     metavar="N",
     help="Number of frequencies, equally spaced (default: the data's frequencies, or 200 "
@@ -123,7 +137,7 @@ def parse_headings(values: tuple[str, ...]) -> list[float]:
 )
 @click.option(
     "--speed",
-    type=float,
+    type=finite("m/s"),
     default=None,
     metavar="M/S",
     help="Forward speed to use when the data hold several.",
@@ -167,7 +181,7 @@ def rao_command(
     from cummins.frequency_domain import motion_rao, save_rao
 
     plot_file = str(Path(plot_dir) / "rao.png") if plot_dir else None
-    prepare_outputs(output, plot_file, force=force)
+    prepare_outputs(output, plot_file, force=force, folders=[plot_dir])
     ds = select_speed(read_hydrodb(path, format_, rho, g, ulen), speed)
     omega = None
     if omega_min is not None or omega_max is not None or n_omega is not None:
@@ -180,6 +194,14 @@ def rao_command(
                 "need --n-omega >= 1 and --omega-max >= --omega-min", param_hint="--n-omega"
             )
         omega = np.linspace(lo, hi, n)
+        from cummins.frequency_domain import _outside_data
+
+        if _outside_data(ds, np.array([lo, hi])).any():
+            raise click.BadParameter(
+                f"{lo:.4g} to {hi:.4g} rad/s reaches outside the data's range, "
+                f"{w[0]:.4g} to {w[-1]:.4g} rad/s (A, B and F are not extrapolated)",
+                param_hint="--omega-min/--omega-max",
+            )
     beta = np.radians(parse_headings(headings)) if headings else None
     damping = viscous_damping_values(viscous_damping, [str(d) for d in ds.influenced_dof.values])
     rao = motion_rao(ds, omega, beta, viscous_damping=damping, additional=not no_additional)

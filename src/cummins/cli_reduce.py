@@ -10,7 +10,9 @@ import numpy as np
 from rich.table import Table
 
 from cummins.cli_common import (
+    Number,
     console,
+    finite,
     prepare_outputs,
     read_hydrodb,
     read_options,
@@ -30,14 +32,14 @@ from cummins.cli_common import (
 )
 @click.option(
     "--order",
-    type=int,
+    type=click.IntRange(min=1),
     default=None,
     help="Total number of states of the reduced MIMO model (a symmetric pair counts "
     "twice), allocated over the couplings so that the worst fit is the best possible.",
 )
 @click.option(
     "--tol",
-    type=float,
+    type=Number(0.0, 1.0, min_open=True),
     default=None,
     help="Instead of --order: per coupling, the smallest order whose relative H-infinity "
     "error (Glover's bound for lyapunov) is at most TOL.",
@@ -59,7 +61,7 @@ from cummins.cli_common import (
     "passivity correction weighted by them (default: against the unreduced model).",
 )
 @read_options
-@click.option("--speed", type=float, default=None, metavar="M/S", help="Speed of --data.")
+@click.option("--speed", type=finite("m/s"), default=None, metavar="M/S", help="Speed of --data.")
 @click.option(
     "--passive/--no-passive",
     default=True,

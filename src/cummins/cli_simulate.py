@@ -8,8 +8,12 @@ import click
 import numpy as np
 
 from cummins.cli_common import (
+    Number,
     console,
+    finite,
     model_and_data,
+    non_negative,
+    positive,
     prepare_outputs,
     progress_bar,
     read_hydrodb,
@@ -19,6 +23,7 @@ from cummins.cli_common import (
     viscous_damping_option,
     viscous_damping_values,
 )
+from cummins.validation import check_simulation_size
 
 
 @click.command(name="simulate")
@@ -27,8 +32,10 @@ from cummins.cli_common import (
 @click.option(
     "-o", "--output", type=click.Path(dir_okay=False), required=True, help="NetCDF file of the run."
 )
-@click.option("--hs", type=float, default=None, metavar="M", help="Significant wave height.")
-@click.option("--tp", type=float, default=None, metavar="S", help="Peak period.")
+@click.option(
+    "--hs", type=positive("m"), default=None, metavar="M", help="Significant wave height."
+)
+@click.option("--tp", type=positive("s"), default=None, metavar="S", help="Peak period.")
 @click.option(
     "--spectrum",
     type=click.Choice(["jonswap", "pm", "torsethaugen"]),
@@ -36,10 +43,12 @@ from cummins.cli_common import (
     show_default=True,
     help="Wave spectrum (pm: Pierson-Moskowitz / ITTC).",
 )
-@click.option("--gamma", type=float, default=3.3, show_default=True, help="JONSWAP peakedness.")
+@click.option(
+    "--gamma", type=Number(1.0), default=3.3, show_default=True, help="JONSWAP peakedness."
+)
 @click.option(
     "--heading",
-    type=float,
+    type=finite("deg"),
     default=180.0,
     show_default=True,
     metavar="DEG",
@@ -47,26 +56,48 @@ from cummins.cli_common import (
 )
 @click.option(
     "--spreading",
-    type=float,
+    type=non_negative(),
     default=None,
     metavar="S",
     help="Short-crested seas: cos-2s spreading exponent s (with --directions).",
 )
-@click.option("--directions", type=int, default=9, show_default=True, help="With --spreading.")
-@click.option("--components", type=int, default=200, show_default=True, help="Wave components.")
-@click.option("--duration", type=float, default=3 * 3600.0, show_default=True, metavar="S")
-@click.option("--dt", type=float, default=0.05, show_default=True, metavar="S", help="Time step.")
-@click.option("--seed", type=int, default=None, help="Random phases (a run is repeatable).")
+@click.option(
+    "--directions",
+    type=click.IntRange(min=2),
+    default=9,
+    show_default=True,
+    help="With --spreading.",
+)
+@click.option(
+    "--components",
+    type=click.IntRange(min=1),
+    default=200,
+    show_default=True,
+    help="Wave components.",
+)
+@click.option("--duration", type=positive("s"), default=3 * 3600.0, show_default=True, metavar="S")
+@click.option(
+    "--dt", type=positive("s"), default=0.05, show_default=True, metavar="S", help="Time step."
+)
+@click.option(
+    "--seed",
+    type=click.IntRange(0, 2**63 - 1),
+    default=None,
+    help="Random phases (a run is repeatable); without it a seed is drawn, printed and "
+    "recorded in the run (attribute seed).",
+)
 @click.option(
     "--regular", is_flag=True, help="Regular waves instead (--wave-period, --wave-amplitude)."
 )
-@click.option("--wave-period", type=float, default=None, metavar="S")
-@click.option("--wave-amplitude", type=float, default=1.0, show_default=True, metavar="M")
+@click.option("--wave-period", type=positive("s"), default=None, metavar="S")
+@click.option(
+    "--wave-amplitude", type=non_negative("m"), default=1.0, show_default=True, metavar="M"
+)
 @viscous_damping_option
 @click.option(
     "--quadratic-damping",
     "quadratic_damping",
-    type=(str, float),
+    type=(str, non_negative()),
     multiple=True,
     metavar="DOF VALUE",
     help="Quadratic viscous damping b2 |v| v on a DOF, e.g. --quadratic-damping Roll 2e10 "
@@ -88,7 +119,7 @@ from cummins.cli_common import (
 )
 @click.option(
     "--speed",
-    type=float,
+    type=finite("m/s"),
     default=None,
     metavar="M/S",
     help="Forward speed of DATA. The waves are met at the encounter frequencies; when DATA "
@@ -105,7 +136,7 @@ from cummins.cli_common import (
 )
 @click.option(
     "--soft-springs",
-    type=float,
+    type=positive("s"),
     default=None,
     metavar="S",
     help="At speed: springs of this period in surge, sway and yaw (with 0.7 of critical "
@@ -176,19 +207,35 @@ def simulate_command(
             raise click.UsageError("--regular needs --wave-period")
     elif hs is None or tp is None:
         raise click.UsageError("irregular waves need --hs and --tp (or use --regular)")
-    prepare_outputs(output, force=force)
+    prepare_outputs(output, force=force, folders=[plot_dir])
+    # the run's size before any work: the states are at least the DOFs' positions and
+    # velocities (the fluid memory adds its own, checked again once it is fitted)
+    check_simulation_size(duration, dt, 12, 6, option="--duration")
     model, data_path = model_and_data(path)
     data = read_hydrodb(data_path, format_, rho, g, ulen)
     if dofs:
         from cummins.hydrodb import select_dofs
 
+        unknown = [d for d in dofs if d not in [str(x) for x in data.influenced_dof.values]]
+        if unknown:
+            raise click.BadParameter(
+                f"unknown DOF {unknown[0]!r}; the data have "
+                + ", ".join(str(x) for x in data.influenced_dof.values),
+                param_hint="--dof",
+            )
         data = select_dofs(data, list(dofs))
     ds = select_speed(data, speed)
+    from cummins.vessel import missing_data_message
+
+    missing_data_message(ds, ("inertia_matrix", "hydrostatic_stiffness"), "a simulation")
     at_speed = (
         model is None
         and speed
         and "forward_speed" in data.dims
         and bool(np.any(np.abs(data.forward_speed.values) <= 1e-3))
+    )
+    check_simulation_size(
+        duration, dt, 2 * ds.sizes["influenced_dof"], ds.sizes["influenced_dof"], "--duration"
     )
     if soft_springs is not None and not at_speed:
         raise click.UsageError(
@@ -224,6 +271,8 @@ def simulate_command(
             seed=seed,
         )
         title = f"{spectrum}, Hs {hs:g} m, Tp {tp:g} s, {len(sea)} components"
+        if seed is None:
+            console.print(f"seed {sea.seed} drawn (repeat this sea with --seed {sea.seed})")
     from cummins.fit import MOTION_ACCURACY
 
     fit_options = MOTION_ACCURACY if accurate and model is None else {}
@@ -248,6 +297,8 @@ def simulate_command(
             nonlinear_force=quadratic_damping_force(vessel.dofs, b_q) if b_q else None,
             progress=lambda fraction: bar.update(task, completed=fraction),
         )
+    if sea.seed is not None:
+        run.attrs["seed"] = int(sea.seed)  # an int64: HDF5 stores it; --seed repeats the run
     run.attrs.update(
         {
             "heading_deg": heading,
@@ -257,7 +308,7 @@ def simulate_command(
             **{f"quadratic_damping_{d}": b for d, b in (b_q or {}).items()},
         }
     )
-    _summary(run)
+    _summary(run, regular=regular)
     from cummins.io.netcdf import save_netcdf
 
     save_netcdf(run, output)
@@ -269,18 +320,26 @@ def simulate_command(
             console.print(f"wrote {file}")
 
 
-def _summary(run) -> None:
+def _summary(run, regular: bool = False) -> None:
+    """Per DOF: the significant amplitude 2σ of an irregular sea, or the amplitude of the
+    steady oscillation in a regular wave (half the range over the last wave period, or
+    over the whole run when it is shorter), the largest |ξ| and the unit."""
     from rich.table import Table
 
     table = Table(title=f"{run.attrs.get('sea', '')}: {run.time.values[-1]:g} s")
-    for column in ("DOF", "significant amplitude (2σ)", "max |ξ|", "unit"):
+    first = "amplitude" if regular else "significant amplitude (2σ)"
+    for column in ("DOF", first, "max |ξ|", "unit"):
         table.add_column(column, justify="right")
     units = run.motion.attrs.get("units", "").split(" | ")
+    t = run.time.values
+    period = float(run.attrs.get("tp", np.nan)) if regular else np.nan
+    last = t >= t[-1] - period if np.isfinite(period) and period < t[-1] else np.ones(t.size, bool)
     for k, dof in enumerate(run.dof.values):
         xi = run.motion.values[:, k]
+        size = 0.5 * np.ptp(xi[last]) if regular else 2 * xi.std()
         table.add_row(
             str(dof),
-            f"{2 * xi.std():.4g}",
+            f"{size:.4g}",
             f"{np.abs(xi).max():.4g}",
             units[k] if k < len(units) else "",
         )

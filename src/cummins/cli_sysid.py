@@ -12,7 +12,10 @@ import numpy as np
 from cummins.cli_common import (
     console,
     err_console,
+    finite,
     model_and_data,
+    non_negative,
+    positive,
     prepare_outputs,
     read_hydrodb,
     read_options,
@@ -66,7 +69,7 @@ from cummins.cli_common import (
 )
 @click.option(
     "--cutoff",
-    type=float,
+    type=positive("rad/s"),
     default=None,
     metavar="RAD/S",
     help="Low-pass cut-off of the differentiation (default: 2.5 x the motions' "
@@ -74,14 +77,14 @@ from cummins.cli_common import (
 )
 @click.option(
     "--burn-in",
-    type=float,
+    type=non_negative("s"),
     default=None,
     metavar="S",
     help="Seconds cut at the start of each record (default: the memory's start-up).",
 )
 @click.option(
     "--segment",
-    type=float,
+    type=positive("s"),
     default=None,
     metavar="S",
     help="Also identify per segment of S seconds and score in-sample and "
@@ -89,7 +92,7 @@ from cummins.cli_common import (
 )
 @click.option(
     "--heading",
-    type=float,
+    type=finite("deg"),
     default=None,
     metavar="DEG",
     help="Wave direction, for records holding a wave elevation instead of forces.",
@@ -104,7 +107,7 @@ from cummins.cli_common import (
 )
 @click.option(
     "--max-lag",
-    type=float,
+    type=non_negative("s"),
     default=30.0,
     show_default=True,
     metavar="S",
@@ -118,19 +121,21 @@ from cummins.cli_common import (
 )
 @click.option(
     "--inertia",
-    type=float,
+    type=positive("kg m^2"),
     default=None,
     metavar="KG M2",
     help="--decay: total roll inertia I44 + A44 for dimensional B1, B2.",
 )
 @click.option(
     "--stiffness",
-    type=float,
+    type=positive("N m/rad"),
     default=None,
     metavar="N M/RAD",
     help="--decay: C44 (the inertia is then C44/omega0^2).",
 )
-@click.option("--speed", type=float, default=None, metavar="M/S", help="Forward speed of DATA.")
+@click.option(
+    "--speed", type=finite("m/s"), default=None, metavar="M/S", help="Forward speed of DATA."
+)
 @click.option(
     "--report",
     "report_dir",

@@ -164,6 +164,9 @@ def run_scenario(
     **options,
 ) -> Scenario:
     """Build (:func:`build_scenario`) and simulate the scenario for ``duration`` s."""
+    from cummins.validation import check_simulation_size
+
+    check_simulation_size(duration, dt, 60, 54)  # before the model is built (~60 states)
     ds = s175_data() if ds is None else ds
     model, loads, controller, sea = build_scenario(ds, duration=duration, seed=seed, **options)
     run = simulate_scenario(model, loads, controller, duration=duration, dt=dt, progress=progress)

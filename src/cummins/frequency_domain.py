@@ -59,7 +59,7 @@ import numpy as np
 import xarray as xr
 from numpy.typing import ArrayLike, NDArray
 
-from cummins.errors import HydroDataError
+from cummins.errors import ArgumentError, HydroDataError
 from cummins.excitation import (
     INTERPOLATION_METHODS,
     _interpolate_frequency,
@@ -70,7 +70,8 @@ from cummins.excitation import (
     forward_speed,
 )
 from cummins.hydrodb import dof_matrix, single_speed
-from cummins.vessel import viscous_damping_matrix
+from cummins.validation import check_memory, finite_values
+from cummins.vessel import missing_data_message, viscous_damping_matrix
 
 __all__ = [
     "impedance",
@@ -153,29 +154,13 @@ def impedance(
     """
     ds = single_speed(ds)
     where = _where(ds)
-    for name, hint in (
-        (
-            "inertia_matrix",
-            "WAMIT: the .frc file (IMASS); NEMOH: Hydrostatics/Inertia files; "
-            "or add it with ds['inertia_matrix'] = ...",
-        ),
-        (
-            "hydrostatic_stiffness",
-            "WAMIT: the .hst file; NEMOH: KH.dat; or add it with ds['hydrostatic_stiffness'] = ...",
-        ),
-    ):
-        if name not in ds:
-            raise HydroDataError(
-                f"the dataset has no {name!r}: the motions cannot be computed",
-                path=where,
-                hint=hint,
-            )
+    missing_data_message(ds, ("inertia_matrix", "hydrostatic_stiffness"), "computing the motions")
     if method not in INTERPOLATION_METHODS:
-        raise ValueError(
+        raise ArgumentError(
             f"unknown method {method!r}; use one of {', '.join(INTERPOLATION_METHODS)}"
         )
     if outside not in ("raise", "hold"):
-        raise ValueError(f"outside must be 'raise' or 'hold', not {outside!r}")
+        raise ArgumentError(f"outside must be 'raise' or 'hold', not {outside!r}")
     w = np.asarray(omega, dtype=float).reshape(-1)
     data_w = ds.omega.values
     beyond = _outside_data(ds, w)
@@ -330,7 +315,15 @@ def motion_rao(
     else:
         beta = np.asarray(wave_direction, dtype=float).reshape(-1)
     if w.size == 0 or beta.size == 0:
-        raise ValueError("no frequencies or no directions asked for")
+        raise ArgumentError("no frequencies or no directions asked for")
+    finite_values(w, "omega", "rad/s")
+    finite_values(beta, "wave_direction", "rad")
+    n_dofs = ds.sizes["influenced_dof"]
+    check_memory(
+        w.size * beta.size * (n_dofs * n_dofs * 16 * 4 + n_dofs * 16 * 3),
+        f"RAOs at {w.size} frequencies x {beta.size} directions ({n_dofs} DOFs)",
+        hint="Ask for fewer frequencies (--n-omega) or headings",
+    )
     ww, bb = np.meshgrid(w, beta, indexing="ij")
     force = excitation_transfer(
         ds, ww.reshape(-1), bb.reshape(-1), method=method, mirror=mirror
@@ -415,11 +408,11 @@ def _spectrum_on(omega: NDArray, spectrum_values: ArrayLike | Callable) -> NDArr
     else:
         values = np.asarray(spectrum_values, dtype=float).reshape(-1)
     if values.shape != omega.shape:
-        raise ValueError(
+        raise ArgumentError(
             f"spectrum values have shape {values.shape}, the RAO has {omega.size} frequencies"
         )
     if not np.all(np.isfinite(values)) or np.any(values < 0):
-        raise ValueError("spectrum values must be finite and non-negative")
+        raise ArgumentError("spectrum values must be finite and non-negative")
     return values
 
 
@@ -455,7 +448,7 @@ def response_spectrum(
         n = rao.sizes["wave_direction"]
         if direction_weights is None:
             if n != 1:
-                raise ValueError(
+                raise ArgumentError(
                     f"the RAO holds {n} wave directions: select one "
                     "(rao.sel(wave_direction=...)) or give direction_weights"
                 )
@@ -463,10 +456,12 @@ def response_spectrum(
         else:
             wts = np.asarray(direction_weights, dtype=float).reshape(-1)
             if wts.size != n or np.any(wts < 0) or not np.isclose(wts.sum(), 1.0, atol=1e-6):
-                raise ValueError(f"direction_weights must be {n} non-negative numbers summing to 1")
+                raise ArgumentError(
+                    f"direction_weights must be {n} non-negative numbers summing to 1"
+                )
             power = (power * xr.DataArray(wts, dims="wave_direction")).sum("wave_direction")
     elif direction_weights is not None:
-        raise ValueError("direction_weights given but the RAO has no wave_direction dimension")
+        raise ArgumentError("direction_weights given but the RAO has no wave_direction dimension")
     out = (power * xr.DataArray(s, dims="omega", coords={"omega": rao.omega})).transpose(
         "omega", ...
     )

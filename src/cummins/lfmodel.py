@@ -65,10 +65,11 @@ import xarray as xr
 from numpy.typing import ArrayLike, NDArray
 from scipy.interpolate import CubicSpline
 
-from cummins.errors import FitError, HydroDataError, SimulationError
+from cummins.errors import CumminsWarning, FitError, HydroDataError, SimulationError
 from cummins.hydrodb import dof_matrix, single_speed, split_dof
 from cummins.radiation import RadiationModel
 from cummins.transforms import cosine_transform, sine_transform
+from cummins.validation import check_simulation_size
 from cummins.vessel import Vessel, vessel_from_hydrodb
 
 #: DOFs of the zero-frequency sub-model (seed 002 Definition 1, item 1).
@@ -513,6 +514,46 @@ def _database_damping(ds: xr.Dataset, spec: str, dof: str, i: int, omega: float)
     return value, f"B_v from the database's additional_damping at ω = {omega:.4g} rad/s"
 
 
+def _nonnegative_damping(
+    ds: xr.Dataset, coefficients: _Coefficients, dof: str, i: int, omega: float, value: float
+) -> tuple[float, str]:
+    """B_ii(ω₀) of a passive body is ≥ 0; a negative value from a route (a few N·s/m where
+    B_ii peaks at 10⁵: the truncation error of K(t), or a cubic spline undershooting where
+    the data are nearly zero) is replaced by the data's own B_ii(ω₀), interpolated
+    linearly, with a warning. Data negative at ω₀ themselves are refused."""
+    w = ds.omega.values
+    b = dof_matrix(ds, "radiation_damping")[:, i, i]
+    peak = float(np.max(np.abs(b)))
+    if not w[0] <= omega <= w[-1]:
+        raise HydroDataError(
+            f"{dof}: the potential damping at the natural frequency ω₀ = {omega:.4g} rad/s "
+            f"comes out negative ({value:.4g}) from the {coefficients.route}, and ω₀ is "
+            f"outside the data ({w[0]:.4g}–{w[-1]:.4g} rad/s) to check it against",
+            path=ds.attrs.get("source_file"),
+            quantity=f"radiation_damping[{dof}, {dof}]",
+            hint="give data that cover the natural frequency, or the frequency with "
+            f"frequencies={{{dof!r}: ω}} (--route frequency on the command line)",
+        )
+    from_data = float(np.interp(omega, w, b))
+    if from_data < 0:
+        raise HydroDataError(
+            f"{dof}: the data's damping is negative at the natural frequency ω₀ = "
+            f"{omega:.4g} rad/s ({from_data:.4g}, peak {peak:.4g}): a low-frequency model "
+            "with it would be unstable",
+            path=ds.attrs.get("source_file"),
+            quantity=f"radiation_damping[{dof}, {dof}]",
+            hint="remove the suspect frequencies first (cummins.repair."
+            "remove_suspect_frequencies), or add viscous damping for this DOF",
+        )
+    how = (
+        f"the {coefficients.route} gave B(ω₀) = {value:.4g} < 0 (its error, {abs(value):.2g}, "
+        f"is {abs(value) / max(peak, 1e-300):.1e} of the peak {peak:.4g} but exceeds B(ω₀) "
+        f"itself): B(ω₀) = {from_data:.4g} interpolated linearly in the data instead"
+    )
+    warnings.warn(f"{dof}: {how}", CumminsWarning, stacklevel=4)
+    return from_data, how
+
+
 def _build(
     ds: xr.Dataset,
     coefficients: _Coefficients,
@@ -589,6 +630,12 @@ def _build(
     if couplings == "min":  # the data's own small asymmetry (K_ij ≠ K_ji) averaged out
         m_a = 0.5 * (m_a + m_a.T)
         b_p = 0.5 * (b_p + b_p.T)
+    for i, dof in enumerate(dofs):
+        if chosen[i] > 0 and b_p[i, i] < 0:
+            b_p[i, i], how = _nonnegative_damping(
+                ds, coefficients, dof, i, float(chosen[i]), b_p[i, i]
+            )
+            notes[i] += f"; {how}"
     b0 = coefficients(0.0)[1]
     if couplings == "symmetric":
         m_a = 0.5 * (m_a + m_a.T)
@@ -828,8 +875,9 @@ def compare_with_cummins(
         dt = period / 40 if period else 0.5
     if duration is None:
         duration = 10 * period if (period and kind == "decay") else 300.0
-    t = np.arange(0.0, duration + 0.5 * dt, dt)
     n = len(model.dofs)
+    check_simulation_size(duration, dt, vessel.n_states, n)
+    t = np.arange(0.0, float(duration) + 0.5 * float(dt), float(dt))
     lf_vessel = model.to_vessel()
     force = np.zeros((t.size, n))
     x_lf = np.zeros(lf_vessel.n_states)

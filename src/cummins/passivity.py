@@ -43,6 +43,7 @@ from scipy.optimize import minimize_scalar, nnls
 
 from cummins.errors import FitError
 from cummins.radiation import CouplingModel, RadiationModel
+from cummins.validation import guard_finite, guard_radiation_model
 
 #: A model is called passive when the smallest scaled eigenvalue of K + Kᴴ is above
 #: −PASSIVITY_TOLERANCE times the largest one over frequency.
@@ -217,6 +218,7 @@ def passivity_test(model: RadiationModel) -> PassivityReport:
     -------
     PassivityReport
     """
+    guard_radiation_model(model)  # non-finite or absurd matrices: FitError naming the pair
     labels = tuple(model.dofs)
     sweep = default_sweep(model)
     scale = dof_scaling(model, sweep)
@@ -368,8 +370,13 @@ def enforce_passivity(
     ------
     FitError
         When the model is unstable, or is still not passive after ``max_iterations``
-        corrections (the message names the worst frequency).
+        corrections (the message names the worst frequency), or when the model or the
+        data hold non-finite or absurdly scaled values (naming the DOF pair).
     """
+    guard_radiation_model(model)
+    for name, values in (("added_mass", added_mass), ("damping", damping), ("kernel", kernel)):
+        if values is not None:
+            guard_finite(values, name, FitError, model.dofs)
     if not model.is_stable():
         raise FitError("passivity enforcement needs a stable model")
     before = passivity_test(model)

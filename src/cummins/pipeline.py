@@ -45,6 +45,7 @@ def kernel_stage(
     """
     from cummins.repair import limit_frequency_range, remove_suspect_frequencies
     from cummins.retardation import default_time_grid, retardation_dataset, truncate_retardation
+    from cummins.validation import check_memory, positive, time_steps
 
     if omega_max is not None:
         ds = limit_frequency_range(ds, omega_max=omega_max)
@@ -52,8 +53,19 @@ def kernel_stage(
         ds, suspects = remove_suspect_frequencies(ds, above_first=above_first)
         for s in suspects:
             say(f"  suspect {s.omega:.4g} rad/s: {s.quantity}, {s.reason}")
+    if t_max is not None:
+        positive(t_max, "t_max", "s")
+    if dt is not None:
+        positive(dt, "dt", "s")
     end = t_max if t_max is not None else float(default_time_grid(ds)[-1])
     step = dt if dt is not None else end / 1000
+    n_t = time_steps(end, step)
+    n = ds.sizes["influenced_dof"]
+    check_memory(
+        n_t * (ds.sizes["omega"] * 16 + n * n * 32),
+        f"K(t) at {n_t:.4g} times for {n} x {n} couplings",
+        hint="Shorten --t-max or lengthen --dt",
+    )
     t = np.arange(0.0, end + 0.5 * step, step)
     result = retardation_dataset(ds, t, tail=tail, interpolation=interpolation)
     if truncate:

@@ -135,6 +135,7 @@ from cummins.fit.frequency import is_positive_real
 from cummins.fit.metrics import coupling_metrics
 from cummins.fit.realization import impose_zero_dc
 from cummins.radiation import CouplingModel, RadiationModel, siso_frequency_response
+from cummins.validation import guard_hydro_data, guard_radiation_model
 
 if TYPE_CHECKING:
     import xarray as xr
@@ -1303,6 +1304,9 @@ def reduce_radiation_model(
     """
     _check_method(method)
     _check_order_or_tol(order, tol)
+    guard_radiation_model(model)  # FitError naming the coupling, before LAPACK sees it
+    if data is not None:
+        guard_hydro_data(data, what="reduction")
     fitted = None if data is None else model_fit_data(model, data)
     units = _prepared(model, method, regularization, None if fitted is None else fitted.omega)
     chosen = _requested(model, units, order, tol)

@@ -12,7 +12,10 @@ one HTML page of the pipeline's figures and tables for it:
 ``rao`` (a RAO file from ``cummins rao``)
     the RAOs and their largest values;
 ``run`` (a simulation from ``cummins simulate``)
-    the response statistics, time series and response spectra;
+    the response statistics (the amplitude in regular waves), time series and response
+    spectra;
+``kernel`` (the output of ``cummins kernel``)
+    the diagnostics of every significant coupling and K(t);
 ``batch`` (results of ``cummins batch``)
     the study, the operability per heading, the limiting H_s per heading and T_p, and
     the statistics of the cases (all, or the worst when there are many).
@@ -34,7 +37,7 @@ import base64
 import html
 import io
 import os
-from collections.abc import Callable, Sequence
+from collections.abc import Callable, Mapping, Sequence
 from dataclasses import dataclass
 from datetime import UTC, datetime
 from pathlib import Path
@@ -55,6 +58,7 @@ KINDS: dict[str, str] = {
     "run": "time-domain simulation",
     "dp": "nonlinear 6-DOF (DP) simulation",
     "lf": "low-frequency manoeuvring model",
+    "kernel": "retardation functions (cummins kernel)",
     "batch": "batch study results",
 }
 _DPI = 80
@@ -192,10 +196,16 @@ def detect_kind(path: str | os.PathLike[str]) -> str:
 
     from cummins.io.model_netcdf import FORMAT_NAME
 
-    with h5py.File(p, "r") as f:
-        kind = f.attrs.get("cummins_format")
-        result_kind = f.attrs.get("cummins_kind")
-        names = set(f.keys())
+    try:
+        with h5py.File(p, "r") as f:
+            kind = f.attrs.get("cummins_format")
+            result_kind = f.attrs.get("cummins_kind")
+            names = set(f.keys())
+    except OSError as exc:  # an HDF5 signature on a damaged or truncated file
+        raise ReportError(
+            f"{p} starts like an HDF5/NetCDF file but cannot be opened ({exc})",
+            hint="The file is damaged or truncated: write it again",
+        ) from None
     kind = kind.decode() if isinstance(kind, bytes) else kind
     result_kind = result_kind.decode() if isinstance(result_kind, bytes) else result_kind
     if kind == FORMAT_NAME:
@@ -212,7 +222,23 @@ def detect_kind(path: str | os.PathLike[str]) -> str:
         return "dp"
     if {"added_mass", "damping", "stiffness", "frequency", "provenance"} <= names:
         return "lf"
+    if {"retardation_function", "K0", "significant"} <= names:
+        return "kernel"
     return "data"
+
+
+def _check_kind(path: Path, kind: str) -> None:
+    """ArgumentError when ``kind`` (``--kind``) is not what the file holds."""
+    from cummins.errors import ArgumentError
+
+    if kind not in KINDS:
+        raise ArgumentError(f"unknown report kind {kind!r}; use one of {', '.join(KINDS)}")
+    found = detect_kind(path)
+    if found != kind:
+        raise ArgumentError(
+            f"{path} is a {found} file ({KINDS[found]}), not a {kind} file ({KINDS[kind]})",
+            hint=f"Leave --kind out (it is detected from the content), or give a {kind} file",
+        )
 
 
 # --------------------------------------------------------------------------- sections
@@ -398,13 +424,17 @@ def run_sections(path: Path) -> list[Section]:
     with xr.open_dataset(path, engine="h5netcdf") as f:
         run = f.load()
     units = run.motion.attrs.get("units", "").split(" | ")
+    regular = str(run.attrs.get("spectrum", "")) == "regular"
+    t = run.time.values
+    period = float(run.attrs.get("tp", np.nan))
+    last = t >= t[-1] - period if regular and 0 < period < t[-1] else np.ones(t.size, bool)
     rows = []
     for k, dof in enumerate(run.dof.values):
         xi = run.motion.values[:, k]
         rows.append(
             [
                 str(dof),
-                float(2 * xi.std()),
+                float(0.5 * np.ptp(xi[last]) if regular else 2 * xi.std()),
                 float(np.abs(xi).max()),
                 units[k] if k < len(units) else "",
             ]
@@ -418,7 +448,16 @@ def run_sections(path: Path) -> list[Section]:
     return [
         Section(
             "Response statistics",
-            notes + table_html(["DOF", "significant amplitude (2σ)", "max |ξ|", "unit"], rows),
+            notes
+            + table_html(
+                [
+                    "DOF",
+                    "amplitude" if regular else "significant amplitude (2σ)",
+                    "max |ξ|",
+                    "unit",
+                ],
+                rows,
+            ),
         ),
         Section(
             "Time series",
@@ -647,13 +686,22 @@ def _plot_limiting_hs(lim: xr.DataArray):
 
 
 def report_sections(
-    path: str | os.PathLike[str], kind: str | None = None
+    path: str | os.PathLike[str],
+    kind: str | None = None,
+    *,
+    read_options: Mapping[str, object] | None = None,
 ) -> tuple[str, list[Section]]:
-    """(kind, sections) of the report of ``path`` (kind detected when None)."""
+    """(kind, sections) of the report of ``path`` (kind detected when None; a kind given
+    must be what the file holds). ``read_options`` (``format``, ``rho``, ``g``, ``ulen``)
+    are passed to :func:`cummins.read` for a data file."""
     p = Path(path)
-    kind = kind or detect_kind(p)
+    if kind is None:
+        kind = detect_kind(p)
+    else:
+        _check_kind(p, kind)
     builders: dict[str, Callable[[], list[Section]]] = {
-        "data": lambda: data_sections(_read_data(p)),
+        "data": lambda: data_sections(_read_data(p, read_options)),
+        "kernel": lambda: kernel_sections(p),
         "model": lambda: model_sections(p),
         "rao": lambda: rao_sections(p),
         "run": lambda: run_sections(p),
@@ -666,10 +714,81 @@ def report_sections(
     return kind, builders[kind]()
 
 
-def _read_data(p: Path) -> xr.Dataset:
+def _read_data(p: Path, options: Mapping[str, object] | None = None) -> xr.Dataset:
     from cummins.io import read
 
-    return read(p)
+    return read(p, **{k: v for k, v in (options or {}).items() if v is not None})
+
+
+def kernel_sections(path: Path) -> list[Section]:
+    """The per-coupling diagnostics and K(t) of a ``cummins kernel`` output file."""
+    from cummins.plots import plot_retardation
+
+    with xr.open_dataset(path, engine="h5netcdf") as f:
+        result = f.load()
+    labels = [str(d) for d in result.influenced_dof.values]
+    pairs = [
+        (int(i), int(j))
+        for i, j in zip(*np.nonzero(np.triu(result.significant.values)), strict=True)
+    ]
+    rows = []
+    for i, j in pairs:
+        row = result.isel(influenced_dof=i, radiating_dof=j)
+        data = float(row.added_mass_inf_data)
+        rows.append(
+            [
+                labels[i] if i == j else f"{labels[i]}-{labels[j]}",
+                float(row.K0),
+                float(row.k_end_ratio),
+                float(row.tail_fraction),
+                float(row.added_mass_inf_estimate),
+                float(row.added_mass_inf_spread),
+                data if np.isfinite(data) else "—",
+                float(row.kramers_kronig_error),
+            ]
+        )
+    notes = _note(
+        f"K(t) to {float(result.attrs.get('t_max', result.time.values[-1])):.4g} s of "
+        f"{result.attrs.get('source_file', 'the data')}; A∞ used: "
+        f"{result.attrs.get('added_mass_inf_method', '?')}."
+    )
+    kernel = result.retardation_function
+    diagonal = [(i, j) for i, j in pairs if i == j]
+    couplings = [(i, j) for i, j in pairs if i != j]
+    sections = [
+        Section(
+            "Diagnostics per significant coupling",
+            notes
+            + table_html(
+                [
+                    "coupling",
+                    "K(0)",
+                    "K(t_max)/max|K|",
+                    "tail share",
+                    "A∞ estimate",
+                    "± spread",
+                    "A∞ data",
+                    "KK error",
+                ],
+                rows,
+            ),
+        )
+    ]
+    if diagonal:
+        sections.append(
+            Section(
+                "K(t), diagonal",
+                figure_html(plot_retardation(kernel, diagonal), "Retardation functions K_ii(t)"),
+            )
+        )
+    if couplings:
+        sections.append(
+            Section(
+                "K(t), couplings",
+                figure_html(plot_retardation(kernel, couplings), "Retardation functions K_ij(t)"),
+            )
+        )
+    return sections
 
 
 def _load_batch(p: Path) -> xr.Dataset:
@@ -684,6 +803,7 @@ def write_report(
     *,
     force: bool = False,
     kind: str | None = None,
+    read_options: Mapping[str, object] | None = None,
 ) -> Path:
     """Write the HTML report of ``path`` (module docstring) to ``output``.
 
@@ -696,7 +816,7 @@ def write_report(
     """
     output = Path(output)
     check_writable(output, force)
-    kind, sections = report_sections(path, kind)
+    kind, sections = report_sections(path, kind, read_options=read_options)
     title = f"{Path(path).name}: {KINDS[kind]}"
     page = render_html(title, f"cummins report of {Path(path).resolve()}", sections)
     output.parent.mkdir(parents=True, exist_ok=True)

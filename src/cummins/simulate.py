@@ -42,8 +42,9 @@ import xarray as xr
 from numpy.typing import ArrayLike, NDArray
 from scipy.signal import lfilter
 
-from cummins.errors import SimulationError
+from cummins.errors import ArgumentError, SimulationError
 from cummins.hydrodb import is_rotation
+from cummins.validation import check_simulation_size, positive
 from cummins.vessel import Vessel
 
 #: A response larger than this many times the largest static response to the peak
@@ -78,8 +79,7 @@ def discretize(vessel: Vessel, dt: float) -> Discretization:
     The exponential of [[F Δt, G Δt, 0], [0, 0, I], [0, 0, 0]] holds Φ, ∫₀^Δt e^{F(Δt−s)} G ds
     and Γ₁ = ∫₀^Δt e^{F(Δt−s)} G s/Δt ds (Van Loan 1978) in its first block row.
     """
-    if not dt > 0:
-        raise SimulationError(f"the time step must be positive, not {dt}")
+    dt = positive(dt, "the time step dt", "s")
     f, g = vessel.state_space()
     ns, n = g.shape
     z = np.zeros((ns + 2 * n, ns + 2 * n))
@@ -190,7 +190,8 @@ def simulate_waves(
     waves
         :class:`cummins.waves.WaveComponents` (phases at the origin).
     duration, dt
-        Length of the run and time step, s.
+        Length of the run and time step, s (finite, > 0; a run whose arrays would not
+        fit in :func:`cummins.validation.memory_limit` is refused before it starts).
     initial
         ``"steady"`` (default): start on the stationary solution of the same linear model
         (no start-up transient, no drift of the unrestrained DOFs); ``"rest"``.
@@ -214,9 +215,9 @@ def simulate_waves(
     from cummins.waves import harmonic_sum
 
     if initial not in ("steady", "rest"):
-        raise SimulationError(f"initial must be 'steady' or 'rest', not {initial!r}")
-    if not duration > 0:
-        raise SimulationError(f"the duration must be positive, not {duration}")
+        raise ArgumentError(f"initial must be 'steady' or 'rest', not {initial!r}")
+    check_simulation_size(duration, dt, vessel.n_states, len(vessel.dofs))
+    duration, dt = float(duration), float(dt)
     t = np.arange(0.0, duration + 0.5 * dt, dt)
     omega_e, coefficients = encounter_coefficients(ds, waves, **excitation_options)
     report = progress or _no_progress

@@ -31,7 +31,7 @@ from typing import Any
 
 import numpy as np
 
-from cummins.errors import CumminsError
+from cummins.errors import ArgumentError
 from cummins.hydrodb import DOF_NAMES, is_rotation, split_dof
 
 #: The analyses a study can run on each case.
@@ -94,8 +94,9 @@ _BLAS_ENV = {
 _RESULT_KIND = "cummins batch results"
 
 
-class StudyError(CumminsError, ValueError):
-    """A study definition that cannot be run: names the file and key at fault."""
+class StudyError(ArgumentError):
+    """A study definition that cannot be run: names the file and key at fault (a bad
+    argument of ``cummins batch``: exit status 2)."""
 
 
 def at_key(source: Path | None, key: str) -> str:
@@ -511,6 +512,12 @@ def load_study(path: str | os.PathLike[str]) -> Study:
         text = path.read_text(encoding="utf-8")
     except OSError as exc:
         raise StudyError(f"{path}: cannot read the study file ({exc.strerror})") from None
+    except UnicodeDecodeError as exc:
+        line = path.read_bytes()[: exc.start].count(b"\n") + 1
+        raise StudyError(
+            f"{path}, line {line}: not a text file (byte {exc.start + 1} is not UTF-8)",
+            hint="A study is a YAML text file: `cummins batch --example study.yaml` writes one",
+        ) from None
     try:
         raw = yaml.safe_load(text)
     except yaml.YAMLError as exc:

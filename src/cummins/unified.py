@@ -43,6 +43,7 @@ from numpy.typing import ArrayLike, NDArray
 
 from cummins.errors import SimulationError
 from cummins.kinematics import screw_transform, skew, velocity_transform
+from cummins.validation import check_simulation_size
 from cummins.vessel import Vessel
 
 #: Labels of the pose η (n-frame) and of the body velocity ν.
@@ -273,8 +274,9 @@ def simulate_unified(
         A state that is not finite or exceeds physical bounds (naming the DOF and the
         time), a load that does not return 6 finite values.
     """
-    if not dt > 0 or not duration > dt:
-        raise SimulationError(f"need 0 < dt < duration, not dt={dt}, duration={duration}")
+    # the states and, per step, η, ν and the force of every load (6 each)
+    check_simulation_size(duration, dt, model.n_states, 6 * (4 + len(loads) + len(slow_loads)))
+    duration, dt = float(duration), float(dt)
     t = np.arange(0.0, duration + 0.5 * dt, dt)
     ns = model.n_states
     if initial_state is not None:

@@ -128,6 +128,42 @@ class Vessel:
         return lam
 
 
+#: What each variable a vessel needs is, where solvers write it, and how to give it.
+_HOW_TO_GIVE = {
+    "inertia_matrix": (
+        "the rigid-body inertia (mass, centre of gravity, radii of gyration)",
+        "WAMIT writes it only from a .frc with the mass properties, NEMOH in Mechanics/Inertia"
+        ".dat, MSS in its .mat; the solver's output often leaves it out",
+        "give it with cummins.with_inertia(ds, mass=…, center_of_gravity=…, "
+        "radii_of_gyration=…) or, on the command line, --mass KG --center-of-gravity X Y Z "
+        "--radii-of-gyration RX RY RZ (or --inertia-matrix FILE)",
+    ),
+    "hydrostatic_stiffness": (
+        "the hydrostatic restoring matrix",
+        "WAMIT writes it to the .hst, NEMOH to Mesh/KH.dat, AQWA to the .LIS",
+        "put that file beside the data, or add it with cummins.make_hydrodb(..., "
+        "hydrostatic_stiffness=C)",
+    ),
+}
+
+
+def missing_data_message(ds: xr.Dataset, names, what: str) -> None:
+    """HydroDataError naming the first of ``names`` the data lack, what it is, where solvers
+    write it and how to give it (``what``: what needs it, e.g. "a simulation")."""
+    for name in names:
+        if name in ds:
+            continue
+        meaning, where, how = _HOW_TO_GIVE.get(name, (name, "", "add it to the data"))
+        source = ds.attrs.get("source_file")
+        have = [n for n in _HOW_TO_GIVE if n in ds]
+        also = f" (they have {', '.join(have)})" if have else ""
+        raise HydroDataError(
+            f"the data have no {name!r}{also}: {what} needs {meaning}; {where}",
+            path=source,
+            hint=how[0].upper() + how[1:],
+        )
+
+
 def vessel_from_hydrodb(
     ds: xr.Dataset,
     model: RadiationModel | None = None,
@@ -169,14 +205,7 @@ def vessel_from_hydrodb(
 
     ds = single_speed(ds)
     dofs = tuple(str(d) for d in ds.influenced_dof.values)
-    for name in ("inertia_matrix", "hydrostatic_stiffness"):
-        if name not in ds:
-            raise HydroDataError(
-                f"the data have no {name}: a simulation needs the rigid-body inertia and the "
-                "restoring matrix",
-                hint="use a file set that includes them (WAMIT .hst/.frc, NEMOH Mesh/KH.dat, "
-                "MSS .mat) or add them with cummins.make_hydrodb",
-            )
+    missing_data_message(ds, ("inertia_matrix", "hydrostatic_stiffness"), "a simulation")
     m_rb = dof_matrix(ds, "inertia_matrix")
     c = dof_matrix(ds, "hydrostatic_stiffness")
     b_v = viscous_damping_matrix(dofs, viscous_damping)

@@ -51,6 +51,9 @@ from numpy.typing import ArrayLike, NDArray
 from scipy import integrate
 from scipy.special import gammaln
 
+from cummins.errors import ArgumentError
+from cummins.validation import check_memory, count, non_negative, number, positive
+
 __all__ = [
     "SPECTRA",
     "WaveComponents",
@@ -126,11 +129,8 @@ def _peak(
 
 
 def _check_sea(hs: float, tp: float) -> tuple[float, float]:
-    hs, tp = float(hs), float(tp)
-    if not (np.isfinite(hs) and hs >= 0):
-        raise ValueError(f"significant wave height must be finite and >= 0, got {hs!r} m")
-    if not (np.isfinite(tp) and tp > 0):
-        raise ValueError(f"peak period must be finite and > 0, got {tp!r} s")
+    hs = non_negative(hs, "the significant wave height hs", "m")
+    tp = positive(tp, "the peak period tp", "s")
     return hs, tp
 
 
@@ -178,9 +178,9 @@ def jonswap(
     """
     hs, tp = _check_sea(hs, tp)
     if not gamma >= 1.0:
-        raise ValueError(f"JONSWAP gamma must be >= 1, got {gamma!r}")
+        raise ArgumentError(f"JONSWAP gamma must be >= 1, got {gamma!r}")
     if not (sigma_a > 0 and sigma_b > 0):
-        raise ValueError("JONSWAP sigma_a and sigma_b must be positive")
+        raise ArgumentError("JONSWAP sigma_a and sigma_b must be positive")
     return _peak(np.asarray(omega, dtype=float), hs, tp, gamma, sigma_a, sigma_b, 5)
 
 
@@ -314,12 +314,12 @@ def wave_spectrum(
             jonswap, hs=float(hs), tp=float(tp), gamma=3.3 if gamma is None else float(gamma)
         )
     if gamma is not None:
-        raise ValueError(f"gamma applies to the JONSWAP spectrum only, not to {name!r}")
+        raise ArgumentError(f"gamma applies to the JONSWAP spectrum only, not to {name!r}")
     if key in ("pm", "ittc", "bretschneider", "pierson-moskowitz"):
         return functools.partial(pierson_moskowitz, hs=float(hs), tp=float(tp))
     if key == "torsethaugen":
         return functools.partial(torsethaugen, hs=float(hs), tp=float(tp))
-    raise ValueError(f"unknown wave spectrum {name!r}; choose one of {', '.join(SPECTRA)}")
+    raise ArgumentError(f"unknown wave spectrum {name!r}; choose one of {', '.join(SPECTRA)}")
 
 
 def _describe_spectrum(spectrum: Callable) -> tuple[str, float, float]:
@@ -346,15 +346,15 @@ def energy_range(
     (0.4, 4.443)
     """
     if not 0 < fraction < 1:
-        raise ValueError(f"fraction must be between 0 and 1, got {fraction!r}")
+        raise ArgumentError(f"fraction must be between 0 and 1, got {fraction!r}")
     w = np.geomspace(1e-3, omega_max, 8000)
     s = np.asarray(spectrum(w), dtype=float)
     if s.shape != w.shape or not np.all(np.isfinite(s)) or np.any(s < 0):
-        raise ValueError("the spectrum must return finite, non-negative values of S(omega)")
+        raise ArgumentError("the spectrum must return finite, non-negative values of S(omega)")
     cumulative = integrate.cumulative_trapezoid(s, w, initial=0.0)
     total = cumulative[-1]
     if not total > 0:
-        raise ValueError("the spectrum carries no energy between 1e-3 and 1e3 rad/s")
+        raise ArgumentError("the spectrum carries no energy between 1e-3 and 1e3 rad/s")
     lo = float(np.interp(fraction / 2 * total, cumulative, w))
     hi = float(np.interp((1 - fraction / 2) * total, cumulative, w))
     return lo, hi
@@ -385,7 +385,7 @@ def cos2s_spreading(theta: ArrayLike, mean_direction: float, s: float) -> NDArra
     """
     s = float(s)
     if not (np.isfinite(s) and s >= 0):
-        raise ValueError(f"the spreading exponent s must be finite and >= 0, got {s!r}")
+        raise ArgumentError(f"the spreading exponent s must be finite and >= 0, got {s!r}")
     delta = _wrap(np.asarray(theta, dtype=float) - float(mean_direction))
     c = np.exp(gammaln(s + 1.0) - gammaln(s + 0.5)) / (2.0 * np.sqrt(np.pi))
     base = np.clip(np.cos(delta / 2.0), 0.0, None)
@@ -411,7 +411,7 @@ def spreading_directions(
     """
     n = int(n_directions)
     if n < 1:
-        raise ValueError(f"n_directions must be at least 1, got {n_directions!r}")
+        raise ArgumentError(f"n_directions must be at least 1, got {n_directions!r}")
     if n == 1:
         return np.array([float(mean_direction)]), np.ones(1)
     grid = np.linspace(-np.pi, np.pi, 20001)
@@ -443,7 +443,7 @@ def spreading_weights(
     """
     beta = np.asarray(directions, dtype=float).reshape(-1)
     if beta.size == 0:
-        raise ValueError("no directions given")
+        raise ArgumentError("no directions given")
     if beta.size == 1:
         return np.ones(1)
     b = np.mod(beta, 2.0 * np.pi)
@@ -459,7 +459,7 @@ def spreading_weights(
     out[order] = w
     total = out.sum()
     if not total > 0:
-        raise ValueError("the directions carry no energy of this spreading")
+        raise ArgumentError("the directions carry no energy of this spreading")
     return out / total
 
 
@@ -484,7 +484,7 @@ def wavenumber(omega: ArrayLike, depth: float = np.inf, g: float = G) -> NDArray
     if not np.isfinite(depth):
         return k
     if not depth > 0:
-        raise ValueError(f"water depth must be positive, got {depth!r} m")
+        raise ArgumentError(f"water depth must be positive, got {depth!r} m")
     k = np.maximum(k, omega / np.sqrt(g * depth))
     for _ in range(100):
         t = np.tanh(k * depth)
@@ -567,7 +567,7 @@ def harmonic_sum(t: ArrayLike, omega: ArrayLike, coefficients: ArrayLike) -> NDA
 def _readonly(value: ArrayLike, name: str) -> NDArray[np.float64]:
     arr = np.array(value, dtype=float).reshape(-1)
     if not np.all(np.isfinite(arr)):
-        raise ValueError(f"WaveComponents.{name} has non-finite values")
+        raise ArgumentError(f"WaveComponents.{name} has non-finite values")
     arr.setflags(write=False)
     return arr
 
@@ -625,13 +625,13 @@ class WaveComponents:
         n = self.omega.size
         for name in ("amplitude", "phase", "direction"):
             if getattr(self, name).size != n:
-                raise ValueError(
+                raise ArgumentError(
                     f"WaveComponents.{name} has {getattr(self, name).size} values, omega has {n}"
                 )
         if np.any(self.omega <= 0):
-            raise ValueError("WaveComponents.omega must be positive (rad/s)")
+            raise ArgumentError("WaveComponents.omega must be positive (rad/s)")
         if np.any(self.amplitude < 0):
-            raise ValueError("WaveComponents.amplitude must be >= 0 (m)")
+            raise ArgumentError("WaveComponents.amplitude must be >= 0 (m)")
 
     def __len__(self) -> int:
         return int(self.omega.size)
@@ -702,10 +702,10 @@ def regular_wave(
     >>> float(w.elevation(0.0)), len(w)
     (1.0, 1)
     """
-    if not (np.isfinite(period) and period > 0):
-        raise ValueError(f"wave period must be positive, got {period!r} s")
-    if not (np.isfinite(amplitude) and amplitude >= 0):
-        raise ValueError(f"wave amplitude must be >= 0, got {amplitude!r} m")
+    period = positive(period, "the wave period", "s")
+    amplitude = non_negative(amplitude, "the wave amplitude", "m")
+    direction = number(direction, "the wave direction", "rad")
+    phase = number(phase, "the wave phase", "rad")
     return WaveComponents(
         omega=[2.0 * np.pi / period],
         amplitude=[amplitude],
@@ -722,8 +722,11 @@ def _generator(seed: Any) -> tuple[np.random.Generator, int | None]:
     if isinstance(seed, np.random.Generator):
         return seed, None
     if seed is None:
-        entropy = np.random.SeedSequence().entropy
-        return np.random.default_rng(entropy), int(entropy)
+        # a fresh seed that fits an int64, so that a run file can record it (HDF5 has no
+        # 128-bit integers) and ``seed=`` / ``--seed`` can make the same sea again
+        drawn = int(np.random.SeedSequence().generate_state(2, np.uint32).view(np.uint64)[0])
+        drawn &= 2**63 - 1
+        return np.random.default_rng(drawn), drawn
     if isinstance(seed, np.random.SeedSequence):
         return np.random.default_rng(seed), (
             int(seed.entropy) if isinstance(seed.entropy, int) else None
@@ -784,8 +787,9 @@ def irregular_waves(
     n_directions
         Number of directions with ``spreading``.
     seed
-        Integer seed or numpy ``Generator``; None draws fresh entropy, recorded in
-        ``WaveComponents.seed`` so that the sea can be made again. The frequencies
+        Integer seed or numpy ``Generator``; None draws a fresh seed (0 to 2⁶³ − 1, so
+        that it fits an int64 in a run file), recorded in ``WaveComponents.seed`` so that
+        the sea can be made again. The frequencies
         are drawn first, then the phases.
 
     Returns
@@ -798,26 +802,30 @@ def irregular_waves(
     >>> len(waves), round(float(waves.significant_wave_height), 2)
     (200, 4.0)
     """
-    duration = float(duration)
-    if not (np.isfinite(duration) and duration > 0):
-        raise ValueError(f"duration must be positive, got {duration!r} s")
-    n = int(n_components)
-    if n < 1:
-        raise ValueError(f"n_components must be at least 1, got {n_components!r}")
+    duration = positive(duration, "duration", "s")
+    n = count(n_components, "n_components")
+    direction = number(direction, "the mean wave direction", "rad")
+    n_dirs = 1 if spreading is None else int(n_directions)
+    # 16 quadrature nodes (and their S values) per bin, five arrays per component
+    check_memory(
+        n * (16 * 3 * 8 + n_dirs * 6 * 8),
+        f"a sea of {n:g} components x {n_dirs} directions",
+        hint="Ask for fewer components (--components) or directions (--directions)",
+    )
     if omega_min is None or omega_max is None:
         lo, hi = energy_range(spectrum)
         omega_min = lo if omega_min is None else omega_min
         omega_max = hi if omega_max is None else omega_max
     lo, hi = float(omega_min), float(omega_max)
     if not (np.isfinite(lo) and np.isfinite(hi) and 0 <= lo < hi):
-        raise ValueError(f"need 0 <= omega_min < omega_max, got {lo!r} and {hi!r} rad/s")
+        raise ArgumentError(f"need 0 <= omega_min < omega_max, got {lo!r} and {hi!r} rad/s")
     if spreading is None:
         if n_directions != 1:
-            raise ValueError("n_directions > 1 needs a spreading exponent (spreading=s)")
+            raise ArgumentError("n_directions > 1 needs a spreading exponent (spreading=s)")
         directions, dir_weights = np.array([float(direction)]), np.ones(1)
     else:
         if n_directions < 2:
-            raise ValueError("short-crested seas (spreading=s) need n_directions >= 2")
+            raise ArgumentError("short-crested seas (spreading=s) need n_directions >= 2")
         directions, dir_weights = spreading_directions(direction, spreading, n_directions)
     m = directions.size
 
@@ -827,7 +835,7 @@ def irregular_waves(
     nodes = edges[:-1, None] + 0.5 * width * (x[None, :] + 1.0)
     s_nodes = np.asarray(spectrum(nodes.reshape(-1)), dtype=float).reshape(nodes.shape)
     if not np.all(np.isfinite(s_nodes)) or np.any(s_nodes < 0):
-        raise ValueError("the spectrum must return finite, non-negative values of S(omega)")
+        raise ArgumentError("the spectrum must return finite, non-negative values of S(omega)")
     energy = 0.5 * width * (s_nodes * wq[None, :]).sum(axis=1)  # ∫_bin S dω, (n,)
 
     rng, seed_used = _generator(seed)

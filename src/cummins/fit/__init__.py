@@ -48,6 +48,7 @@ from cummins.retardation import (
     added_mass_inf as estimate_added_mass_inf,
 )
 from cummins.retardation import default_retardation_function, significant_couplings
+from cummins.validation import guard_fit_arguments, guard_hydro_data
 
 METHODS = ("fd", "realization", "prony")
 PASSIVITY_OPTIONS = ("mimo", "diagonal", "none")
@@ -149,6 +150,13 @@ def fit_radiation(
     True
     """
     start = time.perf_counter()
+    guard_fit_arguments(
+        r2=r2,
+        r2_coupling=r2_coupling,
+        threshold=threshold,
+        omega_min=omega_min,
+        omega_max=omega_max,
+    )
     if method not in METHODS:
         raise FitError(f"unknown method {method!r}; use one of {', '.join(METHODS)}")
     if weighting not in ("uniform", "response"):
@@ -173,6 +181,7 @@ def fit_radiation(
             f"{', '.join(ADDED_MASS_INF)}"
         )
     ds = single_speed(ds)
+    guard_hydro_data(ds)  # non-finite or absurd values: FitError naming the DOF pair
     say = progress or (lambda message: None)
     data, excluded, data_notes = _fit_data(ds, omega_min, omega_max, exclude_suspect)
     a_inf_mode = added_mass_inf
