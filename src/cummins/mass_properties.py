@@ -38,10 +38,11 @@ from numpy.typing import ArrayLike, NDArray
 from cummins.errors import ArgumentError, HydroDataError
 from cummins.hydrodb import add_history, bodies, dof_matrix, split_dof
 from cummins.kinematics import rigid_body_inertia
+from cummins.validation import MAX_MASS, in_range
 
 #: The heaviest floating structures are of order 10⁹ kg (ULCCs, the largest FPSOs):
 #: a body a thousand times heavier is a unit error, not a vessel.
-MAX_MASS_KG = 1e12
+MAX_MASS_KG = MAX_MASS
 
 
 def inertia_from_radii(
@@ -76,7 +77,15 @@ def inertia_from_radii(
     >>> [float(m[i, i]) for i in (3, 4, 5)]
     [1000.0, 4000.0, 4000.0]
     """
-    mass = _positive(mass, "mass", "kg", upper=MAX_MASS_KG)
+    mass = in_range(
+        mass,
+        "mass",
+        "kg",
+        low=0.0,
+        low_open=True,
+        high=MAX_MASS_KG,
+        hint="heavier than any floating body: check the unit (kg)",
+    )
     cog = _vector(center_of_gravity, "center_of_gravity")
     ref = _vector(reference_point, "reference_point")
     radii = np.asarray(radii_of_gyration, dtype=float).reshape(-1)
@@ -231,18 +240,6 @@ def with_external_terms(
 
 
 # --------------------------------------------------------------------------- pieces
-
-
-def _positive(value: Any, name: str, unit: str, upper: float) -> float:
-    try:
-        v = float(value)
-    except (TypeError, ValueError):
-        raise ArgumentError(f"{name} must be a number ({unit}), got {value!r}") from None
-    if not np.isfinite(v) or v <= 0 or v > upper:
-        raise ArgumentError(
-            f"{name} = {v:g} {unit} is not a plausible value (0 < {name} ≤ {upper:g} {unit})"
-        )
-    return v
 
 
 def _vector(value: ArrayLike, name: str) -> NDArray[np.float64]:
