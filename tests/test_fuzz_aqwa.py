@@ -11,7 +11,7 @@ the wrong fixed format (a phase row among matrix rows, a cut number) and a matri
 from symmetric, but AQWA's own coupling noise (asymmetry up to 0.69 of the scale
 measured on these files) hides a swap of two noise rows. Such swaps (2 in 50 damaged
 copies of the floating OWC) are left out of the rule for the ``.AH1`` files
-(``SWAP_BLIND``); the ``.LIS`` labels every row, and has no such exception.
+(``swap_blind``); the ``.LIS`` labels every row, and has no such exception.
 """
 
 from __future__ import annotations
@@ -22,7 +22,13 @@ from _mutate import Damager, FuzzCase, failures
 
 CASES = [
     FuzzCase("aqwa-lis-cylinder", "wecsim/cylinder_aqwa", "cylinder.LIS", ("cylinder.LIS",)),
-    FuzzCase("aqwa-ah1-v5-cylinder", "wecsim/cylinder_aqwa", "cylinder.AH1", ("cylinder.AH1",)),
+    FuzzCase(
+        "aqwa-ah1-v5-cylinder",
+        "wecsim/cylinder_aqwa",
+        "cylinder.AH1",
+        ("cylinder.AH1",),
+        swap_blind=("cylinder.AH1",),
+    ),
     FuzzCase(
         "aqwa-lis-19.1-pend",
         "corpus/WEC-Sim/aqwa_19.1_PEND_hull",
@@ -34,35 +40,22 @@ CASES = [
         "corpus/WEC-Sim/aqwa_19.1_PEND_hull",
         "19_1.AH1",
         ("19_1.AH1",),
+        swap_blind=("19_1.AH1",),
     ),
     FuzzCase(
         "aqwa-ah1-v5-alone-two-bodies",
         "corpus/WEC-Sim_Applications/aqwa_floating_OWC_AH1only",
         ".",
         ("floatingOWC.AH1",),
+        swap_blind=("floatingOWC.AH1",),
     ),
 ]
-
-
-def _judged(case, outcomes):
-    """The outcomes the rule applies to: swaps of two lines of a file in SWAP_BLIND are
-    left out (see the module docstring); ``benchmarks/fuzz_readers.py`` counts them."""
-    blind = SWAP_BLIND.get(case.name, ())
-    return [o for o in outcomes if not (o[1] == "swap" and o[0] in blind)]
-
-
-#: Files whose record rows carry no label: a swap of two of them is undetectable.
-SWAP_BLIND = {
-    "aqwa-ah1-v5-cylinder": ("cylinder.AH1",),
-    "aqwa-ah1-v4-pend": ("19_1.AH1",),
-    "aqwa-ah1-v5-alone-two-bodies": ("floatingOWC.AH1",),
-}
 
 
 @pytest.mark.parametrize("case", CASES, ids=lambda c: c.name)
 def test_damaged_copies_are_refused_or_read_alike(shared_data, case):
     with Damager(shared_data, case) as damager:
-        assert not failures(_judged(case, damager.cases(50, seed=7)))
+        assert not failures(damager.cases(50, seed=7))
 
 
 @pytest.mark.parametrize("case", CASES, ids=lambda c: c.name)
