@@ -4,7 +4,8 @@
 from __future__ import annotations
 
 import pytest
-from tests._mutate import Damager, FuzzCase, failures
+
+from _mutate import Damager, FuzzCase, failures
 
 CASES = [
     FuzzCase("tanker", "mss/tanker", "tanker.1", ("tanker.1", "tanker.3", "tanker.hst")),
