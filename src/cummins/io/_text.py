@@ -93,6 +93,48 @@ class TextFile:
         return -1
 
 
+def check_cut_numbers(text: TextFile, lines, columns, *, minimum_rows: int = 10) -> None:
+    """Error on a number shorter than the others of its column in fixed-format output.
+
+    Fortran solvers write every value of a column in the same format (``0.123456E+05``):
+    a value with fewer characters than all but at most one in fifty of the others (at
+    least one deviant is allowed for) is a cut or edited line, which would otherwise
+    read as a plausible smaller number. Free-format columns (widths that vary) and
+    tables shorter than ``minimum_rows`` are not checked.
+
+    Parameters
+    ----------
+    text
+        The file.
+    lines
+        0-based indices of the table's lines.
+    columns
+        Indices of the whitespace-separated fields to check (the values, not labels).
+    """
+    lines = [int(i) for i in lines]
+    if len(lines) < minimum_rows:
+        return
+    fields = [text.lines[i].split() for i in lines]
+    for c in columns:
+        rows = [k for k, f in enumerate(fields) if len(f) > c]
+        if len(rows) < minimum_rows:
+            continue
+        lengths = np.fromiter((len(fields[k][c].lstrip("+-")) for k in rows), int, len(rows))
+        values, counts = np.unique(lengths, return_counts=True)
+        if counts.max() < lengths.size - max(1, int(0.02 * lengths.size)):
+            continue  # free format: no fixed width to check against
+        usual = values[np.argmax(counts)]
+        short = np.flatnonzero(lengths < usual)
+        if short.size:
+            k = rows[short[0]]
+            raise text.error(
+                f"the number {fields[k][c]!r} is shorter than the others of its column "
+                f"({lengths[short[0]]} characters, not {usual}): a cut or edited line",
+                lines[k],
+                hint="the file is damaged; take it again from the solver run",
+            )
+
+
 def parse_numbers(line: str) -> np.ndarray | None:
     """All numbers of a line, or ``None`` if the line holds anything but numbers.
 

@@ -71,7 +71,7 @@ import xarray as xr
 from cummins.errors import HydroDataError
 from cummins.hydrodb import DOF_NAMES, dof_labels, make_hydrodb
 from cummins.io._common import resolve_rho_g, warn_damage
-from cummins.io._text import TextFile, parse_numbers
+from cummins.io._text import TextFile, check_cut_numbers, parse_numbers
 
 __all__ = ["read_nemoh", "sniff", "sniff_dir"]
 
@@ -266,6 +266,8 @@ def _zone_rows(text: TextFile, start: int, stop: int, count: int, width: int) ->
             f"the zone announces {count} rows but has {len(rows)} complete ones (truncated?)",
             stop - 1,
         )
+    numbered = [i for i in range(start, stop) if text.lines[i].strip()]
+    check_cut_numbers(text, numbered, range(max(len(text.lines[i].split()) for i in numbered)))
     if width < 3 or width % 2 == 0:
         raise text.error(
             f"rows of {width} numbers: expected the frequency and pairs of values", start

@@ -70,7 +70,7 @@ from cummins.hydrodb import (
     stack_forward_speeds,
 )
 from cummins.io._common import resolve_rho_g
-from cummins.io._text import TextFile
+from cummins.io._text import TextFile, check_cut_numbers
 from cummins.kinematics import X_AFT_TO_X_FORWARD
 
 __all__ = ["read_veres", "read_veres_transfer_function", "sniff", "sniff_dir"]
@@ -330,14 +330,17 @@ def _read_re7(path: Path) -> _Re7:
     roll = np.empty((nvel, nhead, nfreq, 3))
     grid = _Grid(cur, nhead, nfreq)
     speeds = []
+    matrix_lines: list[int] = []
     for v in range(nvel):
         speeds.append(_speed_line(cur))
         for h in range(nhead):
             grid.heading(h, cur.take(1)[0])
             for k in range(nfreq):
                 grid.frequency(k, cur.take(1)[0])
+                matrix_lines.extend(range(cur.index, cur.index + 6 * nblock))
                 blocks[v, h, k] = cur.rows(6 * nblock, 6).reshape(nblock, 6, 6)
                 roll[v, h, k] = cur.take(3)
+    check_cut_numbers(text, matrix_lines, range(6))
     return _Re7(header, version, speeds, grid.headings, grid.freqs, mass, blocks, roll)
 
 
@@ -369,12 +372,14 @@ def _read_tf(path: Path, kind: str) -> _TransferFunctions:
     parts = np.empty((nvel, nhead, nfreq, 6, (width - 1) // 2), dtype=complex)
     grid = _Grid(cur, nhead, nfreq)
     speeds = []
+    row_lines: list[int] = []
     for v in range(nvel):
         speeds.append(_speed_line(cur))
         for h in range(nhead):
             grid.heading(h, cur.take(1)[0])
             for k in range(nfreq):
                 grid.frequency(k, cur.take(1)[0])
+                row_lines.extend(range(cur.index, cur.index + 6))
                 rows = cur.rows(6, width)
                 dofs = rows[:, 0]
                 if not np.array_equal(np.sort(dofs), _DOF_INDICES):
@@ -383,6 +388,7 @@ def _read_tf(path: Path, kind: str) -> _TransferFunctions:
                         back=6,
                     )
                 parts[v, h, k, dofs.astype(int) - 1] = rows[:, 1::2] + 1j * rows[:, 2::2]
+    check_cut_numbers(text, row_lines, range(1, width))
     fk = diffraction = None
     if width == 9:
         fk, diffraction = parts[..., 1], parts[..., 2]

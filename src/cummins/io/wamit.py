@@ -61,7 +61,7 @@ from cummins.io._common import (
     rotation_flags,
     warn_damage,
 )
-from cummins.io._text import TextFile, numeric_table, parse_numbers
+from cummins.io._text import TextFile, check_cut_numbers, numeric_table, parse_numbers
 from cummins.kinematics import skew
 
 __all__ = ["read_wamit", "read_wamit_out", "sniff", "sniff_dir"]
@@ -117,7 +117,7 @@ def _numeric_rows(text: TextFile, start: int, columns, value_columns: Sequence[i
     line.
     """
     table, where = numeric_table(text, start, columns=columns)
-    _check_cut_numbers(text, where, value_columns)
+    check_cut_numbers(text, where, value_columns)
     values = table[:, list(value_columns)]
     big = np.abs(np.nan_to_num(values, nan=0.0)) >= MAX_ABS_VALUE
     if big.any():
@@ -128,31 +128,6 @@ def _numeric_rows(text: TextFile, start: int, columns, value_columns: Sequence[i
             hint="the solver did not compute this entry, or the file is damaged",
         )
     return table, where
-
-
-def _check_cut_numbers(text: TextFile, where: np.ndarray, columns: Sequence[int]) -> None:
-    """Error on a number shorter than the others of its column (fixed-format output)."""
-    if len(where) < 10:
-        return
-    fields = [text.lines[i].split() for i in where]
-    for c in columns:
-        rows = [k for k, f in enumerate(fields) if len(f) > c]
-        if len(rows) < 10:
-            continue
-        lengths = np.fromiter((len(fields[k][c].lstrip("+-")) for k in rows), int, len(rows))
-        values, counts = np.unique(lengths, return_counts=True)
-        if counts.max() < 0.98 * lengths.size:
-            continue  # free format: no fixed width to check against
-        usual = values[np.argmax(counts)]
-        short = np.flatnonzero(lengths < usual)
-        if short.size:
-            k = rows[short[0]]
-            raise text.error(
-                f"the number {fields[k][c]!r} is shorter than the others of its column "
-                f"({lengths[short[0]]} characters, not {usual}): a cut or edited line",
-                int(where[k]),
-                hint="the file is damaged; take it again from the solver run",
-            )
 
 
 # --------------------------------------------------------------------------- detection
