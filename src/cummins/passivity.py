@@ -319,6 +319,7 @@ def enforce_passivity(
     time: ArrayLike | None = None,
     kernel: ArrayLike | None = None,
     importance: Callable[[CouplingModel], float] | None = None,
+    motion_weight: Callable[[CouplingModel], NDArray | None] | None = None,
     max_iterations: int = 30,
 ) -> PassivityEnforcement:
     """Make the MIMO model passive by the smallest data-weighted change of the residues.
@@ -357,6 +358,11 @@ def enforce_passivity(
         Weight of each coupling's loss in the objective (default 1 for all). The fit
         gives 1/(R² − target) so that couplings close to their R² target are changed
         least.
+    motion_weight
+        Per coupling, the weight W(ω) on ``omega`` of its complex error |K̂ − K| in the
+        motions (:mod:`cummins.fit.motion`, already divided by the coupling's error
+        budget), or None: rows W·δK join that coupling's misfit, so that the change
+        avoids the frequencies where the motions are sensitive.
     max_iterations
         Linearised corrections allowed before giving up.
 
@@ -381,6 +387,10 @@ def enforce_passivity(
     misfit = []
     for group, basis in zip(groups, bases, strict=True):
         jac, y = _misfit(model, group, basis, w, added_mass, damping, time, kernel)
+        extra = None if motion_weight is None else motion_weight(model.couplings[group[0]])
+        if extra is not None:
+            jac_m, y_m = _motion_misfit(model, group, basis, w, added_mass, damping, extra)
+            jac, y = np.vstack([jac, jac_m]), np.concatenate([y, y_m])
         weight = 1.0 if importance is None else float(importance(model.couplings[group[0]]))
         misfit.append((np.sqrt(weight) * jac, np.sqrt(weight) * y))
     scale = dof_scaling(model)
@@ -589,6 +599,25 @@ def _misfit(model, group, basis, w, added_mass, damping, time, kernel):
         rows.append(jac / np.sqrt(ss))
         residuals.append((fitted - data) / np.sqrt(ss))
     return np.vstack(rows), np.concatenate(residuals)
+
+
+def _motion_misfit(model, group, basis, w, added_mass, damping, weight):
+    """(J, y): rows W·Re δK and W·Im δK of the coupling (see ``motion_weight`` of
+    :func:`enforce_passivity`), y the current W·(K̂ − K)."""
+    k = model.couplings[group[0]]
+    i, j = k.influenced, k.radiating
+    g = _transfer_vectors(k, w) @ basis
+    response = k.frequency_response(w)
+    if added_mass is not None and damping is not None:
+        data = np.asarray(damping)[:, i, j] + 1j * w * (
+            np.asarray(added_mass)[:, i, j] - model.added_mass_inf[i, j]
+        )
+    else:
+        data = response
+    weight = np.asarray(weight, dtype=float)
+    rows = np.vstack([weight[:, None] * g.real, weight[:, None] * g.imag])
+    residual = weight * (response - data)
+    return rows, np.concatenate([residual.real, residual.imag])
 
 
 def _impulse_vectors(coupling, t: NDArray) -> NDArray:

@@ -39,6 +39,7 @@ from cummins.check import copied_dofs
 from cummins.errors import FitError, HydroDataError
 from cummins.fit.frequency import FrequencyFit, fit_frequency_domain, pruned_poles
 from cummins.fit.metrics import coupling_metrics
+from cummins.fit.motion import MotionSensitivity, motion_sensitivity
 from cummins.fit.realization import modal_realization
 from cummins.hydrodb import dof_matrix, single_speed
 from cummins.passivity import augment_for_passivity, enforce_passivity
@@ -52,6 +53,7 @@ from cummins.retardation import default_retardation_function, significant_coupli
 METHODS = ("fd", "realization", "prony")
 PASSIVITY_OPTIONS = ("mimo", "diagonal", "none")
 ADDED_MASS_INF = ("auto", "data", "fit", "ogilvie")
+WEIGHTINGS = ("auto", "motion", "response", "uniform")
 #: Options of :func:`fit_radiation` for simulations that must reproduce the frequency-domain
 #: RAOs of the data closely (``fit_radiation(ds, **MOTION_ACCURACY)``, ``cummins simulate
 #: --accurate``): tight R² targets, higher orders, response weighting. On the MSS tanker the
@@ -84,7 +86,8 @@ def fit_radiation(
     omega_max: float | None = None,
     exclude_suspect: bool = True,
     passivity: str = "mimo",
-    weighting: str = "uniform",
+    weighting: str = "auto",
+    motion_tol: float = 0.005,
     progress: Callable[[str], None] | None = None,
 ) -> RadiationModel:
     """Identify state-space models of all significant couplings of the fluid memory.
@@ -151,8 +154,8 @@ def fit_radiation(
     start = time.perf_counter()
     if method not in METHODS:
         raise FitError(f"unknown method {method!r}; use one of {', '.join(METHODS)}")
-    if weighting not in ("uniform", "response"):
-        raise FitError(f"unknown weighting {weighting!r}; use 'uniform' or 'response'")
+    if weighting not in WEIGHTINGS:
+        raise FitError(f"unknown weighting {weighting!r}; use one of {', '.join(WEIGHTINGS)}")
     if passivity not in PASSIVITY_OPTIONS:
         raise FitError(
             f"unknown passivity option {passivity!r}; use one of {', '.join(PASSIVITY_OPTIONS)}"
@@ -200,6 +203,18 @@ def fit_radiation(
     w = data.omega.values
     measured = fit_data(data)
     weights = _response_weights(data) if weighting == "response" else None
+    if weighting == "auto":
+        weighting = (
+            "motion" if {"inertia_matrix", "hydrostatic_stiffness"} <= set(data) else ("uniform")
+        )
+    sensitivity = None
+    if weighting == "motion":
+        sensitivity = motion_sensitivity(data, added_mass_inf=a_inf)
+        if sensitivity is None:
+            raise FitError(
+                "weighting='motion' needs inertia_matrix and hydrostatic_stiffness in the data",
+                hint="use weighting='uniform' or data with the rigid-body inertia and restoring",
+            )
     a_all, b_all = measured.added_mass, measured.damping
     pairs = significant_couplings(data, threshold)
     all_pairs = [(i, j) for i in range(len(labels)) for j in range(i, len(labels))]
@@ -223,11 +238,16 @@ def fit_radiation(
             guess=0.5 * (ogilvie[i, j] + ogilvie[j, i]),
             spread=0.5 * (ogilvie_spread[i, j] + ogilvie_spread[j, i]),
             passive=passivity != "none" and i == j,
-            target=r2 if i == j or r2_coupling is None else r2_coupling,
+            crit=_Criterion(
+                r2 if i == j or r2_coupling is None else r2_coupling,
+                w,
+                a_ij,
+                b_ij,
+                None if sensitivity is None else sensitivity.coupling_weight(i, j),
+                motion_tol if sensitivity is not None else None,
+            ),
             max_order=max_order,
             fixed=fixed,
-            i=i,
-            j=j,
             name=name,
             weight=None if weights is None else np.sqrt(weights[:, i] * weights[:, j]),
         )
@@ -268,7 +288,12 @@ def fit_radiation(
     if passivity == "mimo":
         say("MIMO passivity")
         model = make_passive(
-            model, measured, r2=r2, r2_coupling=r2 if r2_coupling is None else r2_coupling
+            model,
+            measured,
+            r2=r2,
+            r2_coupling=r2 if r2_coupling is None else r2_coupling,
+            sensitivity=sensitivity,
+            motion_tol=motion_tol,
         )
     return replace(model, attrs={**model.attrs, "elapsed_s": time.perf_counter() - start})
 
@@ -280,6 +305,8 @@ def make_passive(
     r2: float = 0.99,
     r2_coupling: float = 0.97,
     augment: bool = True,
+    sensitivity: MotionSensitivity | None = None,
+    motion_tol: float = 0.005,
 ) -> RadiationModel:
     """The model made passive as a MIMO system (:func:`cummins.passivity.enforce_passivity`),
     with the metrics of every changed coupling recomputed and the change noted.
@@ -300,6 +327,12 @@ def make_passive(
     def importance(k: CouplingModel) -> float:
         return 1.0 / max(_score(k) - target(k), PASSIVITY_SLACK_FLOOR)
 
+    def motion_weight(k: CouplingModel):
+        if sensitivity is None:
+            return None
+        i, j = k.influenced, k.radiating
+        return np.sqrt(MOTION_SLACK) * sensitivity.coupling_weight(i, j) / motion_tol
+
     def attempt(start: RadiationModel):
         result = enforce_passivity(
             start,
@@ -309,6 +342,7 @@ def make_passive(
             time=measured.time,
             kernel=measured.kernel,
             importance=importance,
+            motion_weight=motion_weight if sensitivity is not None else None,
         )
         couplings = [
             refreshed_coupling(old, new, measured, model.added_mass_inf, "MIMO passivity")
@@ -516,6 +550,48 @@ HANKEL_VALUES_REPORTED = 20
 MAX_FIXED_ORDER = 40
 
 
+@dataclass(frozen=True)
+class _Criterion:
+    """When a fit of one coupling is good enough: R² of A and of B ≥ ``target`` and, with a
+    motion sensitivity W (:mod:`cummins.fit.motion`), max_ω W |K̂ − K| ≤ ``budget``.
+
+    :meth:`score` folds both into one number that is ≥ ``target`` exactly when both
+    hold: min(R², target + SLACK (1 − e/budget)).
+    """
+
+    target: float
+    omega: NDArray[np.float64]
+    added_mass: NDArray[np.float64]
+    damping: NDArray[np.float64]
+    weight: NDArray[np.float64] | None = None
+    budget: float | None = None
+
+    def motion_error(self, k_model: NDArray, a_inf: float) -> float:
+        if self.weight is None:
+            return 0.0
+        k_data = self.damping + 1j * self.omega * (self.added_mass - a_inf)
+        return float(np.max(self.weight * np.abs(k_model - k_data)))
+
+    def score(self, r2a: float, r2b: float, k_model: NDArray | None, a_inf: float) -> float:
+        r2 = min(r2a, r2b)
+        if self.weight is None or self.budget is None or k_model is None:
+            return r2
+        e = self.motion_error(k_model, a_inf)
+        return min(r2, self.target + MOTION_SLACK * (1.0 - e / self.budget))
+
+    def fit_score(self, fit: FrequencyFit) -> float:
+        return self.score(
+            fit.r2_added_mass,
+            fit.r2_damping,
+            fit.frequency_response(self.omega),
+            fit.added_mass_inf,
+        )
+
+
+#: Scale of the motion term of :meth:`_Criterion.score` (in units of R²).
+MOTION_SLACK = 0.01
+
+
 def _fit_coupling(
     method,
     w,
@@ -528,21 +604,23 @@ def _fit_coupling(
     guess,
     spread,
     passive,
-    target,
+    crit: _Criterion,
     max_order,
     fixed,
-    i,
-    j,
     name,
     weight=None,
+    min_order: int = 2,
 ) -> tuple[_Siso, float]:
-    """Fit one coupling at the fixed order, or the smallest order reaching the target.
+    """Fit one coupling at the fixed order, or the smallest order meeting ``crit``.
 
     Frequency domain: every order is first fitted by the cheap linearised step alone; the
     full fit runs on the orders that come close to the target, lowest first.
     """
-    candidates = [fixed] if fixed else list(range(2, max_order + 1))
+    target = crit.target
+    first = max(2, min(min_order, max_order))
+    candidates = [fixed] if fixed else list(range(first, max_order + 1))
     screening: dict[int, float] = {}
+    fd = {"weight": weight, "error_weight": crit.weight}
     if method == "fd" and not fixed:
         screened = []
         for n in candidates:
@@ -556,11 +634,11 @@ def _fit_coupling(
                     added_mass_inf_guess=guess,
                     added_mass_inf_spread=spread,
                     refine=False,
-                    weight=weight,
+                    **fd,
                 )
             except FitError:
                 continue
-            score = min(quick.r2_added_mass, quick.r2_damping)
+            score = crit.fit_score(quick)
             screening[n] = score
             if score >= target - SCREENING_MARGIN:
                 screened.append(n)
@@ -569,10 +647,10 @@ def _fit_coupling(
         candidates = screened or candidates
     best: tuple[float, _Siso, float] | None = None
     errors = []
-    remaining = [n for n in range(2, max_order + 1) if n not in candidates] if not fixed else []
+    remaining = [n for n in range(first, max_order + 1) if n not in candidates] if not fixed else []
     for n in [*candidates, *remaining]:  # the screened orders first, then the others
         try:
-            siso, a_inf_fit, r2a, r2b, ok_passive = _fit_order(
+            siso, a_inf_fit, score, ok_passive = _fit_order(
                 method,
                 w,
                 a,
@@ -584,21 +662,21 @@ def _fit_coupling(
                 guess=guess,
                 spread=spread,
                 passive=passive,
-                target=target,
+                crit=crit,
                 weight=weight,
             )
         except FitError as exc:
             errors.append(f"order {n}: {exc}")
             continue
-        score = min(r2a, r2b) - (0.0 if ok_passive else 1.0)
+        score = score - (0.0 if ok_passive else 1.0)
         if best is None or score > best[0]:
             best = (score, siso, a_inf_fit)
-        if min(r2a, r2b) >= target and ok_passive:
+        if score >= target:
             break
     if best is None:
         raise FitError(f"coupling {name}: no stable model ({'; '.join(errors)})")
     close = screening.get(best[1].order - 1, -np.inf) >= target - SCREENING_MARGIN
-    if method == "fd" and not fixed and best[0] >= target and close:
+    if method == "fd" and not fixed and best[0] >= target and close and best[1].order > first:
         best = _try_lower_orders(
             best,
             w,
@@ -608,7 +686,7 @@ def _fit_coupling(
             guess=guess,
             spread=spread,
             passive=passive,
-            target=target,
+            crit=crit,
             weight=weight,
         )
     score, siso, a_inf_fit = best
@@ -619,9 +697,9 @@ def _fit_coupling(
     return siso, a_inf_fit
 
 
-def _try_lower_orders(best, w, a, b, *, a_inf, guess, spread, passive, target, weight=None):
+def _try_lower_orders(best, w, a, b, *, a_inf, guess, spread, passive, crit, weight=None):
     """One order lower, started from the fit's poles less its weakest mode, if it still
-    reaches the target (the linearised step has found a local optimum; the pruned start
+    meets the criterion (the linearised step has found a local optimum; the pruned start
     often finds a better one). Trying the second-weakest mode as well found no lower
     order on the tanker, supply vessel or S-175 and cost 40 % of the whole fit."""
     if best[1].order > 2:
@@ -638,16 +716,15 @@ def _try_lower_orders(best, w, a, b, *, a_inf, guess, spread, passive, target, w
                     added_mass_inf_guess=guess,
                     added_mass_inf_spread=spread,
                     passive=passive,
-                    target=target,
+                    target=crit.target,
                     refine=True,
                     initial_poles=start,
                     weight=weight,
+                    error_weight=crit.weight,
                 )
             except FitError:
                 continue
-            if min(lower.r2_added_mass, lower.r2_damping) >= target and (
-                lower.passive or not passive
-            ):
+            if crit.fit_score(lower) >= crit.target and (lower.passive or not passive):
                 found = lower
                 break
         if found is None:
@@ -662,13 +739,11 @@ def _try_lower_orders(best, w, a, b, *, a_inf, guess, spread, passive, target, w
             ),
             found,
         )
-        best = (min(found.r2_added_mass, found.r2_damping), siso, found.added_mass_inf)
+        best = (crit.fit_score(found), siso, found.added_mass_inf)
     return best
 
 
-def _fit_order(
-    method, w, a, b, t, kernel, n, *, a_inf, guess, spread, passive, target, weight=None
-):
+def _fit_order(method, w, a, b, t, kernel, n, *, a_inf, guess, spread, passive, crit, weight=None):
     from cummins.fit.frequency import is_positive_real, r_squared
 
     if method == "fd":
@@ -681,15 +756,15 @@ def _fit_order(
             added_mass_inf_guess=guess,
             added_mass_inf_spread=spread,
             passive=passive,
-            target=target,
+            target=crit.target,
             weight=weight,
+            error_weight=crit.weight,
         )
         am, bm, cm = modal_realization(fit.poles, fit.residues)
         return (
             _Siso(am, bm, cm, fit.note, fit),
             fit.added_mass_inf,
-            fit.r2_added_mass,
-            fit.r2_damping,
+            crit.fit_score(fit),
             fit.passive or not passive,
         )
     from cummins.fit import realization
@@ -710,4 +785,5 @@ def _fit_order(
         # the ERA order criterion: σ_{n+1}/σ_1, and the leading values (K units × s)
         extra["hankel_sv_ratio"] = float(sigma[n] / sigma[0]) if sigma.size > n else 0.0
         extra["hankel_singular_values"] = sigma[:HANKEL_VALUES_REPORTED].tolist()
-    return _Siso(result.a, result.b, result.c, result.note, extra=extra), a_inf, r2a, r2b, ok
+    siso = _Siso(result.a, result.b, result.c, result.note, extra=extra)
+    return siso, a_inf, crit.score(r2a, r2b, k, a_inf), ok
