@@ -24,13 +24,20 @@ def test_bundled_s175_is_the_shared_one(shared_data):
 
 
 def test_crane_load_heels_the_ship_to_its_static_angle(scenario):
-    """Acceptance: the change of the mean roll angle after the 1000 kN load equals the
-    static heel of the linearised restoring (heave, roll, pitch together) within 5 %."""
-    a = scenario.run.attrs
-    assert abs(a["check_heel_error"]) < 0.05
-    # the static heel itself is the hand computation M / C44 to within the coupling
+    """Acceptance: the change of the mean roll angle after the 1000 kN load, taken from the
+    run's own roll record here (before the load, 30–100 s; after it has settled, > 200 s),
+    equals the static heel M / C44 computed by hand within 5 % (measured 0.4 %: 3.555°
+    against 3.57°); the run's recorded check attributes say the same."""
+    run = scenario.run
+    t, roll = run.time.values, run.eta.sel(dof="Roll").values
+    change = roll[t > 200].mean() - roll[(t > 30) & (t < 100)].mean()
     c44 = scenario.model.restoring[3, 3]
     by_hand = CRANE_LOAD * CRANE_POINT[1] / c44
+    assert change == pytest.approx(by_hand, rel=0.05)
+    a = run.attrs
+    after = np.radians(a["check_mean_roll_after_deg"])
+    assert after == pytest.approx(roll[t > 200].mean(), rel=1e-6)
+    # the coupled static heel (heave, roll, pitch together) is M / C44 within the coupling
     assert np.radians(a["check_static_heel_deg"]) == pytest.approx(by_hand, rel=0.02)
     assert np.degrees(by_hand) == pytest.approx(3.57, abs=0.05)
     np.testing.assert_allclose(
@@ -43,8 +50,12 @@ def test_dp_holds_position(scenario):
     (2.8°) in Hs 4 m bow-quartering seas started from rest, no thruster saturated; the
     thrust balances the mean drift force once settled."""
     run = scenario.run
-    assert run.attrs["check_watch_circle_m"] < 8.0
-    assert run.attrs["check_max_yaw_deg"] < 4.0
+    radius = np.hypot(run.eta.sel(dof="North").values, run.eta.sel(dof="East").values)
+    yaw = np.degrees(np.abs(run.eta.sel(dof="Yaw").values))
+    assert radius.max() < 8.0
+    assert yaw.max() < 4.0
+    assert run.attrs["check_watch_circle_m"] == pytest.approx(radius.max(), rel=1e-9)
+    assert run.attrs["check_max_yaw_deg"] == pytest.approx(yaw.max(), rel=1e-9)
     late = run.time.values > 250
     mean_thrust = run.thrust.values[late].mean(axis=0)
     mean_drift = run["force_wave drift"].values[late].mean(axis=0)

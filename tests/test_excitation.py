@@ -256,6 +256,13 @@ def test_excitation_force_of_a_long_simulation(tanker):
     t = 0.1 * np.arange(200_000)
     tau = excitation_force(tanker, waves, t)
     assert tau.shape == (200_000, 6) and np.all(np.isfinite(tau))
+    # every chunk of the long record is the harmonic sum written out here, at times
+    # spread over the whole record (the first, the last, and across chunk boundaries)
+    f = excitation_transfer(tanker, waves.omega, waves.direction)
+    picks = np.unique(np.r_[0, 199_999, np.linspace(0, 199_999, 41).astype(int)])
+    phase = waves.omega[None, :] * t[picks, None] + waves.phase[None, :]
+    brute = np.real((waves.amplitude[None, :] * np.exp(1j * phase)) @ f)
+    np.testing.assert_allclose(tau[picks], brute, atol=1e-9 * np.abs(tau).max())
     # linear in the amplitudes at every time (nothing lost to chunking)
     half = WaveComponents(waves.omega, 0.5 * waves.amplitude, waves.phase, waves.direction)
     np.testing.assert_allclose(excitation_force(tanker, half, t[::997]), 0.5 * tau[::997])

@@ -82,7 +82,20 @@ def test_supply_rao_matches_veres(shared_data):
 
 
 def test_rao_solves_the_equation_of_motion(tanker, tanker_rao):
-    z = impedance(tanker, tanker_rao.omega.values)
+    """At the data frequencies the RAO satisfies the equation of motion written out here
+    from the dataset's arrays (not through the module's impedance); between them it
+    satisfies the module's interpolated impedance, by both solution paths."""
+    from cummins.hydrodb import dof_matrix
+
+    w = tanker_rao.omega.values
+    assert np.array_equal(w, tanker.omega.values)
+    m, c = dof_matrix(tanker, "inertia_matrix"), dof_matrix(tanker, "hydrostatic_stiffness")
+    a, b = dof_matrix(tanker, "added_mass"), dof_matrix(tanker, "radiation_damping")
+    b = b + dof_matrix(tanker, "additional_damping")  # the .frc's external damping
+    for name in ("additional_stiffness", "additional_added_mass"):
+        assert name not in tanker  # the WAMIT tanker has none: nothing left out below
+    wc = w[:, None, None]
+    z = -(wc**2) * (m + a) + 1j * wc * b + c
     f = tanker.excitation_force.transpose("omega", "wave_direction", "influenced_dof").values
     residual = np.einsum("wij,wbj->wbi", z, tanker_rao.values) - f
     assert np.abs(residual).max() < 1e-9 * np.abs(f).max()

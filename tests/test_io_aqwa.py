@@ -8,6 +8,7 @@ precision. Long-wave physics checks the RAO conventions (phase lag → exp(+iωt
 from __future__ import annotations
 
 import shutil
+import warnings
 
 import numpy as np
 import pytest
@@ -265,3 +266,90 @@ def test_fuzz_only_hydro_data_errors(aqwa_copy, name, count):
             cummins.validate(ds)
         else:
             assert error.path is not None, str(error)
+
+
+# --------------------------------------------------------------------------- corpus variants
+
+
+def _read_warned(path, **options):
+    with warnings.catch_warnings(record=True) as caught:
+        warnings.simplefilter("always")
+        ds = cummins.read(path, **options)
+    return ds, [str(w.message) for w in caught if issubclass(w.category, cummins.HydroDataWarning)]
+
+
+@pytest.fixture(scope="module")
+def pend(corpus):
+    folder = corpus / "WEC-Sim" / "aqwa_19.1_PEND_hull"
+    return _read_warned(folder / "19_1.LIS"), _read_warned(folder / "19_1.AH1")
+
+
+def test_pend_listing_of_aqwa_19_1_reads_and_agrees_with_its_database(pend):
+    """AQWA 19.1 prints its frequency table over two pages; the listing and the .AH1
+    (file version 4) are the same run: A and B to the 5 printed digits (rtol 1e-4),
+    the mass matrix (24.259 kg, inertia 0.46, 0.46, 0.71 kg m² about the CG) and the
+    stiffness exactly, the excitation to the listing's 3 digits (measured 0.40 % of the
+    largest amplitude per DOF; 1 % allowed)."""
+    (lis, lis_damage), (ah1, ah1_damage) = pend
+    assert not lis_damage and not ah1_damage
+    assert lis.sizes["omega"] == ah1.sizes["omega"] == 100
+    for name in ("added_mass", "radiation_damping", "added_mass_inf"):
+        a, b = lis[name].values, ah1[name].values
+        scale = np.abs(b).max(axis=(-2, -1), keepdims=True)
+        assert np.all(np.abs(a - b) <= 1e-4 * np.abs(b) + 1e-4 * scale), name
+    np.testing.assert_array_equal(lis.inertia_matrix.values, ah1.inertia_matrix.values)
+    np.testing.assert_allclose(
+        np.diag(lis.inertia_matrix.values), [24.259] * 3 + [0.46, 0.46, 0.71]
+    )
+    np.testing.assert_allclose(
+        lis.hydrostatic_stiffness.values, ah1.hydrostatic_stiffness.values, rtol=1e-4, atol=1e-9
+    )
+    f_lis, f_ah1 = lis.excitation_force.values, ah1.excitation_force.values
+    scale = np.abs(f_ah1).max(axis=(0, 1))
+    assert (np.abs(f_lis - f_ah1).max(axis=(0, 1)) / scale).max() < 0.01
+    assert "inertia matrix from MASS AND INERTIA PROPERTIES" in lis.attrs["history"]
+    assert "file version 4" in ah1.attrs["history"]
+
+
+def test_database_alone_with_two_structures(corpus):
+    """The floating OWC (AQWA 2022 R1, .AH1 file version 5 with one header block per
+    structure, no .LIS): 12 positional DOFs, the MASS section per body (2.5378e6 and
+    4.6058e6 kg) and history saying what only the listing would give."""
+    ds, damage = _read_warned(corpus / "WEC-Sim_Applications" / "aqwa_floating_OWC_AH1only")
+    assert not damage
+    assert list(ds.influenced_dof.values) == cummins.hydrodb.dof_labels(2)
+    assert ds.sizes["omega"] == 100 and ds.sizes["wave_direction"] == 3
+    m = ds.inertia_matrix.values
+    assert m[0, 0] == pytest.approx(2.5378e6) and m[6, 6] == pytest.approx(4.6058e6)
+    assert m[0, 6] == 0.0
+    np.testing.assert_allclose(ds.attrs["displaced_volume"], [2475.9, 4493.4])
+    assert "no floatingOWC.LIS beside the database" in ds.attrs["history"]
+    assert "excitation_force" in ds and "rao" not in ds
+
+
+def test_truncated_listing_warns_and_names_what_is_lost(aqwa_copy):
+    """A listing cut after its hydrodynamic blocks used to lose excitation, RAOs and
+    A(inf) silently: now the missing FINISH line and the LHFR block that OPTIONS
+    announces are named."""
+    path = aqwa_copy / "cylinder.LIS"
+    lines = path.read_text().splitlines()
+    cut = next(i for i, line in enumerate(lines) if "VARIATION WITH WAVE PERIOD" in line)
+    path.write_text("\n".join(lines[:cut]) + "\n")
+    with warnings.catch_warnings(record=True) as caught:
+        warnings.simplefilter("always")
+        ds = aqwa.read_aqwa(path)
+    text = " ".join(str(w.message) for w in caught)
+    assert "FINISH" in text and "the excitation force" in text and "the RAOs" in text
+    assert "excitation_force" not in ds
+    assert ds.attrs["read_warnings"]
+
+
+def test_swapped_database_rows_are_refused(aqwa_copy):
+    """Two rows of an ADDEDMASS record swapped make the matrix far from symmetric."""
+    path = aqwa_copy / "cylinder.AH1"
+    lines = path.read_text().splitlines()
+    start = lines.index("ADDEDMASS") + 1
+    lines[start + 1], lines[start + 4] = lines[start + 4], lines[start + 1]
+    path.write_text("\n".join(lines) + "\n")
+    with pytest.raises(HydroDataError, match="not symmetric"):
+        aqwa.read_aqwa(path)

@@ -378,12 +378,20 @@ def test_shuffled_frequency_column(nemoh_copy):
         nemoh.read_nemoh(nemoh_copy)
 
 
-def test_results_of_another_run(nemoh_copy, run_dir):
-    """Nemoh.cal asking for other frequencies than the results: different runs."""
+def test_frequency_count_of_nemoh_cal_edited_after_the_run(cylinder, nemoh_copy):
+    """Nemoh.cal asking for other frequencies than the results hold (as the OC3 spar of
+    the corpus, edited after its run): the results' 525 frequencies are what the solver
+    computed, so they are read, and history says which count was used and why."""
     cal = nemoh_copy / "Nemoh.cal"
     cal.write_text(cal.read_text().replace("1\t525\t0.04\t21.0", "1\t100\t0.04\t21.0"))
-    with pytest.raises(HydroDataError, match=r"Nemoh\.cal asks for 100"):
-        nemoh.read_nemoh(nemoh_copy)
+    with pytest.warns(UserWarning, match="IRF.tec"):
+        ds = nemoh.read_nemoh(nemoh_copy)
+    assert ds.sizes["omega"] == cylinder.sizes["omega"] == 525
+    xr.testing.assert_equal(ds.added_mass, cylinder.added_mass)
+    assert re.search(
+        r"Nemoh\.cal asks for 100 .* holds 525 .* results' frequencies are used",
+        ds.attrs["history"],
+    )
 
 
 def test_missing_and_foreign_files(tmp_path, run_dir, nemoh_copy):
@@ -455,3 +463,153 @@ def test_fuzz_only_hydro_data_errors(nemoh_copy, name):
         else:
             assert error.path is not None or error.quantity is not None, str(error)
     path.write_text(original)
+
+
+# --------------------------------------------------------------------------- corpus variants
+
+
+def _read_warned(path, **options):
+    with warnings.catch_warnings(record=True) as caught:
+        warnings.simplefilter("always")
+        ds = cummins.read(path, **options)
+    return ds, [str(w.message) for w in caught if issubclass(w.category, cummins.HydroDataWarning)]
+
+
+def _nemoh_dat(path):
+    """CA.dat / CM.dat of NEMOH v3: ``Nb de frequency : n``, then per frequency the
+    frequency and an n×n block whose row j is the radiating DOF j."""
+    lines = [line.split() for line in path.read_text().splitlines()[1:] if line.strip()]
+    blocks, omega, k = [], [], 0
+    while k < len(lines):
+        omega.append(float(lines[k][0]))
+        n = len(lines[k + 1])
+        blocks.append(np.array(lines[k + 1 : k + 1 + n], dtype=float))
+        k += 1 + n
+    return np.array(omega), np.array(blocks)
+
+
+@pytest.fixture(scope="module")
+def oc3(corpus):
+    return _read_warned(corpus / "WEC-Sim" / "nemoh_v3.0.2_OC3_Hywind_spar")
+
+
+def test_oc3_spar_qtf_run_with_edited_nemoh_cal(oc3, corpus):
+    """The OC3 spar's Nemoh.cal asks for 26 frequencies (0.025–1.5 rad/s) but its results
+    (and index.dat) hold 128 (0.025–6 rad/s): the results are read, history says why,
+    and CM.dat/CA.dat, NEMOH's own second print of the same coefficients (6 digits, row
+    = radiating DOF), are the added mass and damping read (to 1e-5 of each matrix)."""
+    ds, damage = oc3
+    assert not damage
+    assert ds.sizes["omega"] == 128 and list(ds.influenced_dof.values) == list(nemoh.DOF_NAMES)
+    assert "asks for 26 frequencies" in ds.attrs["history"]
+    assert "QTF" in ds.attrs["history"]
+    results = corpus / "WEC-Sim" / "nemoh_v3.0.2_OC3_Hywind_spar" / "results"
+    for name, variable in (("CM.dat", "added_mass"), ("CA.dat", "radiation_damping")):
+        omega, blocks = _nemoh_dat(results / name)
+        np.testing.assert_allclose(omega, ds.omega.values, atol=5e-5)
+        values = ds[variable].values
+        for k in range(omega.size):
+            scale = np.abs(blocks[k]).max()
+            np.testing.assert_allclose(values[k], blocks[k].T, rtol=1e-5, atol=1e-5 * scale)
+
+
+def test_oc3_spar_mechanics_give_the_inertia(oc3, corpus):
+    """Mechanics/Inertia.dat is the inertia matrix (about the rotation point (0, 0, −78)
+    of Nemoh.cal); its mass is NEMOH's rho V of Hydrostatics.dat (1025 × 32081.97 =
+    3.2884e7 kg), which history says; zero Km.dat/Badd.dat add nothing."""
+    ds, _ = oc3
+    folder = corpus / "WEC-Sim" / "nemoh_v3.0.2_OC3_Hywind_spar"
+    expected = np.loadtxt(folder / "Mechanics" / "Inertia.dat")
+    np.testing.assert_array_equal(ds.inertia_matrix.values, expected)
+    np.testing.assert_allclose(ds.inertia_matrix.values[2, 2], 1025.0 * 32081.97, rtol=1e-5)
+    np.testing.assert_allclose(ds.attrs["reference_point"], [0, 0, -78.0])
+    assert "NEMOH's own estimate" in ds.attrs["history"]
+    assert "additional_stiffness" not in ds and "additional_damping" not in ds
+    np.testing.assert_array_equal(
+        ds.hydrostatic_stiffness.values, np.loadtxt(folder / "Mesh" / "KH.dat")
+    )
+
+
+def test_mechanics_km_and_badd_become_external_terms(corpus, tmp_path):
+    folder = tmp_path / "oc3"
+    shutil.copytree(corpus / "WEC-Sim" / "nemoh_v3.0.2_OC3_Hywind_spar", folder)
+    km = np.zeros((6, 6))
+    km[0, 0] = km[1, 1] = 4.1e4  # a mooring's surge/sway stiffness
+    badd = np.zeros((6, 6))
+    badd[2, 2] = 1.0e5
+    for name, matrix in (("Km.dat", km), ("Badd.dat", badd)):
+        (folder / "Mechanics" / name).chmod(0o644)
+        np.savetxt(folder / "Mechanics" / name, matrix, fmt="%15.7E")
+    ds, _ = _read_warned(folder)
+    np.testing.assert_array_equal(ds.additional_stiffness.values, km)
+    assert ds.additional_damping.shape == (128, 6, 6)
+    np.testing.assert_array_equal(ds.additional_damping.values[57], badd)
+
+
+def test_two_bodies_are_positional_with_mesh_names(corpus):
+    ds, _ = _read_warned(corpus / "WEC-Sim" / "nemoh_v2.3_OSWEC_flap")
+    assert list(ds.influenced_dof.values) == cummins.hydrodb.dof_labels(2)
+    assert cummins.hydrodb.body_names(ds) == ["flap", "base"]
+    renamed = cummins.hydrodb.rename_bodies(ds)
+    assert str(renamed.influenced_dof.values[6]) == "base__Surge"
+    # KH_0.dat / KH_1.dat on the diagonal blocks, as NEMOH wrote them
+    c = ds.hydrostatic_stiffness.values
+    assert c[2, 2] == pytest.approx(0.3178439e6) and c[10, 10] == pytest.approx(0.3582881e6)
+    assert c[2, 8] == 0.0
+
+
+@pytest.mark.parametrize(
+    ("case", "ratio"),
+    [("WEC-Sim/nemoh_v3.0.2_Cubes_2body", "2"), ("bemio/nemoh_two_body", "0.803")],
+)
+def test_hydrostatics_of_another_mesh_are_refused_with_a_warning(corpus, case, ratio):
+    """The Cubes' KH_0/KH_1.dat (and KH.dat, all three equal) hold C33 = 1.962e6 N/m:
+    rho g A_wp of both cubes together (200 m²), while each cube's own Froude-Krylov heave
+    force tends to 9.806e5 N/m as w -> 0; bemio's KH_0.dat gives 7.84e5 against 9.76e5.
+    The files are not of these meshes: no hydrostatic_stiffness, a warning naming it."""
+    ds, damage = _read_warned(corpus / case)
+    assert "hydrostatic_stiffness" not in ds and "center_of_buoyancy" not in ds.attrs
+    assert len(damage) == 1 and f"(ratio {ratio})" in damage[0]
+    assert damage[0] in ds.attrs["read_warnings"]
+
+
+def test_froude_krylov_limit_confirms_matching_hydrostatics(cylinder):
+    """The cylinder's KH.dat C33 and its own Froude-Krylov heave force at 0.04 rad/s
+    agree (3764.56 vs 3764.21 N/m, 0.01 %), so the stiffness is kept and history says it was
+    checked."""
+    assert "agrees with the run's own Froude-Krylov heave force" in cylinder.attrs["history"]
+    c33 = float(cylinder.hydrostatic_stiffness.sel(influenced_dof="Heave", radiating_dof="Heave"))
+    f3 = abs(
+        complex(
+            cylinder.Froude_Krylov_force.isel(omega=0, wave_direction=0).sel(influenced_dof="Heave")
+        )
+    )
+    assert abs(c33 / f3 - 1) < nemoh.HYDROSTATIC_TOLERANCE
+
+
+def test_run_without_mass_properties_says_what_is_missing(corpus):
+    ds, _ = _read_warned(corpus / "WEC-Sim" / "nemoh_v3.0.2_COER_comp")
+    assert "inertia_matrix" not in ds
+    assert re.search(
+        r"no inertia_matrix: .* rho\*V = 26\.8178 kg\); rho\*V is the mass only",
+        ds.attrs["history"],
+    )
+
+
+def test_damaged_sibling_matrix_warns_and_names_what_is_lost(cylinder, nemoh_copy):
+    kh = nemoh_copy / "KH.dat"
+    lines = kh.read_text().splitlines()
+    lines[2], lines[3] = lines[3], lines[2]  # rows swapped: no longer symmetric
+    kh.write_text("\n".join(lines) + "\n")
+    with pytest.warns(cummins.HydroDataWarning, match=r"not symmetric.*hydrostatic_stiffness"):
+        ds = nemoh.read_nemoh(nemoh_copy)
+    assert "hydrostatic_stiffness" not in ds
+    xr.testing.assert_equal(ds.added_mass, cylinder.added_mass)
+
+
+def test_sentinel_values_in_a_sibling_are_refused(nemoh_copy):
+    kh = nemoh_copy / "KH.dat"
+    kh.write_text(kh.read_text().replace("0.0000000E+00", "-9.99E+99", 1))
+    with pytest.warns(cummins.HydroDataWarning, match="implausible value"):
+        ds = nemoh.read_nemoh(nemoh_copy)
+    assert "hydrostatic_stiffness" not in ds

@@ -354,17 +354,51 @@ def test_cross_flow_drag_of_a_uniform_hull_matches_closed_forms():
     assert low[3] > 0  # keel pushed to port: heel to starboard
 
 
+#: Hoerner's 2-D cross-flow drag coefficient C_D against B/(2T), as digitised by Leite,
+#: Aranha, Umeda & de Conti (1998, Appl. Ocean Res. 20) and published in MSS's Hoerner.m
+#: (Fossen 2007): the literature values, kept here apart from the module's own copy so
+#: that a transcription error in either is caught.
+LITERATURE_HOERNER = [
+    (0.0108623, 1.96608),
+    (0.176606, 1.96573),
+    (0.353025, 1.89756),
+    (0.451863, 1.78718),
+    (0.472838, 1.58374),
+    (0.492877, 1.27862),
+    (0.493252, 1.21082),
+    (0.558473, 1.08356),
+    (0.646401, 0.998631),
+    (0.833589, 0.87959),
+    (0.988002, 0.828415),
+    (1.30807, 0.759941),
+    (1.63918, 0.691442),
+    (1.85998, 0.657076),
+    (2.31288, 0.630693),
+    (2.59998, 0.596186),
+    (3.00877, 0.586846),
+    (3.45075, 0.585909),
+    (3.7379, 0.559877),
+    (4.00309, 0.559315),
+]
+
+
 def test_hoerner_curve():
-    table = L.HOERNER_DRAG
-    for ratio, cd in table[[0, 5, 11, 19]]:
-        assert float(L.hoerner_drag_coefficient(2.0 * ratio, 1.0)) == pytest.approx(cd)
-    assert float(L.hoerner_drag_coefficient(0.001, 10.0)) == pytest.approx(1.96608)
-    assert float(L.hoerner_drag_coefficient(100.0, 1.0)) == pytest.approx(0.559315)
-    mid = float(L.hoerner_drag_coefficient(2 * 1.5, 1.0))  # between 1.30807 and 1.63918
-    assert 0.691442 < mid < 0.759941
-    assert np.all(np.diff(table[:, 1]) <= 0)  # decreasing with B/2T
+    """C_D(B/2T) against the literature table: at its points, linearly between them (as
+    MSS interpolates), held at the ends; the flat-plate limit near 2 (Hoerner 1965)."""
+    ratio, cd = np.array(LITERATURE_HOERNER).T
+    assert L.HOERNER_DRAG.shape == (ratio.size, 2)
+    for r, c in LITERATURE_HOERNER:
+        assert float(L.hoerner_drag_coefficient(2.0 * r, 1.0)) == pytest.approx(c, rel=1e-9)
+    between = 0.5 * (ratio[:-1] + ratio[1:])
+    expected = cd[:-1] + (between - ratio[:-1]) / np.diff(ratio) * np.diff(cd)
+    np.testing.assert_allclose(L.hoerner_drag_coefficient(2.0 * between, 1.0), expected, rtol=1e-9)
+    assert float(L.hoerner_drag_coefficient(0.001, 10.0)) == pytest.approx(cd[0])
+    assert float(L.hoerner_drag_coefficient(100.0, 1.0)) == pytest.approx(cd[-1])
+    assert 1.9 < cd[0] < 2.05  # a flat plate across the flow
+    # the S-175 (B = 25.4 m, T = 9.5 m): B/2T = 1.3368, between 1.30807 and 1.63918
     drag = L.CrossFlowDrag.from_main_particulars(175.0, 25.4, 9.5)
-    assert drag.drag_coefficient[0] == pytest.approx(float(L.hoerner_drag_coefficient(25.4, 9.5)))
+    by_hand = 0.759941 + (25.4 / 19.0 - 1.30807) / (1.63918 - 1.30807) * (0.691442 - 0.759941)
+    assert drag.drag_coefficient[0] == pytest.approx(by_hand, rel=1e-9)
 
 
 # --------------------------------------------------------------------------- wind

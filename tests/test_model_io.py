@@ -593,7 +593,10 @@ def test_mss_fits_reproduce_mss_vessel_data(mss_models, mss_vessels, name):
     fits anti-correlated with the data (R² < 0); a wrong sign of C all of them.
     MSS's fits are the reference cummins' identification must beat. Measured R² of
     B(ω) on the diagonal (surge … yaw): tanker 0.98 0.99 0.93 0.92 0.93 0.98, supply
-    1.00 1.00 0.98 1.00 0.73 1.00, s175 0.99 0.99 0.98 1.00 0.96 0.99.
+    1.00 1.00 0.98 1.00 0.73 1.00, s175 0.99 0.99 0.98 1.00 0.96 0.99. What this test
+    guards is the reader's conventions, not MSS's fit quality: a diagonal read with the
+    wrong sign or axes is anti-correlated (R² < 0) or far off (R² < 0.5); the floor 0.5
+    says "the reader delivers the model MSS fitted" with margin on every vessel.
     """
     model, ds = mss_models[name], mss_vessels[name]
     omega = ds.omega.values
@@ -603,8 +606,7 @@ def test_mss_fits_reproduce_mss_vessel_data(mss_models, mss_vessels, name):
         r2_damping = _r2(ds.radiation_damping.values[:, i, j], k[:, i, j].real)
         assert r2_damping > 0.0, (name, i + 1, j + 1, r2_damping)
         if i == j:
-            floor = 0.7 if (name, i) == ("supply", 4) else 0.9
-            assert r2_damping >= floor, (name, i + 1, r2_damping)
+            assert r2_damping >= 0.5, (name, i + 1, r2_damping)
             added = model.added_mass_inf[i, i] + k[:, i, i].imag / omega
             assert _r2(ds.added_mass.values[:, i, i], added) > 0.0
 

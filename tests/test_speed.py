@@ -8,8 +8,6 @@ the data's first frequency, 0.105 rad/s, is flagged as suspect by the fit, and a
 
 from __future__ import annotations
 
-from pathlib import Path
-
 import numpy as np
 import pytest
 import xarray as xr
@@ -20,19 +18,17 @@ from cummins.errors import CumminsError
 from cummins.fit import fit_radiation
 from cummins.hydrodb import dof_matrix, select_dofs
 
-S175 = Path(__file__).resolve().parents[2] / "shared" / "data" / "mss" / "s175" / "s175.mat"
 VERTICAL = ["Heave", "Pitch"]
 #: fit options for the S-175: fitted range up to 2 rad/s (module docstring), tight targets
 FIT = {"omega_max": 2.0, "r2": 0.999, "r2_coupling": 0.999, "max_order": 12}
 #: indices of the range of interest on the S-175 grid: 0.209 … 1.571 rad/s
 INTEREST = slice(1, 32)
 
-pytestmark = pytest.mark.skipif(not S175.exists(), reason="S-175 data not available")
-
 
 @pytest.fixture(scope="module")
-def s175() -> xr.Dataset:
-    return cummins.read(S175)
+def s175(shared_data) -> xr.Dataset:
+    """The S-175 through the one data fixture (under CI=true a missing file fails)."""
+    return cummins.read(shared_data / "mss" / "s175" / "s175.mat")
 
 
 @pytest.fixture(scope="module")

@@ -296,15 +296,18 @@ def test_known_damping_recovered_within_intervals(sea_state_records, roll_vessel
     """Acceptance: linear + quadratic + cubic roll damping, 2 % noise on motion and force,
     three sea states: each coefficient inside its interval, intervals informative.
 
-    99 % intervals: three coefficients each inside a 95 % interval fail together one time
-    in seven by design. Over eight noise/phase seeds the standardised errors (b − b_true)/σ
-    were all within ±1.97 (coverage of the 95 % intervals 100/88/88 %), so the intervals
-    are honest (benchmarks/bench_sysid.py reports the same for the 6-DOF case)."""
-    model = identify_damping(sea_state_records, roll_vessel, ["Roll"], confidence=0.99)
+    99.9 % intervals (±3.29 σ): three coefficients each inside a 95 % interval fail
+    together one time in seven by design. With this record the standardised errors
+    (b − b_true)/σ are +2.18, −1.80, +1.41 (b₁, b₂, b₃), so the 99 % bound (2.58 σ) would
+    sit within 20 % of b₁'s error; over eight noise/phase seeds they were all within ±1.97
+    (coverage of the 95 % intervals 100/88/88 %): the intervals are honest
+    (benchmarks/bench_sysid.py reports the same for the 6-DOF case). Informative: each
+    interval is narrower than half the true value (widest, b₂: 0.41 of it)."""
+    model = identify_damping(sea_state_records, roll_vessel, ["Roll"], confidence=0.999)
     est = model["Roll"]
     for _b, (lo, hi), true in zip(est.coefficients, est.intervals, true_damping, strict=True):
         assert lo <= true <= hi
-        assert hi - lo < 1.0 * true  # not "confident nonsense", and not uninformative
+        assert hi - lo < 0.6 * true  # not "confident nonsense", and not uninformative
     assert not est.ill_conditioned
     assert est.negative == ()
     assert est.amplitude_spread > 3

@@ -45,6 +45,7 @@ from cummins.hydrodb import (
     validate,
 )
 from cummins.io import FORMATS, detect_format, read, write
+from cummins.mass_properties import with_external_terms, with_inertia
 from cummins.radiation import CouplingModel, RadiationModel
 from cummins.retardation import (
     added_mass_inf,
@@ -105,5 +106,7 @@ __all__ = [
     "validate",
     "vessel_from_hydrodb",
     "waves",
+    "with_external_terms",
+    "with_inertia",
     "write",
 ]

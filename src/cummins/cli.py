@@ -197,15 +197,18 @@ def _print_report(report) -> None:
 @click.option("--force", is_flag=True, help="Overwrite DESTINATION if it exists.")
 @reports_errors
 def convert(source, destination, format_, rho, g, ulen, axes, reference_point, force):
-    """Convert SOURCE to canonical NetCDF (.nc) or an MSS vessel struct (.mat).
+    """Convert SOURCE to canonical NetCDF (.nc), a BEMIO .h5 for WEC-Sim, or an MSS
+    vessel struct (.mat).
 
     \b
     The NetCDF has Capytaine's layout (complex values on a re/im dimension) plus
-    cummins' variables (added_mass_inf, ...), in SI units.
+    cummins' variables (added_mass_inf, ...), in SI units. The .h5 has the layout
+    WEC-Sim's readBEMIOH5 reads (normalised coefficients, z-up axes, K(t)).
 
     \b
     Examples:
       cummins convert tanker.1 tanker.nc
+      cummins convert tanker.1 tanker.h5
       cummins convert input.re7 supply.mat --reference-point 0 0 0
     """
     from cummins.hydrodb import change_axes, move_reference_point

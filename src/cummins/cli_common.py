@@ -80,8 +80,23 @@ def viscous_damping_values(
     return values
 
 
+#: Where :func:`read_options` leaves the mass-property options for :func:`read_hydrodb`.
+_EOM_KEY = "cummins.equation_of_motion"
+_EOM_OPTIONS = (
+    "mass",
+    "center_of_gravity",
+    "radii_of_gyration",
+    "inertia_matrix",
+    "external_stiffness",
+    "external_damping",
+)
+
+
 def read_options(func):
-    """--format, --rho, --g, --ulen: how to read solver files."""
+    """--format, --rho, --g, --ulen: how to read solver files; --mass,
+    --center-of-gravity, --radii-of-gyration, --inertia-matrix, --external-stiffness,
+    --external-damping: what to complete them with (the terms of the equation of motion
+    that the files lack), applied by :func:`read_hydrodb`."""
     decorators = [
         click.option(
             "--format",
@@ -115,19 +130,131 @@ def read_options(func):
             metavar="M",
             help="WAMIT length scale ULEN (default: from the .out, else 1).",
         ),
+        click.option(
+            "--mass",
+            type=float,
+            multiple=True,
+            metavar="KG",
+            help="Mass of the body (repeat once per body, in their order). With "
+            "--radii-of-gyration it builds the rigid-body inertia matrix when the files lack "
+            "it (or replaces theirs). Default with radii given: rho times the displaced "
+            "volume (a freely floating body).",
+        ),
+        click.option(
+            "--center-of-gravity",
+            type=(float, float, float),
+            multiple=True,
+            metavar="X Y Z",
+            help="Centre of gravity in m, in the data's axes (once per body; default: the "
+            "files' value).",
+        ),
+        click.option(
+            "--radii-of-gyration",
+            type=(float, float, float),
+            multiple=True,
+            metavar="RXX RYY RZZ",
+            help="Radii of gyration about the centre of gravity in m (once per body), e.g. "
+            "0.35 B, 0.25 L, 0.26 L for a ship.",
+        ),
+        click.option(
+            "--inertia-matrix",
+            type=click.Path(exists=True, dir_okay=False),
+            default=None,
+            metavar="FILE",
+            help="The inertia matrix instead: a text file (or .npy) with the n x n matrix of "
+            "all DOFs, or a 6 x 6 matrix per body one below the other, about the reference "
+            "point (kg, kg m, kg m^2).",
+        ),
+        click.option(
+            "--external-stiffness",
+            type=(str, str, float),
+            multiple=True,
+            metavar="DOF DOF VALUE",
+            help="External stiffness (moorings, a PTO spring) added to the restoring, e.g. "
+            "--external-stiffness Surge Surge 8e4 (N/m, N m/rad; repeatable; give both (i, j) and "
+            "(j, i) for a symmetric coupling).",
+        ),
+        click.option(
+            "--external-damping",
+            type=(str, str, float),
+            multiple=True,
+            metavar="DOF DOF VALUE",
+            help="External linear damping (a PTO, dampers) between two DOFs, e.g. "
+            "--external-damping body1__Pitch body1__Pitch 1e6 (kg/s, kg m^2/s; repeatable).",
+        ),
     ]
+
+    @functools.wraps(func)
+    def wrapper(*args, **kwargs):
+        context = click.get_current_context()
+        context.meta[_EOM_KEY] = {name: kwargs.pop(name) for name in _EOM_OPTIONS}
+        return func(*args, **kwargs)
+
     for decorator in reversed(decorators):
-        func = decorator(func)
-    return func
+        wrapper = decorator(wrapper)
+    return wrapper
 
 
 def read_hydrodb(
     path: str, format_: str | None, rho: float | None, g: float | None, ulen: float | None
 ):
-    """Read ``path`` with the options of :func:`read_options`."""
+    """Read ``path`` with the options of :func:`read_options`, completed by the
+    mass-property and external-term options of the same command."""
     from cummins.io import read
 
-    return read(path, format=format_, rho=rho, g=g, ulen=ulen)
+    ds = read(path, format=format_, rho=rho, g=g, ulen=ulen)
+    context = click.get_current_context(silent=True)
+    options = context.meta.get(_EOM_KEY) if context is not None else None
+    return complete_equation_of_motion(ds, **options) if options else ds
+
+
+def complete_equation_of_motion(
+    ds,
+    *,
+    mass=(),
+    center_of_gravity=(),
+    radii_of_gyration=(),
+    inertia_matrix=None,
+    external_stiffness=(),
+    external_damping=(),
+):
+    """``ds`` with the inertia and external terms of the command-line options."""
+    from cummins.mass_properties import read_matrix_file, with_external_terms, with_inertia
+
+    if inertia_matrix is not None:
+        if mass or radii_of_gyration or center_of_gravity:
+            raise click.UsageError(
+                "give either --inertia-matrix or --mass/--center-of-gravity/"
+                "--radii-of-gyration, not both"
+            )
+        ds = with_inertia(ds, matrix=read_matrix_file(inertia_matrix))
+    elif radii_of_gyration:
+        ds = with_inertia(
+            ds,
+            mass=list(mass) if mass else None,
+            center_of_gravity=[list(c) for c in center_of_gravity] or None,
+            radii_of_gyration=[list(r) for r in radii_of_gyration],
+        )
+    elif mass or center_of_gravity:
+        raise click.UsageError(
+            "--mass and --center-of-gravity build the inertia matrix together with "
+            "--radii-of-gyration RXX RYY RZZ: give the radii too"
+        )
+    labels = [str(d) for d in ds.influenced_dof.values]
+    terms = {}
+    for name, given in (("stiffness", external_stiffness), ("damping", external_damping)):
+        if given:
+            values: dict[tuple[str, str], float] = {}
+            for i, j, value in given:
+                for dof in (i, j):
+                    if dof not in labels:
+                        raise click.BadParameter(
+                            f"unknown DOF {dof!r}; the data have {', '.join(labels)}",
+                            param_hint=f"--external-{name}",
+                        )
+                values[(i, j)] = values.get((i, j), 0.0) + value
+            terms[name] = values
+    return with_external_terms(ds, **terms) if terms else ds
 
 
 def prepare_outputs(*paths, force: bool) -> None:

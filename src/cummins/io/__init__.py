@@ -11,10 +11,12 @@ nemoh      NEMOH v2/v3 ``RadiationCoefficients.tec`` … (file or folder)  :mod:
 aqwa       ANSYS AQWA ``.LIS`` (or ``.AH1``)                            :mod:`.aqwa`
 veres      ShipX/VERES ``.re7`` (+ ``.re8``, ``.re1``)                  :mod:`.veres`
 netcdf     Capytaine NetCDF (and cummins' own, which is the same layout) :mod:`.netcdf`
+bemio      WEC-Sim's BEMIO ``.h5`` (MATLAB and 2015 Python layouts)     :mod:`.bemio`
 mss        Marine Systems Simulator ``vessel`` struct (``.mat``)        :mod:`.mss`
 ========== ============================================================ ==============
 
-``write(ds, path)`` writes canonical NetCDF (``.nc``) or an MSS ``vessel`` ``.mat``.
+``write(ds, path)`` writes canonical NetCDF (``.nc``), a BEMIO ``.h5`` for WEC-Sim, or
+an MSS ``vessel`` ``.mat``.
 """
 
 from __future__ import annotations
@@ -110,6 +112,7 @@ FORMATS: dict[str, Format] = {
         Format("aqwa", "ANSYS AQWA .LIS / .AH1", "cummins.io.aqwa", "read_aqwa"),
         Format("veres", "ShipX/VERES .re7/.re8/.re1", "cummins.io.veres", "read_veres"),
         Format("netcdf", "Capytaine / cummins NetCDF", "cummins.io.netcdf", "read_netcdf"),
+        Format("bemio", "WEC-Sim BEMIO .h5", "cummins.io.bemio", "read_bemio"),
         Format("mss", "MSS vessel struct .mat", "cummins.io.mss", "read_mss"),
     )
 }
@@ -227,18 +230,31 @@ def read(
     return fmt.read(target, **constants, **options)
 
 
-def write(ds: xr.Dataset, path: str | os.PathLike[str], *, force: bool = False) -> Path:
-    """Write a ``HydroDB`` to ``.nc`` (Capytaine-compatible NetCDF) or ``.mat`` (MSS).
+def write(ds: xr.Dataset, path: str | os.PathLike[str], *, force: bool = False, model=None) -> Path:
+    """Write a ``HydroDB`` to ``.nc`` (Capytaine-compatible NetCDF), ``.h5`` (BEMIO, the
+    layout WEC-Sim reads) or ``.mat`` (MSS).
 
-    Refuses to overwrite an existing file unless ``force=True``.
+    Refuses to overwrite an existing file unless ``force=True``. ``model`` (a fitted
+    :class:`~cummins.radiation.RadiationModel`) goes into a ``.h5`` file's state-space
+    datasets (see :func:`cummins.io.bemio.write_bemio`).
     """
     p = Path(path)
     check_writable(p, force)
     suffix = p.suffix.lower()
+    if model is not None and suffix != ".h5":
+        raise HydroDataError(
+            f"a radiation model can only be written with the data to .h5, not {suffix}",
+            path=p,
+            hint="save the model with model.save(...) or cummins fit --openfast/--mss",
+        )
     if suffix == ".nc":
         from cummins.io.netcdf import write_netcdf
 
         write_netcdf(ds, p)
+    elif suffix in (".h5", ".hdf5"):
+        from cummins.io.bemio import write_bemio
+
+        write_bemio(ds, p, model=model)
     elif suffix == ".mat":
         from cummins.io.mss import write_mss
 
@@ -247,7 +263,8 @@ def write(ds: xr.Dataset, path: str | os.PathLike[str], *, force: bool = False) 
         raise HydroDataError(
             f"cannot write {suffix or 'files without an extension'}",
             path=p,
-            hint="use .nc (NetCDF, Capytaine layout) or .mat (MSS vessel struct)",
+            hint="use .nc (NetCDF, Capytaine layout), .h5 (BEMIO, for WEC-Sim) or .mat "
+            "(MSS vessel struct)",
         )
     return p
 

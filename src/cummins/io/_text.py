@@ -48,7 +48,7 @@ class TextFile:
                 path=p,
                 hint="check the file name and format",
             )
-        text = raw.decode("utf-8", errors="replace")
+        text = raw.decode("utf-8-sig", errors="replace")  # a byte-order mark is not text
         return cls(p, tuple(text.splitlines()))
 
     def __len__(self) -> int:

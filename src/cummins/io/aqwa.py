@@ -59,7 +59,7 @@ import xarray as xr
 
 from cummins.errors import HydroDataError
 from cummins.hydrodb import dof_labels, make_hydrodb
-from cummins.io._common import resolve_rho_g
+from cummins.io._common import resolve_rho_g, warn_damage
 from cummins.io._text import TextFile, parse_numbers
 
 __all__ = ["read_aqwa", "sniff", "sniff_dir"]
@@ -76,7 +76,7 @@ HIGH_FREQUENCY_LIMIT = 50.0
 
 def _head(path: Path, size: int = 8192) -> str:
     with open(path, "rb") as f:
-        return f.read(size).decode("utf-8", errors="replace")
+        return f.read(size).decode("utf-8-sig", errors="replace")
 
 
 def _is_lis(head: str) -> bool:
@@ -279,6 +279,8 @@ def _lis_frequencies(text: TextFile, titles) -> tuple[np.ndarray, np.ndarray, np
         k += 1
         while k < len(text.lines) and not _is_rule(text.lines[k]):
             line = text.lines[k]
+            if line.strip() == "1":  # Fortran carriage control: the table goes on overleaf
+                break
             values = _leading_numbers(line)
             if not values:
                 if line.strip():
@@ -546,6 +548,14 @@ def _read_lis(path: Path, rho, g) -> xr.Dataset:
         m[:3, :3] = mass * np.eye(3)
         m[3:, 3:] = inertia
         extra["inertia_matrix"] = m
+        history.append(
+            f"inertia matrix from MASS AND INERTIA PROPERTIES (mass {mass:.6g} kg, inertia "
+            "matrix about the centre of gravity)"
+        )
+    else:
+        history.append("no MASS AND INERTIA PROPERTIES in the listing: no inertia_matrix")
+    notes: list[str] = []
+    _lis_completeness(text, tables, a_inf is not None or high is not None, notes)
     cb = np.array([_value_after(text, key)[0] for key in ("BX", "BY", "BZ")])
     volume, _ = _value_after(text, "MESH BASED DISPLACEMENT")
     return make_hydrodb(
@@ -563,8 +573,49 @@ def _read_lis(path: Path, rho, g) -> xr.Dataset:
         center_of_gravity=cg,
         center_of_buoyancy=cb if not any(v is None for v in cb) else None,
         displaced_volume=volume,
+        read_warnings=notes,
         **extra,
     )
+
+
+def _lis_completeness(text: TextFile, tables: dict, has_lhfr: bool, notes: list[str]) -> None:
+    """Warn when the listing ends before the sections it announces.
+
+    AQWA closes every listing with a ``FINISH DATE`` line; the ``OPTIONS`` cards of the
+    input echo announce the LHFR block (low and high frequency limits).
+    """
+    options = {
+        word
+        for line in text.lines[:400]
+        if line.strip().startswith("OPTIONS")
+        for word in line.split()[1:]
+    }
+    if "LHFR" in options and not has_lhfr:
+        warn_damage(
+            "OPTIONS LHFR announces the HYDRODYNAMIC PARAMETERS AT LOW & HIGH FREQUENCIES, "
+            "but the listing has none (truncated?): read without added_mass_inf",
+            path=text.path,
+            line=len(text.lines),
+            notes=notes,
+        )
+    if not any(line.strip().startswith("FINISH DATE") for line in text.lines[-40:]):
+        lost = [name for kind, name in _TABLE_NAMES.items() if kind not in tables]
+        warn_damage(
+            "the listing ends without AQWA's closing 'FINISH DATE' line (truncated, or the "
+            "run stopped)"
+            + (f": read without {', '.join(lost)} (their tables are missing)" if lost else ""),
+            path=text.path,
+            line=len(text.lines),
+            notes=notes,
+        )
+
+
+_TABLE_NAMES = {
+    "excitation": "the excitation force",
+    "diffraction": "the diffraction force",
+    "froude_krylov": "the Froude-Krylov force",
+    "rao": "the RAOs",
+}
 
 
 def _lis_cg(text: TextFile) -> np.ndarray:
@@ -649,7 +700,10 @@ def _ah1_sections(text: TextFile) -> tuple[list[float], list[int], dict[str, _Se
 
 
 def _records(text: TextFile, section: _Section, n_index: int, n_rows: int):
-    """Records of ``n_rows`` lines: ``n_index`` indices + 6 values, then rows of 6."""
+    """Records of ``n_rows`` lines: ``n_index`` indices + 6 values, then rows of 6.
+
+    Values are in AQWA's E format (1.2345E+06), except the second row of a FORCERAO
+    record (phases, -178.71)."""
     out = []
     r = 0
     rows, lines = section.rows, section.lines
@@ -664,6 +718,7 @@ def _records(text: TextFile, section: _Section, n_index: int, n_rows: int):
         index = first[:n_index]
         if np.any(index != np.round(index)) or np.any(index < 1):
             raise text.error(f"{section.name}: indices must be positive whole numbers", lines[r])
+        _check_fields(text, section.name, lines[r], n_index, _AH1_FIELDS[0])
         block = [first[n_index:]]
         for extra in range(1, n_rows):
             if r + extra >= len(rows):
@@ -673,10 +728,63 @@ def _records(text: TextFile, section: _Section, n_index: int, n_rows: int):
                     f"{section.name}: expected 6 numbers, found {rows[r + extra].size}",
                     lines[r + extra],
                 )
+            phases = section.name == "FORCERAO" and extra == 1
+            _check_fields(text, section.name, lines[r + extra], 0, _AH1_FIELDS[1 if phases else 0])
             block.append(rows[r + extra])
         out.append((index.astype(int), np.vstack(block), lines[r]))
         r += n_rows
     return out
+
+
+#: The fixed formats AQWA writes the values of an AH1 record in: 1.2345E+06 (matrices,
+#: amplitudes) or -178.71 (phases), one format per row.
+_AH1_FIELDS = (re.compile(r"-?\d\.\d{4}E[-+]\d\d"), re.compile(r"-?\d+\.\d\d"))
+
+#: Largest asymmetry |M_ij - M_ji| / (sqrt|M_ii M_jj| + 1e-3 sqrt(T_i T_j)) accepted in
+#: an AQWA matrix (T: largest diagonal of the same kind over all frequencies). Measured:
+#: ≤ 0.69 in the damping, ≤ 0.17 in the added mass of the three AQWA runs of the corpus
+#: and the shared data (noise in near-zero couplings); rows swapped or edited give
+#: 10–10⁶.
+ASYMMETRY_LIMIT = 2.0
+
+
+def _check_fields(text: TextFile, section: str, line: int, n_index: int, form) -> None:
+    """A record row must be written in AQWA's fixed format ``form`` (a cut number, or a
+    row of phases among matrix rows, is not)."""
+    fields = text.lines[line].split()[n_index:]
+    bad = next((f for f in fields if not form.fullmatch(f)), None)
+    if bad is not None:
+        raise text.error(
+            f"{section}: {bad!r} is not written in AQWA's format for this row (cut, moved or "
+            "edited?)",
+            line,
+        )
+
+
+def asymmetry(matrices: np.ndarray) -> np.ndarray:
+    """Relative asymmetry of each n×n matrix of ``matrices`` (…, n, n), see
+    :data:`ASYMMETRY_LIMIT`; 0 for a symmetric matrix."""
+    stack = np.asarray(matrices, dtype=float).reshape(-1, *np.shape(matrices)[-2:])
+    n = stack.shape[-1]
+    diag = np.abs(np.diagonal(stack, axis1=1, axis2=2))
+    rot = (np.arange(n) % 6) >= 3
+    largest = np.array([diag[:, rot == rot[i]].max() for i in range(n)])
+    floor = 1e-3 * np.sqrt(np.outer(largest, largest))
+    scale = np.sqrt(diag[:, :, None] * diag[:, None, :]) + floor + np.finfo(float).tiny
+    return (np.abs(stack - np.swapaxes(stack, 1, 2)) / scale).max(axis=(1, 2))
+
+
+def _check_symmetric(text: TextFile, section: _Section, matrices: np.ndarray, omega=None):
+    """HydroDataError when a matrix of ``section`` is far from symmetric (rows swapped)."""
+    values = asymmetry(matrices)
+    worst = int(np.argmax(values))
+    if values[worst] > ASYMMETRY_LIMIT:
+        where = f" at {omega[worst]:g} rad/s" if omega is not None else ""
+        raise text.error(
+            f"{section.name}: the matrix{where} is not symmetric (asymmetry "
+            f"{values[worst]:.3g}, AQWA's are below {ASYMMETRY_LIMIT:g}): rows swapped or edited?",
+            section.lines[0],
+        )
 
 
 def _ah1_require(text: TextFile, sections: dict[str, _Section], name: str) -> _Section:
@@ -706,6 +814,7 @@ def _ah1_matrices(text, sections, name, nb, nf, with_frequency: bool) -> np.ndar
             f"{name}: missing record for {(where // 6 + 1).tolist()} (truncated?)",
             section.lines[-1],
         )
+    _check_symmetric(text, section, out)
     return out
 
 
@@ -721,6 +830,7 @@ def _ah1_per_body(text, sections, name, nb) -> np.ndarray:
         if k >= nb:
             raise text.error(f"{name}: body {index[0]} out of range", line)
         out[6 * k : 6 * k + 6, 6 * k : 6 * k + 6] = block
+    _check_symmetric(text, section, out)
     return out
 
 
@@ -748,23 +858,73 @@ def _ah1_lhfr(header: str) -> tuple[float, float]:
     return found[0], found[1]
 
 
+def _ah1_header(text: TextFile, numbers: list[float], lines: list[int]):
+    """Bodies, directions (deg) and frequencies (rad/s) of the numeric AH1 header.
+
+    File version 5 (AQWA 2022 R1) writes one block ``body nh nf directions frequencies``
+    per structure (``1 3 100 …`` then ``2 3 100 …``); one block whose first number is
+    above 1 is read as the older ``nbodies nh nf …`` (one set for all structures).
+    """
+    blocks = []
+    pos = 0
+    while pos < len(numbers):
+        if len(numbers) - pos < 3:
+            raise text.error("expected 'body directions frequencies' in the header", lines[pos])
+        first, nh, nf = numbers[pos : pos + 3]
+        if min(first, nh, nf) < 1 or any(v != round(v) for v in (first, nh, nf)) or first > 100:
+            raise text.error("invalid numbers of bodies, directions or frequencies", lines[pos])
+        nh, nf = int(nh), int(nf)
+        end = pos + 3 + nh + nf
+        if end > len(numbers):
+            raise text.error(
+                f"expected {nh} directions and {nf} frequencies, found {len(numbers) - pos - 3} "
+                "numbers",
+                lines[-1],
+            )
+        blocks.append(
+            (
+                int(first),
+                np.asarray(numbers[pos + 3 : pos + 3 + nh]),
+                np.asarray(numbers[pos + 3 + nh : end]),
+                lines[pos],
+            )
+        )
+        pos = end
+    if len(blocks) == 1:
+        return blocks[0][0], blocks[0][1], blocks[0][2]
+    for k, (index, directions, omega, line) in enumerate(blocks):
+        if index != k + 1:
+            raise text.error(f"header block of body {index} where body {k + 1} was expected", line)
+        if directions.shape != blocks[0][1].shape or not np.allclose(directions, blocks[0][1]):
+            raise text.error("the bodies have different wave directions", line)
+        if omega.shape != blocks[0][2].shape or not np.allclose(omega, blocks[0][2]):
+            raise text.error("the bodies have different wave frequencies", line)
+    return len(blocks), blocks[0][1], blocks[0][2]
+
+
 def _read_ah1(path: Path, rho, g) -> xr.Dataset:
     text = TextFile.read(path)
     numbers, number_lines, sections, header = _ah1_sections(text)
     if len(numbers) < 3:
         raise text.error("expected 'bodies directions frequencies' after the header")
-    nb, nh, nf = numbers[:3]
-    if min(nb, nh, nf) < 1 or any(v != round(v) for v in (nb, nh, nf)) or nb > 100:
-        raise text.error("invalid numbers of bodies, directions or frequencies", number_lines[0])
-    nb, nh, nf = int(nb), int(nh), int(nf)
-    if len(numbers) != 3 + nh + nf:
-        raise text.error(
-            f"expected {nh} directions and {nf} frequencies, found {len(numbers) - 3} numbers",
-            number_lines[-1],
+    nb, directions, omega = _ah1_header(text, numbers, number_lines)
+    nh, nf = directions.size, omega.size
+    notes: list[str] = []
+    version = re.search(r"FILE VERSION NO\s*(\d+)", header)
+    history = [
+        f"read AQWA hydrodynamic database {path.name} (file version "
+        f"{version.group(1) if version else '?'}; {nb} structure{'s' if nb > 1 else ''})"
+    ]
+    if not any(
+        p.suffix.lower() == ".lis" and p.stem.lower() == path.stem.lower()
+        for p in path.parent.iterdir()
+    ):
+        history.append(
+            f"no {path.stem}.LIS beside the database: read without what only the listing "
+            "holds (motion RAOs, the Froude-Krylov/diffraction split, the structures' names); "
+            "rho, g and depth from GENERAL, mass and inertia from MASS, excitation from "
+            "FORCERAO"
         )
-    directions = np.asarray(numbers[3 : 3 + nh])
-    omega = np.asarray(numbers[3 + nh :])
-    history = [f"read AQWA hydrodynamic database {path.name}"]
     general = _ah1_require(text, sections, "GENERAL").rows[0]
     if general.size >= 4:
         depth, rho_f, g_f = general[1:4]
@@ -798,6 +958,14 @@ def _read_ah1(path: Path, rho, g) -> xr.Dataset:
     extra["hydrostatic_stiffness"] = _ah1_per_body(text, sections, "HYDSTIFFNESS", nb)
     if "MASS" in sections:
         extra["inertia_matrix"] = _ah1_per_body(text, sections, "MASS", nb)
+        masses = np.diag(extra["inertia_matrix"])[0::6]
+        history.append(
+            "inertia matrix from the MASS section (about each centre of gravity; mass "
+            + ", ".join(f"{m:.6g}" for m in masses)
+            + " kg)"
+        )
+    else:
+        history.append("no MASS section: no inertia_matrix")
     low, high = _ah1_lhfr(header)
     if "ADDEDMASS_HF" in sections and high >= HIGH_FREQUENCY_LIMIT:
         extra["added_mass_inf"] = _ah1_matrices(text, sections, "ADDEDMASS_HF", nb, nf, False)
@@ -808,7 +976,15 @@ def _read_ah1(path: Path, rho, g) -> xr.Dataset:
         low if "ADDEDMASS_LF" in sections else None,
         g_v,
     )
-    if "FORCERAO" in sections:
+    if "FORCERAO" not in sections:
+        warn_damage(
+            "no FORCERAO section, which AQWA writes after DAMPING: the file seems truncated; "
+            "read without the excitation force",
+            path=path,
+            line=len(text.lines),
+            notes=notes,
+        )
+    else:
         amplitude = np.full((nf, nh, 6 * nb), np.nan)
         phase = np.full_like(amplitude, np.nan)
         for index, block, line in _records(text, sections["FORCERAO"], 3, 2):
@@ -839,9 +1015,7 @@ def _read_ah1(path: Path, rho, g) -> xr.Dataset:
             "phases referred from the centre of gravity to the origin"
         )
     cob = _ah1_points(text, sections, "COB", nb)
-    volume = None
-    if "DISPLACEMENT" in sections and nb == 1 and sections["DISPLACEMENT"].rows[0].size == 2:
-        volume = float(sections["DISPLACEMENT"].rows[0][1])
+    volume = _ah1_volumes(text, sections, nb)
     names = [f"body{k + 1}" for k in range(nb)]
 
     def flat(points: np.ndarray | None) -> np.ndarray | None:
@@ -862,8 +1036,24 @@ def _read_ah1(path: Path, rho, g) -> xr.Dataset:
         center_of_gravity=flat(cog),
         center_of_buoyancy=flat(cob),
         displaced_volume=volume,
+        read_warnings=notes,
         **extra,
     )
+
+
+def _ah1_volumes(text: TextFile, sections: dict[str, _Section], nb: int):
+    """Displaced volumes (m³) of the DISPLACEMENT section: a float, one per body, or None."""
+    if "DISPLACEMENT" not in sections:
+        return None
+    section = sections["DISPLACEMENT"]
+    volumes = np.full(nb, np.nan)
+    for row, line in zip(section.rows, section.lines, strict=True):
+        if row.size != 2 or row[0] != round(row[0]) or not 1 <= row[0] <= nb:
+            raise text.error("DISPLACEMENT: expected 'body volume'", line)
+        volumes[int(row[0]) - 1] = row[1]
+    if np.isnan(volumes).any():
+        raise text.error("DISPLACEMENT: a body is missing", section.lines[-1])
+    return float(volumes[0]) if nb == 1 else volumes
 
 
 # --------------------------------------------------------------------------- reader

@@ -25,6 +25,21 @@ Files and what cummins takes from them (all dimensional, SI):
 * ``KH.dat``: the 6×6 hydrostatic stiffness per body (N/m, N, N·m/rad), as NEMOH wrote
   it; ``Hydrostatics.dat``: centre of buoyancy ``XF YF ZF``, centre of gravity
   ``XG YG ZG``, displaced volume (m³) and, in v3, the mass.
+* ``Mechanics/Inertia.dat`` (v3) → ``inertia_matrix`` about the rotation point (NEMOH
+  requires the matrices there; when the user gives none NEMOH writes its own estimate,
+  ρ∇ and a uniform hull shell, which ``history`` then says), ``Km.dat`` →
+  ``additional_stiffness``, ``Badd.dat`` → ``additional_damping`` (when not zero),
+  ``Kh.dat`` checked against the mesh folder's ``KH.dat``. Without ``Inertia.dat`` there
+  is no ``inertia_matrix``: ρ∇ is the mass only of a freely floating body, and the
+  inertia tensor cannot come from the volume (``history`` says so).
+* Several bodies: ``KH_0.dat`` … per body in the order of ``Nemoh.cal`` (a ``KH.dat``
+  beside them is the mesher's file of the last mesh it processed), labels
+  ``body1__Surge`` …, the mesh names in ``body_names``. C33 of each body is checked
+  against ρ g A_wp, the ω → 0 limit of the run's own Froude-Krylov heave force: files
+  of another mesh (the corpus Cubes and bemio two-body runs) are not read, with a
+  warning.
+* ``Nemoh.cal`` edited after the run (other frequency or direction counts than the
+  results): the results are read, ``history`` says so. QTF output is not read.
 * ``IRF.tec`` (if the post-processor was run with IRF on): NEMOH's own A(∞), column
   "AddedMass k" of zone "DoF j" being ``added_mass_inf[influenced=k, radiating=j]``.
   It is only used after checking that the file belongs to the run: its K(t) must be the
@@ -47,7 +62,6 @@ from __future__ import annotations
 
 import os
 import re
-import warnings
 from dataclasses import dataclass, field
 from pathlib import Path
 
@@ -55,8 +69,8 @@ import numpy as np
 import xarray as xr
 
 from cummins.errors import HydroDataError
-from cummins.hydrodb import DOF_NAMES, make_hydrodb
-from cummins.io._common import resolve_rho_g
+from cummins.hydrodb import DOF_NAMES, dof_labels, make_hydrodb
+from cummins.io._common import resolve_rho_g, warn_damage
 from cummins.io._text import TextFile, parse_numbers
 
 __all__ = ["read_nemoh", "sniff", "sniff_dir"]
@@ -82,7 +96,7 @@ _NUMBER = r"[-+]?(?:\d+\.?\d*|\.\d+)(?:[EeDd][-+]?\d+)?"
 
 def _head(path: Path, size: int = 4096) -> str:
     with open(path, "rb") as f:
-        return f.read(size).decode("utf-8", errors="replace")
+        return f.read(size).decode("utf-8-sig", errors="replace")
 
 
 def _is_tecplot(head: str) -> bool:
@@ -341,6 +355,8 @@ class _NemohCal:
     n_frequencies: int
     n_directions: int
     output_unit: int | None = None
+    frequency_range: tuple[float, float, int] = (0.0, 0.0, 1)  # min, max, unit (1 rad/s …)
+    qtf: bool = False
 
 
 class _Cursor:
@@ -418,16 +434,20 @@ def _read_cal(path: Path) -> _NemohCal:
     freq, freq_line = cur.numbers("the frequency range", 3)
     if freq.size >= 4:
         version, n_freq = "v3", freq[1]
+        f_range = (float(freq[2]), float(freq[3]), int(freq[0]) if freq[0] in (1, 2, 3) else 1)
     else:
         version, n_freq = "v2", freq[0]
+        f_range = (float(freq[1]), float(freq[2]), 1)
     if n_freq != round(n_freq) or n_freq < 1:
         raise text.error(
             f"number of frequencies must be a positive whole number, found {n_freq:g}", freq_line
         )
     n_dir = cur.count("the number of wave directions")
     output_unit = None
+    qtf = False
     if version == "v3":
         output_unit = _output_unit(cur)
+        qtf = _qtf_flag(cur)
     return _NemohCal(
         path,
         float(rho),
@@ -438,7 +458,22 @@ def _read_cal(path: Path) -> _NemohCal:
         int(n_freq),
         n_dir,
         output_unit,
+        f_range,
+        qtf,
     )
+
+
+def _qtf_flag(cur: _Cursor) -> bool:
+    """v3 QTF flag (first value line of the ``--- QTF`` section), False if absent."""
+    for i in range(cur.i, len(cur.text.lines)):
+        line = cur.text.lines[i].strip()
+        if line.startswith("--") and "qtf" in line.lower():
+            for j in range(i + 1, len(cur.text.lines)):
+                content = cur.text.lines[j].split("!", 1)[0].strip()
+                if content:
+                    return content.split()[0] == "1"
+            return False
+    return False
 
 
 def _output_unit(cur: _Cursor) -> int | None:
@@ -568,9 +603,23 @@ def _locate(path: Path) -> _Run:
 
 # --------------------------------------------------------------------------- companion files
 
+#: Magnitude beyond any floating body's coefficient (kg·m² of a 10⁹ kg hull 10³ m from
+#: its reference point is 10¹⁵): larger numbers are sentinels (-9.99e99) or damage.
+IMPLAUSIBLE = 1e20
+
+#: Largest relative asymmetry |M - Mᵀ| / max|M| of the matrices NEMOH writes
+#: (KH.dat, Inertia.dat: symmetric to the printed digits, 1e-7 in the corpus).
+SYMMETRY_TOLERANCE = 1e-4
+
+#: Largest relative difference between C33 of KH.dat and the run's own ρ g A_wp, the
+#: ω → 0 limit of its Froude-Krylov heave force (≤ 0.2 % measured on the cylinder, the
+#: COER float and the OSWEC flap; a factor 2 or 0.8 where the mesh files belong to
+#: another mesh).
+HYDROSTATIC_TOLERANCE = 0.05
+
 
 def _read_matrix(path: Path) -> np.ndarray:
-    """A square matrix written one row per line (``KH.dat``, ``Inertia.dat``)."""
+    """A square matrix written one row per line (``KH.dat``, ``Inertia.dat``, ``Km.dat``)."""
     text = TextFile.read(path)
     rows = []
     for i, line in enumerate(text.lines):
@@ -579,12 +628,26 @@ def _read_matrix(path: Path) -> np.ndarray:
         values = parse_numbers(line)
         if values is None or not np.all(np.isfinite(values)):
             raise text.error(f"expected a row of numbers, found {line.strip()[:60]!r}", i)
+        if np.any(np.abs(values) > IMPLAUSIBLE):
+            raise text.error(f"implausible value {values[np.abs(values) > IMPLAUSIBLE][0]:g}", i)
         if rows and values.size != rows[0].size:
             raise text.error(f"expected {rows[0].size} numbers on the row, found {values.size}", i)
         rows.append(values)
     matrix = np.vstack(rows)
     if matrix.shape[0] != matrix.shape[1] or matrix.shape[0] % 6:
-        raise text.error(f"expected a 6N×6N matrix, found {matrix.shape[0]}×{matrix.shape[1]}")
+        raise text.error(
+            f"expected a 6N×6N matrix, found {matrix.shape[0]}×{matrix.shape[1]} (rows missing?)",
+            len(text.lines) - 1,
+        )
+    scale = np.abs(matrix).max()
+    asymmetry = np.abs(matrix - matrix.T).max()
+    if asymmetry > SYMMETRY_TOLERANCE * scale:
+        i, j = np.unravel_index(np.argmax(np.abs(matrix - matrix.T)), matrix.shape)
+        raise text.error(
+            f"the matrix is not symmetric: [{i + 1},{j + 1}] = {matrix[i, j]:g} but "
+            f"[{j + 1},{i + 1}] = {matrix[j, i]:g} (rows swapped or edited?)",
+            hint="NEMOH writes these matrices symmetric",
+        )
     return matrix
 
 
@@ -606,16 +669,26 @@ def _read_hydrostatics(path: Path) -> dict[str, float]:
     text = TextFile.read(path)
     found: dict[str, float] = {}
     for i, line in enumerate(text.lines):
-        for name, value in re.findall(r"([A-Za-z][A-Za-z ]*?)\s*=\s*(" + _NUMBER + ")", line):
+        pairs = re.findall(r"([A-Za-z][A-Za-z ]*?)\s*=\s*(\S*)", line)
+        if not pairs and line.strip():
+            raise text.error(f"expected 'NAME = value', found {line.strip()[:60]!r}", i)
+        for name, value in pairs:
             key = _HYDROSTATICS_KEYS.get(name.strip().upper())
-            if key is None:
+            if key is None:  # a quantity cummins does not use
                 continue
-            number = float(value.replace("D", "E").replace("d", "e"))
-            if not np.isfinite(number):
-                raise text.error(f"non-finite {name.strip()}", i)
+            if key in found:
+                raise text.error(f"{name.strip()} given twice", i)
+            match = re.fullmatch(_NUMBER, value)
+            number = float(value.replace("D", "E").replace("d", "e")) if match else np.nan
+            if not np.isfinite(number) or abs(number) > IMPLAUSIBLE:
+                raise text.error(f"{name.strip()} is not a number ({value[:20]!r})", i)
             found[key] = number
-    if not {"xb", "yb", "zb"} <= found.keys():
-        raise text.error("no centre of buoyancy (XF, YF, ZF) found: not a Hydrostatics.dat file")
+    missing = [k for k in ("XF", "YF", "ZF", "DISPLACEMENT") if _HYDROSTATICS_KEYS[k] not in found]
+    if missing:
+        raise text.error(
+            f"no {', '.join(missing)} in the file (truncated, or not a Hydrostatics.dat)",
+            len(text.lines) - 1,
+        )
     return found
 
 
@@ -628,15 +701,28 @@ def _companion(run: _Run, names: list[str]) -> Path | None:
     return None
 
 
-def _body_files(run: _Run, stem: str, n_bodies: int) -> list[Path] | None:
-    """``KH.dat`` (one body) or ``KH_0.dat`` … (several), per body; None if absent."""
+def _body_files(run: _Run, stem: str, n_bodies: int, history: list[str]) -> list[Path] | None:
+    """The files of ``stem`` per body, in body order, or None if absent.
+
+    One body: ``KH.dat`` (or ``KH_0.dat``). Several: ``KH_0.dat`` … ``KH_<n-1>.dat``
+    (WEC-Sim's convention, body k in the order of ``Nemoh.cal``), else one ``KH.dat``
+    (NEMOH v3 writes one matrix of all bodies, or the mesher's file of the last mesh it
+    processed; which one it is, its size tells, see :func:`_stiffness`).
+    """
+    single = _companion(run, [f"{stem}.dat"])
     if n_bodies == 1:
-        single = _companion(run, [f"{stem}.dat", f"{stem}_0.dat"])
-        return [single] if single is not None else None
+        found = single or _companion(run, [f"{stem}_0.dat"])
+        return [found] if found is not None else None
     files = [_companion(run, [f"{stem}_{k}.dat"]) for k in range(n_bodies)]
-    if any(f is None for f in files):
-        return None
-    return files  # type: ignore[return-value]
+    if all(f is not None for f in files):
+        if single is not None:
+            history.append(
+                f"{', '.join(f.name for f in files)} used for bodies 1…{n_bodies} (in the "
+                f"order of Nemoh.cal); {single.name} beside them (the NEMOH mesher's output "
+                "for the last mesh it processed) not used"
+            )
+        return files  # type: ignore[return-value]
+    return [single] if single is not None else None
 
 
 # --------------------------------------------------------------------------- forces
@@ -709,7 +795,8 @@ def _irf_added_mass(
         worst = max(worst, mismatch)
     if worst > IRF_TOLERANCE:
         return None, (
-            f"{path.name} not used: its K(t) differs from (2/pi)∫B cos(wt)dw of "
+            f"{path.name} not used, so no added_mass_inf: its K(t) differs from "
+            "(2/pi)∫B cos(wt)dw of "
             f"{RADIATION_FILE} by {worst:.3g} (relative; {IRF_TOLERANCE:g} allowed), "
             "so it belongs to another run"
         )
@@ -723,31 +810,72 @@ def _irf_added_mass(
 # --------------------------------------------------------------------------- reader
 
 
-def _labels(text: TextFile | None, cal: _NemohCal | None, n_dofs: int, n_forces: int):
-    """Radiating and influenced DOF labels, and the reference point(s)."""
-    if cal is None:
+def _labels(
+    text: TextFile | None, cal: _NemohCal | None, n_dofs: int, n_forces: int, notes: list[str]
+):
+    """Radiating and influenced DOF labels, the reference point(s) and the mesh names.
+
+    Labels are positional (``body1__Surge`` … for several bodies, as every reader of
+    cummins writes them); the mesh names go to the ``body_names`` attribute.
+    """
+    if cal is None or text is None:
         if n_dofs % 6 or n_forces != n_dofs:
             raise HydroDataError(
                 f"{n_dofs} DOFs and {n_forces} forces without Nemoh.cal",
                 hint="put the run's Nemoh.cal next to the results folder",
             )
         nb = n_dofs // 6
-        names = [f"body{k + 1}" for k in range(nb)]
-        labels = [f"{b}__{d}" if nb > 1 else d for b in names for d in DOF_NAMES]
-        return labels, labels, np.zeros((nb, 3)), names
-    names = [b.name for b in cal.bodies]
-    if len(set(names)) != len(names):
-        names = [f"body{k + 1}" for k in range(len(names))]
-    prefix = len(names) > 1
-    dof_labels, force_labels, points = [], [], []
-    for body, name in zip(cal.bodies, names, strict=True):
-        for modes, out in ((body.dofs, dof_labels), (body.forces, force_labels)):
+        labels = dof_labels(nb if nb > 1 else None)
+        return labels, labels, np.zeros((nb, 3)), []
+    nb = len(cal.bodies)
+    radiating: list[str] = []
+    influenced: list[str] = []
+    points = []
+    for k, body in enumerate(cal.bodies):
+        prefix = f"body{k + 1}__" if nb > 1 else ""
+        for modes, out, what in (
+            (body.dofs, radiating, "degrees of freedom"),
+            (body.forces, influenced, "generalised forces"),
+        ):
             local = [_mode_name(text, m, p, len(modes)) for p, m in enumerate(modes)]
             if len(set(local)) != len(local):
-                raise text.error(f"body {name!r} lists a DOF twice", modes[0].line)
-            out.extend(f"{name}__{d}" if prefix else d for d in local)
+                raise text.error(f"body {k + 1} ({body.name}) lists a DOF twice", modes[0].line)
+            order = [DOF_NAMES.index(d) for d in local]
+            if order != sorted(order):
+                warn_damage(
+                    f"the {what} of body {k + 1} ({body.name}) are listed as "
+                    f"{', '.join(local)}, not in the order Surge…Yaw: read in the order given",
+                    path=text.path,
+                    line=modes[0].line + 1,
+                    notes=notes,
+                    hint="NEMOH's own files list them in order; check that Nemoh.cal was "
+                    "not edited after the run",
+                )
+            out.extend(prefix + d for d in local)
         points.append(_body_point(text, body))
-    return dof_labels, force_labels, np.vstack(points), names
+    return radiating, influenced, np.vstack(points), [b.name for b in cal.bodies]
+
+
+def _frequency_note(run: _Run, cal: _NemohCal, omega: np.ndarray, unit: str) -> str:
+    """History line when ``Nemoh.cal`` and the results disagree on the frequencies."""
+    lo, hi, kind = cal.frequency_range
+    cal_unit = {1: "rad/s", 2: "Hz", 3: "s"}.get(kind, "rad/s")
+    note = (
+        f"Nemoh.cal asks for {cal.n_frequencies} frequencies ({lo:g}-{hi:g} {cal_unit}) but "
+        f"{RADIATION_FILE} holds {omega.size} ({omega.min():.4g}-{omega.max():.4g} rad/s): the "
+        "results' frequencies are used (they are what the solver computed; Nemoh.cal was "
+        "changed after the run"
+    )
+    index = _find(run.results, "index.dat")
+    if index is not None:
+        try:
+            first = TextFile.read(index).numbers(0)
+        except HydroDataError:
+            first = None
+        if first is not None and first.size and first[0] == omega.size:
+            note += f"; {index.name}, which NEMOH's preprocessor wrote for the run, also lists "
+            note += f"{omega.size}"
+    return note + ")"
 
 
 def read_nemoh(
@@ -775,7 +903,11 @@ def read_nemoh(
         Canonical ``HydroDB`` (SI units, exp(+iωt), z-up axes) about the rotation point
         of ``Nemoh.cal``: ``added_mass``, ``radiation_damping``, and when present
         ``excitation_force``, ``diffraction_force``, ``Froude_Krylov_force``,
-        ``hydrostatic_stiffness``, ``added_mass_inf`` (from a matching ``IRF.tec``).
+        ``hydrostatic_stiffness``, ``inertia_matrix`` (``Mechanics/Inertia.dat``),
+        ``additional_stiffness`` / ``additional_damping`` (``Mechanics/Km.dat``,
+        ``Badd.dat``, when not zero), ``added_mass_inf`` (from a matching ``IRF.tec``).
+        Several bodies are labelled ``body1__Surge`` …, the mesh names in the attribute
+        ``body_names``.
 
     Raises
     ------
@@ -784,6 +916,7 @@ def read_nemoh(
     """
     run = _locate(Path(path))
     history = [f"read NEMOH results from {run.results}"]
+    notes: list[str] = []
     cal = _read_cal(run.cal) if run.cal is not None else None
     cal_unit = cal.output_unit if cal is not None else None
 
@@ -805,10 +938,7 @@ def read_nemoh(
                 hint="the results and Nemoh.cal come from different runs",
             )
         if omega.size != cal.n_frequencies:
-            raise tec.text.error(
-                f"{omega.size} frequencies, but Nemoh.cal asks for {cal.n_frequencies}",
-                hint="the results and Nemoh.cal come from different runs",
-            )
+            history.append(_frequency_note(run, cal, omega, unit))
     else:
         history.append(
             "no Nemoh.cal found: DOFs taken as Surge…Yaw about (0, 0, 0), "
@@ -816,20 +946,26 @@ def read_nemoh(
         )
     if unit != "rad/s":
         history.append(f"frequency column of {run.radiation.name} in {unit}, converted to rad/s")
+    qtf = _subfolder(run.results, "qtf")
+    if qtf is not None or (cal is not None and cal.qtf):
+        history.append(
+            "second-order QTFs of the run (results/QTF) not read: cummins reads the "
+            "first-order coefficients"
+        )
     cal_text = TextFile.read(run.cal) if cal is not None else None
-    dof_labels, force_labels, points, body_names = _labels(cal_text, cal, n_dofs, n_forces)
-    missing = [d for d in dof_labels if d not in force_labels]
+    dofs, force_labels, points, body_names = _labels(cal_text, cal, n_dofs, n_forces, notes)
+    missing = [d for d in dofs if d not in force_labels]
     if missing:
         raise HydroDataError(
             f"DOF {missing[0]} has no matching generalised force in Nemoh.cal",
             path=run.cal,
             hint="cummins needs square added-mass matrices",
         )
-    pick = np.array([force_labels.index(d) for d in dof_labels])
+    pick = np.array([force_labels.index(d) for d in dofs])
     if len(pick) < len(force_labels):
         history.append(
             "forces without a matching DOF dropped: "
-            + ", ".join(f for f in force_labels if f not in dof_labels)
+            + ", ".join(f for f in force_labels if f not in dofs)
         )
 
     table = np.stack([zone.table for zone in tec.zones], axis=2)  # (nω, width, DOFs)
@@ -845,6 +981,7 @@ def read_nemoh(
         history=history,
         dimensional=True,
     )
+    depth = cal.depth if cal is not None else np.inf
 
     extra: dict = {}
     forces = {kind: _find(run.results, name) for kind, name in _FORCE_FILES.items()}
@@ -860,29 +997,33 @@ def read_nemoh(
         try:
             a_inf, note = _irf_added_mass(irf, omega, table[:, 2::2, :], n_dofs, n_forces)
         except HydroDataError as exc:  # optional file: the rest of the run is still good
-            a_inf, note = None, f"{irf.name} not used: unreadable ({exc})"
+            a_inf, note = None, f"{irf.name} not used, so no added_mass_inf: unreadable ({exc})"
         history.append(note)
         if a_inf is None:
-            warnings.warn(f"{irf}: {note}", UserWarning, stacklevel=2)
+            warn_damage(note, path=irf, notes=notes)
         else:
             extra["added_mass_inf"] = a_inf[pick, :]
 
-    extra.update(_hydrostatics(run, cal, len(body_names), len(dof_labels), history, points))
-    reference = points.reshape(-1) if len(body_names) > 1 else points[0]
+    bodies = _BodyInfo(dofs, points, body_names)
+    extra.update(_hydrostatics(run, bodies, omega, extra, (rho_v, g_v, depth), history, notes))
+    n_bodies = points.shape[0]
+    reference = points.reshape(-1) if n_bodies > 1 else points[0]
     return make_hydrodb(
         omega,
         added_mass,
         damping,
         rho=rho_v,
         g=g_v,
-        water_depth=cal.depth if cal is not None else np.inf,
+        water_depth=depth,
         source_format="nemoh",
         source_file=str(run.radiation),
-        dofs=dof_labels,
+        dofs=dofs,
         reference_point=reference,
         history=history,
+        read_warnings=notes,
         nemoh_version=cal.version if cal is not None else None,
         body_name=body_names[0] if len(body_names) == 1 else None,
+        body_names="\n".join(body_names) if n_bodies > 1 and body_names else None,
         **extra,
     )
 
@@ -904,21 +1045,22 @@ def _force_arrays(read: dict[str, _Forces], omega, pick, n_forces, cal, history)
                 path=forces.path,
                 hint="the files come from different runs",
             )
-        if not np.allclose(forces.beta_deg, reference.beta_deg, atol=1e-6):
+        if forces.beta_deg.shape != reference.beta_deg.shape or not np.allclose(
+            forces.beta_deg, reference.beta_deg, atol=1e-6
+        ):
             raise HydroDataError(
                 f"other wave directions than {reference.path.name}", path=forces.path
-            )
-        if cal is not None and forces.beta_deg.size != cal.n_directions:
-            raise HydroDataError(
-                f"{forces.beta_deg.size} wave directions, Nemoh.cal asks for {cal.n_directions}",
-                path=forces.path,
-                hint="the results and Nemoh.cal come from different runs",
             )
         history.append(
             f"{kind.replace('_', '-')} force from {name} (phases in "
             f"{'degrees' if forces.degrees else 'radians'})"
         )
         out[kind] = forces.values[:, :, pick]
+    if cal is not None and reference.beta_deg.size != cal.n_directions:
+        history.append(
+            f"Nemoh.cal asks for {cal.n_directions} wave directions, {reference.path.name} "
+            f"holds {reference.beta_deg.size}: the results' directions are used"
+        )
     result = {"wave_direction": np.radians(reference.beta_deg)}
     if "excitation" in out:
         result["excitation_force"] = out["excitation"]
@@ -932,53 +1074,302 @@ def _force_arrays(read: dict[str, _Forces], omega, pick, n_forces, cal, history)
     return result
 
 
-def _hydrostatics(run: _Run, cal, n_bodies: int, n: int, history: list[str], points) -> dict:
-    out: dict = {}
-    kh = _body_files(run, "KH", n_bodies)
-    if kh is not None:
-        blocks = [_read_matrix(p) for p in kh]
-        if len(blocks) == 1 and blocks[0].shape[0] == 6 * n_bodies:
-            c = blocks[0]
-        elif all(b.shape == (6, 6) for b in blocks):
-            c = np.zeros((6 * n_bodies, 6 * n_bodies))
-            for k, b in enumerate(blocks):
-                c[6 * k : 6 * k + 6, 6 * k : 6 * k + 6] = b
+# --------------------------------------------------------------------------- mass, restoring
+
+
+@dataclass(frozen=True)
+class _BodyInfo:
+    dofs: list[str]
+    points: np.ndarray  # (bodies, 3) reference points
+    names: list[str]
+
+    @property
+    def count(self) -> int:
+        return self.points.shape[0]
+
+    def name(self, k: int) -> str:
+        label = f"body{k + 1}" if self.count > 1 else "the body"
+        return f"{label} ({self.names[k]})" if k < len(self.names) else label
+
+    def heave(self, k: int) -> int | None:
+        label = f"body{k + 1}__Heave" if self.count > 1 else "Heave"
+        return self.dofs.index(label) if label in self.dofs else None
+
+
+_MECHANICS = {
+    "inertia": ("Inertia.dat", "inertia_matrix"),
+    "kh": ("Kh.dat", "hydrostatic_stiffness"),
+    "km": ("Km.dat", "additional_stiffness"),
+    "badd": ("Badd.dat", "additional_damping"),
+}
+
+
+def _sibling_matrix(path: Path, n: int, variable: str, notes: list[str]) -> np.ndarray | None:
+    """An n×n matrix file, or None with a warning saying which variable is lost."""
+    try:
+        matrix = _read_matrix(path)
+    except HydroDataError as exc:
+        warn_damage(
+            f"{exc.message}: {variable} not read from it",
+            path=exc.path or path,
+            line=exc.line,
+            notes=notes,
+            hint=exc.hint,
+        )
+        return None
+    if matrix.shape[0] != n:
+        warn_damage(
+            f"a {matrix.shape[0]}×{matrix.shape[0]} matrix for the run's {n} DOFs: "
+            f"{variable} not read from it",
+            path=path,
+            notes=notes,
+        )
+        return None
+    return matrix
+
+
+def _stiffness(run: _Run, bodies: _BodyInfo, history, notes) -> tuple[np.ndarray, list] | None:
+    """The hydrostatic stiffness of the mesh files (``KH.dat`` / ``KH_<k>.dat``)."""
+    nb, n = bodies.count, len(bodies.dofs)
+    files = _body_files(run, "KH", nb, history)
+    if files is None:
+        return None
+    if len(files) == 1:
+        if nb > 1:
+            try:
+                size = _read_matrix(files[0]).shape[0]
+            except HydroDataError:
+                size = None  # _sibling_matrix warns below
+            if size == 6:
+                history.append(
+                    f"{files[0].name} not used: it holds one body's matrix (the NEMOH mesher "
+                    f"writes it for the last mesh it processed) and the run has {nb} bodies; "
+                    "give KH_0.dat … per body"
+                )
+                return None
+            block = _sibling_matrix(files[0], 6 * nb, "hydrostatic_stiffness", notes)
+            if block is None:
+                return None
         else:
-            raise HydroDataError("hydrostatic matrices of unexpected size", path=kh[0])
-        if c.shape[0] == n:
+            block = _sibling_matrix(files[0], 6, "hydrostatic_stiffness", notes)
+            if block is None:
+                return None
+        c = block
+    else:
+        c = np.zeros((6 * nb, 6 * nb))
+        for k, path in enumerate(files):
+            block = _sibling_matrix(path, 6, "hydrostatic_stiffness", notes)
+            if block is None:
+                return None
+            c[6 * k : 6 * k + 6, 6 * k : 6 * k + 6] = block
+    if c.shape[0] != n:
+        history.append(f"{files[0].name} not used: the run has {n} DOFs, not all six per body")
+        return None
+    return c, files
+
+
+def _hydrostatics(run: _Run, bodies: _BodyInfo, omega, forces: dict, constants, history, notes):
+    """Restoring, mass properties, centres and external terms from the companion files."""
+    rho, g, depth = constants
+    nb, n = bodies.count, len(bodies.dofs)
+    out: dict = {}
+    found = _stiffness(run, bodies, history, notes)
+    c, kh_files = found if found is not None else (None, [])
+    hydro_files = _body_files(run, "Hydrostatics", nb, history) or []
+    values: list[dict] = []
+    for path in hydro_files:
+        try:
+            values.append(_read_hydrostatics(path))
+        except HydroDataError as exc:
+            warn_damage(
+                f"{exc.message}: centre of buoyancy, centre of gravity and volume not read",
+                path=exc.path or path,
+                line=exc.line,
+                notes=notes,
+                hint=exc.hint,
+            )
+            values = []
+            break
+    if len(values) != nb:
+        values = []
+    mechanics = _mechanics(run, n, omega.size, history, notes)
+    if "kh" in mechanics:
+        if c is None:
+            c = mechanics["kh"]
+            kh_files = [mechanics["kh_path"]]
+        elif not np.allclose(mechanics["kh"], c, rtol=1e-5, atol=1e-9 * np.abs(c).max()):
+            warn_damage(
+                f"differs from the mesh folder's {', '.join(p.name for p in kh_files)}: "
+                "hydrostatic stiffness taken from it (NEMOH's postprocessor used it)",
+                path=mechanics["kh_path"],
+                notes=notes,
+            )
+            c = mechanics["kh"]
+            kh_files = [mechanics["kh_path"]]
+    if c is not None:
+        problem = _waterplane_mismatch(c, bodies, omega, forces, (rho, g, depth), values)
+        if problem is not None:
+            warn_damage(
+                problem + ": the hydrostatics files do not describe the meshes of this run "
+                "(they seem to come from another mesh); hydrostatic_stiffness, centres of "
+                "buoyancy and gravity and volumes from them not read",
+                path=kh_files[0],
+                notes=notes,
+                hint="give the hydrostatic stiffness yourself (--external-stiffness, "
+                "cummins.with_external_terms or ds['hydrostatic_stiffness'] = ...)",
+            )
+            c, values = None, []
+        else:
             out["hydrostatic_stiffness"] = c
             history.append(
-                f"hydrostatic stiffness from {', '.join(p.name for p in kh)} (as NEMOH wrote it)"
+                f"hydrostatic stiffness from {', '.join(p.name for p in kh_files)} (as NEMOH "
+                "wrote it; its C33 agrees with the run's own Froude-Krylov heave force as "
+                "w -> 0)"
+                if _heave_checked(bodies)
+                else f"hydrostatic stiffness from {', '.join(p.name for p in kh_files)} "
+                "(as NEMOH wrote it)"
             )
-        else:
-            history.append(f"{kh[0].name} not used: the run has {n} DOFs, not all six per body")
-    hydro = _body_files(run, "Hydrostatics", n_bodies)
-    if hydro is not None:
-        values = [_read_hydrostatics(p) for p in hydro]
+    if values:
         cb = np.array([[v["xb"], v["yb"], v["zb"]] for v in values])
-        out["center_of_buoyancy"] = cb.reshape(-1) if n_bodies > 1 else cb[0]
+        out["center_of_buoyancy"] = cb.reshape(-1) if nb > 1 else cb[0]
         if all({"xg", "yg", "zg"} <= v.keys() for v in values):
             cg = np.array([[v["xg"], v["yg"], v["zg"]] for v in values])
-            out["center_of_gravity"] = cg.reshape(-1) if n_bodies > 1 else cg[0]
-            if kh is not None and not np.allclose(cg, points, atol=1e-6):
+            out["center_of_gravity"] = cg.reshape(-1) if nb > 1 else cg[0]
+            if c is not None and not np.allclose(cg, bodies.points, atol=1e-6):
                 history.append(
                     "NEMOH does not state the point of KH.dat: here the centre of "
                     "gravity differs from the reference point, check it"
                 )
-        if n_bodies == 1:
-            for key, attr in (
-                ("volume", "displaced_volume"),
-                ("mass", "mass"),
-                ("waterplane_area", "waterplane_area"),
-            ):
+        volumes = np.array([v["volume"] for v in values])
+        out["displaced_volume"] = float(volumes[0]) if nb == 1 else volumes
+        if nb == 1:
+            for key in ("mass", "waterplane_area"):
                 if key in values[0]:
-                    out[attr] = values[0][key]
-        history.append(f"centre of buoyancy/gravity from {', '.join(p.name for p in hydro)}")
-    mechanics = _subfolder(run.folder, "mechanics")
-    inertia = _find(mechanics, "Inertia.dat") if mechanics is not None else None
-    if inertia is not None:
-        m = _read_matrix(inertia)
-        if m.shape[0] == n:
-            out["inertia_matrix"] = m
-            history.append(f"inertia matrix from {mechanics.name}/{inertia.name}")
+                    out[key] = values[0][key]
+        history.append(
+            f"centre of buoyancy/gravity, volume from {', '.join(p.name for p in hydro_files)}"
+        )
+    _inertia(out, mechanics, values, run, bodies, rho, history)
+    for key in ("km", "badd"):
+        if key not in mechanics:
+            continue
+        name, variable = _MECHANICS[key]
+        matrix = mechanics[key]
+        if not np.any(matrix):
+            history.append(f"Mechanics/{name} holds zeros: no {variable.replace('_', ' ')}")
+            continue
+        out[variable] = matrix if key == "km" else np.tile(matrix, (omega.size, 1, 1))
+        history.append(
+            f"{variable} from Mechanics/{name} (about the reference point, as NEMOH requires)"
+        )
     return out
+
+
+def _mechanics(run: _Run, n: int, n_omega: int, history, notes) -> dict:
+    """The matrices of ``Mechanics/`` (NEMOH v3): Inertia, Kh, Km, Badd (n×n each)."""
+    folder = _subfolder(run.folder, "mechanics")
+    if folder is None:
+        return {}
+    out: dict = {}
+    for key, (name, variable) in _MECHANICS.items():
+        path = _find(folder, name)
+        if path is None:
+            continue
+        matrix = _sibling_matrix(path, n, variable, notes)
+        if matrix is not None:
+            out[key] = matrix
+            out[f"{key}_path"] = path
+    return out
+
+
+def _inertia(out: dict, mechanics: dict, values: list[dict], run, bodies, rho, history) -> None:
+    """``inertia_matrix`` from ``Mechanics/Inertia.dat``, or the reason there is none."""
+    if "inertia" in mechanics:
+        m = mechanics["inertia"]
+        if np.any(np.diag(m) < 0) or not np.all(np.diag(m)[[0, 1, 2]] > 0):
+            history.append("Mechanics/Inertia.dat not used: a mass or inertia is not positive")
+            return
+        out["inertia_matrix"] = m
+        line = (
+            "inertia matrix from Mechanics/Inertia.dat (about the reference point of "
+            "Nemoh.cal, as NEMOH requires)"
+        )
+        if _is_nemoh_estimate(m, values, run, bodies):
+            line += (
+                "; it is NEMOH's own estimate (mass = rho * volume of Hydrostatics.dat, "
+                "inertia of a hull shell of uniform density, Mesh/Inertia_hull.dat), written "
+                "when the user gives none: check it against the real mass properties"
+            )
+        history.append(line)
+        return
+    volumes = [v["volume"] for v in values]
+    text = (
+        "no inertia_matrix: the run has no Mechanics/Inertia.dat"
+        if not volumes
+        else "no inertia_matrix: the run has no Mechanics/Inertia.dat, and Hydrostatics.dat "
+        "gives only the displaced volume ("
+        + ", ".join(f"{v:.6g} m^3, rho*V = {rho * v:.6g} kg" for v in volumes)
+        + "); rho*V is the mass only of a freely floating body (not of a moored, hinged or "
+        "fixed one) and the inertia tensor cannot come from the volume"
+    )
+    history.append(
+        text + "; give the mass properties (cummins.with_inertia: mass, centre of gravity, "
+        "radii of gyration; --mass/--radii-of-gyration/--inertia-matrix)"
+    )
+
+
+def _is_nemoh_estimate(m: np.ndarray, values: list[dict], run: _Run, bodies: _BodyInfo) -> bool:
+    """True when Inertia.dat is what NEMOH writes without user input (one body)."""
+    if bodies.count != 1 or m.shape != (6, 6) or not values or "mass" not in values[0]:
+        return False
+    hull = _companion(run, ["Inertia_hull.dat"])
+    if hull is None:
+        return False
+    try:
+        rows = [parse_numbers(line) for line in TextFile.read(hull).lines if line.strip()]
+        shell = np.vstack(rows) if all(r is not None and r.size == 3 for r in rows) else None
+    except (HydroDataError, ValueError):
+        return False
+    if shell is None or shell.shape != (3, 3):
+        return False
+    return bool(
+        np.allclose(np.diag(m)[:3], values[0]["mass"], rtol=1e-5)
+        and np.allclose(m[3:, 3:], shell, rtol=1e-5, atol=1e-6 * np.abs(shell).max())
+    )
+
+
+def _heave_checked(bodies: _BodyInfo) -> bool:
+    return all(bodies.heave(k) is not None for k in range(bodies.count))
+
+
+def _waterplane_mismatch(c, bodies: _BodyInfo, omega, forces: dict, constants, values):
+    """Why C33 of the stiffness contradicts the run's Froude-Krylov heave force, or None.
+
+    As ω → 0 the incident-wave pressure becomes hydrostatic, ρ g η at every depth, so the
+    Froude-Krylov heave force per metre of wave amplitude tends to ρ g A_wp = C33 of the
+    same mesh (Newman (1977) §6.17). The test is made only where the lowest frequency is
+    a long wave for the body (k √A_wp ≤ 0.3).
+    """
+    from cummins.io.aqwa import wavenumber
+
+    rho, g, depth = constants
+    force = forces.get("froude_krylov_force", forces.get("excitation_force"))
+    if force is None or not _heave_checked(bodies):
+        return None
+    lowest = int(np.argmin(omega))
+    k = float(wavenumber(np.array([omega[lowest]]), depth, g)[0])
+    for b in range(bodies.count):
+        i = bodies.heave(b)
+        c33, f3 = float(c[i, i]), float(np.abs(force[lowest, 0, i]))
+        size = np.sqrt(max(abs(c33), f3) / (rho * g))
+        if k * size > 0.3:
+            continue
+        volume = values[b]["volume"] if values else size**3
+        floor = 0.01 * rho * g * abs(volume) ** (2 / 3)
+        if abs(c33 - f3) > HYDROSTATIC_TOLERANCE * max(abs(c33), f3) + floor:
+            return (
+                f"C33 of {bodies.name(b)} is {c33:.4g} N/m, but the run's Froude-Krylov heave "
+                f"force at {omega[lowest]:.3g} rad/s gives rho g A_wp = {f3:.4g} N/m "
+                f"(ratio {c33 / f3 if f3 else np.inf:.3g})"
+            )
+    return None

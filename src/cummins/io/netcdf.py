@@ -58,6 +58,7 @@ import math
 import os
 import warnings
 from collections.abc import Iterable, Sequence
+from dataclasses import dataclass
 from pathlib import Path
 from typing import Any
 
@@ -66,8 +67,15 @@ import xarray as xr
 
 from cummins._version import __version__
 from cummins.errors import HydroDataError
-from cummins.hydrodb import bodies, make_hydrodb, stack_forward_speeds, validate
-from cummins.io._common import resolve_rho_g
+from cummins.hydrodb import (
+    DOF_NAMES,
+    bodies,
+    make_hydrodb,
+    split_dof,
+    stack_forward_speeds,
+    validate,
+)
+from cummins.io._common import resolve_rho_g, warn_damage
 
 __all__ = ["from_capytaine_dataset", "read_netcdf", "sniff", "sniff_dir", "write_netcdf"]
 
@@ -208,10 +216,28 @@ def sniff(path: Path) -> bool:
     return {"added_mass", "radiation_damping"} <= names
 
 
+_PATTERNS = ("*.nc", "*.nc4", "*.NC")
+
+
 def sniff_dir(path: Path) -> list[Path]:
-    """The NetCDF hydrodynamic databases in a folder (``*.nc``, ``*.nc4``), one per run."""
+    """The NetCDF hydrodynamic databases in a folder (``*.nc``, ``*.nc4``), one per run.
+
+    When the folder itself holds none, its immediate sub-folders are searched: a
+    Capytaine case folder keeps its results in ``outputs/`` (beside the legacy
+    exporter's ``KH_*.dat`` and ``Hydrostatics_*.dat``), next to the script and meshes.
+    """
     path = Path(path)
-    candidates = {p for pattern in ("*.nc", "*.nc4", "*.NC") for p in path.glob(pattern)}
+    found = _netcdf_files(path)
+    if found or not path.is_dir():
+        return found
+    nested: list[Path] = []
+    for sub in sorted(p for p in path.iterdir() if p.is_dir() and not p.name.startswith(".")):
+        nested.extend(_netcdf_files(sub))
+    return nested
+
+
+def _netcdf_files(folder: Path) -> list[Path]:
+    candidates = {p for pattern in _PATTERNS for p in folder.glob(pattern)}
     return sorted(p for p in candidates if p.is_file() and sniff(p))
 
 
@@ -245,6 +271,7 @@ def read_netcdf(
     g: float | None = None,
     forward_speed: float | None = None,
     reference_point: Sequence[float] | None = None,
+    siblings: bool = True,
 ) -> xr.Dataset:
     """Read a Capytaine (or cummins) NetCDF file into a canonical ``HydroDB``.
 
@@ -261,6 +288,12 @@ def read_netcdf(
     reference_point
         Capytaine's rotation centre, m, when the file does not record it (Capytaine 2).
         If the file records one, a different value is an error.
+    siblings
+        Also read the files Capytaine's legacy exporter
+        (``capytaine.io.legacy.export_hydrostatics``) writes beside the ``.nc``:
+        ``KH.dat`` / ``KH_<i>.dat`` (hydrostatic stiffness per body, used when the
+        ``.nc`` has none, compared with it otherwise) and ``Hydrostatics.dat`` /
+        ``Hydrostatics_<i>.dat`` (centres of buoyancy and gravity, displaced volume).
 
     Returns
     -------
@@ -286,6 +319,7 @@ def read_netcdf(
     path = Path(path)
     raw = load_netcdf(path)
     try:
+        legacy = _legacy_exporter_files(path.parent) if siblings else None
         return from_capytaine_dataset(
             raw,
             rho=rho,
@@ -294,6 +328,7 @@ def read_netcdf(
             reference_point=reference_point,
             source_file=str(path),
             _path=path,
+            _legacy=legacy,
         )
     except HydroDataError:
         raise
@@ -334,6 +369,7 @@ def from_capytaine_dataset(
     source_format: str = "capytaine",
     history: Iterable[str] = (),
     _path: Path | None = None,
+    _legacy: LegacyExport | None = None,
     **attrs: Any,
 ) -> xr.Dataset:
     """Convert a Capytaine dataset (in memory or read from NetCDF) to a ``HydroDB``.
@@ -370,12 +406,17 @@ def from_capytaine_dataset(
     raw = _normalise_frequency_dim(raw, where)
     ours = VERSION_ATTR in raw.attrs
     lines = list(history)
+    notes: list[str] = []
     if _path is not None and not ours:
         version = raw.attrs.get("capytaine_version")
         lines.insert(
             0, f"read {Path(source_file).name}" + (f" (Capytaine {version})" if version else "")
         )
+    _check_incoming_wave_convention(raw, where, lines)
     raw = _squeeze_extra_dims(raw, where)
+    _check_coordinates(raw, where)
+    _check_derived_frequencies(raw, where)
+    layout = dof_layout(raw, where, None if ours else lines, keep=ours)
 
     rho_v, g_v = resolve_rho_g(
         rho,
@@ -392,11 +433,20 @@ def from_capytaine_dataset(
         depth = math.inf
         lines.append("water_depth not recorded in the file: deep water assumed")
 
+    _check_constants(rho_v, g_v, where, notes)
+
     raw = _select_forward_speed(raw, forward_speed, where, lines)
-    point, body_attrs = _body_attributes(raw, reference_point, where, lines, rho_v)
+    point, body_attrs = _body_attributes(raw, reference_point, where, lines, rho_v, layout)
+    if _legacy is not None and not ours:
+        legacy_attrs = _legacy.attributes(layout, where, lines, notes)
+        for key, value in legacy_attrs.items():
+            body_attrs.setdefault(key, value)
+    if reference_point is None and _assumed_origin(raw):
+        point = _reference_from_inertia(raw, layout, body_attrs, point, lines, where)
     extra_attrs = {} if ours else _solver_attributes(raw.attrs)
     extra_attrs.update(body_attrs)
     extra_attrs.update(attrs)
+    common = (layout, _legacy if not ours else None, notes)
 
     if "forward_speed" in raw.dims:
         speeds = raw["forward_speed"].values
@@ -412,17 +462,31 @@ def from_capytaine_dataset(
                 list(lines),
                 extra_attrs,
                 where,
+                *common,
             )
             for v in speeds
         ]
         out = stack_forward_speeds(parts)
     else:
         out = _one_speed(
-            raw, rho_v, g_v, depth, point, source_file, source_format, lines, extra_attrs, where
+            raw,
+            rho_v,
+            g_v,
+            depth,
+            point,
+            source_file,
+            source_format,
+            lines,
+            extra_attrs,
+            where,
+            *common,
         )
     if ours:
         out = _restore_extra_variables(out, raw)
+        kept = {k: out.attrs[k] for k in ("read_warnings",) if k in out.attrs}
         _restore_attributes(out, raw)
+        for key, value in kept.items():
+            out.attrs.setdefault(key, value)
     return out
 
 
@@ -540,7 +604,7 @@ def _vector(da: xr.DataArray) -> np.ndarray:
     return np.asarray(da.values, dtype=float).reshape(-1)
 
 
-def _body_attributes(raw, given, where, lines: list[str], rho: float):
+def _body_attributes(raw, given, where, lines: list[str], rho: float, layout: DofLayout):
     """Reference point (rotation centre), CG, CB, displaced volume, body name."""
     attrs: dict[str, Any] = {}
     recorded = None
@@ -586,7 +650,368 @@ def _body_attributes(raw, given, where, lines: list[str], rho: float):
         if name in raw.coords and raw[name].size == 1:
             attrs["body_name"] = str(np.asarray(raw[name].values).reshape(-1)[0])
             break
+    if len(layout.body_names) > 1 and layout.labels != layout.file_labels:
+        attrs["body_names"] = "\n".join(layout.body_names)
+    elif layout.body_names and layout.body_names[0] and "body_name" not in attrs:
+        attrs["body_name"] = layout.body_names[0]
     return point if point.size > 3 else point.reshape(3), attrs
+
+
+def _check_incoming_wave_convention(raw: xr.Dataset, where, lines: list[str]) -> None:
+    """Capytaine 1.x recorded ``incoming_waves_convention``; only ``Nemoh`` (its default,
+    the incident potential of Capytaine >= 1.2 and of this reader) is understood."""
+    value = raw.attrs.get("incoming_waves_convention")
+    if value is None:
+        return
+    if str(value).strip().lower() != "nemoh":
+        raise HydroDataError(
+            f"incoming_waves_convention = {value!r}: only Capytaine's 'Nemoh' convention "
+            "(its default, the one of Capytaine >= 1.2) is supported",
+            path=where,
+            hint="recompute the excitation with the default convention",
+        )
+    lines.append(
+        "incoming_waves_convention = Nemoh (Capytaine 1.x): the incident potential of "
+        "Capytaine >= 1.2, read as such"
+    )
+
+
+_COORDINATE_NAMES = (
+    "wave_direction",
+    "rotation_center",
+    "center_of_mass",
+    "center_of_buoyancy",
+    "forward_speed",
+)
+
+
+def _check_coordinates(raw: xr.Dataset, where) -> None:
+    """A NaN or infinite coordinate is an error naming it (omega = inf is a limit row)."""
+    for name in _COORDINATE_NAMES:
+        if name not in raw.variables:
+            continue
+        values = np.asarray(raw[name].values)
+        if values.dtype.kind not in "fiu":
+            continue
+        values = values.astype(float)
+        if not np.all(np.isfinite(values)):
+            bad = values.reshape(-1)[~np.isfinite(values.reshape(-1))][0]
+            raise HydroDataError(
+                f"the coordinate {name} holds {bad!r}",
+                path=where,
+                hint="every coordinate must be a finite number; the file is damaged",
+            )
+    if "wave_direction" in raw.variables:
+        beta = np.asarray(raw["wave_direction"].values, dtype=float).reshape(-1)
+        if np.any(np.abs(beta) > 4 * np.pi):
+            raise HydroDataError(
+                f"wave_direction {beta[np.abs(beta) > 4 * np.pi][0]!r} rad is not an angle "
+                "Capytaine writes (|beta| <= 2 pi)",
+                path=where,
+                hint="the file is damaged, or holds degrees: Capytaine stores radians",
+            )
+        if np.unique(beta).size != beta.size:
+            raise HydroDataError(
+                "a wave direction appears twice",
+                path=where,
+                quantity=f"wave_direction = {np.round(beta, 6).tolist()} rad",
+            )
+    omega = np.asarray(raw["omega"].values, dtype=float)
+    with np.errstate(invalid="ignore"):
+        bad = np.isnan(omega) | ((omega > IMPLAUSIBLE) & np.isfinite(omega))
+    if bad.any():
+        raise HydroDataError(
+            "the coordinate omega holds NaN or a value beyond any wave frequency "
+            "(omega = inf, Capytaine's infinite-frequency limit, is allowed)",
+            path=where,
+            quantity=f"omega = {omega[bad][:4].tolist()}",
+        )
+
+
+def _check_derived_frequencies(raw: xr.Dataset, where) -> None:
+    """Capytaine stores freq = omega/2 pi and period = 2 pi/omega beside omega: they must
+    agree (to rounding), or omega (or they) were damaged."""
+    omega = np.asarray(raw["omega"].values, dtype=float)
+    finite = np.isfinite(omega) & (omega > 0)
+    for name, expected in (("freq", omega / (2 * np.pi)), ("period", None)):
+        if name not in raw.coords or raw[name].dims != ("omega",):
+            continue
+        values = np.asarray(raw[name].values, dtype=float)
+        if expected is None:
+            with np.errstate(divide="ignore"):
+                expected = 2 * np.pi / omega
+        with np.errstate(invalid="ignore"):
+            off = ~np.isclose(values[finite], expected[finite], rtol=1e-12, atol=0.0)
+        if off.any():
+            k = int(np.flatnonzero(finite)[np.flatnonzero(off)[0]])
+            raise HydroDataError(
+                f"omega[{k}] = {omega[k]!r} rad/s disagrees with {name}[{k}] = {values[k]!r} "
+                "(Capytaine writes both from the same frequency)",
+                path=where,
+                hint="the file is damaged; write it again from the solver",
+            )
+
+
+def _check_constants(rho: float, g: float, where, notes: list[str]) -> None:
+    """Warn about a density or gravity no sea-keeping computation uses."""
+    if not 9.7 <= g <= 9.9:
+        warn_damage(
+            f"g = {g!r} m/s^2 is not the acceleration of gravity on Earth (9.78-9.83)",
+            path=where,
+            notes=notes,
+            hint="check the file; the data are used as they are",
+        )
+    if not 900.0 <= rho <= 1100.0:
+        warn_damage(
+            f"rho = {rho!r} kg/m^3 is not the density of water",
+            path=where,
+            notes=notes,
+            hint="check the file; the data are used as they are",
+        )
+
+
+def _assumed_origin(raw: xr.Dataset) -> bool:
+    return "rotation_center" not in raw.variables and "reference_point" not in raw.attrs
+
+
+def _reference_from_inertia(raw, layout: DofLayout, attrs: dict, point, lines, where):
+    """Capytaine 2 does not record the rotation centre, but its rigid-body inertia
+    matrix is about it: M = [[m I, -m S(r)], [m S(r), I]] with r the centre of mass
+    relative to the rotation centre (Fossen 2021 eq. 3.44). Given the centre of mass
+    (the legacy exporter's ``Hydrostatics*.dat`` or Capytaine 3's ``center_of_mass``),
+    the rotation centre is the centre of mass less r. Returns ``point`` unchanged when
+    that cannot be done."""
+    if "inertia_matrix" not in raw.data_vars or "center_of_gravity" not in attrs:
+        return point
+    cog = np.asarray(attrs["center_of_gravity"], dtype=float).reshape(-1, 3)
+    n_bodies = len(layout.body_names)
+    if cog.shape[0] != n_bodies:
+        return point
+    matrix = raw["inertia_matrix"].transpose("influenced_dof", "radiating_dof")
+    matrix = np.asarray(
+        matrix.sel(
+            influenced_dof=list(layout.file_labels), radiating_dof=list(layout.file_labels)
+        ).values,
+        dtype=float,
+    )
+    centres = []
+    for body in range(n_bodies):
+        block = layout.rigid_block(body)
+        if block is None:
+            return point
+        m = matrix[np.ix_(block, block)]
+        mass = m[0, 0]
+        if not np.all(np.isfinite(m)) or not mass > 0:
+            return point
+        lower = m[3:6, 0:3] / mass
+        r = np.array([lower[2, 1], lower[0, 2], lower[1, 0]])
+        centres.append(cog[body] - r)
+    derived = np.concatenate(centres)
+    derived[np.abs(derived) < 1e-12] = 0.0
+    for k, line in enumerate(lines):
+        if line.startswith("the file does not record Capytaine's rotation centre"):
+            lines[k] = (
+                "the file does not record Capytaine's rotation centre: "
+                f"{np.round(derived, 9).tolist()} m, the centre of gravity less the offset "
+                "that the rigid-body inertia_matrix gives (its mass-moment coupling)"
+            )
+    return derived if derived.size > 3 else derived.reshape(3)
+
+
+@dataclass(frozen=True)
+class LegacyExport:
+    """What Capytaine's legacy exporter (``export_hydrostatics``) wrote beside a ``.nc``.
+
+    Attributes
+    ----------
+    stiffness_files, hydrostatics_files
+        ``KH.dat`` or ``KH_0.dat``, ``KH_1.dat`` … and ``Hydrostatics*.dat``, by body.
+    stiffness
+        The 6×6 matrices (N/m, N, N·m/rad) of the ``KH`` files, in the same order.
+    centre_of_buoyancy, centre_of_gravity, volume
+        ``XF``/``XG`` columns and ``Displacement`` of the ``Hydrostatics`` files.
+    """
+
+    stiffness_files: tuple[Path, ...]
+    stiffness: tuple[np.ndarray, ...]
+    hydrostatics_files: tuple[Path, ...]
+    centre_of_buoyancy: tuple[np.ndarray, ...]
+    centre_of_gravity: tuple[np.ndarray, ...]
+    volume: tuple[float, ...]
+
+    def attributes(self, layout: DofLayout, where, lines: list[str], notes: list[str]) -> dict:
+        """Centres and volume as dataset attributes (one per body)."""
+        n = len(layout.body_names)
+        if not self.hydrostatics_files:
+            return {}
+        if len(self.hydrostatics_files) != n:
+            warn_damage(
+                f"{len(self.hydrostatics_files)} Hydrostatics*.dat files beside the NetCDF "
+                f"file for {n} bodies: they are not used",
+                path=where,
+                notes=notes,
+            )
+            return {}
+        lines.append(
+            "centres of gravity and buoyancy and displaced volume from "
+            + ", ".join(f.name for f in self.hydrostatics_files)
+        )
+        volume = np.asarray(self.volume, dtype=float)
+        return {
+            "center_of_gravity": np.concatenate(self.centre_of_gravity),
+            "center_of_buoyancy": np.concatenate(self.centre_of_buoyancy),
+            "displaced_volume": float(volume[0]) if n == 1 else volume,
+        }
+
+    def stiffness_matrix(self, layout, where, lines, notes, stored):
+        """The hydrostatic stiffness in the canonical DOFs: the ``KH`` files' when the
+        ``.nc`` has none (None otherwise, after comparing them with the stored one)."""
+        n = len(layout.body_names)
+        if not self.stiffness_files:
+            return None
+        names = ", ".join(f.name for f in self.stiffness_files)
+        if len(self.stiffness_files) != n:
+            warn_damage(
+                f"{len(self.stiffness_files)} KH*.dat files ({names}) beside the NetCDF file "
+                f"for {n} bodies: they are not used",
+                path=where,
+                notes=notes,
+            )
+            return None
+        size = len(layout.labels)
+        full = np.zeros((size, size))
+        for body, matrix in enumerate(self.stiffness):
+            block = layout.rigid_block(body)
+            if block is None:
+                return None
+            full[np.ix_(block, block)] = matrix
+        if stored is None:
+            lines.append(f"hydrostatic_stiffness from {names} (not in the NetCDF file)")
+            return full
+        values = np.asarray(stored.values, dtype=float)
+        # the KH files print 7 significant digits (%E): agreement to 1e-6 of the block scale
+        for body, (path, matrix) in enumerate(
+            zip(self.stiffness_files, self.stiffness, strict=True)
+        ):
+            block = layout.rigid_block(body)
+            if block is None:
+                continue
+            part = values[np.ix_(block, block)]
+            scale = max(float(np.nanmax(np.abs(matrix))), 1e-300)
+            with np.errstate(invalid="ignore"):
+                off = np.abs(part - matrix) > 1e-6 * scale + 1e-6 * np.abs(matrix)
+            if off.any():
+                i, j = (int(x) for x in np.argwhere(off)[0])
+                warn_damage(
+                    f"hydrostatic_stiffness[{layout.labels[block[i]]}, "
+                    f"{layout.labels[block[j]]}] = {part[i, j]!r} but {path.name} gives "
+                    f"{matrix[i, j]!r}: the NetCDF file's value is used",
+                    path=where,
+                    notes=notes,
+                    hint="one of the two files is damaged",
+                )
+                return None
+        lines.append(f"hydrostatic_stiffness agrees with {names}")
+        return None
+
+
+def _legacy_exporter_files(folder: Path) -> LegacyExport | None:
+    """The ``KH*.dat`` and ``Hydrostatics*.dat`` files of Capytaine's legacy exporter."""
+    if any((folder / name).is_file() for name in ("Nemoh.cal", "nemoh.cal")):
+        return None  # NEMOH's own KH.dat / Hydrostatics.dat, not Capytaine's exporter
+    stiffness_files = _numbered(folder, "KH")
+    hydro_files = _numbered(folder, "Hydrostatics")
+    if not stiffness_files and not hydro_files:
+        return None
+    stiffness = tuple(_read_kh(f) for f in stiffness_files)
+    parsed = [_read_hydrostatics(f) for f in hydro_files]
+    return LegacyExport(
+        tuple(stiffness_files),
+        stiffness,
+        tuple(hydro_files),
+        tuple(p[0] for p in parsed),
+        tuple(p[1] for p in parsed),
+        tuple(p[2] for p in parsed),
+    )
+
+
+def _numbered(folder: Path, stem: str) -> list[Path]:
+    """``<stem>_0.dat``, ``<stem>_1.dat`` … in order, or ``[<stem>.dat]``."""
+    numbered = []
+    k = 0
+    while (folder / f"{stem}_{k}.dat").is_file():
+        numbered.append(folder / f"{stem}_{k}.dat")
+        k += 1
+    if numbered:
+        return numbered
+    single = folder / f"{stem}.dat"
+    return [single] if single.is_file() else []
+
+
+def _without_bom(text):
+    """The text without a UTF-8 byte-order mark (an encoding, not damage)."""
+    if text.lines and text.lines[0].startswith("\ufeff"):
+        return type(text)(text.path, (text.lines[0][1:], *text.lines[1:]))
+    return text
+
+
+def _read_kh(path: Path) -> np.ndarray:
+    from cummins.io._text import TextFile
+
+    text = _without_bom(TextFile.read(path))
+    rows = [k for k, line in enumerate(text.lines) if line.strip()]
+    if len(rows) != 6:
+        raise text.error(
+            f"expected 6 rows of the 6x6 hydrostatic stiffness, found {len(rows)}",
+            rows[-1] if rows else 0,
+        )
+    matrix = np.empty((6, 6))
+    for r, k in enumerate(rows):
+        values = text.numbers(k, 6)
+        if not np.all(np.isfinite(values)) or np.any(np.abs(values) > IMPLAUSIBLE):
+            raise text.error("not a finite stiffness value", k)
+        matrix[r] = values
+    return matrix
+
+
+def _read_hydrostatics(path: Path) -> tuple[np.ndarray, np.ndarray, float]:
+    """``XF = … - XG = …`` (three lines: x, y, z) and ``Displacement = …``."""
+    import re
+
+    from cummins.io._text import TextFile
+
+    text = _without_bom(TextFile.read(path))
+    pattern = re.compile(r"^\s*[XYZ]F\s*=\s*(\S+)\s*-\s*[XYZ]G\s*=\s*(\S+)\s*$", re.IGNORECASE)
+    buoyancy, gravity, volume = [], [], None
+    for k, line in enumerate(text.lines):
+        if not line.strip():
+            continue
+        match = pattern.match(line)
+        if match and len(buoyancy) < 3:
+            try:
+                buoyancy.append(float(match.group(1)))
+                gravity.append(float(match.group(2)))
+            except ValueError:
+                raise text.error("expected 'XF = <number> - XG = <number>'", k) from None
+            continue
+        if line.strip().lower().startswith("displacement") and volume is None:
+            try:
+                volume = float(line.split("=", 1)[1].split()[0])
+            except (IndexError, ValueError):
+                raise text.error("expected 'Displacement = <volume>'", k) from None
+            continue
+        if "=" in line and volume is not None:
+            continue  # further "name = value" lines (waterplane area, mass …) are not used
+        raise text.error("expected three lines 'XF = … - XG = …' and 'Displacement = …'", k)
+    centres = np.array(buoyancy + gravity, dtype=float)
+    if len(buoyancy) != 3 or volume is None:
+        raise text.error(
+            "expected three lines 'XF = … - XG = …' (x, y, z) and 'Displacement = …'",
+            len(text) - 1,
+        )
+    if not np.all(np.isfinite(centres)) or not (np.isfinite(volume) and volume > 0):
+        raise text.error("non-finite centre or non-positive displacement", len(text) - 1)
+    return np.array(buoyancy), np.array(gravity), float(volume)
 
 
 def _solver_attributes(file_attrs: dict) -> dict:
@@ -606,9 +1031,65 @@ def _python_value(value):
     return value
 
 
-def _labels(raw: xr.Dataset, where) -> list[str]:
+@dataclass(frozen=True)
+class DofLayout:
+    """How the file's DOFs map to the canonical ones.
+
+    Attributes
+    ----------
+    file_labels
+        The file's labels, in canonical order (to select the data with).
+    labels
+        The canonical labels: ``Surge`` … ``Yaw`` for one body, ``body1__Surge`` … for
+        several (positional, see :func:`cummins.hydrodb.dof_labels`); a DOF that is not
+        a rigid-body mode (a hinge, a flexible mode) keeps the name the file gives it.
+    body_names
+        The names the file gives the bodies, in order (empty strings when it gives none).
+    body_index
+        The body (0-based) of each canonical DOF.
+    """
+
+    file_labels: tuple[str, ...]
+    labels: tuple[str, ...]
+    body_names: tuple[str, ...]
+    body_index: tuple[int, ...]
+
+    def rigid_block(self, body: int) -> list[int] | None:
+        """Indices of the six rigid-body DOFs of ``body`` in Surge … Yaw order, or None."""
+        names = [
+            split_dof(lab)[1]
+            for lab, b in zip(self.labels, self.body_index, strict=True)
+            if b == body
+        ]
+        positions = [k for k, b in enumerate(self.body_index) if b == body]
+        if names[:6] != list(DOF_NAMES):
+            return None
+        return positions[:6]
+
+
+def dof_layout(
+    raw: xr.Dataset, where, lines: list[str] | None = None, *, keep: bool = False
+) -> DofLayout:
+    """The canonical DOF labels and order of a Capytaine dataset.
+
+    Capytaine names a body's DOFs after the dictionary of the body (``Surge`` … for
+    ``rigid_body_dofs``, any name for others) in the order of that dictionary (Capytaine
+    1.1 sorted them alphabetically: ``Heave, Pitch, Roll, Surge, Sway, Yaw``), and joins
+    several bodies as ``<body name>__<DOF>``. Here the rigid-body modes of each body come
+    first in the order Surge … Yaw, then the other DOFs in the file's order, and several
+    bodies are labelled ``body1__…``, ``body2__…`` in the order of the file.
+    ``keep=True`` (files cummins wrote, whose labels are already canonical) keeps the
+    file's labels and order.
+    """
     influenced = [str(v) for v in raw["influenced_dof"].values]
     radiating = [str(v) for v in raw["radiating_dof"].values]
+    for label in influenced + radiating:
+        if not label or not label.isascii() or not label.isprintable():
+            raise HydroDataError(
+                f"DOF label {label!r} is not printable text",
+                path=where,
+                hint="the file is damaged (DOF labels are ASCII names such as 'Heave')",
+            )
     if sorted(influenced) != sorted(radiating) or len(set(influenced)) != len(influenced):
         raise HydroDataError(
             "radiating and influenced DOFs differ (radiation solved for some DOFs only?)",
@@ -616,11 +1097,63 @@ def _labels(raw: xr.Dataset, where) -> list[str]:
             quantity=f"radiating: {', '.join(radiating)}; influenced: {', '.join(influenced)}",
             hint="solve the radiation problems of every DOF",
         )
-    return influenced
+    groups: dict[str | None, list[str]] = {}
+    for label in influenced:
+        body, _ = split_dof(label)
+        groups.setdefault(body, []).append(label)
+    if None in groups and len(groups) > 1:
+        raise HydroDataError(
+            "some DOF labels name a body and others do not",
+            path=where,
+            quantity=", ".join(influenced),
+            hint="label every DOF <body>__<DOF> (as Capytaine does for several bodies)",
+        )
+    several = len(groups) > 1
+    if keep:
+        index = {body: k for k, body in enumerate(groups)}
+        return DofLayout(
+            tuple(influenced),
+            tuple(influenced),
+            tuple(body or "" for body in groups),
+            tuple(index[split_dof(label)[0]] for label in influenced),
+        )
+    file_labels: list[str] = []
+    labels: list[str] = []
+    body_index: list[int] = []
+    for k, members in enumerate(groups.values()):
+        rigid = sorted(
+            (m for m in members if split_dof(m)[1] in DOF_NAMES),
+            key=lambda m: DOF_NAMES.index(split_dof(m)[1]),
+        )
+        others = [m for m in members if split_dof(m)[1] not in DOF_NAMES]
+        for member in rigid + others:
+            name = split_dof(member)[1]
+            file_labels.append(member)
+            labels.append(f"body{k + 1}__{name}" if several else name)
+            body_index.append(k)
+    names = tuple(body or "" for body in groups)
+    if lines is not None:
+        if [split_dof(f)[1] for f in file_labels] != [split_dof(f)[1] for f in influenced]:
+            lines.append(
+                "DOFs reordered from the file's order ("
+                + ", ".join(influenced)
+                + ") to rigid-body modes first, Surge ... Yaw"
+            )
+        if several:
+            lines.append(
+                f"{len(groups)} bodies labelled body1 ... body{len(groups)} in the order of "
+                "the file; the file's names (" + ", ".join(names) + ") are kept in body_names"
+            )
+        custom = sorted({split_dof(f)[1] for f in file_labels} - set(DOF_NAMES))
+        if custom:
+            lines.append(
+                "DOFs that are not rigid-body modes keep the file's names: " + ", ".join(custom)
+            )
+    return DofLayout(tuple(file_labels), tuple(labels), names, tuple(body_index))
 
 
 def _canonical_array(raw: xr.Dataset, name: str, dims: tuple[str, ...], labels, where):
-    """Values of ``raw[name]`` in canonical dim order, DOFs in ``labels`` order."""
+    """Values of ``raw[name]`` in canonical dim order, DOFs in ``labels`` (file) order."""
     var = raw[name]
     missing = [d for d in dims if d not in var.dims]
     leftover = [d for d in var.dims if d not in dims]
@@ -630,13 +1163,32 @@ def _canonical_array(raw: xr.Dataset, name: str, dims: tuple[str, ...], labels, 
             path=where,
         )
     var = var.transpose(*dims)
-    index = {d: labels for d in ("influenced_dof", "radiating_dof") if d in dims}
+    index = {d: list(labels) for d in ("influenced_dof", "radiating_dof") if d in dims}
     return var.sel(index)
 
 
-def _one_speed(raw, rho, g, depth, point, source_file, source_format, lines, attrs, where):
+#: No added mass, damping, force or stiffness of a floating body reaches this (SI units);
+#: a larger value is a damaged number (a flipped exponent byte gives ~1e300).
+IMPLAUSIBLE = 1e25
+
+
+def _one_speed(
+    raw,
+    rho,
+    g,
+    depth,
+    point,
+    source_file,
+    source_format,
+    lines,
+    attrs,
+    where,
+    layout: DofLayout,
+    legacy: LegacyExport | None,
+    notes: list[str],
+):
     """Canonical dataset of one forward speed."""
-    labels = _labels(raw, where)
+    notes = list(notes)
     omega = np.asarray(raw["omega"].values, dtype=float)
     if np.any(np.isnan(omega)) or np.any(omega < 0):
         raise HydroDataError(
@@ -645,15 +1197,22 @@ def _one_speed(raw, rho, g, depth, point, source_file, source_format, lines, att
             quantity=f"omega = {omega.tolist()[:8]}",
         )
     arrays = {
-        name: _canonical_array(raw, name, dims, labels, where)
+        name: _canonical_array(raw, name, dims, layout.file_labels, where)
         for name, (_, dims, _) in _VARIABLES.items()
         if name in raw.data_vars
     }
+    for arr in arrays.values():
+        _check_magnitude(arr, where)
     if "excitation_force" not in arrays and {"Froude_Krylov_force", "diffraction_force"} <= set(
         arrays
     ):
         arrays["excitation_force"] = arrays["Froude_Krylov_force"] + arrays["diffraction_force"]
-        lines.append("excitation_force = Froude_Krylov_force + diffraction_force")
+        lines.append(
+            "no excitation_force in the file: excitation_force = Froude_Krylov_force + "
+            "diffraction_force"
+        )
+    elif {"excitation_force", "Froude_Krylov_force", "diffraction_force"} <= set(arrays):
+        _check_excitation_sum(arrays, where, notes)
 
     extra: dict[str, Any] = {}
     zero, inf = omega == 0, np.isinf(omega)
@@ -674,11 +1233,8 @@ def _one_speed(raw, rho, g, depth, point, source_file, source_format, lines, att
             arrays[name] = arr.isel(omega=np.flatnonzero(finite))
     omega = omega[finite]
 
-    unsolved = np.zeros(omega.size, dtype=bool)
-    for arr in arrays.values():
-        if "omega" in arr.dims:
-            unsolved |= np.isnan(arr.values).reshape(omega.size, -1).any(axis=1)
-    if unsolved.all():
+    unsolved, damaged = _nan_frequencies(arrays, omega, where, notes)
+    if (unsolved | damaged).all():
         raise HydroDataError(
             "no finite frequency with complete results (all NaN)",
             path=where,
@@ -692,15 +1248,35 @@ def _one_speed(raw, rho, g, depth, point, source_file, source_format, lines, att
             f"{count} frequenc{'y' if count == 1 else 'ies'} dropped where Capytaine stored NaN "
             f"(problems it could not solve): omega = {listed}{more} rad/s"
         )
-        keep = np.flatnonzero(~unsolved)
+    if (unsolved | damaged).any():
+        keep = np.flatnonzero(~(unsolved | damaged))
         for name, arr in list(arrays.items()):
             if "omega" in arr.dims:
                 arrays[name] = arr.isel(omega=keep)
         omega = omega[keep]
     for name, arr in list(arrays.items()):
         if "omega" not in arr.dims and np.isnan(arr.values).any():
+            bad = np.argwhere(np.isnan(arr.values))
+            cells = ", ".join(f"[{layout.labels[i]}, {layout.labels[j]}]" for i, j in bad[:4]) + (
+                " …" if len(bad) > 4 else ""
+            )
+            warn_damage(
+                f"{name} has NaN at {cells}: the variable is left out of the data",
+                path=where,
+                notes=notes,
+                hint="Capytaine writes NaN where it cannot compute a value (DOFs that are "
+                "not rigid-body modes); give the matrix yourself (cummins.with_inertia, "
+                "--mass/--inertia-matrix) if it is needed",
+            )
             del arrays[name]
-            lines.append(f"{name} dropped: it contains NaN (e.g. non-rigid DOFs)")
+
+    if legacy is not None:
+        stored = arrays.get("hydrostatic_stiffness")
+        stiffness = legacy.stiffness_matrix(layout, where, lines, notes, stored)
+        if stiffness is not None:
+            arrays["hydrostatic_stiffness"] = xr.DataArray(
+                stiffness, dims=("influenced_dof", "radiating_dof")
+            )
 
     for name, arr in arrays.items():
         keyword, _, is_complex = _VARIABLES[name]
@@ -726,16 +1302,101 @@ def _one_speed(raw, rho, g, depth, point, source_file, source_format, lines, att
         water_depth=depth,
         source_format=source_format,
         source_file=source_file,
-        dofs=labels,
+        dofs=list(layout.labels),
         forward_speed=speed,
         reference_point=point if point.size == 3 else np.zeros(3),
         history=lines,
+        read_warnings=notes,
         **extra,
     )
     if point.size > 3:  # several bodies: one point per body (make_hydrodb takes one)
         ds.attrs["reference_point"] = point
     ds.attrs.update({k: v for k, v in attrs.items() if v is not None})
     return ds
+
+
+def _check_magnitude(arr: xr.DataArray, where) -> None:
+    """HydroDataError for a value no physical body has (a damaged number)."""
+    values = np.abs(np.asarray(arr.values))
+    with np.errstate(invalid="ignore"):
+        bad = values > IMPLAUSIBLE
+    if bad.any():
+        index = tuple(int(i) for i in np.argwhere(bad)[0])
+        raise HydroDataError(
+            f"{arr.name} holds {np.asarray(arr.values)[index]!r}, beyond any physical value "
+            f"(> {IMPLAUSIBLE:g} in SI units)",
+            path=where,
+            quantity=_element(arr, index),
+            hint="the file is damaged; write it again from the solver",
+        )
+
+
+def _element(arr: xr.DataArray, index: Sequence[int]) -> str:
+    parts = []
+    for dim, i in zip(arr.dims, index, strict=True):
+        value = arr[dim].values[i] if dim in arr.coords else i
+        if dim == "omega":
+            parts.append(f"omega={float(value):.6g} rad/s")
+        elif dim == "wave_direction":
+            parts.append(f"wave_direction={np.degrees(float(value)):.6g} deg")
+        else:
+            parts.append(str(value))
+    return f"{arr.name}[{', '.join(parts)}]"
+
+
+def _check_excitation_sum(arrays: dict, where, notes: list[str]) -> None:
+    """Capytaine writes excitation_force as Froude_Krylov_force + diffraction_force,
+    computed in double precision: the three must agree to rounding, NaN where NaN."""
+    exc = arrays["excitation_force"]
+    fk, dif = arrays["Froude_Krylov_force"], arrays["diffraction_force"]
+    e, a, b = (np.asarray(x.values) for x in (exc, fk, dif))
+    eps = np.finfo(np.asarray(e).real.dtype if e.dtype.kind == "c" else e.dtype).eps
+    total = a + b
+    nan_e, nan_s = np.isnan(e), np.isnan(total)
+    with np.errstate(invalid="ignore"):
+        off = np.abs(e - total) > 4 * eps * (np.abs(a) + np.abs(b))
+    bad = (nan_e != nan_s) | (off & ~nan_e & ~nan_s)
+    if bad.any():
+        index = tuple(int(i) for i in np.argwhere(bad)[0])
+        warn_damage(
+            f"excitation_force differs from Froude_Krylov_force + diffraction_force at "
+            f"{int(bad.sum())} values, first {_element(exc, index)} = {e[index]!r}, sum "
+            f"{total[index]!r}: one of the three is damaged; excitation_force is used as stored",
+            path=where,
+            notes=notes,
+            hint="Capytaine writes their sum exactly; write the file again from the solver",
+        )
+
+
+def _nan_frequencies(arrays: dict, omega: np.ndarray, where, notes: list[str]):
+    """Frequencies Capytaine could not solve (every value of a variable NaN there), and
+    frequencies where only some values are NaN (damage: warned, dropped)."""
+    unsolved = np.zeros(omega.size, dtype=bool)
+    damaged = np.zeros(omega.size, dtype=bool)
+    first: tuple[str, float] | None = None
+    for name, arr in arrays.items():
+        if "omega" not in arr.dims:
+            continue
+        nan = np.isnan(np.asarray(arr.values)).reshape(omega.size, -1)
+        whole = nan.all(axis=1)
+        partial = nan.any(axis=1) & ~whole
+        unsolved |= whole
+        if partial.any() and first is None:
+            first = (name, float(omega[np.flatnonzero(partial)[0]]))
+        damaged |= partial
+    damaged &= ~unsolved
+    if damaged.any():
+        name, w = first if first is not None else ("data", float(omega[damaged][0]))
+        listed = ", ".join(f"{x:.6g}" for x in omega[damaged][:8])
+        warn_damage(
+            f"{name} has NaN in some but not all values at omega = {w:.6g} rad/s (Capytaine "
+            f"writes NaN for a whole problem it could not solve): {int(damaged.sum())} "
+            f"frequenc{'y' if damaged.sum() == 1 else 'ies'} left out (omega = {listed} rad/s)",
+            path=where,
+            notes=notes,
+            hint="the file is damaged; write it again from the solver",
+        )
+    return unsolved, damaged
 
 
 # --------------------------------------------------------------------------- attributes
@@ -828,7 +1489,7 @@ def encode_attributes(attrs: dict) -> dict:
     special: dict[str, Any] = {}
     for key, value in attrs.items():
         if _is_native(key, value):
-            native[key] = value
+            native[key] = str(value) if isinstance(value, np.str_) else value
         else:
             special[str(key)] = encode_attribute(value, str(key))
     if special:
@@ -952,15 +1613,20 @@ def write_netcdf(ds: xr.Dataset, path: str | os.PathLike[str]) -> Path:
     return save_netcdf(to_capytaine_layout(ds), path)
 
 
-def save_netcdf(ds: xr.Dataset, path: str | os.PathLike[str]) -> Path:
+def save_netcdf(ds: xr.Dataset, path: str | os.PathLike[str], *, checksum: bool = True) -> Path:
     """Write ``ds`` (h5netcdf) to a temporary name, then rename it to ``path``: a failure
-    leaves no half-written file. No overwrite check (the callers do it)."""
+    leaves no half-written file. No overwrite check (the callers do it).
+
+    With ``checksum`` every numeric array carries HDF5's Fletcher-32 checksum filter
+    (a standard HDF5 filter that netCDF-C, h5py and MATLAB read transparently), so a
+    damaged copy is refused on reading instead of giving different numbers."""
     path = Path(path)
     tmp = path.with_name(f".{path.name}.tmp")
+    encoding = _checksum_encoding(ds) if checksum else None
     try:
         with warnings.catch_warnings():
             warnings.simplefilter("ignore", category=FutureWarning)
-            ds.to_netcdf(tmp, engine="h5netcdf")
+            ds.to_netcdf(tmp, engine="h5netcdf", encoding=encoding)
         os.replace(tmp, path)
     except OSError as exc:
         raise HydroDataError(f"cannot write the file ({exc})", path=path) from None
@@ -968,3 +1634,12 @@ def save_netcdf(ds: xr.Dataset, path: str | os.PathLike[str]) -> Path:
         if tmp.exists():
             tmp.unlink()
     return path
+
+
+def _checksum_encoding(ds: xr.Dataset) -> dict[str, dict[str, Any]]:
+    """Fletcher-32 for every non-scalar numeric variable (HDF5 filters need chunks)."""
+    encoding: dict[str, dict[str, Any]] = {}
+    for name, var in ds.variables.items():
+        if var.ndim >= 1 and var.size > 0 and var.dtype.kind in "biufc":
+            encoding[str(name)] = {"fletcher32": True}
+    return encoding

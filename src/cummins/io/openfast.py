@@ -55,7 +55,13 @@ from cummins.io._model_common import resolve_axis_convention
 from cummins.io._text import TextFile, parse_numbers
 from cummins.radiation import CouplingModel, RadiationModel, change_model_axes
 
-__all__ = ["OpenFastSS", "read_openfast_ss", "write_openfast_ss"]
+__all__ = [
+    "OpenFastExcitationSS",
+    "OpenFastSS",
+    "read_openfast_ss",
+    "read_openfast_ssexctn",
+    "write_openfast_ss",
+]
 
 _FMT = "{:.16e}"
 
@@ -305,6 +311,14 @@ def read_openfast_ss(path: str | os.PathLike[str]) -> OpenFastSS:
     text = TextFile.read(path)
     if len(text) < 4:
         raise text.error("the file ends before the 4 header lines", len(text) - 1)
+    if is_excitation_file(text):
+        raise text.error(
+            "this file holds a state-space *excitation* fit (SS_Excitation_Fitting: wave "
+            "heading and time offset in its header), not a radiation model",
+            1,
+            hint="read it with cummins.io.openfast.read_openfast_ssexctn (HydroDyn reads "
+            "such a model from <PotFile>.ssexctn)",
+        )
     flags = _leading_integers(text, 1, "DOF flags")
     if flags.size == 0 or flags.size % 6:
         raise text.error(
@@ -377,3 +391,156 @@ def _rows(text: TextFile, start: int, count: int, width: int) -> NDArray[np.floa
             raise text.error("NaN or Inf in a matrix", start + r)
         out[r] = values
     return out
+
+
+# --------------------------------------------------------------------------- excitation
+
+
+@dataclass(frozen=True)
+class OpenFastExcitationSS:
+    """A state-space model of the wave excitation (SS_Fitting's ``.ssexctn``).
+
+    HydroDyn's ``SS_Excitation`` module integrates x' = A x + B η(t + t_c), F = C x, with
+    η the incident wave elevation at the platform origin and t_c the time offset that
+    makes the non-causal excitation impulse response causal (Yu & Falnes 1995; the
+    model fits K_e(t − t_c)). Its frequency response is therefore
+
+        F(ω)/η(ω) = C (jωI − A)⁻¹ B · e^{jω t_c}
+
+    in cummins' e^{+iωt} convention (WAMIT's), to compare with the data's
+    ``excitation_force`` at the file's wave heading.
+
+    Attributes
+    ----------
+    title
+        Line 1.
+    heading
+        Wave heading of the fit, degrees (line 2).
+    time_offset
+        t_c, s; ``None`` when the file does not record it (the "%Enabled DoFs" layout
+        of SS_Fitting v1.00.01's time-domain method, which HydroDyn cannot read: its
+        third line is read by HydroDyn as the time offset).
+    dof_flags
+        6·NBody flags of the "%Enabled DoFs" layout, else ``None``.
+    states_per_dof
+        States per DOF.
+    A, B, C
+        (N, N), (N,), (6·NBody, N).
+    path
+        The file read.
+    """
+
+    title: str
+    heading: float
+    time_offset: float | None
+    dof_flags: NDArray[np.int_] | None
+    states_per_dof: NDArray[np.int_]
+    A: NDArray[np.float64]
+    B: NDArray[np.float64]
+    C: NDArray[np.float64]
+    path: Path | None = None
+
+    @property
+    def n_states(self) -> int:
+        return int(self.A.shape[0])
+
+    def frequency_response(
+        self, omega: ArrayLike, time_offset: float | None = None
+    ) -> NDArray[np.complex128]:
+        """F(ω)/η, shape (nω, 6·NBody), N/m and N·m/m (e^{+iωt}).
+
+        ``time_offset`` (s) replaces the file's t_c (needed when the file has none).
+        """
+        tc = self.time_offset if time_offset is None else float(time_offset)
+        if tc is None:
+            raise HydroDataError(
+                "the file does not record the time offset t_c of the excitation model",
+                path=self.path,
+                hint="pass time_offset= (HydroDyn would read this layout's third line as t_c)",
+            )
+        w = np.asarray(omega, dtype=float).reshape(-1)
+        eye = np.eye(self.n_states)
+        out = np.empty((w.size, self.C.shape[0]), dtype=complex)
+        for k, wk in enumerate(w):
+            out[k] = self.C @ np.linalg.solve(1j * wk * eye - self.A, self.B)
+            out[k] *= np.exp(1j * wk * tc)
+        return out
+
+
+def is_excitation_file(text: TextFile) -> bool:
+    """SS_Excitation_Fitting's header: title naming it, or "%Wave heading" on line 2."""
+    title = text.lines[0].lower()
+    second = text.lines[1].lower() if len(text) > 1 else ""
+    return "excitation" in title or "wave heading" in second
+
+
+def read_openfast_ssexctn(path: str | os.PathLike[str]) -> OpenFastExcitationSS:
+    """Read a state-space excitation model (``.ssexctn``, or an ``.ss`` holding one).
+
+    Two layouts are in use (OpenFAST r-tests, WEIS): HydroDyn's ("title / heading /
+    time offset t_c / N / states per DOF", written by SS_Excitation_Fitting) and
+    SS_Fitting v1.00.01's time-domain method ("title / heading / DOF flags / N / states
+    per DOF", no t_c). Then A (N rows of N), B (N rows of 1), C (6·NBody rows of N), and
+    nothing after: as HydroDyn counts them ((lines − 5 − 6·NBody)/2 = N).
+
+    Raises
+    ------
+    HydroDataError
+        Naming the file and line.
+    """
+    text = TextFile.read(path)
+    if len(text) < 5:
+        raise text.error("the file ends before the 5 header lines", len(text) - 1)
+    heading = parse_numbers(text.lines[1].split("%")[0])
+    if heading is None or heading.size != 1 or not np.isfinite(heading[0]):
+        raise text.error("expected the wave heading (degrees) on line 2", 1)
+    third = text.lines[2].split("%")[0]
+    comment = text.lines[2].lower()
+    values = parse_numbers(third)
+    if values is None or values.size == 0:
+        raise text.error("expected the time offset or the DOF flags on line 3", 2)
+    flags = None
+    time_offset = None
+    if "enabled" in comment or values.size > 1:
+        flags = values
+        if flags.size % 6 or np.any((flags != 0) & (flags != 1)):
+            raise text.error(f"expected 6·NBody DOF flags (0 or 1), found {flags.size}", 2)
+        flags = flags.astype(int)
+    else:
+        time_offset = float(values[0])
+        if not np.isfinite(time_offset) or abs(time_offset) > 1e4:
+            raise text.error(f"time offset {time_offset!r} s is not usable", 2)
+    count = _leading_integers(text, 3, "number of states")
+    if count.size < 1 or count[0] <= 0:
+        raise text.error("expected the number of states", 3)
+    n_states = int(count[0])
+    per_dof = _leading_integers(text, 4, "states per DOF")
+    if per_dof.size == 0 or per_dof.size % 6:
+        raise text.error(f"expected 6·NBody numbers of states per DOF, found {per_dof.size}", 4)
+    if flags is not None and flags.size != per_dof.size:
+        raise text.error(f"{flags.size} DOF flags but {per_dof.size} numbers of states per DOF", 4)
+    if int(per_dof.sum()) != n_states:
+        raise text.error(f"the states per DOF add up to {int(per_dof.sum())}, not to {n_states}", 4)
+    n_dofs = per_dof.size
+    expected = 5 + 2 * n_states + n_dofs
+    if len(text) != expected:
+        raise text.error(
+            f"expected {expected} lines (5 header lines, {n_states} rows of A, {n_states} of "
+            f"B, {n_dofs} of C), found {len(text)}",
+            min(len(text), expected) - 1,
+            hint="HydroDyn counts every line, blank ones too",
+        )
+    a = _rows(text, 5, n_states, n_states)
+    b = _rows(text, 5 + n_states, n_states, 1)[:, 0]
+    c = _rows(text, 5 + 2 * n_states, n_dofs, n_states)
+    return OpenFastExcitationSS(
+        title=text.lines[0].strip(),
+        heading=float(heading[0]),
+        time_offset=time_offset,
+        dof_flags=flags,
+        states_per_dof=per_dof.astype(int),
+        A=a,
+        B=b,
+        C=c,
+        path=text.path,
+    )

@@ -1,0 +1,433 @@
+"""The terms of the equation of motion that hydrodynamic files often leave out.
+
+A BEM run describes the fluid; the rigid-body inertia, moorings and a power take-off
+belong to the structure, and many file sets hold them only in part (a WAMIT ``.out``
+prints the displaced volume and radii of gyration, a NEMOH run may have no
+``Mechanics/Inertia.dat``, a Capytaine file its ``inertia_matrix`` only when the script
+computed it). These functions complete a ``HydroDB`` so that :func:`cummins.motion_rao`
+and :func:`cummins.vessel_from_hydrodb` have the equation of motion
+
+    [−ω²(M_RB + A(ω)) + iω(B(ω) + B_ext) + C + C_ext] ξ = F(ω, β)
+
+with M_RB built from the mass properties of each body (Fossen (2011) eq. 3.44: the
+rigid-body inertia about a point other than the centre of gravity), and external
+stiffness C_ext and damping B_ext per DOF pair (``additional_stiffness``,
+``additional_damping``). Every value given or assumed is written to ``history``.
+
+Examples
+--------
+>>> import numpy as np, cummins
+>>> from cummins.mass_properties import with_inertia
+>>> w = np.array([0.5, 1.0]); a = np.tile(np.eye(6), (2, 1, 1))
+>>> ds = cummins.make_hydrodb(w, a, a, rho=1025.0, g=9.81, source_format="arrays")
+>>> ds = with_inertia(ds, mass=2.0e6, center_of_gravity=[0, 0, -1.0],
+...                   radii_of_gyration=[5.0, 20.0, 20.0])
+>>> float(ds.inertia_matrix.sel(influenced_dof="Roll", radiating_dof="Roll"))
+52000000.0
+"""
+
+from __future__ import annotations
+
+from collections.abc import Mapping, Sequence
+from typing import Any
+
+import numpy as np
+import xarray as xr
+from numpy.typing import ArrayLike, NDArray
+
+from cummins.errors import ArgumentError, HydroDataError
+from cummins.hydrodb import add_history, bodies, dof_matrix, split_dof
+from cummins.kinematics import rigid_body_inertia
+
+#: The heaviest floating structures are of order 10⁹ kg (ULCCs, the largest FPSOs):
+#: a body a thousand times heavier is a unit error, not a vessel.
+MAX_MASS_KG = 1e12
+
+
+def inertia_from_radii(
+    mass: float,
+    center_of_gravity: ArrayLike,
+    radii_of_gyration: ArrayLike,
+    reference_point: ArrayLike = (0.0, 0.0, 0.0),
+) -> NDArray[np.float64]:
+    """Rigid-body inertia matrix M_RB (6×6) about ``reference_point``.
+
+    Parameters
+    ----------
+    mass
+        kg.
+    center_of_gravity
+        m, in the body axes, from the same origin as ``reference_point``.
+    radii_of_gyration
+        m, about axes through the centre of gravity parallel to the body axes: r_xx,
+        r_yy, r_zz (I = m r²; no products of inertia: give the whole matrix to
+        :func:`with_inertia` when the body has them).
+    reference_point
+        The point about which moments and rotations are taken, m.
+
+    Returns
+    -------
+    (6, 6) ndarray
+        kg, kg·m, kg·m² (Fossen (2011) eq. 3.44, the parallel-axis theorem).
+
+    Examples
+    --------
+    >>> m = inertia_from_radii(1000.0, [0, 0, 0], [1.0, 2.0, 2.0])
+    >>> [float(m[i, i]) for i in (3, 4, 5)]
+    [1000.0, 4000.0, 4000.0]
+    """
+    mass = _positive(mass, "mass", "kg", upper=MAX_MASS_KG)
+    cog = _vector(center_of_gravity, "center_of_gravity")
+    ref = _vector(reference_point, "reference_point")
+    radii = np.asarray(radii_of_gyration, dtype=float).reshape(-1)
+    if radii.shape != (3,) or not np.all(np.isfinite(radii)) or np.any(radii <= 0):
+        raise ArgumentError(
+            f"radii_of_gyration must be 3 finite values > 0 (r_xx, r_yy, r_zz in m), "
+            f"got {radii.tolist()}"
+        )
+    return rigid_body_inertia(mass, cog - ref, mass * radii**2)
+
+
+def with_inertia(
+    ds: xr.Dataset,
+    *,
+    mass: float | Sequence[float | None] | None = None,
+    center_of_gravity: ArrayLike | None = None,
+    radii_of_gyration: ArrayLike | None = None,
+    matrix: ArrayLike | None = None,
+    replace: bool = True,
+) -> xr.Dataset:
+    """The dataset with its ``inertia_matrix`` built from mass properties, or given.
+
+    Parameters
+    ----------
+    ds
+        A ``HydroDB``.
+    mass
+        kg, one value or one per body. ``None``: ρ∇ of a freely floating body, from the
+        data's ``displaced_volume`` (said so in ``history``).
+    center_of_gravity
+        m, (3,) or (n_bodies, 3), in the dataset's axes; default: the data's
+        ``center_of_gravity``.
+    radii_of_gyration
+        m, about the centre of gravity: (3,) or (n_bodies, 3) (see
+        :func:`inertia_from_radii`).
+    matrix
+        Instead of the above: the n×n inertia matrix of all DOFs, or a 6×6 matrix per
+        body ((n_bodies, 6, 6)), about the reference point, kg, kg·m, kg·m².
+    replace
+        Replace an ``inertia_matrix`` the data already hold (default); with ``False``
+        that is an error.
+
+    Returns
+    -------
+    xarray.Dataset
+        A copy with ``inertia_matrix`` (and ``center_of_gravity``) set. The restoring
+        matrix is left as the files give it: if the solver computed it with another
+        centre of gravity, or without the weight's contribution to roll and pitch (as the
+        WAMIT files of OpenFAST models are), correct it with :func:`with_external_terms`.
+
+    Raises
+    ------
+    ArgumentError
+        Values that are not finite, out of range, or of the wrong shape; mass properties
+        that cannot give the matrix (a body with generalized modes needs ``matrix``).
+    """
+    labels = [str(d) for d in ds.influenced_dof.values]
+    n = len(labels)
+    if "inertia_matrix" in ds and not replace:
+        raise ArgumentError("the data already hold an inertia_matrix; pass replace=True")
+    groups = bodies(ds)
+    lines: list[str] = []
+    cogs = None
+    if matrix is not None:
+        if any(v is not None for v in (mass, center_of_gravity, radii_of_gyration)):
+            raise ArgumentError(
+                "give either matrix= or the mass properties (mass, center_of_gravity, "
+                "radii_of_gyration), not both"
+            )
+        m = _matrix_per_body(matrix, labels, groups)
+        lines.append("inertia_matrix given as a matrix")
+    else:
+        m, lines, cogs = _matrix_from_properties(
+            ds, labels, groups, mass, center_of_gravity, radii_of_gyration
+        )
+    if not np.all(np.isfinite(m)):
+        raise ArgumentError("the inertia matrix holds values that are not finite")
+    if np.any(np.diag(m) <= 0) or np.any(np.abs(np.diag(m)) > MAX_MASS_KG * 1e6):
+        bad = [labels[i] for i in range(n) if not 0 < m[i, i] <= MAX_MASS_KG * 1e6]
+        raise ArgumentError(
+            f"the inertia matrix has a diagonal entry that is not a positive mass or inertia "
+            f"for {', '.join(bad)}",
+            hint="give kg for translations and kg m^2 for rotations",
+        )
+    if np.max(np.abs(m - m.T)) > 1e-9 * np.max(np.abs(m)):
+        raise ArgumentError("the inertia matrix must be symmetric")
+    out = ds.copy()
+    previous = "inertia_matrix" in ds
+    out["inertia_matrix"] = xr.DataArray(
+        m,
+        dims=("influenced_dof", "radiating_dof"),
+        coords={"influenced_dof": labels, "radiating_dof": labels},
+        attrs={"units": "kg | kg m | kg m^2", "long_name": "rigid-body inertia matrix M_RB"},
+    )
+    if cogs is not None:
+        out.attrs["center_of_gravity"] = np.concatenate(cogs)
+    for line in lines:
+        add_history(out, line + (" (replaces the file's)" if previous else ""))
+    return out
+
+
+def with_external_terms(
+    ds: xr.Dataset,
+    *,
+    stiffness: Mapping[tuple[str, str], float] | ArrayLike | None = None,
+    damping: Mapping[tuple[str, str], float] | ArrayLike | None = None,
+) -> xr.Dataset:
+    """Add external linear stiffness and damping (moorings, a power take-off, a
+    hinge spring) to the data's ``additional_stiffness`` and ``additional_damping``.
+
+    Parameters
+    ----------
+    stiffness, damping
+        ``{(influenced DOF, radiating DOF): value}`` or an n×n array, N/m, N·m/rad …
+        and kg/s, kg·m²/s …, added to what the data hold. A mapping sets the entries it
+        names only: give ``(j, i)`` too for a symmetric coupling.
+
+    Returns
+    -------
+    xarray.Dataset
+        A copy; the additions are written to ``history``.
+    """
+    labels = [str(d) for d in ds.influenced_dof.values]
+    out = ds.copy()
+    for name, value, unit in (
+        ("additional_stiffness", stiffness, "N/m | N/rad, N | N m/rad"),
+        ("additional_damping", damping, "kg/s | kg m/s | kg m^2/s"),
+    ):
+        if value is None:
+            continue
+        added = _pair_matrix(value, labels, name)
+        if name in out and "omega" in out[name].dims:
+            base = out[name].transpose("omega", "influenced_dof", "radiating_dof")
+            out[name] = base + xr.DataArray(added, dims=("influenced_dof", "radiating_dof"))
+            out[name] = out[name].transpose(*ds[name].dims)
+        else:
+            total = (dof_matrix(out, name) if name in out else 0.0) + added
+            out[name] = xr.DataArray(
+                total,
+                dims=("influenced_dof", "radiating_dof"),
+                coords={"influenced_dof": labels, "radiating_dof": labels},
+                attrs={"units": unit},
+            )
+        entries = ", ".join(
+            f"{labels[i]}-{labels[j]} {added[i, j]:.6g}"
+            for i in range(len(labels))
+            for j in range(len(labels))
+            if added[i, j]
+        )
+        add_history(out, f"{name} added (given): {entries}")
+    return out
+
+
+# --------------------------------------------------------------------------- pieces
+
+
+def _positive(value: Any, name: str, unit: str, upper: float) -> float:
+    try:
+        v = float(value)
+    except (TypeError, ValueError):
+        raise ArgumentError(f"{name} must be a number ({unit}), got {value!r}") from None
+    if not np.isfinite(v) or v <= 0 or v > upper:
+        raise ArgumentError(
+            f"{name} = {v:g} {unit} is not a plausible value (0 < {name} ≤ {upper:g} {unit})"
+        )
+    return v
+
+
+def _vector(value: ArrayLike, name: str) -> NDArray[np.float64]:
+    v = np.asarray(value, dtype=float).reshape(-1)
+    if v.shape != (3,) or not np.all(np.isfinite(v)):
+        raise ArgumentError(f"{name} must be 3 finite coordinates (m), got {v.tolist()}")
+    return v
+
+
+def _per_body(value: Any, count: int, name: str, width: int | None) -> list[Any]:
+    """One entry per body from a scalar / (3,) value or a sequence of them."""
+    if value is None:
+        return [None] * count
+    arr = np.asarray(value, dtype=object if width is None else float)
+    if width is None:  # masses
+        items = list(np.atleast_1d(arr))
+    elif arr.ndim == 1:
+        items = [arr]
+    else:
+        items = list(arr)
+    if len(items) == 1 and count > 1:
+        raise ArgumentError(
+            f"{name}: the data hold {count} bodies; give one value per body, in their order"
+        )
+    if len(items) != count:
+        raise ArgumentError(f"{name}: {len(items)} values given for {count} bodies")
+    return items
+
+
+def _body_slices(labels: list[str], groups: list[str | None]) -> list[list[int]]:
+    return [[i for i, d in enumerate(labels) if split_dof(d)[0] == b] for b in groups]
+
+
+def _matrix_from_properties(ds, labels, groups, mass, cog, radii):
+    """The inertia matrix of every body from its mass properties, the history lines and
+    the centres of gravity used."""
+    n = len(labels)
+    count = len(groups)
+    if radii is None:
+        raise ArgumentError(
+            "radii_of_gyration (m, about the centre of gravity) are needed to build the "
+            "inertia matrix",
+            hint="give them, or the whole matrix (matrix=; --inertia-matrix FILE)",
+        )
+    masses = _per_body(mass, count, "mass", None)
+    cogs = _per_body(cog, count, "center_of_gravity", 3)
+    radii_list = _per_body(radii, count, "radii_of_gyration", 3)
+    refs = np.asarray(ds.attrs.get("reference_point", (0.0, 0.0, 0.0)), dtype=float).reshape(-1, 3)
+    file_cogs = ds.attrs.get("center_of_gravity")
+    file_cogs = None if file_cogs is None else np.asarray(file_cogs, dtype=float).reshape(-1, 3)
+    volume = ds.attrs.get("displaced_volume")
+    rho = float(ds.attrs["rho"])
+    m = np.zeros((n, n))
+    lines: list[str] = []
+    used: list[NDArray[np.float64]] = []
+    for k, index in enumerate(_body_slices(labels, groups)):
+        name = groups[k] or "the body"
+        rigid = [i for i in index if split_dof(labels[i])[1] in _RIGID]
+        if len(index) != 6 or [split_dof(labels[i])[1] for i in rigid] != list(_RIGID):
+            raise ArgumentError(
+                f"{name} has the modes {', '.join(labels[i] for i in index)}: mass properties "
+                "give the six rigid-body modes only",
+                hint="give the whole inertia matrix of all its modes (matrix=; "
+                "--inertia-matrix FILE)",
+            )
+        body_mass = masses[k]
+        if body_mass is None:
+            volumes = np.atleast_1d(np.asarray(volume, dtype=float)) if volume is not None else []
+            if len(volumes) != count:
+                raise ArgumentError(
+                    f"no mass given for {name} and the data hold no displaced volume per body",
+                    hint="give the mass (mass=; --mass KG)",
+                )
+            body_mass = rho * float(volumes[k])
+            lines.append(
+                f"mass of {name} = rho * volume = {body_mass:.6g} kg (freely floating body: "
+                "weight = buoyancy; give the mass if it is moored or ballasted otherwise)"
+            )
+        else:
+            lines.append(f"mass of {name} = {float(body_mass):.6g} kg (given)")
+        body_cog = cogs[k]
+        if body_cog is None:
+            if file_cogs is None or len(file_cogs) != count:
+                raise ArgumentError(
+                    f"no centre of gravity given for {name}, and the data hold none",
+                    hint="give it (center_of_gravity=; --center-of-gravity X Y Z)",
+                )
+            body_cog = file_cogs[k]
+            where = "from the file"
+        else:
+            where = "given"
+        body_cog = _vector(body_cog, "center_of_gravity")
+        ref = refs[k] if len(refs) == count else refs[0]
+        block = inertia_from_radii(body_mass, body_cog, radii_list[k], ref)
+        lines.append(
+            f"inertia of {name} from the radii of gyration "
+            f"{np.round(np.asarray(radii_list[k], dtype=float), 6).tolist()} m about the "
+            f"centre of gravity {body_cog.tolist()} m ({where}), reference point {ref.tolist()} m"
+        )
+        m[np.ix_(index, index)] = block
+        used.append(body_cog)
+    return m, lines, used
+
+
+_RIGID = ("Surge", "Sway", "Heave", "Roll", "Pitch", "Yaw")
+
+
+def _matrix_per_body(matrix: ArrayLike, labels: list[str], groups) -> NDArray[np.float64]:
+    arr = np.asarray(matrix, dtype=float)
+    n = len(labels)
+    if arr.shape == (n, n):
+        return arr
+    slices = _body_slices(labels, groups)
+    six_each = all(len(s) == 6 for s in slices)
+    if six_each and arr.shape == (len(groups), 6, 6):
+        out = np.zeros((n, n))
+        for block, index in zip(arr, slices, strict=True):
+            out[np.ix_(index, index)] = block
+        return out
+    if six_each and arr.shape == (6 * len(groups), 6):
+        return _matrix_per_body(arr.reshape(len(groups), 6, 6), labels, groups)
+    raise ArgumentError(
+        f"the inertia matrix has shape {arr.shape}; the data hold {n} DOFs "
+        f"({len(groups)} bod{'y' if len(groups) == 1 else 'ies'})",
+        hint=f"give an {n}×{n} matrix, or a 6×6 matrix per body stacked one below the other",
+    )
+
+
+def _pair_matrix(value: Any, labels: list[str], name: str) -> NDArray[np.float64]:
+    n = len(labels)
+    if isinstance(value, Mapping):
+        out = np.zeros((n, n))
+        for key, v in value.items():
+            try:
+                i_label, j_label = key
+            except (TypeError, ValueError):
+                raise ArgumentError(f"{name}: keys are (DOF, DOF) pairs, got {key!r}") from None
+            for label in (i_label, j_label):
+                if label not in labels:
+                    raise ArgumentError(
+                        f"{name}: unknown DOF {label!r}", hint=f"the data have {', '.join(labels)}"
+                    )
+            x = float(v)
+            if not np.isfinite(x):
+                raise ArgumentError(f"{name}[{i_label}, {j_label}] = {x!r} is not finite")
+            out[labels.index(i_label), labels.index(j_label)] += x
+        return out
+    arr = np.asarray(value, dtype=float)
+    if arr.shape != (n, n):
+        raise ArgumentError(f"{name} must be {n}×{n} (the data's DOFs), got shape {arr.shape}")
+    if not np.all(np.isfinite(arr)):
+        raise ArgumentError(f"{name} holds values that are not finite")
+    return arr
+
+
+def read_matrix_file(path: str) -> NDArray[np.float64]:
+    """A matrix from a text file (whitespace or commas, ``#`` comments) or ``.npy``."""
+    from pathlib import Path
+
+    p = Path(path)
+    try:
+        if p.suffix.lower() == ".npy":
+            return np.asarray(np.load(p, allow_pickle=False), dtype=float)
+        rows = []
+        for number, line in enumerate(p.read_text(encoding="utf-8-sig").splitlines(), 1):
+            text = line.split("#", 1)[0].replace(",", " ").strip()
+            if not text:
+                continue
+            try:
+                rows.append([float(x) for x in text.split()])
+            except ValueError:
+                raise HydroDataError(
+                    f"expected numbers, found {line.strip()[:60]!r}", path=p, line=number
+                ) from None
+    except (OSError, UnicodeDecodeError, ValueError) as exc:
+        raise HydroDataError(f"cannot read a matrix: {exc}", path=p) from None
+    if not rows or len({len(r) for r in rows}) != 1:
+        raise HydroDataError("expected a rectangular table of numbers", path=p)
+    return np.asarray(rows, dtype=float)
+
+
+__all__ = [
+    "MAX_MASS_KG",
+    "inertia_from_radii",
+    "read_matrix_file",
+    "with_external_terms",
+    "with_inertia",
+]
