@@ -62,6 +62,11 @@ def compared_motions(peak: NDArray, labels) -> NDArray[np.bool_]:
 
 #: Headings of the wave excitation used as load cases.
 HEADINGS = 4
+#: Full-scale data (ω_max below this, rad/s) are judged from RAO_OMEGA_MIN up, as the
+#: scoreboard does (:mod:`cummins.fit.scorecard`).
+FULL_SCALE_OMEGA_MAX = 10.0
+#: rad/s, see FULL_SCALE_OMEGA_MAX.
+RAO_OMEGA_MIN = 0.15
 
 
 @dataclass(frozen=True)
@@ -82,6 +87,46 @@ class MotionSensitivity:
     omega: NDArray[np.float64]
     weight: NDArray[np.float64]
     load: str
+    rigid_body_mass: NDArray[np.float64] | None = None
+    stiffness: NDArray[np.float64] | None = None
+    viscous_damping: NDArray[np.float64] | None = None
+    forces: NDArray[np.complex128] | None = None
+    motions: NDArray[np.complex128] | None = None
+    compared: NDArray[np.bool_] | None = None
+
+    def on(self, omega: NDArray) -> NDArray[np.float64]:
+        """W at ``omega`` (the fitted frequencies: W itself; others interpolated)."""
+        omega = np.asarray(omega, dtype=float)
+        if omega.shape == self.omega.shape and np.allclose(omega, self.omega, rtol=1e-12):
+            return self.weight
+        n = self.weight.shape[1]
+        out = np.empty((omega.size, n, n))
+        for i in range(n):
+            for j in range(n):
+                out[:, i, j] = np.interp(omega, self.omega, self.weight[:, i, j])
+        return out
+
+    def model_error(self, model) -> tuple[float, NDArray[np.float64]]:
+        """The relative motion error of a radiation model against the data's motions on
+        the same load cases: max over cases of max_ω |X_model − X_data| / max_ω |X_data|,
+        per DOF (the issue-16 RAO error at the fitted frequencies; on full-scale data,
+        ω_max < 10 rad/s, those ≥ 0.15 rad/s), and its maximum."""
+        w = self.omega
+        rows = w >= RAO_OMEGA_MIN if w.max() < FULL_SCALE_OMEGA_MAX else np.ones(w.size, bool)
+        w = w[rows]
+        k = model.response(w)
+        z = (
+            -(w**2)[:, None, None] * (self.rigid_body_mass + np.asarray(model.added_mass_inf))
+            + 1j * w[:, None, None] * (self.viscous_damping + k)
+            + self.stiffness
+        )
+        x_model = np.linalg.solve(z, self.forces[rows])
+        x_data = self.motions[rows]
+        peak = np.abs(x_data).max(axis=0)
+        ratio = np.abs(x_model - x_data).max(axis=0) / np.where(peak > 0, peak, 1.0)
+        ratio = np.where(self.compared, ratio, 0.0)
+        per_dof = ratio.max(axis=1)
+        return float(per_dof.max()), per_dof
 
     def coupling_weight(self, i: int, j: int) -> NDArray[np.float64]:
         """W of the coupling (i, j) modelled once for both K_ij and K_ji."""
@@ -144,7 +189,9 @@ def motion_sensitivity(
         per_j = scaled.max(axis=2)  # (omega, j)
         weight = np.maximum(weight, abs_h[:, mm, :, None] * per_j[:, None, :])
     weight *= w[:, None, None]
-    return MotionSensitivity(w, np.nan_to_num(weight), load)
+    return MotionSensitivity(
+        w, np.nan_to_num(weight), load, m, c, b_v, np.asarray(forces), x, compared
+    )
 
 
 def _load_cases(data: xr.Dataset, n: int) -> tuple[NDArray[np.complex128], str]:
