@@ -495,22 +495,22 @@ def _midpoint(lo: float, hi: float, sweep: NDArray) -> float:
 
 def _refine_minimum(lam_min, lo: float, hi: float, w0: float, v0: float) -> tuple[float, float]:
     """The minimum of λ_min(ω) in (lo, hi) near w0, searched on log ω: over the band, and
-    polished within a factor 1.1 of the best point (a band-wide bounded search can stop
+    polished within ±1 % of the best point (a band-wide bounded search can stop
     in a local minimum, or 10⁻⁵ short of the sweep's own minimum)."""
     left = np.log(lo) if lo > 0 else np.log(w0) - 3.0
     right = np.log(hi) if np.isfinite(hi) else np.log(w0) + 3.0
     best_w, best_v = w0, v0
-    for a, b in ((left, right), (None, None)):
-        if a is None:
+    for a, b, tol in ((left, right, 1e-4), (None, None, 1e-9)):
+        if a is None:  # polish within ±1 % of the best point
             centre = np.log(best_w)
-            a, b = max(left, centre - 0.1), min(right, centre + 0.1)
+            a, b = max(left, centre - 0.01), min(right, centre + 0.01)
         if not b > a:
             continue
         result = minimize_scalar(
             lambda x: lam_min(float(np.exp(x))),
             bounds=(a, b),
             method="bounded",
-            options={"xatol": 1e-9},
+            options={"xatol": tol},
         )
         if result.fun < best_v:
             best_w, best_v = float(np.exp(result.x)), float(result.fun)

@@ -45,7 +45,11 @@ from cummins.fit.realization import modal_realization
 from cummins.hydrodb import dof_matrix, single_speed
 from cummins.passivity import augment_for_passivity, enforce_passivity, passivity_test
 from cummins.radiation import CouplingModel, RadiationModel, symmetric_couplings
-from cummins.repair import find_suspect_frequencies, limit_frequency_range
+from cummins.repair import (
+    find_suspect_frequencies,
+    limit_frequency_range,
+    remove_suspect_frequencies,
+)
 from cummins.retardation import (
     added_mass_inf as estimate_added_mass_inf,
 )
@@ -55,6 +59,10 @@ METHODS = ("fd", "realization", "prony")
 PASSIVITY_OPTIONS = ("mimo", "diagonal", "none")
 ADDED_MASS_INF = ("auto", "data", "fit", "ogilvie")
 WEIGHTINGS = ("auto", "motion", "response", "uniform")
+#: The options that reproduce the default identification before issue 16 (uniform
+#: weighting, R² targets only, every frequency above the first suspect one left out):
+#: ``fit_radiation(ds, **PREVIOUS_DEFAULT)``, for comparisons (benchmarks/bench_identification.py).
+PREVIOUS_DEFAULT = {"weighting": "uniform", "exclude_suspect": "above_first"}
 #: Default largest relative motion error of a fit (``motion_tol``): the scoreboard's 1 %
 #: (issue 16). A fit above it is reported as a failure (``attrs["failures"]``).
 MOTION_TOL = 0.01
@@ -126,7 +134,9 @@ def fit_radiation(
     omega_min, omega_max
         Fitting range, rad/s.
     exclude_suspect
-        Leave out the suspect frequencies (see module docstring).
+        Leave out the suspect frequencies (see module docstring): each costs its point to
+        the couplings of the DOFs whose curves it spoils. ``"above_first"``: the rule of
+        the previous default, every frequency above the first suspect one left out too.
     passivity
         ``"mimo"`` (default): diagonal models positive real, and the assembled MIMO model
         made passive (:func:`cummins.passivity.enforce_passivity`: the smallest
@@ -220,6 +230,15 @@ def fit_radiation(
     ogilvie = ogilvie_estimate.values
     # uncertainty of Ogilvie's estimate: its spread over frequency, at least 0.5 %
     ogilvie_spread = np.maximum(ogilvie_estimate.spread.values, 0.005 * np.abs(ogilvie))
+    if added_mass_inf == "auto" and a_inf_mode == "data":
+        inconsistent = inconsistent_added_mass_inf(clean, ogilvie, ogilvie_spread)
+        if inconsistent:
+            a_inf_mode = "fit" if method == "fd" else "ogilvie"
+            data_notes.append(
+                "the data's infinite-frequency added mass disagrees with its finite "
+                f"frequencies ({'; '.join(inconsistent)}): not used, A∞ estimated "
+                f"({a_inf_mode}); pass added_mass_inf='data' to use it anyway"
+            )
     a_inf = dof_matrix(data, "added_mass_inf") if a_inf_mode == "data" else ogilvie.copy()
 
     labels = [str(d) for d in data.influenced_dof.values]
@@ -359,6 +378,30 @@ def fit_radiation(
 #: A pair whose A_ij and A_ji (or B) differ by more than this fraction of the larger one
 #: (and of the diagonal scale √(X_ii X_jj)) is named: the fit uses their average.
 ASYMMETRY_TOL = 0.1
+
+
+#: The data's A∞_ii is taken as inconsistent with A(ω) when it differs from Ogilvie's
+#: estimate by more than this fraction of the largest |A_ii(ω)| and 5 spreads of the
+#: estimate (AQWA's "100 rad/s" row of the PEND hull: 52.1 kg where A(18.8 rad/s) is
+#: 2.2 kg and Ogilvie's estimate 3.4 kg; the rows of the MSS tanker and of 7 corpus
+#: WAMIT/AQWA runs pass).
+A_INF_INCONSISTENT = 0.25
+
+
+def inconsistent_added_mass_inf(data: xr.Dataset, ogilvie, spread) -> list[str]:
+    """The diagonal terms whose ω = ∞ row contradicts the finite frequencies
+    (:data:`A_INF_INCONSISTENT`), as ``"Surge 52.1 vs 2.04"``."""
+    if "added_mass_inf" not in data:
+        return []
+    labels = [str(d) for d in data.influenced_dof.values]
+    row = np.diag(dof_matrix(data, "added_mass_inf"))
+    a = np.abs(np.diagonal(dof_matrix(data, "added_mass"), axis1=1, axis2=2)).max(axis=0)
+    out = []
+    for i, label in enumerate(labels):
+        gap = abs(row[i] - ogilvie[i, i])
+        if gap > A_INF_INCONSISTENT * a[i] and gap > 5 * spread[i, i]:
+            out.append(f"{label} {row[i]:.4g} vs {ogilvie[i, i]:.4g}")
+    return out
 
 
 def asymmetric_pairs(data: xr.Dataset) -> list[str]:
@@ -514,31 +557,29 @@ def make_passive(
             tried.append(attempt(augment_for_passivity(model, report)))
         except FitError as exc:
             failures.append(str(exc))
-    if not tried:
+    best = min((x[2] for x in tried), default=np.inf)
+    if best > SHORTFALL_TOLERANCE:
         # the data may be (nearly) rank-deficient — DOFs coupled kinematically, e.g. surge
         # and pitch of a sphere about a point off its centre, B15² ≈ B11 B55 — so that the
         # small misfit of separately fitted couplings breaks passivity beyond what the
-        # residues can repair: shrink the off-diagonal models a little and try again
+        # residues can repair without cost: shrink the off-diagonal models a little
         for factor in COUPLING_SHRINK:
-            shrunk = _shrunk_couplings(model, factor)
             try:
-                found = attempt(shrunk)
+                found = attempt(_shrunk_couplings(model, factor))
             except FitError as exc:
                 failures.append(str(exc))
                 continue
             note = f"coupling models scaled by {factor:g} for MIMO passivity"
-            found = (
-                found[0],
-                tuple(
-                    replace(k, note="; ".join(filter(None, [k.note, note])))
-                    if k.influenced != k.radiating
-                    else k
-                    for k in found[1]
-                ),
-                found[2],
+            couplings = tuple(
+                replace(k, note="; ".join(filter(None, [k.note, note])))
+                if k.influenced != k.radiating
+                else k
+                for k in found[1]
             )
-            tried.append(found)
-            break
+            shortfall = _shortfall(model.couplings, couplings, target)
+            tried.append((found[0], couplings, shortfall))
+            if shortfall <= SHORTFALL_TOLERANCE:
+                break
     if not tried:
         notes = [
             *model.attrs.get("data_notes", []),
@@ -629,6 +670,18 @@ def _motion_shares(model, sensitivity, measured, per_dof, motion_tol) -> dict:
 #: Factors tried on the off-diagonal models when the MIMO passivity step finds no
 #: solution (:func:`make_passive`), largest first.
 COUPLING_SHRINK = (0.99, 0.97, 0.94, 0.9, 0.8)
+
+
+#: A passivity step within this much of every coupling's R² target costs nothing.
+SHORTFALL_TOLERANCE = 1e-9
+
+
+def _shortfall(before, after, target) -> float:
+    """The largest loss below its target of a coupling (R², ≤ 0: none)."""
+    return max(
+        (min(target(k), _score(old)) - _score(k) for old, k in zip(before, after, strict=True)),
+        default=0.0,
+    )
 
 
 def _shrunk_couplings(model: RadiationModel, factor: float) -> RadiationModel:
@@ -774,7 +827,18 @@ def _fit_data(
     labels = [str(d) for d in data.influenced_dof.values]
     w = data.omega.values
     keep = np.ones((w.size, len(labels)), dtype=bool)
-    if exclude_suspect:
+    if exclude_suspect == "above_first":  # the rule of the previous default
+        cleaned, suspects = remove_suspect_frequencies(data, above_first=True)
+        for s in suspects:
+            notes.append(f"{s.omega:.4g} rad/s left out: {s.quantity}, {s.reason}")
+        dropped = ~np.isin(w, cleaned.omega.values)
+        keep[dropped, :] = False
+        if dropped.sum() > len(suspects):
+            notes.append(
+                f"{int(dropped.sum()) - len(suspects)} more frequencies above "
+                f"{min(s.omega for s in suspects):.4g} rad/s left out with it"
+            )
+    elif exclude_suspect:
         for s in find_suspect_frequencies(data):
             notes.append(f"{s.omega:.4g} rad/s left out: {s.quantity}, {s.reason}")
         for d, label in enumerate(labels):

@@ -131,7 +131,7 @@ class Scorecard:
         }
 
 
-def _data_frequencies(ds: xr.Dataset) -> NDArray[np.bool_]:
+def data_frequencies(ds: xr.Dataset) -> NDArray[np.bool_]:
     """Finite, positive data frequencies not flagged by the suspect-frequency detector."""
     from cummins.repair import find_suspect_frequencies
 
@@ -161,7 +161,7 @@ def diagonal_r2(ds: xr.Dataset, model: RadiationModel) -> dict[str, tuple[float,
         ``{dof: (r2_added_mass, r2_damping)}``.
     """
     ds = single_speed(ds).sel(influenced_dof=list(model.dofs), radiating_dof=list(model.dofs))
-    keep = np.flatnonzero(_data_frequencies(ds))
+    keep = np.flatnonzero(data_frequencies(ds))
     w = ds.omega.values[keep].astype(float)
     a = dof_matrix(ds, "added_mass")[keep]
     b = dof_matrix(ds, "radiation_damping")[keep]
