@@ -45,8 +45,8 @@ import cummins
 from _timing import SHARED_DATA
 from cummins.fit import PREVIOUS_DEFAULT, fit_radiation
 from cummins.fit.scorecard import data_frequencies, scorecard
-from cummins.radiation import change_model_axes
 from cummins.hydrodb import dof_matrix, single_speed
+from cummins.radiation import change_model_axes
 
 REPEAT = 2
 MSS_FDI_SECONDS = 6.2  # issue 4: MSS FDI on the tanker, this machine

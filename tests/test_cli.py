@@ -202,7 +202,16 @@ def test_fit_command(runner, tanker_copy, tmp_path):
     assert result.exit_code == 0, result.output
     assert "3.927 rad/s left out" in result.output and "negative damping" in result.output
     summary = json.loads(summary_path.read_text())
-    assert set(summary) == {"couplings", "total_order", "mimo_stable", "mimo_passive", "elapsed_s"}
+    assert set(summary) == {
+        "couplings",
+        "total_order",
+        "mimo_stable",
+        "mimo_passive",
+        "motion_error",
+        "failures",
+        "elapsed_s",
+    }
+    assert summary["failures"] == []
     model = cummins.radiation.RadiationModel.load(out)
     assert (
         summary["total_order"] == model.total_order == sum(c["order"] for c in summary["couplings"])

@@ -13,7 +13,7 @@ from hypothesis import strategies as st
 import cummins
 import cummins.radiation
 from cummins.errors import FitError
-from cummins.fit import fit_radiation
+from cummins.fit import PREVIOUS_DEFAULT, fit_radiation
 from cummins.fit.frequency import fit_frequency_domain, is_positive_real, r_squared
 from cummins.hydrodb import make_hydrodb
 from cummins.io.mss_abc import read_mss_abc
@@ -192,7 +192,10 @@ def test_better_and_more_compact_than_mss(shared_data, vessel):
     ds = cummins.read(folder / f"{vessel}.mat")
     if "forward_speed" in ds.dims:
         ds = ds.sel(forward_speed=0.0)
-    ours = fit_radiation(ds, passivity="diagonal")  # identification against identification
+    # identification against identification, by the R² of A and B alone as MSS's FDI: the
+    # previous default (the default aims at the motions and spends more states, 74
+    # against 54 on the tanker: test_identification_targets.py)
+    ours = fit_radiation(ds, passivity="diagonal", **PREVIOUS_DEFAULT)
     mss = read_mss_abc(folder / f"{vessel}ABC.mat")
     excluded = ours.attrs["excluded_frequencies"]
     kept = ds.sel(omega=[w for w in ds.omega.values if w not in excluded])
