@@ -48,7 +48,7 @@ from cummins.fit.scorecard import data_frequencies, scorecard
 from cummins.hydrodb import dof_matrix, single_speed
 from cummins.radiation import change_model_axes
 
-REPEAT = 2
+REPEAT = int(os.environ.get("BENCH_REPEAT", "2"))
 MSS_FDI_SECONDS = 6.2  # issue 4: MSS FDI on the tanker, this machine
 
 #: The cases: shared data first, then every corpus file a reader takes (first match per

@@ -265,6 +265,7 @@ def passivity_test(model: RadiationModel) -> PassivityReport:
             worst_w, worst_v = w_min, v_min
         if v_min < -PASSIVITY_TOLERANCE:
             bands.append(ViolationBand(float(lo), float(hi), w_min, v_min))
+    bands = _merged(bands)
     high = _limit_eigenvalue(-(c @ a @ b))
     low = _limit_eigenvalue(c @ np.linalg.matrix_power(np.linalg.inv(a), 3) @ b) if a.size else 0
     passive = (
@@ -491,6 +492,24 @@ def _midpoint(lo: float, hi: float, sweep: NDArray) -> float:
     if lo <= 0:
         return min(hi, sweep[0]) / 10.0
     return float(np.sqrt(lo * hi))
+
+
+def _merged(bands: list[ViolationBand]) -> list[ViolationBand]:
+    """Consecutive violation bands that share an edge merged into one: a zero of Φ where
+    λ_min touches zero without changing sign, or two nearly coincident zeros split by
+    rounding, is not the end of a violation (another BLAS, another thread count found one
+    band where this one found two, and the enforcement then took another path)."""
+    out: list[ViolationBand] = []
+    for band in bands:
+        if out and out[-1].omega_high == band.omega_low:
+            last = out[-1]
+            worst = last if last.min_eigenvalue <= band.min_eigenvalue else band
+            out[-1] = ViolationBand(
+                last.omega_low, band.omega_high, worst.worst_omega, worst.min_eigenvalue
+            )
+        else:
+            out.append(band)
+    return out
 
 
 def _refine_minimum(lam_min, lo: float, hi: float, w0: float, v0: float) -> tuple[float, float]:

@@ -602,7 +602,7 @@ def make_passive(
     needs_more = first is None or (
         first[0].iterations
         and any(
-            _score(k) < min(target(k), _score(old))
+            _score(k) < min(target(k), _score(old)) - TIE
             for old, k in zip(model.couplings, first[1], strict=True)
             if k.influenced == k.radiating
         )
@@ -661,10 +661,10 @@ def make_passive(
         if sensitivity is not None:
             motion = sensitivity.model_error(replace(model, couplings=x[1]))[0]
         losses = [
-            max(0.0, min(target(k), _score(old)) - _score(k))
+            max(0.0, min(target(k), _score(old)) - _score(k) - TIE)
             for old, k in zip(model.couplings, x[1], strict=True)
         ]
-        return (not diagonal_ok, round(motion, 6), round(sum(losses), 9))
+        return (not diagonal_ok, round(motion, 5), round(sum(losses), 6))
 
     result, couplings, _ = min(tried, key=preference)
     attrs = {
@@ -721,7 +721,7 @@ def _motion_rounds(
             models[p] = fit_one(*p, min_order=models[p].order + 1)
         candidate = assemble()
         new_error, new_per_dof = sensitivity.model_error(candidate)
-        if new_error < error:
+        if new_error < error - TIE:
             model, error, per_dof = candidate, new_error, new_per_dof
         else:
             for p, (old, budget) in saved.items():
@@ -762,6 +762,9 @@ def _motion_shares(model, sensitivity, measured, per_dof, motion_tol) -> dict:
 COUPLING_SHRINK = (0.98, 0.9, 0.8)
 
 
+#: Differences of R² or of the motion error below this are ties: rounding (another BLAS,
+#: another thread count) must not decide a branch of the search (issue 16, target 5).
+TIE = 1e-6
 #: A passivity step within this much of every diagonal's R² target is accepted (as by
 #: fit_failures): below it the next attempts are tried.
 SHORTFALL_TOLERANCE = 1e-3
@@ -1108,7 +1111,7 @@ def _fit_coupling(
                 )
             except FitError:
                 continue
-            score = crit.fit_score(quick)
+            score = round(crit.fit_score(quick), 7)
             screening[n] = score
             if score >= target - SCREENING_MARGIN:
                 screened.append(n)
@@ -1138,8 +1141,8 @@ def _fit_coupling(
         except FitError as exc:
             errors.append(f"order {n}: {exc}")
             continue
-        score = score - (0.0 if ok_passive else 1.0)
-        if best is None or score > best[0]:
+        score = round(score - (0.0 if ok_passive else 1.0), 7)
+        if best is None or score > best[0] + TIE:
             best = (score, siso, a_inf_fit)
         if score >= target:
             break
