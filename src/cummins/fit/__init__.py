@@ -678,7 +678,7 @@ def make_passive(
 
 
 #: Rounds of the model-level order search against the motion error.
-MOTION_ROUNDS = 3
+MOTION_ROUNDS = 4
 
 
 def _motion_rounds(
@@ -697,10 +697,12 @@ def _motion_rounds(
     until it meets ``motion_tol`` (:meth:`MotionSensitivity.model_error`): each round,
     the couplings whose share max W|δK| is at least half of the largest share among the
     DOFs that miss get half their budget and start one order above their current one.
-    A round that does not lower the error is undone. The error reached goes to
+    A round that does not lower the error is undone, and its couplings are not chosen
+    again. The error reached goes to
     ``attrs["motion_error"]``."""
     error, per_dof = sensitivity.model_error(model)
     aim = MOTION_AIM * motion_tol
+    no_gain: set = set()  # couplings whose refit did not lower the error
     for _ in range(MOTION_ROUNDS):
         if error <= aim:
             break
@@ -711,7 +713,10 @@ def _motion_rounds(
         chosen = [
             p
             for p, e in sorted(shares.items())
-            if e >= 0.5 * top and models[p].order < max_order and p not in fixed_pairs
+            if e >= 0.5 * top
+            and models[p].order < max_order
+            and p not in fixed_pairs
+            and p not in no_gain
         ]
         if not chosen:
             break
@@ -726,7 +731,7 @@ def _motion_rounds(
         else:
             for p, (old, budget) in saved.items():
                 models[p], budgets[p] = old, budget
-            break
+            no_gain.update(chosen)
     return replace(
         model,
         attrs={
