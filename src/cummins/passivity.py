@@ -265,7 +265,6 @@ def passivity_test(model: RadiationModel) -> PassivityReport:
             worst_w, worst_v = w_min, v_min
         if v_min < -PASSIVITY_TOLERANCE:
             bands.append(ViolationBand(float(lo), float(hi), w_min, v_min))
-    bands = _merged(bands)
     high = _limit_eigenvalue(-(c @ a @ b))
     low = _limit_eigenvalue(c @ np.linalg.matrix_power(np.linalg.inv(a), 3) @ b) if a.size else 0
     passive = (
@@ -446,7 +445,7 @@ def augment_for_passivity(
     scale = dof_scaling(model)
     keep = np.flatnonzero(scale > 0)
     extra: dict[int, list[float]] = {}
-    for band in report.bands:
+    for band in _distinct(report.bands):
         k = model.response(np.array([band.worst_omega]))[0]
         k = k[np.ix_(keep, keep)] * scale[keep][:, None] * scale[keep][None, :]
         _, vec = np.linalg.eigh(k + k.conj().T)
@@ -494,21 +493,16 @@ def _midpoint(lo: float, hi: float, sweep: NDArray) -> float:
     return float(np.sqrt(lo * hi))
 
 
-def _merged(bands: list[ViolationBand]) -> list[ViolationBand]:
-    """Consecutive violation bands that share an edge merged into one: a zero of Φ where
-    λ_min touches zero without changing sign, or two nearly coincident zeros split by
-    rounding, is not the end of a violation (another BLAS, another thread count found one
-    band where this one found two, and the enforcement then took another path)."""
+def _distinct(bands) -> list[ViolationBand]:
+    """The bands less those whose worst point repeats an earlier one's (within 10⁻⁴): a
+    zero of Φ where λ_min touches zero, split in two by rounding, gives two bands with
+    one minimum at their shared edge — on one BLAS thread count and not on another (the
+    cylinder: 62 or 54 states). Augmentation and constraints use each minimum once."""
     out: list[ViolationBand] = []
     for band in bands:
-        if out and out[-1].omega_high == band.omega_low:
-            last = out[-1]
-            worst = last if last.min_eigenvalue <= band.min_eigenvalue else band
-            out[-1] = ViolationBand(
-                last.omega_low, band.omega_high, worst.worst_omega, worst.min_eigenvalue
-            )
-        else:
-            out.append(band)
+        if any(abs(band.worst_omega - b.worst_omega) <= 1e-4 * b.worst_omega for b in out):
+            continue
+        out.append(band)
     return out
 
 
@@ -669,7 +663,7 @@ def _constraints(model, report, groups, bases, scale):
     rows, rhs = [], []
     keep = np.flatnonzero(scale > 0)
     points = []
-    for band in report.bands:
+    for band in _distinct(report.bands):
         lo = band.omega_low if band.omega_low > 0 else band.worst_omega / 100.0
         hi = band.omega_high if np.isfinite(band.omega_high) else band.worst_omega * 100.0
         points.extend([band.worst_omega, *np.geomspace(lo, hi, POINTS_PER_BAND + 2)[1:-1]])

@@ -75,6 +75,9 @@ PREVIOUS_DEFAULT = {"weighting": "uniform", "exclude_suspect": "above_first"}
 #: Default largest relative motion error of a fit (``motion_tol``): the scoreboard's 1 %
 #: (issue 16). A fit above it is reported as a failure (``attrs["failures"]``).
 MOTION_TOL = 0.01
+#: A motion error above MOTION_FAILURE × motion_tol makes the fit a failure; above
+#: motion_tol only, a note.
+MOTION_FAILURE = 2.0
 #: The order search aims at this fraction of ``motion_tol``: room for the frequencies
 #: the fit does not see (suspect points, the data beyond the fitted range).
 MOTION_AIM = 0.8
@@ -414,6 +417,19 @@ def fit_radiation(
             )
             if not [f for f in fit_failures(again, **target_args) if "MIMO passivity took" in f]:
                 model = again
+    error = model.attrs.get("motion_error")
+    if sensitivity is not None and error is not None and error > motion_tol:
+        model = replace(
+            model,
+            attrs={
+                **model.attrs,
+                "data_notes": [
+                    *model.attrs.get("data_notes", []),
+                    f"motion error {100 * error:.2f} % of the peak motion, above the target "
+                    f"{100 * motion_tol:.2g} % (the data's own consistency may limit it)",
+                ],
+            },
+        )
     failures = fit_failures(
         model,
         r2=r2,
@@ -497,7 +513,9 @@ def fit_failures(
     * MIMO passivity asked for and not reached;
     * a coupling that a later step (MIMO passivity) took below its R² target, or lowered
       by more than 0.05 when it was already below (``r2_added_mass_before`` …);
-    * a relative motion error (``attrs["motion_error"]``) above ``motion_tol``.
+    * a relative motion error (``attrs["motion_error"]``) above
+      :data:`MOTION_FAILURE` × ``motion_tol`` (issue 16: "≤ 1 %, never above 2 %"; between
+      the two, a data note says so).
 
     A target that the identification itself did not reach is a note of the coupling, not
     a failure: the data decide it (see the coupling's note).
@@ -522,9 +540,10 @@ def fit_failures(
                     f"{after:.4f} (target {target})"
                 )
     error = model.attrs.get("motion_error")
-    if motion_tol is not None and error is not None and error > motion_tol:
+    if motion_tol is not None and error is not None and error > MOTION_FAILURE * motion_tol:
         out.append(
-            f"motion error {100 * error:.2f} % of the peak motion (target {100 * motion_tol:.2g} %)"
+            f"motion error {100 * error:.2f} % of the peak motion (target "
+            f"{100 * motion_tol:.2g} %, never above {100 * MOTION_FAILURE * motion_tol:.2g} %)"
         )
     return out
 
@@ -764,7 +783,10 @@ def _motion_shares(model, sensitivity, measured, per_dof, motion_tol) -> dict:
 
 #: Factors tried on the off-diagonal models when the MIMO passivity step finds no
 #: solution (:func:`make_passive`), largest first.
-COUPLING_SHRINK = (0.98, 0.9, 0.8)
+#: Empty: measured, the shrunk models never kept a case passive that the other attempts
+#: did not (the sphere stays at λ_min −0.9 %), and they won the choice on the supply
+#: vessel with 9 couplings degraded; the mechanism is kept for experiments.
+COUPLING_SHRINK: tuple[float, ...] = ()
 
 
 #: Differences of R² or of the motion error below this are ties: rounding (another BLAS,
