@@ -13,20 +13,20 @@ default fit, RAO error with 2 % of critical damping:
 ==========================  =====  =======  =======  ========  =========
 case                        order  R² A     R² B     RAO err.  λ_min rel.
 ==========================  =====  =======  =======  ========  =========
-MSS tanker (WAMIT)          77     0.9925   0.9946   1.06 %    ≥ 0
+MSS tanker (WAMIT)          74     0.9916   0.9941   0.93 %    ≥ 0
 MSS supply (ShipX)          50     0.9950   0.9925   0.60 %    ≥ 0
 MSS S-175 (U = 0)           54     0.9910   0.9963   0.67 %    ≥ 0
-WEC-Sim cylinder (NEMOH)    42     0.9949   0.9898   0.62 %    ≥ 0
-AQWA floating OWC (12 DOF)  40     0.9913   0.9861   0.95 %    ≥ 0
+WEC-Sim cylinder (NEMOH)    52     0.9949   0.9897   0.62 %    ≥ 0
+AQWA floating OWC (12 DOF)  45     0.9913   0.9862   0.79 %    ≥ 0
 ==========================  =====  =======  =======  ========  =========
 
-The tanker misses the 1 % target by 0.06 % (heave at 0.66 rad/s, bow-quartering seas:
-the data's own Kramers–Kronig inconsistency moves its heave RAO by up to 2 %,
-test_simulate.py); the fit reports it in ``attrs["failures"]``, which is why the
-passivity test below looks only at the passivity failures.
+Near 1 % the search is fragile: one intermediate version reached 1.06 % on the tanker
+(heave at 0.66 rad/s, where the data's own Kramers–Kronig inconsistency moves the RAO by
+up to 2 %, test_simulate.py); between 1 and 2 % the fit writes a note, above 2 % a
+failure, so the passivity test below looks at the passivity failures only.
 
 The tolerances are the issue's limits where they hold with 1.25× margin (the RAO error
-never above 2 %); the R² floor 0.98 is ≥ 1.25× the worst loss measured (0.0139).
+never above 2 %); the R² floor 0.98 is ≥ 1.25× the worst loss measured (0.0138).
 """
 
 from __future__ import annotations
@@ -95,7 +95,7 @@ def test_the_default_model_is_stable_and_passive(fitted):
 
 def test_the_default_model_reproduces_the_motion_raos(fitted):
     """Target 1: the motion-RAO error (2 % critical damping, 4 headings) never above 2 %;
-    measured 0.60–1.06 % (table of the module docstring), so 2 % has ≥ 1.8× margin."""
+    measured 0.60–0.93 % (1.06 % on an intermediate version): 2 % has ≥ 1.8× margin."""
     name, ds, model = fitted
     error = motion_rao_error(ds, model)
     assert error.error <= 0.02, (name, error.worst_dof, error.worst_omega, error.per_dof)
@@ -103,7 +103,7 @@ def test_the_default_model_reproduces_the_motion_raos(fitted):
 
 def test_the_default_model_fits_every_diagonal(fitted):
     """R² of A and of B of every modelled diagonal, recomputed against the data, ≥ 0.98
-    (measured ≥ 0.9861, floating OWC body2 heave B)."""
+    (measured ≥ 0.9862, floating OWC body2 heave B)."""
     name, ds, model = fitted
     for dof, (r2a, r2b) in diagonal_r2(ds, model).items():
         assert r2a >= 0.98 and r2b >= 0.98, (name, dof, r2a, r2b)
@@ -112,7 +112,7 @@ def test_the_default_model_fits_every_diagonal(fitted):
 @pytest.mark.parametrize("vessel", ["tanker", "supply", "s175"])
 def test_better_motions_than_the_previous_default(shared_data, vessel):
     """The default's RAO error is at most half the previous default's (measured: tanker
-    1.06 vs 6.01 %, supply 0.60 vs 3.15 %, S-175 0.67 vs 4.65 %)."""
+    0.93 vs 6.01 %, supply 0.60 vs 3.15 %, S-175 0.67 vs 4.65 %)."""
     ds = _read(shared_data / SHARED[vessel])
     with warnings.catch_warnings():
         warnings.simplefilter("ignore")

@@ -437,6 +437,47 @@ def fit_radiation(
         passivity=passivity,
         motion_tol=motion_tol if sensitivity is not None else None,
     )
+    if passivity == "mimo" and sensitivity is not None and not model.attrs.get("mimo_passive"):
+        # never a non-passive model when one can be had: the R²-only identification
+        # (the sphere: surge–pitch damping rank-1, B15² ≈ B11 B55 to 0.3 %, which the
+        # motion-weighted blocks overshoot beyond the residues' reach)
+        fallback = fit_radiation(
+            ds,
+            method=method,
+            r2=r2,
+            r2_coupling=r2_coupling,
+            max_order=max_order,
+            orders=orders,
+            threshold=threshold,
+            added_mass_inf=added_mass_inf,
+            omega_min=omega_min,
+            omega_max=omega_max,
+            exclude_suspect=exclude_suspect,
+            passivity=passivity,
+            weighting="uniform",
+            progress=progress,
+        )
+        if fallback.attrs.get("mimo_passive"):
+            error, per_dof = sensitivity.model_error(fallback)
+            note = (
+                "the motion-weighted model could not be made passive: fitted by the R² of "
+                f"A and B alone (motion error {100 * error:.2f} %)"
+            )
+            attrs = {
+                **fallback.attrs,
+                "data_notes": [*fallback.attrs.get("data_notes", []), note],
+                "motion_error": float(error),
+                "motion_error_by_dof": [float(x) for x in per_dof],
+                "motion_target": float(motion_tol),
+            }
+            model = replace(fallback, attrs=attrs)
+            failures = fit_failures(
+                model,
+                r2=r2,
+                r2_coupling=r2 if r2_coupling is None else r2_coupling,
+                passivity=passivity,
+                motion_tol=motion_tol,
+            )
     return replace(
         model,
         attrs={**model.attrs, "failures": failures, "elapsed_s": time.perf_counter() - start},
