@@ -202,7 +202,16 @@ def test_fit_command(runner, tanker_copy, tmp_path):
     assert result.exit_code == 0, result.output
     assert "3.927 rad/s left out" in result.output and "negative damping" in result.output
     summary = json.loads(summary_path.read_text())
-    assert set(summary) == {"couplings", "total_order", "mimo_stable", "mimo_passive", "elapsed_s"}
+    assert set(summary) == {
+        "couplings",
+        "total_order",
+        "mimo_stable",
+        "mimo_passive",
+        "motion_error",
+        "failures",
+        "elapsed_s",
+    }
+    assert summary["failures"] == []
     model = cummins.radiation.RadiationModel.load(out)
     assert (
         summary["total_order"] == model.total_order == sum(c["order"] for c in summary["couplings"])
@@ -219,7 +228,11 @@ def test_fit_command(runner, tanker_copy, tmp_path):
     assert ss.read_text().count("\n") > 10
     again = runner.invoke(main, args)
     assert again.exit_code == 2 and "refusing to overwrite" in again.output
-    assert runner.invoke(main, [*args, "--force", "--method", "realization"]).exit_code == 0
+    # ERA's models made MIMO passive lose R² of A below 0.99 on surge, sway and pitch
+    # (0.9977 → 0.9812 for surge; the same before issue 16, reported as success then): the
+    # model is written, the failure named, the exit status 3
+    result = runner.invoke(main, [*args, "--force", "--method", "realization"])
+    assert result.exit_code == 3 and "failure: Surge: MIMO passivity took" in result.output
     assert cummins.radiation.RadiationModel.load(out).attrs["method"] == "realization"
     assert runner.invoke(main, [*args, "--force", "--no-passive"]).exit_code == 0
     assert json.loads(summary_path.read_text())["mimo_passive"] is False  # identification only

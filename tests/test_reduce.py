@@ -807,3 +807,35 @@ def test_tanker_pr_methods(tanker_models, method):
     for k in reduced.couplings:
         if k.influenced == k.radiating and "reduction_method" in k.metrics:
             assert k.metrics["reduction_min_real_relative"] >= -0.01
+
+
+def test_a_reduction_that_misses_its_tolerance_is_a_failure():
+    """Issue 16: `reduce --tol 0.05` returned an error bound of 82× max|K| with negative R²
+    as a success. reduction_failures names the coupling when both the measured change and
+    Glover's bound exceed the tolerance, and any negative R²; not when the bound meets it
+    (the zero at s = 0 re-imposed afterwards moves K a little)."""
+    from cummins.radiation import CouplingModel, RadiationModel
+    from cummins.reduce import reduction_failures
+
+    def coupling(i, change, bound, r2=0.99):
+        metrics = {
+            "reduction_method": "lyapunov",
+            "reduction_hinf_relative": change,
+            "reduction_hinf_change": change * 10.0,
+            "reduction_error_bound": bound * 10.0,
+            "r2_added_mass": r2,
+            "r2_damping": 0.99,
+            "stable": True,
+        }
+        return CouplingModel(
+            i, i, np.array([[-1.0]]), np.array([1.0]), np.array([1.0]), metrics=metrics
+        )
+
+    model = RadiationModel(
+        ("Surge", "Heave", "Pitch"),
+        (coupling(0, 82.0, 82.0, r2=-3.0), coupling(1, 0.06, 0.04), coupling(2, 0.01, 0.01)),
+        np.eye(3),
+    )
+    failures = reduction_failures(model, 0.05)
+    assert len(failures) == 2 and all(f.startswith("Surge") for f in failures)
+    assert "82 of max|K|" in failures[0] and "R² of A -3" in failures[1]

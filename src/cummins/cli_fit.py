@@ -3,6 +3,7 @@
 from __future__ import annotations
 
 import json
+import sys
 import time
 from pathlib import Path
 
@@ -240,6 +241,8 @@ def fit_command(
         )
     elapsed = time.perf_counter() - start
     console.print(fit_table(model))
+    for line in fit_notes(model):
+        console.print(line, highlight=False)
     summary = fit_summary(model, elapsed)
     console.print(
         f"total order {summary['total_order']}, every model stable: {summary['mimo_stable']}, "
@@ -273,6 +276,16 @@ def fit_command(
 
         for file in write_fit_plots(model, ds, Path(plot_dir), force=force):
             console.print(f"wrote {file}")
+    failures = model.attrs.get("failures", [])
+    for failure in failures:
+        console.print(f"[bold red]failure:[/bold red] {failure}", highlight=False)
+    if failures:
+        sys.exit(FIT_FAILED)
+
+
+#: Exit status of ``cummins fit`` when the model was written but misses a target
+#: (``model.attrs["failures"]``: not passive, a coupling degraded, motion error).
+FIT_FAILED = 3
 
 
 def check_model_outputs(labels, *, mss_path=None, openfast=None) -> None:
@@ -318,24 +331,36 @@ def fit_summary(model, elapsed: float) -> dict:
         "total_order": model.total_order,
         "mimo_stable": model.is_stable(),
         "mimo_passive": is_passive(model),
+        "motion_error": model.attrs.get("motion_error"),
+        "failures": list(model.attrs.get("failures", [])),
         "elapsed_s": elapsed,
     }
 
 
 def fit_table(model) -> Table:
-    """Per-coupling summary printed by ``cummins fit``."""
+    """Per-coupling summary printed by ``cummins fit``: narrow enough for an 80-column
+    terminal (12-DOF labels included); each coupling's note is numbered in the last column
+    and printed below the table (:func:`fit_notes`)."""
+    from rich import box
+
     table = Table(
         title=f"fluid-memory model ({model.attrs.get('method')}; A∞: "
-        f"{model.attrs.get('added_mass_inf_method')})"
+        f"{model.attrs.get('added_mass_inf_method')})",
+        box=box.SIMPLE_HEAD,
+        pad_edge=False,
     )
     for column in ("coupling", "order", "R² A", "R² B", "R² K(t)", "stable", "passive", "note"):
-        table.add_column(column, justify="right" if column != "note" else "left")
+        table.add_column(column, justify="left" if column == "coupling" else "right")
+    number = 0
     for k in model.couplings:
         if k.influenced > k.radiating:
             continue
         m = k.metrics
         a, b = model.dofs[k.influenced], model.dofs[k.radiating]
         passive = m.get("passive")
+        note = short_note(k.note)
+        if note:
+            number += 1
         table.add_row(
             a if a == b else f"{a}-{b}",
             str(k.order),
@@ -344,9 +369,22 @@ def fit_table(model) -> Table:
             "—" if m.get("r2_kernel") is None else f"{m['r2_kernel']:.4f}",
             "yes" if m["stable"] else "NO",
             "—" if passive is None else ("yes" if passive else "NO"),
-            short_note(k.note),
+            f"[{number}]" if note else "",
         )
     return table
+
+
+def fit_notes(model) -> list[str]:
+    """The numbered notes of :func:`fit_table`, in the same order."""
+    out = []
+    for k in model.couplings:
+        if k.influenced > k.radiating:
+            continue
+        note = short_note(k.note)
+        if note:
+            a, b = model.dofs[k.influenced], model.dofs[k.radiating]
+            out.append(f"[{len(out) + 1}] {a if a == b else f'{a}-{b}'}: {note}")
+    return out
 
 
 #: Steps every fit may take; the table leaves them out (the model file keeps the note).

@@ -3,6 +3,7 @@
 from __future__ import annotations
 
 import json
+import sys
 from pathlib import Path
 
 import click
@@ -133,6 +134,18 @@ def reduce_command(
     if json_path:
         Path(json_path).write_text(json.dumps(summary, indent=2) + "\n", encoding="utf-8")
         console.print(f"wrote {json_path}")
+    failures = [
+        f for f in reduced.attrs.get("failures", []) if f not in model.attrs.get("failures", [])
+    ]
+    for failure in failures:
+        console.print(f"[bold red]failure:[/bold red] {failure}", highlight=False)
+    if failures:
+        sys.exit(REDUCE_FAILED)
+
+
+#: Exit status of ``cummins reduce`` when the model was written but misses its tolerance
+#: or a coupling's R² went negative (``reduced.attrs["failures"]``).
+REDUCE_FAILED = 3
 
 
 def reduction_summary(model, reduced, corrected, reference) -> dict:

@@ -171,11 +171,17 @@ def passivity_sweep(model: RadiationModel, omega: ArrayLike | None = None) -> Pa
     """λ_min(K(jω) + K(jω)ᴴ) of the MIMO model on a dense sweep (seed 001 eq. 3.13).
 
     The DOFs are scaled by :func:`dof_scaling`, so that translations and rotations weigh
-    alike.
+    alike, and the eigenvalues are relative to the largest one; both scales are taken on
+    :func:`default_sweep`, whatever ``omega`` is, so that the values compare with
+    :func:`passivity_test`'s exactly.
     """
     w = default_sweep(model) if omega is None else np.asarray(omega, dtype=float)
-    lam = _scaled_eigenvalues(model, w, dof_scaling(model, w))
-    top = max(float(lam[:, -1].max()), np.finfo(float).tiny)
+    reference = default_sweep(model)
+    scale = dof_scaling(model, reference)
+    lam = _scaled_eigenvalues(model, w, scale)
+    top = max(
+        float(_scaled_eigenvalues(model, reference, scale)[:, -1].max()), np.finfo(float).tiny
+    )
     low = lam[:, 0] / top
     worst = int(np.argmin(low))
     return PassivitySweep(w, low, bool(low[worst] >= -PASSIVITY_TOLERANCE), float(w[worst]))
@@ -321,6 +327,7 @@ def enforce_passivity(
     time: ArrayLike | None = None,
     kernel: ArrayLike | None = None,
     importance: Callable[[CouplingModel], float] | None = None,
+    motion_weight: Callable[[CouplingModel], NDArray | None] | None = None,
     max_iterations: int = 30,
 ) -> PassivityEnforcement:
     """Make the MIMO model passive by the smallest data-weighted change of the residues.
@@ -359,6 +366,11 @@ def enforce_passivity(
         Weight of each coupling's loss in the objective (default 1 for all). The fit
         gives 1/(R² − target) so that couplings close to their R² target are changed
         least.
+    motion_weight
+        Per coupling, the weight W(ω) on ``omega`` of its complex error |K̂ − K| in the
+        motions (:mod:`cummins.fit.motion`, already divided by the coupling's error
+        budget), or None: rows W·δK join that coupling's misfit, so that the change
+        avoids the frequencies where the motions are sensitive.
     max_iterations
         Linearised corrections allowed before giving up.
 
@@ -388,6 +400,10 @@ def enforce_passivity(
     misfit = []
     for group, basis in zip(groups, bases, strict=True):
         jac, y = _misfit(model, group, basis, w, added_mass, damping, time, kernel)
+        extra = None if motion_weight is None else motion_weight(model.couplings[group[0]])
+        if extra is not None:
+            jac_m, y_m = _motion_misfit(model, group, basis, w, added_mass, damping, extra)
+            jac, y = np.vstack([jac, jac_m]), np.concatenate([y, y_m])
         weight = 1.0 if importance is None else float(importance(model.couplings[group[0]]))
         misfit.append((np.sqrt(weight) * jac, np.sqrt(weight) * y))
     scale = dof_scaling(model)
@@ -436,7 +452,7 @@ def augment_for_passivity(
     scale = dof_scaling(model)
     keep = np.flatnonzero(scale > 0)
     extra: dict[int, list[float]] = {}
-    for band in report.bands:
+    for band in _distinct(report.bands):
         k = model.response(np.array([band.worst_omega]))[0]
         k = k[np.ix_(keep, keep)] * scale[keep][:, None] * scale[keep][None, :]
         _, vec = np.linalg.eigh(k + k.conj().T)
@@ -484,19 +500,41 @@ def _midpoint(lo: float, hi: float, sweep: NDArray) -> float:
     return float(np.sqrt(lo * hi))
 
 
+def _distinct(bands) -> list[ViolationBand]:
+    """The bands less those whose worst point repeats an earlier one's (within 10⁻⁴): a
+    zero of Φ where λ_min touches zero, split in two by rounding, gives two bands with
+    one minimum at their shared edge — on one BLAS thread count and not on another (the
+    cylinder: 62 or 54 states). Augmentation and constraints use each minimum once."""
+    out: list[ViolationBand] = []
+    for band in bands:
+        if any(abs(band.worst_omega - b.worst_omega) <= 1e-4 * b.worst_omega for b in out):
+            continue
+        out.append(band)
+    return out
+
+
 def _refine_minimum(lam_min, lo: float, hi: float, w0: float, v0: float) -> tuple[float, float]:
-    """The minimum of λ_min(ω) in (lo, hi) near w0, searched on log ω."""
+    """The minimum of λ_min(ω) in (lo, hi) near w0, searched on log ω: over the band, and
+    polished within ±1 % of the best point (a band-wide bounded search can stop
+    in a local minimum, or 10⁻⁵ short of the sweep's own minimum)."""
     left = np.log(lo) if lo > 0 else np.log(w0) - 3.0
     right = np.log(hi) if np.isfinite(hi) else np.log(w0) + 3.0
-    result = minimize_scalar(
-        lambda x: lam_min(float(np.exp(x))),
-        bounds=(left, right),
-        method="bounded",
-        options={"xatol": 1e-4},
-    )
-    if result.fun < v0:
-        return float(np.exp(result.x)), float(result.fun)
-    return w0, v0
+    best_w, best_v = w0, v0
+    for a, b, tol in ((left, right, 1e-4), (None, None, 1e-9)):
+        if a is None:  # polish within ±1 % of the best point
+            centre = np.log(best_w)
+            a, b = max(left, centre - 0.01), min(right, centre + 0.01)
+        if not b > a:
+            continue
+        result = minimize_scalar(
+            lambda x: lam_min(float(np.exp(x))),
+            bounds=(a, b),
+            method="bounded",
+            options={"xatol": tol},
+        )
+        if result.fun < best_v:
+            best_w, best_v = float(np.exp(result.x)), float(result.fun)
+    return best_w, best_v
 
 
 def _limit_eigenvalue(matrix: NDArray) -> float:
@@ -598,6 +636,25 @@ def _misfit(model, group, basis, w, added_mass, damping, time, kernel):
     return np.vstack(rows), np.concatenate(residuals)
 
 
+def _motion_misfit(model, group, basis, w, added_mass, damping, weight):
+    """(J, y): rows W·Re δK and W·Im δK of the coupling (see ``motion_weight`` of
+    :func:`enforce_passivity`), y the current W·(K̂ − K)."""
+    k = model.couplings[group[0]]
+    i, j = k.influenced, k.radiating
+    g = _transfer_vectors(k, w) @ basis
+    response = k.frequency_response(w)
+    if added_mass is not None and damping is not None:
+        data = np.asarray(damping)[:, i, j] + 1j * w * (
+            np.asarray(added_mass)[:, i, j] - model.added_mass_inf[i, j]
+        )
+    else:
+        data = response
+    weight = np.asarray(weight, dtype=float)
+    rows = np.vstack([weight[:, None] * g.real, weight[:, None] * g.imag])
+    residual = weight * (response - data)
+    return rows, np.concatenate([residual.real, residual.imag])
+
+
 def _impulse_vectors(coupling, t: NDArray) -> NDArray:
     """e^{a t} b for each t, shape (len(t), n): K(t) = c·(e^{a t} b)."""
     lam, v = np.linalg.eig(coupling.a)
@@ -613,7 +670,7 @@ def _constraints(model, report, groups, bases, scale):
     rows, rhs = [], []
     keep = np.flatnonzero(scale > 0)
     points = []
-    for band in report.bands:
+    for band in _distinct(report.bands):
         lo = band.omega_low if band.omega_low > 0 else band.worst_omega / 100.0
         hi = band.omega_high if np.isfinite(band.omega_high) else band.worst_omega * 100.0
         points.extend([band.worst_omega, *np.geomspace(lo, hi, POINTS_PER_BAND + 2)[1:-1]])

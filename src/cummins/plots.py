@@ -291,6 +291,9 @@ def plot_coupling_fit(
 ) -> Figure:
     """Data against the fitted model for coupling (i, j): A, B, |K|, ∠K and K(t).
 
+    The data drawn are what the fit used, the symmetric part ½(X_ij + X_ji); where the
+    entry as read differs (A_ij ≠ A_ji) it is drawn as crosses too.
+
     Parameters
     ----------
     ds
@@ -311,8 +314,13 @@ def plot_coupling_fit(
     w = ds.omega.values
     w_model = np.geomspace(w[~out][0] * 0.5, w[~out][-1] * 2.0, 400)
     sel = {"influenced_dof": dof_i, "radiating_dof": dof_j}
-    a_data = ds.added_mass.sel(sel).values
-    b_data = ds.radiation_damping.sel(sel).values
+    swapped = {"influenced_dof": dof_j, "radiating_dof": dof_i}
+    # what the fit used: the symmetric part ½(X_ij + X_ji) (the R² in the title are
+    # against it); the entries as read are drawn too where they differ
+    a_read = ds.added_mass.sel(sel).values
+    b_read = ds.radiation_damping.sel(sel).values
+    a_data = 0.5 * (a_read + ds.added_mass.sel(swapped).values)
+    b_data = 0.5 * (b_read + ds.radiation_damping.sel(swapped).values)
     a_inf = float(model.added_mass_inf[i, j])
     k_data = b_data + 1j * w * (a_data - a_inf)
     k_model = model.frequency_response(w_model).values[:, i, j]
@@ -331,6 +339,9 @@ def plot_coupling_fit(
                 w[out], values[out], "o", ms=4, mfc="none", color="0.5", label="left out"
             )
 
+    for ax, read, fitted in ((ax_a, a_read, a_data), (ax_b, b_read, b_data)):
+        if not np.allclose(read, fitted, rtol=1e-6, atol=0.0):
+            ax.plot(w, read, "x", ms=3, color="0.6", label=f"{dof_i}, {dof_j} as read")
     points(ax_a, a_data)
     ax_a.plot(w_model, a_inf + k_model.imag / w_model, color="C0", label="model")
     ax_a.axhline(a_inf, color="C3", ls="--", lw=0.8, label="A∞")

@@ -2,32 +2,42 @@
 
 :func:`fit_radiation` turns a ``HydroDB`` into a :class:`~cummins.radiation.RadiationModel`:
 
-1. **Data**: frequencies flagged by :func:`cummins.repair.find_suspect_frequencies`
-   (irregular-frequency spikes, negative damping, an inconsistent first frequency) are
-   left out of the fit, and with them every frequency above the first irregular one
-   (:func:`cummins.repair.remove_suspect_frequencies` with ``above_first``), unless
-   ``exclude_suspect`` is false; so is everything outside ``omega_min``…``omega_max``.
-   What was left out is recorded.
+1. **Data**: frequencies flagged by :func:`cummins.repair.find_suspect_frequencies` on a
+   DOF's own curves (irregular-frequency spikes, negative damping, an inconsistent first
+   frequency) are left out of that DOF's couplings — each costs its own point, nothing
+   above it — unless ``exclude_suspect`` is false; so is everything outside
+   ``omega_min``…``omega_max``. What was left out is recorded. A pair with A_ij ≠ A_ji
+   (or B) beyond 10 % is named in a warning (:func:`asymmetric_pairs`).
 2. **Couplings**: the significant ones (:func:`cummins.retardation.significant_couplings`);
    negligible couplings (relative threshold) are left out and reported; a symmetric
    pair K_ij = K_ji is fitted once, to the symmetric part of the data, and used twice.
-3. **A∞**: the solver's ω = ∞ row when present; otherwise estimated jointly with each
-   coupling's model (``"fit"``, Perez & Fossen's idea), regularised towards Ogilvie's
-   Kramers–Kronig estimate within its spread — A(ω) and B(ω) on a truncated frequency
-   range hardly constrain A∞ by themselves (the R² of the fit changes by 10⁻⁴ when A∞
-   moves by 3 % on the tanker), the causality relation does — or taken from Ogilvie's
-   relation alone (``"ogilvie"``).
-4. **Each coupling**: frequency-domain fit (:mod:`cummins.fit.frequency`) or time-domain
+3. **A∞**: the solver's ω = ∞ row when present and consistent with the finite
+   frequencies (:func:`inconsistent_added_mass_inf`); otherwise estimated jointly with
+   each coupling's model (``"fit"``, Perez & Fossen's idea), regularised towards
+   Ogilvie's Kramers–Kronig estimate within its spread, or taken from Ogilvie's relation
+   alone (``"ogilvie"``).
+4. **What the fit aims at**: with the inertia and the restoring in the data, the
+   motions (``weighting="motion"``, :mod:`cummins.fit.motion`): every error δK_ij(ω)
+   weighs its first-order effect on the motion RAOs (δX = −H jω δK X, Falnes (2002)
+   eq. 5.8), besides the R² of A and of B. Without them, the R² alone (``"uniform"``).
+5. **Each coupling**: frequency-domain fit (:mod:`cummins.fit.frequency`) or time-domain
    realization of K(t) (:mod:`cummins.fit.realization`, Kung/ERA or Prony), at the
-   smallest order whose R² of A and of B reaches the target (default 0.99), up to
-   ``max_order``; users can fix the order of any coupling. Every returned model is
-   stable; diagonal models are required to be positive real.
-5. **Metrics** per coupling (:mod:`cummins.fit.metrics`) and the MIMO assembly.
+   smallest order whose R² of A and of B reaches the target (default 0.99) and whose
+   share of the motion error is within its budget, up to ``max_order``; users can fix
+   the order of any coupling. Every returned model is stable; diagonal models are
+   required to be positive real.
+6. **MIMO**: the assembled model made passive (:func:`make_passive`), then up to three
+   rounds refit the couplings that carry the motion error of the whole model until it is
+   within ``motion_tol`` (1 %) of each motion's peak. ``attrs["failures"]`` lists what
+   misses a target (:func:`fit_failures`).
+7. **Metrics** per coupling (:mod:`cummins.fit.metrics`); the scoreboard of a model
+   against its data, independent of the fit: :mod:`cummins.fit.scorecard`.
 """
 
 from __future__ import annotations
 
 import time
+import warnings
 from collections.abc import Callable, Mapping
 from dataclasses import dataclass, replace
 
@@ -36,14 +46,19 @@ import xarray as xr
 from numpy.typing import NDArray
 
 from cummins.check import copied_dofs
-from cummins.errors import FitError, HydroDataError
+from cummins.errors import CumminsWarning, FitError, HydroDataError
 from cummins.fit.frequency import FrequencyFit, fit_frequency_domain, pruned_poles
 from cummins.fit.metrics import coupling_metrics
+from cummins.fit.motion import MotionSensitivity, motion_sensitivity
 from cummins.fit.realization import modal_realization
 from cummins.hydrodb import dof_matrix, single_speed
-from cummins.passivity import augment_for_passivity, enforce_passivity
+from cummins.passivity import augment_for_passivity, enforce_passivity, passivity_test
 from cummins.radiation import CouplingModel, RadiationModel, symmetric_couplings
-from cummins.repair import limit_frequency_range, remove_suspect_frequencies
+from cummins.repair import (
+    find_suspect_frequencies,
+    limit_frequency_range,
+    remove_suspect_frequencies,
+)
 from cummins.retardation import (
     added_mass_inf as estimate_added_mass_inf,
 )
@@ -53,12 +68,30 @@ from cummins.validation import guard_fit_arguments, guard_hydro_data
 METHODS = ("fd", "realization", "prony")
 PASSIVITY_OPTIONS = ("mimo", "diagonal", "none")
 ADDED_MASS_INF = ("auto", "data", "fit", "ogilvie")
+WEIGHTINGS = ("auto", "motion", "response", "uniform")
+#: The options that reproduce the default identification before issue 16 (uniform
+#: weighting, R² targets only, every frequency above the first suspect one left out):
+#: ``fit_radiation(ds, **PREVIOUS_DEFAULT)``, for comparisons (benchmarks/bench_identification.py).
+PREVIOUS_DEFAULT = {"weighting": "uniform", "exclude_suspect": "above_first"}
+#: Default largest relative motion error of a fit (``motion_tol``): the scoreboard's 1 %
+#: (issue 16). A fit above it is reported as a failure (``attrs["failures"]``).
+MOTION_TOL = 0.01
+#: A motion error above MOTION_FAILURE × motion_tol makes the fit a failure; above
+#: motion_tol only, a note.
+MOTION_FAILURE = 2.0
+#: The order search aims at this fraction of ``motion_tol``: room for the frequencies
+#: the fit does not see (suspect points, the data beyond the fitted range).
+MOTION_AIM = 0.8
+#: Share of the motion error each coupling may take at first (× motion_tol): the rounds
+#: of the order search tighten it where the model misses.
+INITIAL_BUDGET = 1.2
 #: Options of :func:`fit_radiation` for simulations that must reproduce the frequency-domain
 #: RAOs of the data closely (``fit_radiation(ds, **MOTION_ACCURACY)``, ``cummins simulate
-#: --accurate``): tight R² targets, higher orders, response weighting. On the MSS tanker the
-#: steady-state motions in regular waves then agree with the data's RAOs to ≤ 1.7 % of each
-#: DOF's peak (heave ≤ 3.1 % on one BLAS rounding path) and ≤ 1.9° (defaults: up to 20 %),
-#: for 3–4× the states and ~100× the fitting time (tests/test_simulate.py).
+#: --accurate``): tight R² targets, higher orders, response weighting. Measured by the
+#: scoreboard (cummins.fit.scorecard, 2 % critical damping) on the MSS tanker: RAO error
+#: 0.82 % at 237 states and ~100 s, against 0.93 % at 74 states and ~2 s for the default
+#: since issue 16 (6.0 % at 54 states before it). It buys little now; it is kept for
+#: ``--accurate`` and the regular-wave tests, which fix its orders (tests/test_simulate.py).
 MOTION_ACCURACY = {"r2": 0.9999, "r2_coupling": 0.999, "max_order": 20, "weighting": "response"}
 
 __all__ = [
@@ -85,7 +118,8 @@ def fit_radiation(
     omega_max: float | None = None,
     exclude_suspect: bool = True,
     passivity: str = "mimo",
-    weighting: str = "uniform",
+    weighting: str = "auto",
+    motion_tol: float = MOTION_TOL,
     progress: Callable[[str], None] | None = None,
 ) -> RadiationModel:
     """Identify state-space models of all significant couplings of the fluid memory.
@@ -114,7 +148,9 @@ def fit_radiation(
     omega_min, omega_max
         Fitting range, rad/s.
     exclude_suspect
-        Leave out the suspect frequencies (see module docstring).
+        Leave out the suspect frequencies (see module docstring): each costs its point to
+        the couplings of the DOFs whose curves it spoils. ``"above_first"``: the rule of
+        the previous default, every frequency above the first suspect one left out too.
     passivity
         ``"mimo"`` (default): diagonal models positive real, and the assembled MIMO model
         made passive (:func:`cummins.passivity.enforce_passivity`: the smallest
@@ -123,12 +159,21 @@ def fit_radiation(
         R² before and after). ``"diagonal"``: positive-real diagonal models only (the
         identification itself). ``"none"``: stability only.
     weighting
-        ``"uniform"`` (default): every fitted frequency alike. ``"response"``: each
+        ``"auto"`` (default): ``"motion"`` when the data hold the inertia and the
+        restoring (and ``method="fd"``), else ``"uniform"``. ``"motion"``: the error of
+        K(jω) weighs what the motion RAOs are sensitive to (:mod:`cummins.fit.motion`),
+        and the orders are chosen against the motion error (module docstring).
+        ``"uniform"``: every fitted frequency alike (the previous default). ``"response"``: each
         frequency weighs ω/|Z_ii(ω)| (for a coupling, the geometric mean of its two DOFs),
         Z_ii = −ω²(M_RB + A(ω))_ii + jω B_ii(ω) + C_ii — the sensitivity of the motion to
         an error of K (δX/X ≈ −jω δK/Z): the fit is sharpened where the motions are
         resonant, for simulations that must match the frequency-domain RAOs closely.
         Needs ``inertia_matrix`` and ``hydrostatic_stiffness``.
+    motion_tol
+        Largest relative motion error of the model (``weighting="motion"``): max over
+        DOFs and load cases of max_ω |X_model − X_data| / max_ω |X_data|, with 2 % of
+        critical damping (default 1 %, issue 16). The search aims at 80 % of it; above
+        it the fit is reported as a failure.
     progress
         Called with a short message before each coupling.
 
@@ -159,8 +204,8 @@ def fit_radiation(
     )
     if method not in METHODS:
         raise FitError(f"unknown method {method!r}; use one of {', '.join(METHODS)}")
-    if weighting not in ("uniform", "response"):
-        raise FitError(f"unknown weighting {weighting!r}; use 'uniform' or 'response'")
+    if weighting not in WEIGHTINGS:
+        raise FitError(f"unknown weighting {weighting!r}; use one of {', '.join(WEIGHTINGS)}")
     if passivity not in PASSIVITY_OPTIONS:
         raise FitError(
             f"unknown passivity option {passivity!r}; use one of {', '.join(PASSIVITY_OPTIONS)}"
@@ -183,7 +228,20 @@ def fit_radiation(
     ds = single_speed(ds)
     guard_hydro_data(ds)  # non-finite or absurd values: FitError naming the DOF pair
     say = progress or (lambda message: None)
-    data, excluded, data_notes = _fit_data(ds, omega_min, omega_max, exclude_suspect)
+    raw, keep_dof, data_notes = _fit_data(ds, omega_min, omega_max, exclude_suspect)
+    # the data with each coupling's suspect points bridged: for Ogilvie's A∞, K(t), the
+    # MIMO passivity step and the metrics after it
+    # (not extrapolated: frequencies beyond those every DOF keeps are left out there)
+    common = np.flatnonzero(keep_dof.all(axis=1))
+    if common.size < MIN_KEPT_FREQUENCIES:
+        common = np.arange(raw.sizes["omega"])
+    inside = np.arange(common[0], common[-1] + 1)
+    clean = raw.isel(omega=common)
+    raw, keep_dof = raw.isel(omega=inside), keep_dof[inside]
+    data = _bridged_dataset(raw, keep_dof)
+    excluded = [float(x) for x in raw.omega.values[~keep_dof.all(axis=1)]]
+    excluded += [float(x) for x in ds.omega.values if x not in set(raw.omega.values)]
+    excluded = sorted(excluded)
     a_inf_mode = added_mass_inf
     if a_inf_mode == "auto":
         a_inf_mode = (
@@ -198,27 +256,58 @@ def fit_radiation(
     if a_inf_mode == "fit" and method != "fd":
         raise FitError("the joint A∞ estimate needs method='fd'; use added_mass_inf='ogilvie'")
     ogilvie_estimate = estimate_added_mass_inf(
-        data.drop_vars("added_mass_inf", errors="ignore"), method="ogilvie"
+        clean.drop_vars("added_mass_inf", errors="ignore"), method="ogilvie"
     )
     ogilvie = ogilvie_estimate.values
     # uncertainty of Ogilvie's estimate: its spread over frequency, at least 0.5 %
     ogilvie_spread = np.maximum(ogilvie_estimate.spread.values, 0.005 * np.abs(ogilvie))
+    if added_mass_inf == "auto" and a_inf_mode == "data":
+        inconsistent = inconsistent_added_mass_inf(clean, ogilvie, ogilvie_spread)
+        if inconsistent:
+            a_inf_mode = "fit" if method == "fd" else "ogilvie"
+            data_notes.append(
+                "the data's infinite-frequency added mass disagrees with its finite "
+                f"frequencies ({'; '.join(inconsistent)}): not used, A∞ estimated "
+                f"({a_inf_mode}); pass added_mass_inf='data' to use it anyway"
+            )
     a_inf = dof_matrix(data, "added_mass_inf") if a_inf_mode == "data" else ogilvie.copy()
 
     labels = [str(d) for d in data.influenced_dof.values]
     w = data.omega.values
+    for message in asymmetric_pairs(data):
+        warnings.warn(message, CumminsWarning, stacklevel=2)
+        data_notes.append(message)
     measured = fit_data(data)
     weights = _response_weights(data) if weighting == "response" else None
-    a_all, b_all = measured.added_mass, measured.damping
+    if weighting == "auto":
+        known = {"inertia_matrix", "hydrostatic_stiffness"} <= set(data)
+        weighting = "motion" if known and method == "fd" else "uniform"
+    sensitivity = None
+    if weighting == "motion":
+        sensitivity = motion_sensitivity(data, added_mass_inf=a_inf)
+        if sensitivity is None:
+            raise FitError(
+                "weighting='motion' needs inertia_matrix and hydrostatic_stiffness in the data",
+                hint="use weighting='uniform' or data with the rigid-body inertia and restoring",
+            )
     pairs = significant_couplings(data, threshold)
     all_pairs = [(i, j) for i in range(len(labels)) for j in range(i, len(labels))]
     negligible = [p for p in all_pairs if p not in pairs]
     t, kernel = measured.time, measured.kernel
     models: list[CouplingModel] = []
-    for i, j in pairs:
+    a_raw = dof_matrix(raw, "added_mass")
+    b_raw = dof_matrix(raw, "radiation_damping")
+    a_raw = 0.5 * (a_raw + np.swapaxes(a_raw, 1, 2))
+    b_raw = 0.5 * (b_raw + np.swapaxes(b_raw, 1, 2))
+    w_all = w
+    budgets = dict.fromkeys(pairs, INITIAL_BUDGET * motion_tol)
+
+    def fit_one(i: int, j: int, min_order: int = 2) -> CouplingModel:
         name = labels[i] if i == j else f"{labels[i]}-{labels[j]}"
         say(f"{name}")
-        a_ij, b_ij = a_all[:, i, j], b_all[:, i, j]
+        use = keep_dof[:, i] & keep_dof[:, j]
+        w = w_all[use]
+        a_ij, b_ij = a_raw[use, i, j], b_raw[use, i, j]
         fixed = (orders or {}).get((i, j), (orders or {}).get((j, i)))
         started = time.perf_counter()
         coupling, a_inf_ij = _fit_coupling(
@@ -232,20 +321,29 @@ def fit_radiation(
             guess=0.5 * (ogilvie[i, j] + ogilvie[j, i]),
             spread=0.5 * (ogilvie_spread[i, j] + ogilvie_spread[j, i]),
             passive=passivity != "none" and i == j,
-            target=r2 if i == j or r2_coupling is None else r2_coupling,
+            crit=_Criterion(
+                r2 if i == j or r2_coupling is None else r2_coupling,
+                w,
+                a_ij,
+                b_ij,
+                None if sensitivity is None else sensitivity.coupling_weight(i, j)[use],
+                budgets[(i, j)] if sensitivity is not None else None,
+            ),
             max_order=max_order,
             fixed=fixed,
-            i=i,
-            j=j,
             name=name,
-            weight=None if weights is None else np.sqrt(weights[:, i] * weights[:, j]),
+            weight=None if weights is None else np.sqrt(weights[use, i] * weights[use, j]),
+            min_order=min_order,
         )
         a_inf[i, j] = a_inf[j, i] = a_inf_ij
         model = CouplingModel(i, j, coupling.a, coupling.b, coupling.c, method, {}, coupling.note)
         metrics = coupling_metrics(model, w, a_ij, b_ij, a_inf_ij, time=t, kernel=kernel[:, i, j])
         metrics.update(coupling.extra)
+        metrics["n_excluded_frequencies"] = int((~use).sum())
         metrics["elapsed_s"] = time.perf_counter() - started
-        models.append(replace(model, metrics=metrics))
+        return replace(model, metrics=metrics)
+
+    models = {(i, j): fit_one(i, j) for i, j in pairs}
     attrs = {
         "source_file": str(ds.attrs.get("source_file", "")),
         "source_format": str(ds.attrs.get("source_format", "")),
@@ -270,16 +368,234 @@ def fit_radiation(
             for i, j in negligible
             if i == j
         ],
-        "omega_fit_min": float(w[0]),
-        "omega_fit_max": float(w[-1]),
+        "omega_fit_min": float(w_all[0]),
+        "omega_fit_max": float(w_all[-1]),
     }
-    model = RadiationModel(tuple(labels), symmetric_couplings(models), a_inf, attrs)
-    if passivity == "mimo":
-        say("MIMO passivity")
-        model = make_passive(
-            model, measured, r2=r2, r2_coupling=r2 if r2_coupling is None else r2_coupling
+
+    def assemble(last_resort: bool = False) -> RadiationModel:
+        out = RadiationModel(
+            tuple(labels), symmetric_couplings(list(models.values())), a_inf.copy(), attrs
         )
-    return replace(model, attrs={**model.attrs, "elapsed_s": time.perf_counter() - start})
+        if passivity == "mimo":
+            say("MIMO passivity")
+            out = make_passive(
+                out,
+                measured,
+                r2=r2,
+                r2_coupling=r2 if r2_coupling is None else r2_coupling,
+                sensitivity=sensitivity,
+                motion_tol=motion_tol,
+                last_resort=last_resort,
+            )
+        return out
+
+    model = assemble()
+    if sensitivity is not None:
+        fixed_pairs = {tuple(sorted(p)) for p in (orders or {})}
+        model = _motion_rounds(
+            model,
+            models,
+            budgets,
+            sensitivity,
+            measured,
+            motion_tol,
+            max_order,
+            fit_one,
+            assemble,
+            fixed_pairs,
+        )
+    target_args = {
+        "r2": r2,
+        "r2_coupling": r2 if r2_coupling is None else r2_coupling,
+        "passivity": passivity,
+        "motion_tol": motion_tol if sensitivity is not None else None,
+    }
+    if passivity == "mimo" and sensitivity is not None:
+        degraded = [f for f in fit_failures(model, **target_args) if "MIMO passivity took" in f]
+        if degraded:  # the last resort: lighter motion rows in the passivity step
+            again = assemble(last_resort=True)
+            error, per_dof = sensitivity.model_error(again)
+            again = replace(
+                again,
+                attrs={
+                    **model.attrs,
+                    **again.attrs,
+                    "motion_error": float(error),
+                    "motion_error_by_dof": [float(x) for x in per_dof],
+                },
+            )
+            if not [f for f in fit_failures(again, **target_args) if "MIMO passivity took" in f]:
+                model = again
+    error = model.attrs.get("motion_error")
+    if sensitivity is not None and error is not None and error > motion_tol:
+        model = replace(
+            model,
+            attrs={
+                **model.attrs,
+                "data_notes": [
+                    *model.attrs.get("data_notes", []),
+                    f"motion error {100 * error:.2f} % of the peak motion, above the target "
+                    f"{100 * motion_tol:.2g} % (the data's own consistency may limit it)",
+                ],
+            },
+        )
+    failures = fit_failures(
+        model,
+        r2=r2,
+        r2_coupling=r2 if r2_coupling is None else r2_coupling,
+        passivity=passivity,
+        motion_tol=motion_tol if sensitivity is not None else None,
+    )
+    if passivity == "mimo" and sensitivity is not None and not model.attrs.get("mimo_passive"):
+        # never a non-passive model when one can be had: the R²-only identification
+        # (the sphere: surge–pitch damping rank-1, B15² ≈ B11 B55 to 0.3 %, which the
+        # motion-weighted blocks overshoot beyond the residues' reach)
+        fallback = fit_radiation(
+            ds,
+            method=method,
+            r2=r2,
+            r2_coupling=r2_coupling,
+            max_order=max_order,
+            orders=orders,
+            threshold=threshold,
+            added_mass_inf=added_mass_inf,
+            omega_min=omega_min,
+            omega_max=omega_max,
+            exclude_suspect=exclude_suspect,
+            passivity=passivity,
+            weighting="uniform",
+            progress=progress,
+        )
+        if fallback.attrs.get("mimo_passive"):
+            error, per_dof = sensitivity.model_error(fallback)
+            note = (
+                "the motion-weighted model could not be made passive: fitted by the R² of "
+                f"A and B alone (motion error {100 * error:.2f} %)"
+            )
+            attrs = {
+                **fallback.attrs,
+                "data_notes": [*fallback.attrs.get("data_notes", []), note],
+                "motion_error": float(error),
+                "motion_error_by_dof": [float(x) for x in per_dof],
+                "motion_target": float(motion_tol),
+            }
+            model = replace(fallback, attrs=attrs)
+            failures = fit_failures(
+                model,
+                r2=r2,
+                r2_coupling=r2 if r2_coupling is None else r2_coupling,
+                passivity=passivity,
+                motion_tol=motion_tol,
+            )
+    return replace(
+        model,
+        attrs={**model.attrs, "failures": failures, "elapsed_s": time.perf_counter() - start},
+    )
+
+
+#: A pair whose A_ij and A_ji (or B) differ by more than this fraction of the larger one
+#: (and of the diagonal scale √(X_ii X_jj)) is named: the fit uses their average.
+ASYMMETRY_TOL = 0.1
+
+
+#: The data's A∞_ii is taken as inconsistent with A(ω) when it differs from Ogilvie's
+#: estimate by more than this fraction of the largest |A_ii(ω)| and 5 spreads of the
+#: estimate (AQWA's "100 rad/s" row of the PEND hull: 52.1 kg where A(18.8 rad/s) is
+#: 2.2 kg and Ogilvie's estimate 3.4 kg; the rows of the MSS tanker and of 7 corpus
+#: WAMIT/AQWA runs pass).
+A_INF_INCONSISTENT = 0.25
+
+
+def inconsistent_added_mass_inf(data: xr.Dataset, ogilvie, spread) -> list[str]:
+    """The diagonal terms whose ω = ∞ row contradicts the finite frequencies
+    (:data:`A_INF_INCONSISTENT`), as ``"Surge 52.1 vs 2.04"``."""
+    if "added_mass_inf" not in data:
+        return []
+    labels = [str(d) for d in data.influenced_dof.values]
+    row = np.diag(dof_matrix(data, "added_mass_inf"))
+    a = np.abs(np.diagonal(dof_matrix(data, "added_mass"), axis1=1, axis2=2)).max(axis=0)
+    out = []
+    for i, label in enumerate(labels):
+        gap = abs(row[i] - ogilvie[i, i])
+        if gap > A_INF_INCONSISTENT * a[i] and gap > 5 * spread[i, i]:
+            out.append(f"{label} {row[i]:.4g} vs {ogilvie[i, i]:.4g}")
+    return out
+
+
+def asymmetric_pairs(data: xr.Dataset) -> list[str]:
+    """One message per DOF pair (i < j) whose A_ij ≠ A_ji or B_ij ≠ B_ji at zero speed
+    beyond :data:`ASYMMETRY_TOL`: the worst frequency and both values. The fit uses
+    ½(X_ij + X_ji) (the physics wants them equal); so large a difference usually means a
+    DOF order or sign convention mixed up between the two halves of the matrix."""
+    out = []
+    labels = [str(d) for d in data.influenced_dof.values]
+    w = data.omega.values
+    for name, symbol in (("added_mass", "A"), ("radiation_damping", "B")):
+        x = dof_matrix(data, name)
+        diag = np.abs(np.diagonal(x, axis1=1, axis2=2)).max(axis=0)
+        for i in range(len(labels)):
+            for j in range(i + 1, len(labels)):
+                diff = np.abs(x[:, i, j] - x[:, j, i])
+                scale = np.maximum(np.abs(x[:, i, j]), np.abs(x[:, j, i]))
+                floor = ASYMMETRY_TOL * np.sqrt(diag[i] * diag[j])
+                bad = (diff > ASYMMETRY_TOL * scale) & (diff > floor)
+                if bad.any():
+                    k = int(np.argmax(np.where(bad, diff, -1.0)))
+                    out.append(
+                        f"{symbol}[{labels[i]}, {labels[j]}] = {x[k, i, j]:.5g} but "
+                        f"{symbol}[{labels[j]}, {labels[i]}] = {x[k, j, i]:.5g} at "
+                        f"{w[k]:.4g} rad/s ({int(bad.sum())} frequencies): the fit uses their "
+                        "average; check the DOF order and signs of the data"
+                    )
+    return out
+
+
+def fit_failures(
+    model: RadiationModel,
+    *,
+    r2: float = 0.99,
+    r2_coupling: float = 0.97,
+    passivity: str = "mimo",
+    motion_tol: float | None = None,
+) -> list[str]:
+    """What makes a fit a failure, one message each (empty: success).
+
+    * MIMO passivity asked for and not reached;
+    * a coupling that a later step (MIMO passivity) took below its R² target, or lowered
+      by more than 0.05 when it was already below (``r2_added_mass_before`` …);
+    * a relative motion error (``attrs["motion_error"]``) above
+      :data:`MOTION_FAILURE` × ``motion_tol`` (issue 16: "≤ 1 %, never above 2 %"; between
+      the two, a data note says so).
+
+    A target that the identification itself did not reach is a note of the coupling, not
+    a failure: the data decide it (see the coupling's note).
+    """
+    out = []
+    if passivity == "mimo" and not model.attrs.get("mimo_passive", True):
+        out.append("the MIMO model is not passive")
+    for k in model.couplings:
+        if k.influenced > k.radiating:
+            continue
+        target = r2 if k.influenced == k.radiating else r2_coupling
+        i, j = model.dofs[k.influenced], model.dofs[k.radiating]
+        name = i if i == j else f"{i}-{j}"
+        for what, key in (("A", "r2_added_mass"), ("B", "r2_damping")):
+            before = k.metrics.get(f"{key}_before")
+            after = k.metrics.get(key)
+            if before is None or after is None:
+                continue
+            if after < min(target, before) - 1e-3 and (before >= target or after < before - 0.05):
+                out.append(
+                    f"{name}: MIMO passivity took the R² of {what} from {before:.4f} to "
+                    f"{after:.4f} (target {target})"
+                )
+    error = model.attrs.get("motion_error")
+    if motion_tol is not None and error is not None and error > MOTION_FAILURE * motion_tol:
+        out.append(
+            f"motion error {100 * error:.2f} % of the peak motion (target "
+            f"{100 * motion_tol:.2g} %, never above {100 * MOTION_FAILURE * motion_tol:.2g} %)"
+        )
+    return out
 
 
 def make_passive(
@@ -289,6 +605,9 @@ def make_passive(
     r2: float = 0.99,
     r2_coupling: float = 0.97,
     augment: bool = True,
+    sensitivity: MotionSensitivity | None = None,
+    motion_tol: float = MOTION_TOL,
+    last_resort: bool = False,
 ) -> RadiationModel:
     """The model made passive as a MIMO system (:func:`cummins.passivity.enforce_passivity`),
     with the metrics of every changed coupling recomputed and the change noted.
@@ -309,6 +628,15 @@ def make_passive(
     def importance(k: CouplingModel) -> float:
         return 1.0 / max(_score(k) - target(k), PASSIVITY_SLACK_FLOOR)
 
+    motion_scale = [PASSIVITY_MOTION_WEIGHT]
+
+    def motion_weight(k: CouplingModel):
+        if sensitivity is None:
+            return None
+        i, j = k.influenced, k.radiating
+        weight = motion_scale[0] * np.sqrt(MOTION_SLACK) / motion_tol
+        return weight * sensitivity.coupling_weight(i, j)
+
     def attempt(start: RadiationModel):
         result = enforce_passivity(
             start,
@@ -318,6 +646,7 @@ def make_passive(
             time=measured.time,
             kernel=measured.kernel,
             importance=importance,
+            motion_weight=motion_weight if sensitivity is not None else None,
         )
         couplings = [
             refreshed_coupling(old, new, measured, model.added_mass_inf, "MIMO passivity")
@@ -332,24 +661,81 @@ def make_passive(
         )
         return result, tuple(couplings), shortfall
 
+    tried = []
+    failures = []
     try:
-        result, couplings, shortfall = attempt(model)
-        diagonal_shortfall = any(
-            _score(k) < min(target(k), _score(old))
-            for old, k in zip(model.couplings, couplings, strict=True)
+        tried.append(attempt(model))
+    except FitError as exc:
+        failures.append(str(exc))
+    first = tried[0] if tried else None
+    needs_more = first is None or (
+        first[0].iterations
+        and any(
+            _score(k) < min(target(k), _score(old)) - TIE
+            for old, k in zip(model.couplings, first[1], strict=True)
             if k.influenced == k.radiating
         )
-        if augment and result.iterations and diagonal_shortfall:
-            augmented = augment_for_passivity(model, result.before)
+    )
+    if augment and needs_more:
+        report = first[0].before if first is not None else passivity_test(model)
+        try:
+            tried.append(attempt(augment_for_passivity(model, report)))
+        except FitError as exc:
+            failures.append(str(exc))
+    best = min((_shortfall(model.couplings, x[1], target, True) for x in tried), default=np.inf)
+    if best > SHORTFALL_TOLERANCE:  # no attempt, or every one costs a diagonal its target
+        # the data may be (nearly) rank-deficient — DOFs coupled kinematically, e.g. surge
+        # and pitch of a sphere about a point off its centre, B15² ≈ B11 B55 — so that the
+        # small misfit of separately fitted couplings breaks passivity beyond what the
+        # residues can repair without cost: shrink the off-diagonal models a little
+        for factor in COUPLING_SHRINK:
             try:
-                second = attempt(augmented)
-            except FitError:
-                second = None
-            if second is not None and second[2] < shortfall:
-                result, couplings, shortfall = second
-    except FitError as exc:
-        notes = [*model.attrs.get("data_notes", []), f"MIMO passivity not enforced: {exc}"]
+                found = attempt(_shrunk_couplings(model, factor))
+            except FitError as exc:
+                failures.append(str(exc))
+                continue
+            note = f"coupling models scaled by {factor:g} for MIMO passivity"
+            couplings = tuple(
+                replace(k, note="; ".join(filter(None, [k.note, note])))
+                if k.influenced != k.radiating
+                else k
+                for k in found[1]
+            )
+            shortfall = _shortfall(model.couplings, couplings, target)
+            tried.append((found[0], couplings, shortfall))
+            if shortfall <= SHORTFALL_TOLERANCE:
+                break
+    best = min((_shortfall(model.couplings, x[1], target, True) for x in tried), default=np.inf)
+    if best > SHORTFALL_TOLERANCE and sensitivity is not None and last_resort:
+        motion_scale[0] = PASSIVITY_MOTION_WEIGHT_LAST
+        try:
+            tried.append(attempt(model))
+        except FitError as exc:
+            failures.append(str(exc))
+    if not tried:
+        notes = [
+            *model.attrs.get("data_notes", []),
+            f"MIMO passivity not enforced: {failures[0]}",
+        ]
         return replace(model, attrs={**model.attrs, "mimo_passive": False, "data_notes": notes})
+
+    # deterministic choice: the smallest shortfall, ties to the first (fewer states)
+    def preference(x):
+        """Every coupling within its target first, then the smallest motion error (with a
+        sensitivity), then the smallest total R² loss below the targets (the sum over
+        the couplings: a change spread over all of them is not better than one); ties to
+        the earlier attempt."""
+        diagonal_ok = x[2] <= SHORTFALL_TOLERANCE
+        motion = 0.0
+        if sensitivity is not None:
+            motion = sensitivity.model_error(replace(model, couplings=x[1]))[0]
+        losses = [
+            max(0.0, min(target(k), _score(old)) - _score(k) - TIE)
+            for old, k in zip(model.couplings, x[1], strict=True)
+        ]
+        return (not diagonal_ok, round(motion, 5), round(sum(losses), 6))
+
+    result, couplings, _ = min(tried, key=preference)
     attrs = {
         **model.attrs,
         "mimo_passive": result.after.passive,
@@ -358,6 +744,134 @@ def make_passive(
         "passivity_worst_omega_before": result.before.worst_omega,
     }
     return replace(model, couplings=couplings, attrs=attrs)
+
+
+#: Rounds of the model-level order search against the motion error.
+MOTION_ROUNDS = 4
+
+
+def _motion_rounds(
+    model,
+    models,
+    budgets,
+    sensitivity,
+    measured,
+    motion_tol,
+    max_order,
+    fit_one,
+    assemble,
+    fixed_pairs=frozenset(),
+):
+    """Refit the couplings that carry the motion error of the assembled (passive) model
+    until it meets ``motion_tol`` (:meth:`MotionSensitivity.model_error`): each round,
+    the couplings whose share max W|δK| is at least half of the largest share among the
+    DOFs that miss get half their budget and start one order above their current one.
+    A round that does not lower the error is undone, and its couplings are not chosen
+    again. The error reached goes to
+    ``attrs["motion_error"]``."""
+    error, per_dof = sensitivity.model_error(model)
+    aim = MOTION_AIM * motion_tol
+    no_gain: set = set()  # couplings whose refit did not lower the error
+    for _ in range(MOTION_ROUNDS):
+        if error <= aim:
+            break
+        shares = _motion_shares(model, sensitivity, measured, per_dof, aim)
+        if not shares:
+            break
+        top = max(shares.values())
+        chosen = [
+            p
+            for p, e in sorted(shares.items())
+            if e >= 0.5 * top
+            and models[p].order < max_order
+            and p not in fixed_pairs
+            and p not in no_gain
+        ]
+        if not chosen:
+            break
+        saved = {p: (models[p], budgets[p]) for p in chosen}
+        for p in chosen:
+            budgets[p] = min(budgets[p], shares[p]) / 2.0
+            models[p] = fit_one(*p, min_order=models[p].order + 1)
+        candidate = assemble()
+        new_error, new_per_dof = sensitivity.model_error(candidate)
+        if new_error < error - TIE:
+            model, error, per_dof = candidate, new_error, new_per_dof
+        else:
+            for p, (old, budget) in saved.items():
+                models[p], budgets[p] = old, budget
+            no_gain.update(chosen)
+    return replace(
+        model,
+        attrs={
+            **model.attrs,
+            "motion_error": float(error),
+            "motion_error_by_dof": [float(x) for x in per_dof],
+            "motion_target": float(motion_tol),
+        },
+    )
+
+
+def _motion_shares(model, sensitivity, measured, per_dof, motion_tol) -> dict:
+    """max_ω W_ij |δK_ij| of each fitted coupling (i ≤ j) touching a DOF that misses."""
+    w = measured.omega
+    k = model.response(w)
+    k_data = measured.damping + 1j * w[:, None, None] * (
+        measured.added_mass - np.asarray(model.added_mass_inf)[None]
+    )
+    weight = sensitivity.on(w)
+    missing = {d for d, e in enumerate(per_dof) if e > motion_tol}
+    out = {}
+    for c in model.couplings:
+        i, j = c.influenced, c.radiating
+        if i > j or not ({i, j} & missing):
+            continue
+        ww = weight[:, i, i] if i == j else weight[:, i, j] + weight[:, j, i]
+        out[(i, j)] = float(np.max(ww * np.abs(k[:, i, j] - k_data[:, i, j])))
+    return out
+
+
+#: Factors tried on the off-diagonal models when the MIMO passivity step finds no
+#: solution (:func:`make_passive`), largest first.
+#: Empty: measured, the shrunk models never kept a case passive that the other attempts
+#: did not (the sphere stays at λ_min −0.9 %), and they won the choice on the supply
+#: vessel with 9 couplings degraded; the mechanism is kept for experiments.
+COUPLING_SHRINK: tuple[float, ...] = ()
+
+
+#: Differences of R² or of the motion error below this are ties: rounding (another BLAS,
+#: another thread count) must not decide a branch of the search (issue 16, target 5).
+TIE = 1e-6
+#: A passivity step within this much of every diagonal's R² target is accepted (as by
+#: fit_failures): below it the next attempts are tried.
+SHORTFALL_TOLERANCE = 1e-3
+#: Weight of the motion rows in the MIMO passivity step, against the couplings' R² losses.
+PASSIVITY_MOTION_WEIGHT = 1.0
+#: ... and the lighter weight of the last attempt, when every other one costs a diagonal
+#: its target (measured: 0.1 keeps the tanker's roll at R² 0.999 with heave–pitch fixed
+#: at 3 states, where 1.0 takes it to 0.96; as the default it loses the RAOs 0.5 %).
+PASSIVITY_MOTION_WEIGHT_LAST = 0.1
+
+
+def _shortfall(before, after, target, diagonal: bool = False) -> float:
+    """The largest loss below its target of a coupling (R², ≤ 0: none); of a diagonal
+    term only with ``diagonal``."""
+    return max(
+        (
+            min(target(k), _score(old)) - _score(k)
+            for old, k in zip(before, after, strict=True)
+            if not diagonal or k.influenced == k.radiating
+        ),
+        default=0.0,
+    )
+
+
+def _shrunk_couplings(model: RadiationModel, factor: float) -> RadiationModel:
+    couplings = tuple(
+        k if k.influenced == k.radiating else replace(k, c=np.asarray(k.c) * factor)
+        for k in model.couplings
+    )
+    return replace(model, couplings=couplings)
 
 
 def _score(k: CouplingModel) -> float:
@@ -381,6 +895,9 @@ def refreshed_coupling(
         time=measured.time,
         kernel=measured.kernel[:, i, j],
     )
+    for key in ("r2_added_mass", "r2_damping"):
+        if f"{key}_before" not in old.metrics and key in old.metrics:
+            metrics[f"{key}_before"] = old.metrics[key]
     for key, value in old.metrics.items():
         metrics.setdefault(key, value)
     before = old.metrics.get("r2_added_mass"), old.metrics.get("r2_damping")
@@ -476,29 +993,87 @@ def _response_weights(data: xr.Dataset) -> NDArray[np.float64]:
 
 def _fit_data(
     ds, omega_min, omega_max, exclude_suspect
-) -> tuple[xr.Dataset, list[float], list[str]]:
-    """The data to fit, the frequencies left out and what the user should know about them."""
+) -> tuple[xr.Dataset, NDArray[np.bool_], list[str]]:
+    """The data to fit, which frequencies each DOF keeps (omega, dof) and what the user
+    should know.
+
+    A suspect frequency (:func:`cummins.repair.find_suspect_frequencies`, run on each
+    DOF's own curves) costs that point, and only to the couplings of the DOFs whose curves
+    it spoils: the other DOFs keep it, and no frequency above it is dropped with it.
+    """
     data = limit_frequency_range(ds, omega_min, omega_max)
     notes = []
     outside = ds.sizes["omega"] - data.sizes["omega"]
     if outside:
         notes.append(f"{outside} frequencies outside the fitting range left out")
-    if exclude_suspect:
-        before = data.sizes["omega"]
-        data, suspects = remove_suspect_frequencies(data, above_first=True)
+    labels = [str(d) for d in data.influenced_dof.values]
+    w = data.omega.values
+    keep = np.ones((w.size, len(labels)), dtype=bool)
+    if exclude_suspect == "above_first":  # the rule of the previous default
+        cleaned, suspects = remove_suspect_frequencies(data, above_first=True)
         for s in suspects:
             notes.append(f"{s.omega:.4g} rad/s left out: {s.quantity}, {s.reason}")
-        others = before - data.sizes["omega"] - len(suspects)
-        if others > 0:
-            first = min(s.omega for s in suspects)
+        dropped = ~np.isin(w, cleaned.omega.values)
+        keep[dropped, :] = False
+        if dropped.sum() > len(suspects):
             notes.append(
-                f"{others} more frequencies above {first:.4g} rad/s left out with it "
-                "(irregular frequencies get denser upwards)"
+                f"{int(dropped.sum()) - len(suspects)} more frequencies above "
+                f"{min(s.omega for s in suspects):.4g} rad/s left out with it"
             )
-    excluded = sorted(set(ds.omega.values.tolist()) - set(data.omega.values.tolist()))
+    elif exclude_suspect:
+        for s in find_suspect_frequencies(data):
+            notes.append(f"{s.omega:.4g} rad/s left out: {s.quantity}, {s.reason}")
+        for d, label in enumerate(labels):
+            one = data.sel(influenced_dof=[label], radiating_dof=[label])
+            for s in find_suspect_frequencies(one):
+                keep[np.isclose(w, s.omega, rtol=1e-12, atol=0.0), d] = False
+        for d, label in enumerate(labels):
+            dropped = int((~keep[:, d]).sum())
+            if dropped and keep[:, d].sum() < MIN_KEPT_FREQUENCIES:
+                keep[:, d] = True
+                notes.append(
+                    f"{label}: {dropped} of {w.size} frequencies look suspect; all kept, "
+                    "too few would be left (check the data: cummins check)"
+                )
+            elif dropped:
+                notes.append(
+                    f"{label}: {dropped} suspect frequencies left out of its couplings "
+                    f"({w[~keep[:, d]].min():.4g}–{w[~keep[:, d]].max():.4g} rad/s)"
+                )
     for finding in copied_dofs(data):
         notes.append(f"{finding.message}: {finding.advice}")
-    return data, excluded, notes
+    return data, keep, notes
+
+
+#: A DOF keeps all its frequencies when fewer than this many would be left.
+MIN_KEPT_FREQUENCIES = 8
+
+
+def _bridged_dataset(data: xr.Dataset, keep: NDArray) -> xr.Dataset:
+    """``data`` with A(ω) and B(ω) bridged over each coupling's suspect points
+    (:func:`_bridged`)."""
+    if keep.all():
+        return data
+    w = data.omega.values
+    out = data
+    for name in ("added_mass", "radiation_damping"):
+        var = data[name].transpose("omega", "influenced_dof", "radiating_dof")
+        out = out.assign({name: var.copy(data=_bridged(var.values, w, keep))})
+    return out
+
+
+def _bridged(values: NDArray, w: NDArray, keep: NDArray) -> NDArray:
+    """``values`` (omega, n, n) with each coupling's left-out frequencies replaced by the
+    linear interpolation of its kept neighbours (``keep``: omega, n per DOF)."""
+    out = np.array(values, dtype=float, copy=True)
+    n = keep.shape[1]
+    for i in range(n):
+        for j in range(n):
+            mask = keep[:, i] & keep[:, j]
+            if mask.all() or not mask.any():
+                continue
+            out[~mask, i, j] = np.interp(w[~mask], w[mask], values[mask, i, j])
+    return out
 
 
 class _Siso:
@@ -525,6 +1100,48 @@ HANKEL_VALUES_REPORTED = 20
 MAX_FIXED_ORDER = 40
 
 
+@dataclass(frozen=True)
+class _Criterion:
+    """When a fit of one coupling is good enough: R² of A and of B ≥ ``target`` and, with a
+    motion sensitivity W (:mod:`cummins.fit.motion`), max_ω W |K̂ − K| ≤ ``budget``.
+
+    :meth:`score` folds both into one number that is ≥ ``target`` exactly when both
+    hold: min(R², target + SLACK (1 − e/budget)).
+    """
+
+    target: float
+    omega: NDArray[np.float64]
+    added_mass: NDArray[np.float64]
+    damping: NDArray[np.float64]
+    weight: NDArray[np.float64] | None = None
+    budget: float | None = None
+
+    def motion_error(self, k_model: NDArray, a_inf: float) -> float:
+        if self.weight is None:
+            return 0.0
+        k_data = self.damping + 1j * self.omega * (self.added_mass - a_inf)
+        return float(np.max(self.weight * np.abs(k_model - k_data)))
+
+    def score(self, r2a: float, r2b: float, k_model: NDArray | None, a_inf: float) -> float:
+        r2 = min(r2a, r2b)
+        if self.weight is None or self.budget is None or k_model is None:
+            return r2
+        e = self.motion_error(k_model, a_inf)
+        return min(r2, self.target + MOTION_SLACK * (1.0 - e / self.budget))
+
+    def fit_score(self, fit: FrequencyFit) -> float:
+        return self.score(
+            fit.r2_added_mass,
+            fit.r2_damping,
+            fit.frequency_response(self.omega),
+            fit.added_mass_inf,
+        )
+
+
+#: Scale of the motion term of :meth:`_Criterion.score` (in units of R²).
+MOTION_SLACK = 0.01
+
+
 def _fit_coupling(
     method,
     w,
@@ -537,21 +1154,23 @@ def _fit_coupling(
     guess,
     spread,
     passive,
-    target,
+    crit: _Criterion,
     max_order,
     fixed,
-    i,
-    j,
     name,
     weight=None,
+    min_order: int = 2,
 ) -> tuple[_Siso, float]:
-    """Fit one coupling at the fixed order, or the smallest order reaching the target.
+    """Fit one coupling at the fixed order, or the smallest order meeting ``crit``.
 
     Frequency domain: every order is first fitted by the cheap linearised step alone; the
     full fit runs on the orders that come close to the target, lowest first.
     """
-    candidates = [fixed] if fixed else list(range(2, max_order + 1))
+    target = crit.target
+    first = max(2, min(min_order, max_order))
+    candidates = [fixed] if fixed else list(range(first, max_order + 1))
     screening: dict[int, float] = {}
+    fd = {"weight": weight, "error_weight": crit.weight}
     if method == "fd" and not fixed:
         screened = []
         for n in candidates:
@@ -565,11 +1184,11 @@ def _fit_coupling(
                     added_mass_inf_guess=guess,
                     added_mass_inf_spread=spread,
                     refine=False,
-                    weight=weight,
+                    **fd,
                 )
             except FitError:
                 continue
-            score = min(quick.r2_added_mass, quick.r2_damping)
+            score = round(crit.fit_score(quick), 7)
             screening[n] = score
             if score >= target - SCREENING_MARGIN:
                 screened.append(n)
@@ -578,10 +1197,10 @@ def _fit_coupling(
         candidates = screened or candidates
     best: tuple[float, _Siso, float] | None = None
     errors = []
-    remaining = [n for n in range(2, max_order + 1) if n not in candidates] if not fixed else []
+    remaining = [n for n in range(first, max_order + 1) if n not in candidates] if not fixed else []
     for n in [*candidates, *remaining]:  # the screened orders first, then the others
         try:
-            siso, a_inf_fit, r2a, r2b, ok_passive = _fit_order(
+            siso, a_inf_fit, score, ok_passive = _fit_order(
                 method,
                 w,
                 a,
@@ -593,21 +1212,21 @@ def _fit_coupling(
                 guess=guess,
                 spread=spread,
                 passive=passive,
-                target=target,
+                crit=crit,
                 weight=weight,
             )
         except FitError as exc:
             errors.append(f"order {n}: {exc}")
             continue
-        score = min(r2a, r2b) - (0.0 if ok_passive else 1.0)
-        if best is None or score > best[0]:
+        score = round(score - (0.0 if ok_passive else 1.0), 7)
+        if best is None or score > best[0] + TIE:
             best = (score, siso, a_inf_fit)
-        if min(r2a, r2b) >= target and ok_passive:
+        if score >= target:
             break
     if best is None:
         raise FitError(f"coupling {name}: no stable model ({'; '.join(errors)})")
     close = screening.get(best[1].order - 1, -np.inf) >= target - SCREENING_MARGIN
-    if method == "fd" and not fixed and best[0] >= target and close:
+    if method == "fd" and not fixed and best[0] >= target and close and best[1].order > first:
         best = _try_lower_orders(
             best,
             w,
@@ -617,7 +1236,7 @@ def _fit_coupling(
             guess=guess,
             spread=spread,
             passive=passive,
-            target=target,
+            crit=crit,
             weight=weight,
         )
     score, siso, a_inf_fit = best
@@ -628,9 +1247,9 @@ def _fit_coupling(
     return siso, a_inf_fit
 
 
-def _try_lower_orders(best, w, a, b, *, a_inf, guess, spread, passive, target, weight=None):
+def _try_lower_orders(best, w, a, b, *, a_inf, guess, spread, passive, crit, weight=None):
     """One order lower, started from the fit's poles less its weakest mode, if it still
-    reaches the target (the linearised step has found a local optimum; the pruned start
+    meets the criterion (the linearised step has found a local optimum; the pruned start
     often finds a better one). Trying the second-weakest mode as well found no lower
     order on the tanker, supply vessel or S-175 and cost 40 % of the whole fit."""
     if best[1].order > 2:
@@ -647,16 +1266,15 @@ def _try_lower_orders(best, w, a, b, *, a_inf, guess, spread, passive, target, w
                     added_mass_inf_guess=guess,
                     added_mass_inf_spread=spread,
                     passive=passive,
-                    target=target,
+                    target=crit.target,
                     refine=True,
                     initial_poles=start,
                     weight=weight,
+                    error_weight=crit.weight,
                 )
             except FitError:
                 continue
-            if min(lower.r2_added_mass, lower.r2_damping) >= target and (
-                lower.passive or not passive
-            ):
+            if crit.fit_score(lower) >= crit.target and (lower.passive or not passive):
                 found = lower
                 break
         if found is None:
@@ -671,13 +1289,11 @@ def _try_lower_orders(best, w, a, b, *, a_inf, guess, spread, passive, target, w
             ),
             found,
         )
-        best = (min(found.r2_added_mass, found.r2_damping), siso, found.added_mass_inf)
+        best = (crit.fit_score(found), siso, found.added_mass_inf)
     return best
 
 
-def _fit_order(
-    method, w, a, b, t, kernel, n, *, a_inf, guess, spread, passive, target, weight=None
-):
+def _fit_order(method, w, a, b, t, kernel, n, *, a_inf, guess, spread, passive, crit, weight=None):
     from cummins.fit.frequency import is_positive_real, r_squared
 
     if method == "fd":
@@ -690,15 +1306,17 @@ def _fit_order(
             added_mass_inf_guess=guess,
             added_mass_inf_spread=spread,
             passive=passive,
-            target=target,
+            target=crit.target,
             weight=weight,
+            error_weight=crit.weight,
+            # the linearised fit may reach the R² target and miss the motion budget
+            refine=True if crit.weight is not None else "auto",
         )
         am, bm, cm = modal_realization(fit.poles, fit.residues)
         return (
             _Siso(am, bm, cm, fit.note, fit),
             fit.added_mass_inf,
-            fit.r2_added_mass,
-            fit.r2_damping,
+            crit.fit_score(fit),
             fit.passive or not passive,
         )
     from cummins.fit import realization
@@ -719,4 +1337,5 @@ def _fit_order(
         # the ERA order criterion: σ_{n+1}/σ_1, and the leading values (K units × s)
         extra["hankel_sv_ratio"] = float(sigma[n] / sigma[0]) if sigma.size > n else 0.0
         extra["hankel_singular_values"] = sigma[:HANKEL_VALUES_REPORTED].tolist()
-    return _Siso(result.a, result.b, result.c, result.note, extra=extra), a_inf, r2a, r2b, ok
+    siso = _Siso(result.a, result.b, result.c, result.note, extra=extra)
+    return siso, a_inf, crit.score(r2a, r2b, k, a_inf), ok

@@ -48,6 +48,9 @@ SK_ITERATIONS = 15
 STABILITY_MARGIN = 1e-2
 #: Smallest decay rate of any pole, in units of the scaling frequency ω_s.
 MIN_DECAY = 1e-6
+#: Default total weight of the motion-error equations against the R² ones
+#: (``error_emphasis`` of :func:`fit_frequency_domain`).
+ERROR_EMPHASIS = 10.0
 #: Positive realness is tested as Re K(jω) ≥ −PR_TOLERANCE · max_ω |K(jω)|: a negative
 #: real part a million times smaller than the memory force itself is rounding, not energy.
 PR_TOLERANCE = 1e-6
@@ -392,6 +395,8 @@ def fit_frequency_domain(
     target: float = 0.99,
     initial_poles: ArrayLike | None = None,
     weight: ArrayLike | None = None,
+    error_weight: ArrayLike | None = None,
+    error_emphasis: float = ERROR_EMPHASIS,
 ) -> FrequencyFit:
     """Fit K(s) of the given order to A(ω), B(ω) of one coupling.
 
@@ -426,6 +431,13 @@ def fit_frequency_domain(
         Relative weight of each frequency in the least squares (positive, normalised to
         RMS 1): the frequency weighting W(ω) of seed 001 eq. 4.35. The reported R² stay
         unweighted.
+    error_weight
+        Weight W(ω) ≥ 0 of the complex error |K̂(jω) − K(jω)| (any unit): the motion
+        sensitivity of :mod:`cummins.fit.motion`. Its equations join those of the R² of
+        A and B (which keep the fit sound where the motions are insensitive), scaled so
+        that they weigh ``error_emphasis`` times as much in total.
+    error_emphasis
+        See ``error_weight``.
 
     Returns
     -------
@@ -466,6 +478,10 @@ def fit_frequency_domain(
             raise FitError(f"the weights must be {w.size} positive finite numbers")
         relative = relative / np.sqrt(np.mean(relative**2))
     sigma_b, sigma_a = sigma_b / relative, sigma_a / relative
+    if error_weight is not None:
+        sigma_b, sigma_a = _with_error_weight(
+            np.asarray(error_weight, dtype=float).reshape(-1), x, sigma_b, sigma_a, error_emphasis
+        )
     # Step 1: Levy + SK on K (weights: B misfit / σ_B, A misfit = Im/ω / σ_A)
     if initial_poles is None:
         den = _levy_sanathanan_koerner(x, y, 1.0 / sigma_b, 1.0 / (x * sigma_a), order)
@@ -531,6 +547,24 @@ def fit_frequency_domain(
         fit.passive,
         "; ".join(notes),
     )
+
+
+def _with_error_weight(
+    weight: NDArray, x: NDArray, sigma_b: NDArray, sigma_a: NDArray, emphasis: float
+) -> tuple[NDArray, NDArray]:
+    """σ_B, σ_A per frequency with the equations λ W (K̂ − K) added to the R² ones:
+    1/σ_B² + (λW)² and 1/σ_A² + (λWx)², λ such that Σ(λW)² = ``emphasis`` Σ 1/σ_B²."""
+    if weight.size != x.size or not np.all(np.isfinite(weight)) or np.any(weight < 0):
+        raise FitError(f"the error weights must be {x.size} finite numbers ≥ 0")
+    sigma_b = np.broadcast_to(sigma_b, x.shape)
+    sigma_a = np.broadcast_to(sigma_a, x.shape)
+    total = float(np.sum(weight**2))
+    if total <= 0:
+        return sigma_b, sigma_a
+    lam2 = emphasis * float(np.sum(sigma_b**-2.0)) / total
+    inv_b = sigma_b**-2.0 + lam2 * weight**2
+    inv_a = sigma_a**-2.0 + lam2 * (weight * x) ** 2
+    return 1.0 / np.sqrt(inv_b), 1.0 / np.sqrt(inv_a)
 
 
 def _least_squares(objective, params: NDArray, n_real: int, args: tuple, jac="2-point"):

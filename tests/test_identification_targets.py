@@ -1,0 +1,178 @@
+"""Issue 16's targets for the default identification, on real data of several solvers.
+
+Every measure is recomputed here from the model and the data, never read from the fit's
+own flags: R² of A and B from K̂(jω) (``diagonal_r2``), passivity by a dense sweep of
+λ_min(K + Kᴴ) in the test itself, the motion-RAO error from ``motion_rao`` against
+``Vessel.response``. Each case is fitted once (module-scoped fixture). Timings are in
+``benchmarks/bench_identification.py``, not here.
+
+Measured on this machine (2026-12-02, OpenBLAS SkylakeX, 1 thread; the same orders with
+2 threads and with the Haswell, Sandybridge and Nehalem kernels, R² within 3.6·10⁻⁶),
+default fit, RAO error with 2 % of critical damping:
+
+==========================  =====  =======  =======  ========  =========
+case                        order  R² A     R² B     RAO err.  λ_min rel.
+==========================  =====  =======  =======  ========  =========
+MSS tanker (WAMIT)          74     0.9916   0.9941   0.93 %    ≥ 0
+MSS supply (ShipX)          50     0.9950   0.9925   0.60 %    ≥ 0
+MSS S-175 (U = 0)           54     0.9910   0.9963   0.67 %    ≥ 0
+WEC-Sim cylinder (NEMOH)    52     0.9949   0.9897   0.62 %    ≥ 0
+AQWA floating OWC (12 DOF)  45     0.9913   0.9862   0.79 %    ≥ 0
+==========================  =====  =======  =======  ========  =========
+
+Near 1 % the search is fragile: one intermediate version reached 1.06 % on the tanker
+(heave at 0.66 rad/s, where the data's own Kramers–Kronig inconsistency moves the RAO by
+up to 2 %, test_simulate.py); between 1 and 2 % the fit writes a note, above 2 % a
+failure, so the passivity test below looks at the passivity failures only.
+
+The tolerances are the issue's limits where they hold with 1.25× margin (the RAO error
+never above 2 %); the R² floor 0.98 is ≥ 1.25× the worst loss measured (0.0138).
+"""
+
+from __future__ import annotations
+
+import warnings
+
+import numpy as np
+import pytest
+
+import cummins
+from cummins.fit import PREVIOUS_DEFAULT, fit_radiation
+from cummins.fit.scorecard import diagonal_r2, motion_rao_error
+
+SHARED = {
+    "tanker": "mss/tanker/tanker.1",
+    "supply": "mss/supply/supply.mat",
+    "s175": "mss/s175/s175.mat",
+    "cylinder": "wecsim/cylinder/cylinder_nemoh/cylinder_hydrodynamics.nc",
+}
+CORPUS = {
+    "floating_owc": "WEC-Sim_Applications/aqwa_floating_OWC_AH1only/floatingOWC.AH1",
+}
+
+
+def _read(path):
+    with warnings.catch_warnings():
+        warnings.simplefilter("ignore")
+        ds = cummins.read(path)
+    if "forward_speed" in ds.dims:
+        ds = ds.sel(forward_speed=0.0)
+    return ds
+
+
+@pytest.fixture(scope="module", params=[*SHARED, *CORPUS])
+def fitted(request, shared_data):
+    name = request.param
+    path = shared_data / SHARED[name] if name in SHARED else shared_data / "corpus" / CORPUS[name]
+    if not path.exists():
+        pytest.skip(f"{path} is not there")
+    ds = _read(path)
+    with warnings.catch_warnings():
+        warnings.simplefilter("ignore")
+        model = fit_radiation(ds)
+    return name, ds, model
+
+
+def _dense_passivity_margin(model) -> float:
+    """min over 4000 log-spaced ω (10⁻⁴…10² rad/s) of λ_min(K + Kᴴ), relative to max ‖K‖."""
+    w = np.geomspace(1e-4, 1e2, 4000)
+    k = model.response(w)
+    lam = np.linalg.eigvalsh(k + np.conj(np.swapaxes(k, 1, 2)))[:, 0]
+    return float(lam.min() / np.linalg.norm(k, ord=2, axis=(1, 2)).max())
+
+
+def test_the_default_model_is_stable_and_passive(fitted):
+    """Target 2: every pole in the left half-plane, λ_min(K + Kᴴ) ≥ −10⁻⁶ max‖K‖ on a grid
+    denser and wider than the scorecard's (measured ≥ −10⁻¹³ on every case)."""
+    name, _, model = fitted
+    poles = np.linalg.eigvals(model.A)
+    assert np.all(poles.real < 0), name
+    assert _dense_passivity_margin(model) >= -1e-6, name
+    # no passivity step took a coupling below its target, and the model says it is passive
+    passivity = [f for f in model.attrs["failures"] if "passiv" in f]
+    assert not passivity, (name, passivity)
+
+
+def test_the_default_model_reproduces_the_motion_raos(fitted):
+    """Target 1: the motion-RAO error (2 % critical damping, 4 headings) never above 2 %;
+    measured 0.60–0.93 % (1.06 % on an intermediate version): 2 % has ≥ 1.8× margin."""
+    name, ds, model = fitted
+    error = motion_rao_error(ds, model)
+    assert error.error <= 0.02, (name, error.worst_dof, error.worst_omega, error.per_dof)
+
+
+def test_the_default_model_fits_every_diagonal(fitted):
+    """R² of A and of B of every modelled diagonal, recomputed against the data, ≥ 0.98
+    (measured ≥ 0.9862, floating OWC body2 heave B)."""
+    name, ds, model = fitted
+    for dof, (r2a, r2b) in diagonal_r2(ds, model).items():
+        assert r2a >= 0.98 and r2b >= 0.98, (name, dof, r2a, r2b)
+
+
+@pytest.mark.parametrize("vessel", ["tanker", "supply", "s175"])
+def test_better_motions_than_the_previous_default(shared_data, vessel):
+    """The default's RAO error is at most half the previous default's (measured: tanker
+    0.93 vs 6.01 %, supply 0.60 vs 3.15 %, S-175 0.67 vs 4.65 %)."""
+    ds = _read(shared_data / SHARED[vessel])
+    with warnings.catch_warnings():
+        warnings.simplefilter("ignore")
+        new = motion_rao_error(ds, fit_radiation(ds)).error
+        old = motion_rao_error(ds, fit_radiation(ds, **PREVIOUS_DEFAULT)).error
+    assert new <= 0.5 * old, (new, old)
+
+
+def test_an_inconsistent_infinite_frequency_row_is_not_used(corpus):
+    """AQWA's "100 rad/s" added mass of the PEND hull (52.1 kg in surge where A(18.8 rad/s)
+    is 2.2 kg and Ogilvie's estimate 3.4 kg) contradicts the finite frequencies: the fit
+    says so and estimates A∞ instead; with the row forced in, no model of surge reaches
+    R² 0 (measured −299), with it estimated R² of A ≥ 0.98 (measured 0.998, identification
+    only)."""
+    ds = _read(corpus / "WEC-Sim" / "aqwa_19.1_PEND_hull" / "19_1.AH1")
+    from cummins.fit import inconsistent_added_mass_inf
+    from cummins.retardation import added_mass_inf
+
+    estimate = added_mass_inf(ds.drop_vars("added_mass_inf"), method="ogilvie")
+    spread = np.maximum(estimate.spread.values, 0.005 * np.abs(estimate.values))
+    found = inconsistent_added_mass_inf(ds, estimate.values, spread)
+    assert any(item.startswith("Surge 52.1") for item in found), found
+
+
+def test_asymmetric_pairs_are_named():
+    """A_ij ≠ A_ji beyond 10 %: the warning names the pair and both values."""
+    from cummins.errors import CumminsWarning
+
+    ds = cummins.demo_dataset()
+    a = ds.added_mass.copy()
+    a.loc[{"influenced_dof": "Surge", "radiating_dof": "Pitch"}] *= -1.0
+    with pytest.warns(CumminsWarning, match=r"A\[Surge, Pitch\] = .* but A\[Pitch, Surge\]"):
+        model = fit_radiation(ds.assign(added_mass=a), passivity="diagonal")
+    assert any("A[Surge, Pitch]" in note for note in model.attrs["data_notes"])
+
+
+def test_the_fit_does_not_depend_on_blas_threads(shared_data):
+    """Target 5: the same orders and R² (to 10⁻⁶) with 1 and 2 BLAS threads."""
+    import threadpoolctl
+
+    ds = _read(shared_data / SHARED["supply"])
+    results = []
+    for threads in (1, 2):
+        with threadpoolctl.threadpool_limits(threads), warnings.catch_warnings():
+            warnings.simplefilter("ignore")
+            model = fit_radiation(ds)
+        results.append(
+            [
+                (
+                    k.influenced,
+                    k.radiating,
+                    k.order,
+                    k.metrics["r2_added_mass"],
+                    k.metrics["r2_damping"],
+                )
+                for k in model.couplings
+            ]
+        )
+    for one, two in zip(*results, strict=True):
+        assert one[:3] == two[:3]
+        assert one[3] == pytest.approx(two[3], abs=1e-6) and one[4] == pytest.approx(
+            two[4], abs=1e-6
+        )
