@@ -97,6 +97,14 @@ class SpeedError(CumminsError, ValueError):
 # --------------------------------------------------------------------------- encounter frequency
 
 
+#: Fit options the speed-dependent fits start from: the motion weighting that
+#: :func:`cummins.fit.fit_radiation` uses by default weights the error by the zero-speed
+#: equation of motion, which is not the one at speed; the memory parts are fitted by R²
+#: over the frequencies below the first suspect one, as before motion weighting. Fit a K⁰
+#: for :func:`speed_dependent_model` with the same options.
+SPEED_FIT_DEFAULTS: dict[str, Any] = {"weighting": "uniform", "exclude_suspect": "above_first"}
+
+
 def encounter_frequency(
     omega: ArrayLike, speed: float, heading: float, g: float = G
 ) -> NDArray[np.float64]:
@@ -450,7 +458,7 @@ def fit_per_speed(
                 "the data have no zero speed, whose A∞ and A(0) give the speed terms",
                 hint="pass speed_terms='keep' to fit the data as they are",
             )
-        base = speed_dependent_model(zero[0], **fit_options)
+        base = speed_dependent_model(zero[0], **{**SPEED_FIT_DEFAULTS, **fit_options})
         d1, g = base.damping_inf, base.restoring
     speeds, models = [], []
     # fit_radiation fits the symmetric part of a pair; the antisymmetric part at speed is
@@ -459,7 +467,7 @@ def fit_per_speed(
         u = float(d.forward_speed) if "forward_speed" in d.coords else 0.0
         if d1 is None:
             try:
-                model = fit_radiation(d, **fit_options)
+                model = fit_radiation(d, **{**SPEED_FIT_DEFAULTS, **fit_options})
             except CumminsError as exc:
                 raise FitError(f"forward speed {u:g} m/s: {exc}") from exc
         else:
@@ -491,7 +499,8 @@ def _memory_model_at(
         return base.k0  # the zero-speed fit the speed terms came from
     try:
         model = fit_radiation(
-            memory_part(d, speed, base.damping_inf, base.restoring), **fit_options
+            memory_part(d, speed, base.damping_inf, base.restoring),
+            **{**SPEED_FIT_DEFAULTS, **fit_options},
         )
     except CumminsError as exc:
         raise FitError(f"forward speed {speed:g} m/s: {exc}") from exc
@@ -568,7 +577,7 @@ def vessel_at_speed(
     from cummins.hydrodb import select_dofs
     from cummins.vessel import vessel_from_hydrodb
 
-    options = dict(fit_options)
+    options = {**SPEED_FIT_DEFAULTS, **fit_options}
     if dofs is not None:
         ds = select_dofs(ds, dofs)
     speeds = ds.forward_speed.values if "forward_speed" in ds.dims else np.array([])
@@ -938,7 +947,7 @@ def speed_dependent_model(
     if model is None:
         from cummins.fit import fit_radiation
 
-        model = fit_radiation(ds, **fit_options)
+        model = fit_radiation(ds, **{**SPEED_FIT_DEFAULTS, **fit_options})
     labels = list(model.dofs)
     n = len(labels)
     e = speed_coupling_matrix(labels)
