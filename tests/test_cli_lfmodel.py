@@ -40,7 +40,21 @@ def test_cli_writes_the_model_of_the_python_api(tmp_path):
     np.testing.assert_allclose(written.frequency.values, same.frequencies)
     # surge, sway, yaw at ω = 0; heave, roll, pitch at their natural frequency (eq. 24)
     assert list(written.frequency.values[[0, 1, 5]]) == [0.0, 0.0, 0.0]
-    assert written.frequency.sel(dof="Roll") == pytest.approx(0.489, abs=0.002)
+    # the roll natural frequency solves ω²(M44 + A44(ω)) = C44, here by bisection on the
+    # data linearly interpolated (the model interpolates A with a spline: measured 0.013 %
+    # apart; 1 % allows for any interpolation of A)
+    import scipy.optimize
+
+    data = cummins.read(tanker)
+    m44 = float(data.inertia_matrix.sel(influenced_dof="Roll", radiating_dof="Roll"))
+    c44 = float(data.hydrostatic_stiffness.sel(influenced_dof="Roll", radiating_dof="Roll"))
+    a44 = data.added_mass.sel(influenced_dof="Roll", radiating_dof="Roll")
+
+    def residual(w):
+        return w**2 * (m44 + float(a44.interp(omega=w))) - c44
+
+    w0 = scipy.optimize.brentq(residual, 0.1, 2.0)
+    assert written.frequency.sel(dof="Roll") == pytest.approx(w0, rel=0.01)
     # the steps of the zero-frequency DOFs agree with the Cummins model to a few per cent
     for dof in ("Surge", "Sway", "Yaw"):
         line = next(s for s in result.output.splitlines() if s.startswith(f"step of {dof}"))
