@@ -1,6 +1,6 @@
-"""Benchmark: one hour of the DP scenario of seed 004 §7 (S-175, crane load).
+"""Benchmark: one hour of the DP scenario of Smogeli et al. (2004) §7 (S-175, crane load).
 
-The unified nonlinear model (seed 004 eq. 56; 12 + 47 states), 200 wave components
+The unified nonlinear model (Smogeli et al. (2004) eq. 56; 12 + 47 states), 200 wave components
 (40 frequencies × 5 directions), first-order waves at every Runge–Kutta stage, drift,
 surge resistance, cross-flow drag and the crane load once per step, the DP controller
 once per step, dt = 0.2 s. In one run:

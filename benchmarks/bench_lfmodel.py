@@ -1,4 +1,5 @@
-"""Benchmark: the low-frequency manoeuvring model of the bundled tanker (seed 002).
+"""Benchmark: the low-frequency manoeuvring model of the bundled tanker (Ross, Perez & Fossen,
+2006).
 
 In one run: the model from A(ω), B(ω) and from K(t) (wall times, and how far the two
 routes' natural frequencies differ), and one hour of a 6-DOF response to a step force

@@ -6,7 +6,7 @@ started on the stationary solution. In one run:
 
 * the state-space solver (exact first-order-hold discretisation, modal recursion) with
   the wave excitation: wall time and its ratio to real time;
-* the direct-convolution solver (seed 003 eq. 2.23 with oversampled hat weights, the
+* the direct-convolution solver (de Haan (2022) eq. 2.23 with oversampled hat weights, the
   model's K(t) to 100 s) on the same run: wall time and the ratio to the state space;
 * the accuracy of both against the exact stationary response of the same linear model
   (the sum of the frequency-domain responses of the components), RMS error / RMS.

@@ -2,10 +2,10 @@
 
 In one run:
 
-* the speed-dependent model K_U = K⁰ + U K¹ + U² K² (seed 000 eqs. 3.28–3.36), built from
+* the speed-dependent model K_U = K⁰ + U K¹ + U² K² (Hjulstad (2004) eqs. 3.28–3.36), built from
   one zero-speed fit (K¹, K² derived exactly from it): wall time;
 * the reference: one fit per speed (five fits, `fit_per_speed`): wall time and the ratio;
-* the forced-motion check (seed 000 §12.1, eq. 12.3) of the speed model at 10.29 m/s
+* the forced-motion check (Hjulstad (2004) §12.1, eq. 12.3) of the speed model at 10.29 m/s
   against the frequency-domain force of the STF-corrected data: the largest error.
 
 Run: ``python benchmarks/bench_speed.py``.

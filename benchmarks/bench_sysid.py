@@ -4,9 +4,9 @@ The bundled tanker (WAMIT, fitted passive radiation model), beam-quartering JONS
 Hs 6 m, Tp 11 s, known linear + quadratic + cubic roll damping, dt 0.1 s, 1 hour, 2 %
 noise on motions and force. In one run:
 
-* the fluid-memory force of the residual F_res (seed 003 eq. 2.21) by the state-space
+* the fluid-memory force of the residual F_res (de Haan (2022) eq. 2.21) by the state-space
   model driven by the measured velocities (what ``identify_damping`` uses) against
-  the direct convolution with the model's K(t) (seed 003 eq. 2.23, the thesis' method):
+  the direct convolution with the model's K(t) (de Haan (2022) eq. 2.23, the thesis' method):
   wall times, their ratio, and the difference of the two memory forces;
 * the whole identification (residual, regression, covariance, diagnostics): wall time,
   the coefficients against the truth;

@@ -1,4 +1,4 @@
-"""The DP scenario of seed 004 §7 (S-175, crane load) and `cummins dp-demo`."""
+"""The DP scenario of Smogeli et al. (2004) §7 (S-175, crane load) and `cummins dp-demo`."""
 
 from __future__ import annotations
 

@@ -167,7 +167,7 @@ def one_dof_database(step: float) -> tuple[xr.Dataset, callable]:
 
 
 def test_sharp_resonance_is_solved_not_interpolated():
-    """Seed 003 §3.1.2: a peaked RAO sampled every 0.05 rad/s cannot be interpolated —
+    """de Haan (2022) §3.1.2: a peaked RAO sampled every 0.05 rad/s cannot be interpolated —
     neither in the complex plane nor as amplitude and phase. cummins solves the equation
     at the new frequencies with interpolated A, B and F (smooth), and gets it right."""
     ds, exact = one_dof_database(0.05)
@@ -274,7 +274,7 @@ def test_response_spectrum_over_directions(tanker_rao):
 
 def test_significant_amplitude_matches_a_simulated_record(tanker):
     """2√m₀ from |RAO|² S equals twice the standard deviation of the same sea's linear
-    response in time (superposition of the components; seed 003 §1.9)."""
+    response in time (superposition of the components; de Haan (2022) §1.9)."""
     spectrum = wave_spectrum("jonswap", 4.0, 10.0)
     waves = irregular_waves(spectrum, duration=20_000, n_components=400, omega_max=2.5, seed=4)
     beta = np.radians(140.0)

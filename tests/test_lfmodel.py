@@ -1,7 +1,8 @@
-"""The low-frequency manoeuvring model of seed 002 (Ross, Perez & Fossen), issue 8 item 4.
+"""The low-frequency manoeuvring model of Ross, Perez & Fossen (2006), issue 8 item 4.
 
 The tanker (WAMIT, bundled) holds the solver's own ω = 0 and ω = ∞ rows, so the
-zero-frequency derivatives computed from K(t) (seed 002 eqs. 22–23, 25–26) and from
+zero-frequency derivatives computed from K(t) (Ross, Perez & Fossen (2006) eqs. 22–23, 25–26) and
+from
 A(ω), B(ω) can be checked against an independent value. Tolerances are the measured
 disagreement with a margin; the measured numbers are quoted at each assertion.
 """
@@ -130,7 +131,7 @@ def test_natural_frequency_satisfies_eq24_and_routes_agree(tanker, from_kernel, 
     assert from_kernel.potential_damping[i, i] == pytest.approx(
         from_data.potential_damping[i, i], rel=1e-2
     )
-    # and it is not the zero-frequency derivative (seed 002 §3.1): the roll value
+    # and it is not the zero-frequency derivative (Ross, Perez & Fossen (2006) §3.1): the roll value
     # A(ω₀) differs from A(0) by 3 %, heave by 62 %, pitch by 41 %
     assert abs(from_data.added_mass[i, i] - _diag(tanker, "added_mass_zero", dof)) > 0.02 * abs(
         from_data.added_mass[i, i]

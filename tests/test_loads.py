@@ -1,4 +1,4 @@
-"""Environmental and external loads (cummins.loads; seed 004 §4–5, eqs. 40–55).
+"""Environmental and external loads (cummins.loads; Smogeli et al. (2004) §4–5, eqs. 40–55).
 
 Wave loads are checked on the real S-175 data (MSS, z-down axes) against the data
 themselves and against cummins.excitation; the other loads against hand computations

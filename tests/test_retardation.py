@@ -1,7 +1,7 @@
 """Retardation functions, A∞ and the Kramers–Kronig diagnostics.
 
 Analytic references: rational, passive K(s) = Σ r_m s/(s² + 2ζ_m ω_m s + ω_m²) (each term
-positive real; seed 001 Example 3.1 is one term with ζ = 0.5, ω = 2), whose impulse
+positive real; Unneland (2007) Example 3.1 is one term with ζ = 0.5, ω = 2), whose impulse
 response is known in closed form. Real-data references: the solver's own ω = ∞ row,
 and a second solver on the same body.
 """
@@ -60,7 +60,7 @@ def _impulse_response(t, r, zeta, w0):
 
 @pytest.mark.parametrize("b1", [1.0, 1.5, 2.0, 2.5])
 def test_seed_example_3_1(b1):
-    """K(s) = b₁ s/(s² + 2s + 4): k(0⁺) = b₁ (seed 001 eq. 3.56, Fig. 3.2) and K(t) exact.
+    """K(s) = b₁ s/(s² + 2s + 4): k(0⁺) = b₁ (Unneland (2007) eq. 3.56, Fig. 3.2) and K(t) exact.
 
     Accuracy stated: K(0) within 1 % (the power-law tail recovers the ω⁻² decay beyond
     10 rad/s), K(t) within 1 % of b₁ everywhere, A∞ within 0.01 %.
@@ -112,7 +112,8 @@ def test_exact_rule_beats_the_trapezoid_on_a_coarse_grid():
 
 
 def test_added_mass_route_agrees_for_causal_data():
-    """K from A(ω) (sine transform, eq. 5.14) equals K from B(ω) for t > 0 (seed 000 §5.2)."""
+    """K from A(ω) (sine transform, eq. 5.14) equals K from B(ω) for t > 0 (Hjulstad (2004)
+    §5.2)."""
     omega = np.r_[np.linspace(0.05, 1.5, 30), np.geomspace(1.6, 60.0, 60)]
     ds = _modes_dataset([1.0, 0.5], [0.4, 0.3], [0.8, 1.6], omega=omega)
     t = np.linspace(0.5, 15.0, 300)

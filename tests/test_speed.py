@@ -1,4 +1,4 @@
-"""Forward speed (cummins.speed): seed 000 (Hjulstad 2004) ch. 3, 5.3–5.4, 6, 10, 12.1.
+"""Forward speed (cummins.speed): Hjulstad (2004) ch. 3, 5.3–5.4, 6, 10, 12.1.
 
 Real data: the MSS S-175 (ShipX/VERES strip theory, 5 speeds, z-down), vertical modes
 (heave, pitch) as in the thesis. Range of interest 0.2–1.6 rad/s (wave periods 4–30 s;
@@ -170,7 +170,7 @@ def test_per_speed_fits_stable_and_accurate(per_speed, s175):
 
 def test_per_speed_fits_of_the_raw_data_fail_where_kk_says(s175, zero):
     """Fitting the data at speed as they are: pitch at ≥ 5.14 m/s misses R² 0.99 (its STF
-    term U²B₃₃/ω² is not the damping of a causal memory, seed 000 eqs. 5.47–5.51), and
+    term U²B₃₃/ω² is not the damping of a causal memory, Hjulstad (2004) eqs. 5.47–5.51), and
     the KK diagnostic flags pitch at exactly those speeds; every fit is still stable."""
     raw = sp.fit_per_speed(s175, dofs=VERTICAL, speed_terms="keep", omega_max=2.0, max_order=6)
     assert raw.is_stable()
@@ -270,7 +270,7 @@ def test_speed_model_reproduces_stf_force(zero, speed_model):
 
 def test_kk_flags_stf_speed_terms(zero):
     """KK diagnostic: the zero-speed data pass (≤ 0.094), the STF-corrected data at speed
-    fail in Heave-Pitch, Pitch-Heave and Pitch (seed 000 §5.3–5.4), heave is unchanged."""
+    fail in Heave-Pitch, Pitch-Heave and Pitch (Hjulstad (2004) §5.3–5.4), heave is unchanged."""
     data = zero.isel(omega=slice(1, None))  # the first frequency is suspect (fit excludes it)
     errors, flagged = sp.stf_causality(data, 0.0)
     assert flagged == []

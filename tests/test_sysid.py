@@ -1,4 +1,4 @@
-"""Damping identification from motion records (issue: cummins.sysid, seed 003).
+"""Damping identification from motion records (issue: cummins.sysid, de Haan (2022)).
 
 The records are made by the simulator from the real tanker data (MSS/WAMIT) with known
 linear, quadratic and cubic roll damping, and measurement noise; the identification has
@@ -178,7 +178,7 @@ def test_simulation_run_is_a_record(tmp_path, roll_data, roll_vessel):
 
 
 def test_alignment_recovers_scale_and_lag():
-    """Seed 003 testable property 10: prediction = k × (measurement lagged by L)."""
+    """de Haan (2022) testable property 10: prediction = k × (measurement lagged by L)."""
     rng = np.random.default_rng(0)
     t = np.arange(0, 1200, 0.25)
     sea = wv.irregular_waves(wv.wave_spectrum("jonswap", 2, 9), duration=1200, seed=2)
@@ -558,7 +558,7 @@ def test_coupling_term_finds_a_wrong_metacentric_height(roll_data, roll_vessel, 
 def test_cli_aligns_scaled_and_shifted_forces(tmp_path, true_damping, tanker_vessel):
     """Field data: the predicted force is 3 times too large and 2 s late; --align Heave
     (insensitive to the missing viscous damping, as de Haan chose it) finds both before
-    identifying (seed 003 §3.2.1)."""
+    identifying (de Haan (2022) §3.2.1)."""
     from cummins.io.netcdf import save_netcdf
     from cummins.sysid.records import shift_signal
 

@@ -1,4 +1,4 @@
-"""The nonlinear 6-DOF model of seed 004 (cummins.unified) and its kinematics."""
+"""The nonlinear 6-DOF model of Smogeli et al. (2004) (cummins.unified) and its kinematics."""
 
 from __future__ import annotations
 
@@ -75,7 +75,7 @@ def test_attitude_transform_singular_at_ninety_degrees_pitch():
 
 
 def test_point_load_by_hand():
-    """A 1000 kN crane load hanging 15 m to starboard (seed 004 §7): heave force and
+    """A 1000 kN crane load hanging 15 m to starboard (Smogeli et al. (2004) §7): heave force and
     a heeling moment to starboard, r × F by hand."""
     f = np.array([0.0, 0.0, 1e6])
     r = np.array([0.0, 15.0, 0.0])

@@ -61,8 +61,8 @@ def main() -> None:
       cummins simulate DATA    the vessel in regular or irregular waves, time domain
       cummins identify-damping RECORDS --model DATA
                                viscous (roll) damping from motion records or decays
-      cummins dp-demo -o DIR   the nonlinear 6-DOF DP model (seed 004) on the S-175
-      cummins lf-model DATA    constant-coefficient manoeuvring model (seed 002)
+      cummins dp-demo -o DIR   the nonlinear 6-DOF DP model (Smogeli et al., 2004) on the S-175
+      cummins lf-model DATA    constant-coefficient manoeuvring model (Ross, Perez & Fossen, 2006)
       cummins batch STUDY      many cases (headings x sea states) on Dask; operability
       cummins report FILE      a self-contained HTML page of a data, model, run or results file
       cummins demo             run all of it on a bundled real vessel (WAMIT tanker)

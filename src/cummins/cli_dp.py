@@ -1,4 +1,4 @@
-"""``cummins dp-demo``: the dynamic-positioning scenario of seed 004 §7."""
+"""``cummins dp-demo``: the dynamic-positioning scenario of Smogeli et al. (2004) §7."""
 
 from __future__ import annotations
 
@@ -84,10 +84,11 @@ def dp_demo_command(
     data_path,
     force,
 ):
-    """The S-175 container ship on DP in a seaway, a crane load at t = 100 s (seed 004 §7).
+    """The S-175 container ship on DP in a seaway, a crane load at t = 100 s (Smogeli et al. (2004)
+    §7).
 
     \b
-    The nonlinear 6-DOF model of the Marine Systems Simulator (seed 004 eq. 56): body-
+    The nonlinear 6-DOF model of the Marine Systems Simulator (Smogeli et al. (2004) eq. 56): body-
     fixed kinematics, the fluid memory as a state-space model fitted to the MSS data,
     first-order wave forces at the instantaneous relative heading, Newman drift, ITTC
     surge resistance and cross-flow drag, optional current and wind, a nonlinear PID

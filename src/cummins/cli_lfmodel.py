@@ -1,4 +1,4 @@
-"""``cummins lf-model``: the constant-coefficient manoeuvring model (seed 002)."""
+"""``cummins lf-model``: the constant-coefficient manoeuvring model (Ross, Perez & Fossen, 2006)."""
 
 from __future__ import annotations
 
@@ -107,7 +107,7 @@ def lf_model_command(
     """Derive the constant-coefficient low-frequency model (M_RB + M_A) v' + D v + G eta = tau.
 
     \b
-    Seed 002 (Ross, Perez & Fossen): surge, sway and yaw take the zero-frequency limits
+    Ross, Perez & Fossen (2006): surge, sway and yaw take the zero-frequency limits
     (the hydrodynamic derivatives: M_A = A(0), D = B(0) + viscous, B(0) = 0 at zero speed),
     heave, roll and pitch the values at their natural frequency w0, found by iterating
     w0^2 (M_RB + A(w0)) = C (eq. 24). The model is the one control engineers use for

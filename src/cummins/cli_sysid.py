@@ -103,7 +103,7 @@ from cummins.cli_common import (
     default=None,
     metavar="DOF",
     help="Scale and shift the record's forces so the predicted DOF (e.g. Heave) "
-    "matches the measured one (seed 003 §3.2.1), before identifying.",
+    "matches the measured one (de Haan (2022) §3.2.1), before identifying.",
 )
 @click.option(
     "--max-lag",

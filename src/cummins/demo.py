@@ -180,10 +180,10 @@ def run_demo(
     say("the tanker in a sea state, time domain, against the frequency domain")
     steps.append(_simulate_step(ds, model, out, force))
 
-    say("the low-frequency manoeuvring model (seed 002)")
+    say("the low-frequency manoeuvring model (Ross, Perez & Fossen, 2006)")
     steps.append(_lf_step(ds, out, force))
 
-    say("dynamic positioning of the S-175 with a crane load (seed 004, 5 minutes)")
+    say("dynamic positioning of the S-175 with a crane load (Smogeli et al., 2004, 5 minutes)")
     steps.append(_dp_step(out, force))
 
     (out / "demo_summary.json").write_text(

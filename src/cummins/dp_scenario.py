@@ -1,4 +1,4 @@
-"""The dynamic-positioning scenario of seed 004 §7 with the S-175 data of MSS.
+"""The dynamic-positioning scenario of Smogeli et al. (2004) §7 with the S-175 data of MSS.
 
 The S-175 container ship (ShipX/VERES strip theory, processed by MSS; zero speed) holds
 position by DP in short-crested waves — JONSWAP H_s 4 m, ω_p 0.60 rad/s, γ 3.3, mean
@@ -26,11 +26,11 @@ from pathlib import Path
 import numpy as np
 import xarray as xr
 
-#: The seed's sea state and load.
+#: The paper's sea state and load.
 HS, OMEGA_P, GAMMA = 4.0, 0.60, 3.3
 WAVES_FROM_DEG = 45.0  # off the bow, starboard side
 CRANE_LOAD, CRANE_POINT, CRANE_TIME = 1.0e6, (0.0, 15.0, 0.0), 100.0
-#: cos-2s spreading exponent of the short-crested sea (the seed does not give it).
+#: cos-2s spreading exponent of the short-crested sea (the paper does not give it).
 SPREADING = 5.0
 #: Linear viscous damping of surge, sway and yaw, N s/m and N m s/rad: the lowest
 #: frequency values of MSS's frequency-dependent ``Bv`` of this ship (rounded).
@@ -173,7 +173,8 @@ def run_scenario(
     run["wave_elevation"] = ("time", sea.elevation(run.time.values), {"units": "m"})
     run.attrs.update(
         {
-            "scenario": "seed 004 section 7: S-175 under DP, crane load 1000 kN at t = 100 s",
+            "scenario": "Smogeli et al. (2004) section 7: S-175 under DP, crane load 1000 kN "
+            "at t = 100 s",
             "hs": HS,
             "omega_p": OMEGA_P,
             "gamma": GAMMA,

@@ -1,7 +1,7 @@
 """First-order wave excitation: transfer functions at any frequency and heading, and τ(t).
 
-The first-order wave force on a body in a sea of harmonic components (seed 003 §1.9,
-seed 004 §5; x(t) = Re{X e^{iωt}}) is
+The first-order wave force on a body in a sea of harmonic components (de Haan (2022) §1.9,
+Smogeli et al. (2004) §5; x(t) = Re{X e^{iωt}}) is
 
     τ(t) = Σ_k a_k Re{F(ω_k, β_k) e^{i(ω_k t + φ_k)}},
 
@@ -12,7 +12,7 @@ the components of :class:`cummins.waves.WaveComponents` (phase at the origin).
 Interpolation (:func:`excitation_transfer`)
 --------------------------------------------
 The components' frequencies and directions are not those of the database, so F is
-interpolated. Seed 003 (§3.1.2, digest §1.13 and §4.2 item 9) shows that a *sharply
+interpolated. de Haan (2022, §3.1.2) shows that a *sharply
 peaked* transfer function (its roll RAO, with a 180° phase turn within one Δω) cannot be
 interpolated safely either as amplitude and phase (the phase goes the wrong way round)
 or in the complex plane (the amplitude dips to ~0 between two large values). cummins

@@ -1,7 +1,7 @@
 """The frequency-domain model: motion RAOs, response spectra and significant amplitudes.
 
 For a harmonic wave of unit amplitude, frequency ω and direction β, with x(t) =
-Re{X e^{iωt}}, the linear equation of motion (seed 003 eqs. 2.3–2.4, digest §1.3) is
+Re{X e^{iωt}}, the linear equation of motion (de Haan (2022) eqs. 2.3–2.4) is
 
     [−ω² (M_RB + A(ω) + A_add(ω)) + iω (B(ω) + B_add(ω) + B_v) + C + C_add] X = F(ω, β),
 
@@ -15,13 +15,13 @@ the 6N × 6N system at each (ω, β) (never by inverting a matrix).
 
 The RAO is computed, not interpolated: at frequencies between those of the data, A, B
 and F are interpolated (they are smooth; :mod:`cummins.excitation` for F) and the
-system is solved there. A lightly damped resonance (seed 003 §3.1.2: roll, with a 180°
+system is solved there. A lightly damped resonance (de Haan (2022) §3.1.2: roll, with a 180°
 phase turn within one Δω of the database) is thereby resolved as finely as asked, which
 no interpolation of the RAO itself can do.
 
 **Forward speed.** For data at a forward speed U (a ``forward_speed`` coordinate, e.g. the
 MSS S-175 from ShipX/VERES), the vessel meets a wave of frequency ω and direction β at
-the encounter frequency ω_e = ω − k(ω) U cos β (seed 000 §3; deep water k = ω²/g): the
+the encounter frequency ω_e = ω − k(ω) U cos β (Hjulstad (2004) §3; deep water k = ω²/g): the
 excitation F(ω, β) is tabulated per *wave* frequency, while the radiation coefficients
 A, B are functions of the frequency of the motion, ω_e. So the RAO at speed is
 
@@ -44,7 +44,7 @@ significant amplitudes below stay on the wave-frequency axis: the variance is th
 on either axis.
 
 The response spectrum of DOF j to a wave spectrum S(ω) in one direction is
-S_j(ω) = |X_j(ω, β)|² S(ω) (seed 003 eq. 2.5); in a short-crested sea with spreading
+S_j(ω) = |X_j(ω, β)|² S(ω) (de Haan (2022) eq. 2.5); in a short-crested sea with spreading
 D(θ), S_j(ω) = Σ_β w_β |X_j(ω, β)|² S(ω), w_β = ∫_bin D dθ. The significant amplitude is
 2√m₀ (m₀ = ∫S_j dω), the single amplitude equivalent of H_s/2 for the waves: half the
 significant double amplitude 4√m₀.

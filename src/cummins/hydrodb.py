@@ -704,7 +704,7 @@ def move_reference_point(ds: xr.Dataset, point: ArrayLike) -> xr.Dataset:
     """Express the data about another reference point (the screw transform).
 
     With r the vector from the new point O to the old point W, matrices become
-    ``H(r)ᵀ M H(r)``, forces ``H(r)ᵀ F`` (seed 004 eqs. 15, 38, 45) and motions
+    ``H(r)ᵀ M H(r)``, forces ``H(r)ᵀ F`` (Smogeli et al. (2004) eqs. 15, 38, 45) and motions
     ``H(−r) ξ`` (eq. 16 inverted). This is exact for added mass, damping, inertia and
     wave forces; for the hydrostatic stiffness it holds when the body floats in
     equilibrium (weight = buoyancy, G above B), which is the case the data describe.

@@ -2,7 +2,7 @@
 
 Notation and equation numbers follow Smogeli, Perez, Fossen & Sørensen, "The Marine
 Systems Simulator state-space model representation for dynamically positioned surface
-vessels" (seed 004).
+vessels" (Smogeli et al., 2004).
 """
 
 from __future__ import annotations
@@ -23,7 +23,7 @@ X_AFT_TO_X_FORWARD = np.array([-1.0, -1.0, 1.0, -1.0, -1.0, 1.0])
 def skew(r: ArrayLike) -> NDArray[np.float64]:
     """Cross-product matrix S(r), such that ``S(r) @ a == np.cross(r, a)``.
 
-    Seed 004 eq. (14).
+    Smogeli et al. (2004) eq. (14).
 
     Parameters
     ----------
@@ -45,7 +45,7 @@ def skew(r: ArrayLike) -> NDArray[np.float64]:
 
 
 def screw_transform(r: ArrayLike) -> NDArray[np.float64]:
-    """Screw transformation H(r) (seed 004 eq. 15).
+    """Screw transformation H(r) (Smogeli et al. (2004) eq. 15).
 
     For a rigid body with generalized velocity ν = [v_O, ω] about a point O, the
     generalized velocity about the point P at ``r`` (from O to P) is ``H(r) @ ν``
@@ -77,7 +77,7 @@ def screw_transform(r: ArrayLike) -> NDArray[np.float64]:
 def rigid_body_inertia(
     mass: float, center_of_gravity: ArrayLike, inertia_cg: ArrayLike
 ) -> NDArray[np.float64]:
-    """Rigid-body inertia matrix M_RB about the origin (seed 004 eq. 25).
+    """Rigid-body inertia matrix M_RB about the origin (Smogeli et al. (2004) eq. 25).
 
     M_RB = [[m I, −m S(r_g)], [m S(r_g), I_o]], with I_o = I_g − m S(r_g)² the inertia
     tensor about the origin (parallel-axis theorem).
@@ -135,7 +135,7 @@ def center_of_gravity_from_inertia(m_rb: ArrayLike) -> tuple[float, NDArray[np.f
 def rotation_matrix(attitude: ArrayLike) -> NDArray[np.float64]:
     """R_b^n(Θ): body-fixed to north-east-down, zyx Euler angles Θ = (φ, θ, ψ), rad.
 
-    Seed 004 eq. (6); v^n = R v^b (eq. 5). Orthogonal: R⁻¹ = Rᵀ.
+    Smogeli et al. (2004) eq. (6); v^n = R v^b (eq. 5). Orthogonal: R⁻¹ = Rᵀ.
 
     Examples
     --------
@@ -157,7 +157,8 @@ def rotation_matrix(attitude: ArrayLike) -> NDArray[np.float64]:
 
 
 def attitude_transform(attitude: ArrayLike) -> NDArray[np.float64]:
-    """T_Θ(Θ): body angular velocity (p, q, r) to Euler angle rates, Θ̇ = T_Θ ω (seed 004
+    """T_Θ(Θ): body angular velocity (p, q, r) to Euler angle rates, Θ̇ = T_Θ ω (Smogeli et al.
+    (2004)
     eqs. 7–8); singular at θ = ±π/2 (raises ValueError there)."""
     phi, theta, _ = (float(a) for a in np.asarray(attitude, dtype=float).reshape(3))
     ct = np.cos(theta)
@@ -168,7 +169,7 @@ def attitude_transform(attitude: ArrayLike) -> NDArray[np.float64]:
 
 
 def velocity_transform(eta: ArrayLike) -> NDArray[np.float64]:
-    """J(Θ) = diag(R_b^n(Θ), T_Θ(Θ)) of η̇ = J(Θ)ν (seed 004 eqs. 9–10), from the pose
+    """J(Θ) = diag(R_b^n(Θ), T_Θ(Θ)) of η̇ = J(Θ)ν (Smogeli et al. (2004) eqs. 9–10), from the pose
     η = (N, E, D, φ, θ, ψ)."""
     attitude = np.asarray(eta, dtype=float).reshape(6)[3:]
     out = np.zeros((6, 6))
@@ -181,7 +182,8 @@ def point_motion(
     eta: ArrayLike, nu: ArrayLike, r: ArrayLike
 ) -> tuple[NDArray[np.float64], NDArray[np.float64]]:
     """Position in the n-frame and velocity in the b-frame of the point at ``r`` (b-frame,
-    from O): x_p^n = η_{1:3} + R(Θ) r (seed 004 eq. 42), v_p^b = H(r) ν (eq. 43, its first
+    from O): x_p^n = η_{1:3} + R(Θ) r (Smogeli et al. (2004) eq. 42), v_p^b = H(r) ν (eq. 43, its
+    first
     three components)."""
     eta = np.asarray(eta, dtype=float).reshape(6)
     position = eta[:3] + rotation_matrix(eta[3:]) @ np.asarray(r, dtype=float)
@@ -191,7 +193,8 @@ def point_motion(
 
 def point_load(force: ArrayLike, r: ArrayLike, moment: ArrayLike | None = None):
     """The generalized force at O of a force (and moment) acting at ``r``, all in the
-    b-frame: τ = Hᵀ(r) τ_p (seed 004 eq. 45), i.e. the force and the moment r × F (+ M).
+    b-frame: τ = Hᵀ(r) τ_p (Smogeli et al. (2004) eq. 45), i.e. the force and the moment r × F (+
+    M).
 
     Examples
     --------

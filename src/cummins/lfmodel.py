@@ -1,16 +1,19 @@
-"""Low-frequency (manoeuvring) model with constant coefficients (seed 002, Ross, Perez & Fossen).
+"""Low-frequency (manoeuvring) model with constant coefficients (Ross, Perez & Fossen, 2006, Ross,
+Perez & Fossen).
 
-The Cummins equation (seed 002 eq. 11) has a frequency-independent inertia A∞ and a
-fluid memory ∫K(t − τ) ξ̇(τ) dτ. A manoeuvring or dynamic-positioning model (seed 002
+The Cummins equation (Ross, Perez & Fossen (2006) eq. 11) has a frequency-independent inertia A∞
+and a
+fluid memory ∫K(t − τ) ξ̇(τ) dτ. A manoeuvring or dynamic-positioning model (Ross, Perez & Fossen
+(2006)
 eqs. 16–17) replaces the memory by constant coefficients,
 
     (M_RB + M_A) ν̇ + D ν + G η = τ,
 
-and seed 002 §3.1 (Definition 1) says *at which frequency* to take them:
+and Ross, Perez & Fossen (2006) §3.1 (Definition 1) says *at which frequency* to take them:
 
 * **Zero-frequency model, surge/sway/yaw** (mass–damper DOFs, little oscillation while
   manoeuvring): the classical hydrodynamic derivatives, the ω → 0 limits of the
-  Ogilvie relations (seed 002 eqs. 8–9),
+  Ogilvie relations (Ross, Perez & Fossen (2006) eqs. 8–9),
 
   M_A = A(0) = A∞ − ∫₀^∞ τ K(τ) dτ                                 (eq. 22, 25)
   D   = B(0) + B_v(0) = ∫₀^∞ K(τ) dτ + β                          (eq. 23, 26)
@@ -36,7 +39,8 @@ DOFs of different frequencies is taken: cummins takes entry (i, j) at min(ω_i, 
 (symmetric, passive; the couplings of the zero-frequency DOFs are their derivatives), or
 on request at ω_j, the frequency of the radiating DOF.
 
-Viscous damping B_v(ω) (seed 002 §3, the matrix after eq. 21): :class:`ExponentialDamping`
+Viscous damping B_v(ω) (Ross, Perez & Fossen (2006) §3, the matrix after eq. 21):
+:class:`ExponentialDamping`
 β e^{−αω} (Ross & Fossen 2005; intended for surge, sway and yaw) and, for roll, where the
 seed uses Ikeda et al. (1976), :class:`CriticalDampingFraction` — **a proxy, not Ikeda's
 method**: B_v = 2ζ ω₀ (M_RB,ii + A_ii(ω₀)) = 2ζ √(C_ii (M_RB,ii + A_ii(ω₀))), a fraction ζ
@@ -72,9 +76,9 @@ from cummins.transforms import cosine_transform, sine_transform
 from cummins.validation import check_simulation_size
 from cummins.vessel import Vessel, vessel_from_hydrodb
 
-#: DOFs of the zero-frequency sub-model (seed 002 Definition 1, item 1).
+#: DOFs of the zero-frequency sub-model (Ross, Perez & Fossen (2006) Definition 1, item 1).
 ZERO_FREQUENCY_DOFS = ("Surge", "Sway", "Yaw")
-#: DOFs of the natural-frequency sub-model (seed 002 Definition 1, item 2).
+#: DOFs of the natural-frequency sub-model (Ross, Perez & Fossen (2006) Definition 1, item 2).
 NATURAL_FREQUENCY_DOFS = ("Heave", "Roll", "Pitch")
 
 Couplings = Literal["min", "radiating"]
@@ -85,13 +89,14 @@ Couplings = Literal["min", "radiating"]
 
 @dataclass(frozen=True)
 class ExponentialDamping:
-    """Viscous damping B_v(ω) = β e^{−αω} (seed 002 §3, Ross & Fossen 2005).
+    """Viscous damping B_v(ω) = β e^{−αω} (Ross, Perez & Fossen (2006) §3, Ross & Fossen 2005).
 
     Attributes
     ----------
     beta
         β ≥ 0, the zero-frequency viscous damping, kg/s (translation) or kg·m²/s
-        (rotation): the constant that enters D of a zero-frequency DOF (seed 002 eq. 26).
+        (rotation): the constant that enters D of a zero-frequency DOF (Ross, Perez & Fossen (2006)
+        eq. 26).
     alpha
         α ≥ 0, the exponential rate, s.
 
@@ -120,8 +125,9 @@ class CriticalDampingFraction:
     """Linear viscous damping as a fraction ζ of critical, at the natural frequency.
 
     B_v = 2ζ ω₀ (M_RB,ii + A_ii(ω₀)), i.e. 2ζ √(C_ii (M_RB,ii + A_ii(ω₀))) when ω₀
-    satisfies seed 002 eq. 24. A documented **proxy** for the Ikeda roll damping
-    B_IKEDA(ω₀) of seed 002 eq. 30 (typical ζ for a ship in roll: 0.02–0.10 in total,
+    satisfies Ross, Perez & Fossen (2006) eq. 24. A documented **proxy** for the Ikeda roll damping
+    B_IKEDA(ω₀) of Ross, Perez & Fossen (2006) eq. 30 (typical ζ for a ship in roll: 0.02–0.10 in
+    total,
     of which the potential part B_44(ω₀) is often the smaller share); it is not Ikeda's
     component method (friction, eddy, lift, bilge keel), which needs the hull form.
     Only for DOFs with restoring (heave, roll, pitch).
@@ -153,7 +159,8 @@ ViscousSpec = (
 
 @dataclass(frozen=True, eq=False)
 class LowFrequencyModel:
-    """Constant-coefficient LF model (M_RB + M_A) ν̇ + D ν + G η = τ (seed 002 eq. 17).
+    """Constant-coefficient LF model (M_RB + M_A) ν̇ + D ν + G η = τ (Ross, Perez & Fossen (2006)
+    eq. 17).
 
     Attributes
     ----------
@@ -214,7 +221,8 @@ class LowFrequencyModel:
         return self.dofs.index(dof)
 
     def eq24_residual(self, dof: str) -> float:
-        """ω₀² (M_RB,ii + M_A,ii) − C_ii for ``dof`` (seed 002 eq. 24), N/m or N·m/rad."""
+        """ω₀² (M_RB,ii + M_A,ii) − C_ii for ``dof`` (Ross, Perez & Fossen (2006) eq. 24), N/m or
+        N·m/rad."""
         i = self.index(dof)
         w = float(self.frequencies[i])
         return float(
@@ -282,7 +290,8 @@ class _Coefficients:
 
 
 class _FromKernel(_Coefficients):
-    """Seed 002 eqs. 8–9 and 22–23 on a sampled K(t) (exact for piecewise-linear K)."""
+    """Ross, Perez & Fossen (2006) eqs. 8–9 and 22–23 on a sampled K(t) (exact for piecewise-linear
+    K)."""
 
     route = "retardation function K(t)"
 
@@ -375,7 +384,8 @@ def extrapolate_zero_frequency(
     """A(0) and B(0) by a least-squares fit of c₀ + c₂ω² to the lowest ``points`` frequencies.
 
     A(ω) and B(ω) are even functions of ω (A(ω) = A∞ + Im K(jω)/ω and B = Re K(jω) for a
-    real kernel), so their expansion about ω = 0 has no odd term. The limits of seed 002
+    real kernel), so their expansion about ω = 0 has no odd term. The limits of Ross, Perez &
+    Fossen (2006)
     eqs. 20–21.
 
     Returns
@@ -413,7 +423,8 @@ def natural_frequency(
     tol: float = 1e-10,
     max_iter: int = 100,
 ) -> tuple[float, int]:
-    """ω₀ of seed 002 eq. 24 by fixed-point iteration ω ← √(C_ii / (M_RB,ii + A_ii(ω))).
+    """ω₀ of Ross, Perez & Fossen (2006) eq. 24 by fixed-point iteration ω ← √(C_ii / (M_RB,ii +
+    A_ii(ω))).
 
     Parameters
     ----------
@@ -445,7 +456,7 @@ def natural_frequency(
     if not stiffness > 0:
         raise HydroDataError(
             f"{dof}: restoring C = {stiffness:.4g} ≤ 0, so there is no natural frequency "
-            "(seed 002 eq. 24)",
+            "(Ross, Perez & Fossen (2006) eq. 24)",
             quantity=f"hydrostatic_stiffness[{dof}, {dof}]",
             hint=f"give the frequency with frequencies={{{dof!r}: ω}} or check the hydrostatics",
         )
@@ -466,7 +477,8 @@ def natural_frequency(
         omega = new
     last = ", ".join(f"{x:.6g}" for x in history[-4:])
     raise FitError(
-        f"{dof}: the natural frequency of seed 002 eq. 24 did not converge in {max_iter} "
+        f"{dof}: the natural frequency of Ross, Perez & Fossen (2006) eq. 24 did not converge "
+        f"in {max_iter} "
         f"fixed-point iterations (last iterates {last} rad/s)",
         hint=f"give it with frequencies={{{dof!r}: ω}} or raise max_iter",
     )
@@ -687,7 +699,7 @@ def lf_model_from_retardation(
     tol: float = 1e-10,
     max_iter: int = 100,
 ) -> LowFrequencyModel:
-    """The LF model from the retardation function K(t) and A∞ (seed 002 §3.1).
+    """The LF model from the retardation function K(t) and A∞ (Ross, Perez & Fossen (2006) §3.1).
 
     Zero-frequency DOFs (surge, sway, yaw): M_A = A∞ − ∫τK dτ (eqs. 22, 25) and
     D = ∫K dτ + B_v(0) (eqs. 23, 26). Natural-frequency DOFs (heave, roll, pitch): ω₀
@@ -701,7 +713,7 @@ def lf_model_from_retardation(
     Parameters
     ----------
     ds
-        ``HydroDB`` at one forward speed (zero speed is what the seed assumes), with
+        ``HydroDB`` at one forward speed (zero speed is what Ross, Perez & Fossen (2006) assume), with
         ``inertia_matrix`` and ``hydrostatic_stiffness``.
     kernel
         K(t) (time from 0, influenced_dof, radiating_dof), kg/s² …; default
@@ -729,7 +741,8 @@ def lf_model_from_retardation(
         ``additional_damping`` into B_v, as :func:`cummins.vessel.vessel_from_hydrodb`.
     potential_b0
         ``"zero"`` (default): the potential part of D in the zero-frequency DOFs is
-        B(0) = ∫K dτ = 0, its value at zero speed in deep water (seed 002 eq. 26 then
+        B(0) = ∫K dτ = 0, its value at zero speed in deep water (Ross, Perez & Fossen (2006) eq. 26
+        then
         leaves the viscous β alone); ``"computed"``: the number the route gives, which
         is that zero plus truncation noise of either sign (a slightly negative value
         makes a free DOF unstable). The computed value is kept in
@@ -785,7 +798,8 @@ def lf_model_from_frequency_data(
     tol: float = 1e-10,
     max_iter: int = 100,
 ) -> LowFrequencyModel:
-    """The LF model directly from A(ω), B(ω) (seed 002 eqs. 20–21, 24, 18–19 at ω₀).
+    """The LF model directly from A(ω), B(ω) (Ross, Perez & Fossen (2006) eqs. 20–21, 24, 18–19 at
+    ω₀).
 
     The same model as :func:`lf_model_from_retardation` computed without K(t): A and B
     are interpolated by cubic splines at ω₀ (eq. 24 solved on the spline); A(0) is the

@@ -1,6 +1,6 @@
 """Environmental and external loads of the nonlinear 6-DOF DP/manoeuvring model.
 
-The loads of seed 004 §4–5 (Smogeli, Perez, Fossen & Sørensen, the MSS DP model),
+The loads of Smogeli et al. (2004) §4–5 (Smogeli, Perez, Fossen & Sørensen, the MSS DP model),
 each a small frozen dataclass with a ``name`` and a method
 
     force(t, eta, nu) -> ndarray (6,)
@@ -24,10 +24,10 @@ Conventions
     :class:`cummins.waves.WaveComponents`). The data are looked up at the relative
     direction β_j − ψ, the ``wave_direction`` of a z-down ``HydroDB`` (from body +x
     towards starboard; π: head seas);
-  - current: β_c is the direction the current **flows to** (seed 004 eq. 40);
+  - current: β_c is the direction the current **flows to** (Smogeli et al. (2004) eq. 40);
   - wind: β_w is the direction the wind **comes from** (meteorological convention): a
     ship heading North (ψ = 0) in a wind from β_w = 0 has a head wind, which pushes it
-    aft. The relative wind angle γ_rw = β_w − ψ of seed 004 §5.5 (for a vessel at rest)
+    aft. The relative wind angle γ_rw = β_w − ψ of Smogeli et al. (2004) §5.5 (for a vessel at rest)
     is then the angle, from the bow towards starboard, the wind comes from.
 
 * Time convention of the wave data x(t) = Re{X e^{iωt}}; wave elevation at the n-frame
@@ -36,7 +36,7 @@ Conventions
 Loads
 -----
 =============================  ==============================================  =========
-class                          model                                           seed 004
+class                          model                                           Smogeli et al. (2004)
 =============================  ==============================================  =========
 :class:`Current`               current velocity, relative velocity (no load)   eqs. 40, 49
 :class:`FirstOrderWaveLoad`    first-order wave excitation                     eq. 46
@@ -200,7 +200,7 @@ class _PeriodicTable:
 
 @dataclass(frozen=True)
 class Current:
-    """A uniform, steady surface current (seed 004 §4.3).
+    """A uniform, steady surface current (Smogeli et al. (2004) §4.3).
 
     Not a load itself: :class:`SurgeResistance` and :class:`CrossFlowDrag` use it for the
     relative velocity ν_r (eq. 49), and the vessel model replaces ν by ν_r in its
@@ -235,16 +235,16 @@ class Current:
         return self.speed * np.array([np.cos(self.direction), np.sin(self.direction), 0.0])
 
     def velocity_body(self, psi: float) -> NDArray[np.float64]:
-        """v_c^b = U_c [cos(β_c − ψ), sin(β_c − ψ), 0], m/s (seed 004 eq. 40).
+        """v_c^b = U_c [cos(β_c − ψ), sin(β_c − ψ), 0], m/s (Smogeli et al. (2004) eq. 40).
 
         ``psi`` is the heading ψ, rad. Only the heading rotates the current (roll and
-        pitch are neglected, as in the seed).
+        pitch are neglected, as in the paper).
         """
         a = self.direction - float(psi)
         return self.speed * np.array([np.cos(a), np.sin(a), 0.0])
 
     def relative_velocity(self, eta: ArrayLike, nu: ArrayLike) -> NDArray[np.float64]:
-        """ν_r = ν − [v_c^b, 0, 0, 0], shape (6,), m/s and rad/s (seed 004 eq. 49)."""
+        """ν_r = ν − [v_c^b, 0, 0, 0], shape (6,), m/s and rad/s (Smogeli et al. (2004) eq. 49)."""
         nu_r = np.array(nu, dtype=float).reshape(6)
         nu_r[:3] -= self.velocity_body(np.asarray(eta, dtype=float).reshape(6)[5])
         return nu_r
@@ -355,7 +355,7 @@ class _UniformPeriodicTable:
 
 @dataclass(frozen=True, eq=False)
 class FirstOrderWaveLoad:
-    """First-order wave excitation at the instantaneous heading (seed 004 eq. 46).
+    """First-order wave excitation at the instantaneous heading (Smogeli et al. (2004) eq. 46).
 
     τ_W1^i(t) = Σ_j ζ_j |T^i_j| cos(ω_j t + φ_j − k_j (N cos β_j + E sin β_j) + arg T^i_j),
     T^i_j = T^i(ω_j, β_j − ψ),
@@ -365,7 +365,7 @@ class FirstOrderWaveLoad:
     at the vessel's horizontal position (N, E) (m), so that a drifting or turning vessel
     stays consistent with the elevation :meth:`WaveComponents.elevation` gives there.
     Forces are in the data's (z-down) axes about its reference point: the b-frame about
-    O. Roll and pitch do not enter (seed 004 Assumption A1).
+    O. Roll and pitch do not enter (Smogeli et al. (2004) Assumption A1).
 
     Build it with :meth:`from_hydrodb`, which tabulates T(ω_j, γ_h) for every component
     on a uniform grid of relative headings γ_h = 2πh/m (every 2.5° by default) with
@@ -530,7 +530,8 @@ def _frequency_weights(
 
 @dataclass(frozen=True, eq=False)
 class WaveDriftLoad:
-    """Mean and slowly varying wave drift, Newman's approximation (seed 004 eqs. 47–48).
+    """Mean and slowly varying wave drift, Newman's approximation (Smogeli et al. (2004) eqs.
+    47–48).
 
     τ_W2^i = Σ_j Σ_k ζ_j ζ_k T^i_jk cos(θ_k − θ_j),  T_jk = ½ (T_jj + T_kk),
 
@@ -545,7 +546,7 @@ class WaveDriftLoad:
     (the two halves of ½(T_jj + T_kk) give equal sums). The mean part (j = k) is
     Σ_j ζ_j² T_jj; ``slowly_varying=False`` keeps only it. The mean drift is valid for
     long- and short-crested seas; the slowly varying part (j ≠ k) is strictly valid for
-    long-crested seas only (seed 004 §5.3): in a spread sea it is an approximation
+    long-crested seas only (Smogeli et al. (2004) §5.3): in a spread sea it is an approximation
     that pairs components of all directions.
 
     The force acts at ``point`` (b-frame; τ_W2 = Hᵀ(r_W2) [τ^1 … τ^6], eq. 48): the
@@ -720,7 +721,8 @@ class WaveDriftLoad:
 
 
 def ittc_friction(reynolds: ArrayLike) -> NDArray[np.float64]:
-    """ITTC 1957 model–ship correlation line C_f = 0.075 / (log₁₀ Rn − 2)² (seed 004 eq. 51).
+    """ITTC 1957 model–ship correlation line C_f = 0.075 / (log₁₀ Rn − 2)² (Smogeli et al. (2004)
+    eq. 51).
 
     Parameters
     ----------
@@ -761,12 +763,13 @@ def denny_mumford_wetted_surface(
 
 @dataclass(frozen=True)
 class SurgeResistance:
-    """Quadratic surge resistance from the ITTC 1957 friction line (seed 004 eqs. 50–51).
+    """Quadratic surge resistance from the ITTC 1957 friction line (Smogeli et al. (2004) eqs.
+    50–51).
 
     f_1 = −(ρ/2) S (1 + k) (C_f(Rn) + ΔC_f) |u_r| u_r,  Rn = |u_r| L / ν_w,
 
     opposing the relative surge velocity u_r = u − U_c cos(β_c − ψ) (eq. 49), applied at
-    ``point``: τ = Hᵀ(r_c) [f_1, 0, 0, 0, 0, 0] (eq. 54; the seed suggests r_c =
+    ``point``: τ = Hᵀ(r_c) [f_1, 0, 0, 0, 0, 0] (eq. 54; the paper suggests r_c =
     [0, 0, T/2] when O is in the waterline). Below ``min_reynolds`` (default 1e5, where
     the line stops being meaningful and diverges towards Rn = 100) C_f is held at its
     value at ``min_reynolds``: the force still goes to 0 as u_r² when u_r → 0.
@@ -909,13 +912,13 @@ def hoerner_drag_coefficient(breadth: ArrayLike, draught: ArrayLike) -> NDArray[
 
 @dataclass(frozen=True, eq=False)
 class CrossFlowDrag:
-    """Cross-flow drag in sway and yaw by strip theory (seed 004 eqs. 52–54).
+    """Cross-flow drag in sway and yaw by strip theory (Smogeli et al. (2004) eqs. 52–54).
 
     f_2 = −(ρ/2) ∫ T(x) C_D(x) v_r^x |v_r^x| dx,  f_6 = −(ρ/2) ∫ x T(x) C_D(x) v_r^x |v_r^x| dx,
 
     v_r^x(x) = v_r + r x the relative cross-flow velocity of the strip at x (m from O,
     forward), v_r = v − U_c sin(β_c − ψ) (eq. 49). The integrals are sums over strips
-    (midpoint rule). The signs make the loads oppose the motion (the seed's eqs. 52–54
+    (midpoint rule). The signs make the loads oppose the motion (the paper's eqs. 52–54
     combine to a force along it; MSS ``crossFlowDrag.m`` has these signs): a sway to
     starboard gives a force to port, a yaw rate a moment against it. Applied at
     ``point``: τ = Hᵀ(r_c) [0, f_2, 0, 0, 0, f_6] (eq. 54). ``force`` returns this τ,
@@ -1053,7 +1056,7 @@ def harris(
     """Harris (1971) wind gust spectrum S(ω), (m/s)²·s/rad, one-sided.
 
     In frequency f (Hz): S_f = 4 κ L Ū₁₀ / (2 + x²)^{5/6}, x = f L / Ū₁₀ (DNV, 2000,
-    *Environmental conditions and environmental loads*; seed 004 §4.2); here
+    *Environmental conditions and environmental loads*; Smogeli et al. (2004) §4.2); here
     S(ω) = S_f(ω/2π)/(2π). Its variance is :func:`harris_variance`,
     σ² = 4 κ Ū₁₀² · 2^{−1/3} √π Γ(1/3) / (2 Γ(5/6)) ≈ 6.68 κ Ū₁₀², whatever L.
 
@@ -1144,7 +1147,7 @@ WIND_SPECTRA: dict[str, Callable[..., NDArray[np.float64]]] = {"harris": harris,
 
 @dataclass(frozen=True, eq=False)
 class WindGust:
-    """A gust time series U_g(t) = Σ_k a_k cos(ω_k t + φ_k), m/s (seed 004 §4.2).
+    """A gust time series U_g(t) = Σ_k a_k cos(ω_k t + φ_k), m/s (Smogeli et al. (2004) §4.2).
 
     A deterministic function of t (the simulator may evaluate any time, in any order).
     Build it from a spectrum with :func:`wind_gust`.
@@ -1205,7 +1208,7 @@ def wind_gust(
     seed: int | None = None,
     **options: Any,
 ) -> WindGust:
-    """Realise a gust spectrum as a sum of harmonics (seed 004 §4.2).
+    """Realise a gust spectrum as a sum of harmonics (Smogeli et al. (2004) §4.2).
 
     The range [ω_min, ω_max] is cut into ``n_components`` bins equally spaced in
     log ω (the gust energy sits at low frequency: a Harris spectrum is flat below
@@ -1269,7 +1272,8 @@ def wind_gust(
 
 @dataclass(frozen=True)
 class Wind:
-    """Wind: mean speed at 10 m, direction it comes from, optional gust (seed 004 §4.2).
+    """Wind: mean speed at 10 m, direction it comes from, optional gust (Smogeli et al. (2004)
+    §4.2).
 
     U_w(t) = Ū_w + U_g(t).
 
@@ -1327,7 +1331,7 @@ class WindCoefficients:
     """Tabulated wind coefficients C_X, C_Y, C_N against the relative wind angle γ.
 
     γ is the angle the relative wind comes **from**, rad, from the bow towards
-    starboard (0: head wind; π/2: wind from starboard; seed 004 §5.5 γ_wr = β_w − ψ
+    starboard (0: head wind; π/2: wind from starboard; Smogeli et al. (2004) §5.5 γ_wr = β_w − ψ
     for a vessel at rest). Coefficients in the b-frame (x forward, y starboard, z
     down): a head wind has C_X < 0, a wind from starboard C_Y < 0. Fossen's *Handbook*
     (2021, §10.1) writes γ_rw = −atan2(v_rw, u_rw) = −γ; a table in that angle becomes
@@ -1415,7 +1419,7 @@ class ParametricWindCoefficients:
 
 @dataclass(frozen=True)
 class WindLoad:
-    """Wind force and moment (seed 004 eq. 55).
+    """Wind force and moment (Smogeli et al. (2004) eq. 55).
 
     f_i = ½ ρ_a C_wi(γ_rw) A_wi V_rw², i ∈ {1, 2, 6}, A_w1 = A_F (frontal), A_w2 = A_L
     (lateral), A_w6 = A_L L_oa,
@@ -1491,7 +1495,7 @@ class WindLoad:
 
 @dataclass(frozen=True)
 class PointLoad:
-    """A force (and moment) acting at a point of the vessel (seed 004 eq. 45).
+    """A force (and moment) acting at a point of the vessel (Smogeli et al. (2004) eq. 45).
 
     τ = Hᵀ(r) [F^b, M^b] · s(t): F (N) and M (N·m) are given in the b-frame
     (``frame="body"``, they turn with the vessel: a thrust, a towline fixed on deck) or

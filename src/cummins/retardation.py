@@ -1,12 +1,12 @@
 """Retardation functions K(t), infinite-frequency added mass A∞ and causality diagnostics.
 
 The radiation force of the Cummins equation is −A∞ ξ̈ − ∫₀ᵗ K(t − τ) ξ̇(τ) dτ, with
-(Ogilvie; seed 000 eqs. 5.11–5.15, seed 001 eqs. 2.46–2.61)
+(Ogilvie; Hjulstad (2004) eqs. 5.11–5.15, Unneland (2007) eqs. 2.46–2.61)
 
-* K(t) = (2/π) ∫₀^∞ B(ω) cos(ωt) dω                              (seed 000 eq. 5.15)
-* K(t) = −(2/π) ∫₀^∞ ω (A(ω) − A∞) sin(ωt) dω                      (seed 000 eq. 5.14)
+* K(t) = (2/π) ∫₀^∞ B(ω) cos(ωt) dω                              (Hjulstad (2004) eq. 5.15)
+* K(t) = −(2/π) ∫₀^∞ ω (A(ω) − A∞) sin(ωt) dω                      (Hjulstad (2004) eq. 5.14)
 * B(ω) = ∫₀^∞ K(t) cos(ωt) dt,  A(ω) = A∞ − (1/ω) ∫₀^∞ K(t) sin(ωt) dt  (eqs. 5.11–5.12)
-* A(ω) = A∞ + (2/π) PV ∫₀^∞ B(ν) / (ν² − ω²) dν  (Kramers–Kronig, seed 000 eq. 5.23)
+* A(ω) = A∞ + (2/π) PV ∫₀^∞ B(ν) / (ν² − ω²) dν  (Kramers–Kronig, Hjulstad (2004) eq. 5.23)
 * c(ω) = ω² (A∞ − A(ω)) − ω ∫₀^∞ K(t) sin(ωt) dt = 0 for consistent data (eq. 5.5)
 
 How cummins evaluates them (see :mod:`cummins.transforms`): the damping is taken as
@@ -64,7 +64,7 @@ def default_time_grid(
 
     The step resolves the highest frequency of the data, dt = π/(4 ω_N) (coarser if
     ``max_points`` would otherwise be exceeded). The length is found from K itself: K is
-    evaluated up to 2π/ω_min, beyond which the data hold no information (seed 000
+    evaluated up to 2π/ω_min, beyond which the data hold no information (Hjulstad (2004)
     §12.4), and the grid ends at 1.5 times the last time where some coupling still
     exceeds ``threshold`` of its peak (at most 2π/ω_min). Bodies with a long memory in
     one DOF (heave in shallow water) get a long grid, compact ones a short one.
@@ -168,7 +168,7 @@ class DampingTail:
         t = np.asarray(t, dtype=float).reshape(-1)
         out = np.zeros((t.size, self.kind.size))
         exponential = self.kind == "exponential"
-        if exponential.any():  # closed form (seed 003 §2.5.1)
+        if exponential.any():  # closed form (de Haan (2022) §2.5.1)
             a, c = self.rate[exponential], self.value[exponential]
             w0, tt = self.omega_start, t[:, None]
             denominator = a**2 + tt**2
@@ -340,7 +340,8 @@ def retardation_function(
 ) -> xr.DataArray:
     """Retardation functions K_ij(t) = (2/π) ∫₀^∞ B_ij(ω) cos(ωt) dω of all couplings.
 
-    Seed 000 eq. 5.15, seed 001 eq. 2.60, seed 004 eq. 34 (zero speed: B(∞) = 0).
+    Hjulstad (2004) eq. 5.15, Unneland (2007) eq. 2.60, Smogeli et al. (2004) eq. 34 (zero speed:
+    B(∞) = 0).
 
     Parameters
     ----------
@@ -427,7 +428,7 @@ def retardation_function_from_added_mass(
 ) -> xr.DataArray:
     """K(t) = −(2/π) ∫₀^{ω_N} ω (A(ω) − A∞) sin(ωt) dω, a cross-check of the damping route.
 
-    Seed 000 eq. 5.14, seed 001 eq. 2.61. It converges more slowly than the damping
+    Hjulstad (2004) eq. 5.14, Unneland (2007) eq. 2.61. It converges more slowly than the damping
     route (ω(A − A∞) decays like 1/ω) and is truncated at the last frequency: use it to
     check causality (the two routes agree for t > 0 when A and B are a consistent
     pair), not as the retardation function. K(0) is 0 by construction.
@@ -466,7 +467,7 @@ def _kramers_kronig_integral(ds: xr.Dataset, tail: str) -> NDArray:
 def added_mass_inf_per_frequency(ds: xr.Dataset, *, tail: str = "auto") -> xr.DataArray:
     """The Ogilvie estimate of A∞ at each frequency: A(ω) − (2/π) PV∫ B(ν)/(ν² − ω²) dν.
 
-    This is A∞ = A(ω) + (1/ω) ∫₀^∞ K(t) sin(ωt) dt (seed 003 eq. 2.16, seed 001 eq.
+    This is A∞ = A(ω) + (1/ω) ∫₀^∞ K(t) sin(ωt) dt (de Haan (2022) eq. 2.16, Unneland (2007) eq.
     2.46) evaluated in the frequency domain through the Kramers–Kronig relation (seed
     000 eq. 5.23), exactly for the piecewise-linear damping with its tail. For
     consistent data the result is the same at every frequency; its variation measures
@@ -595,7 +596,7 @@ def kramers_kronig_error(
     """Relative disagreement between A(ω) and its Kramers–Kronig prediction from B.
 
     ‖A − A_KK‖ / ‖A − A∞‖ over the trusted frequencies, per coupling (RMS norms;
-    seed 000 eq. 5.23, seed 001 eq. 2.63): 0 for a causal, consistent pair. Couplings
+    Hjulstad (2004) eq. 5.23, Unneland (2007) eq. 2.63): 0 for a causal, consistent pair. Couplings
     whose A − A∞ is negligible compared with the diagonal terms get the error scaled by
     √(|A_ii − A∞_ii| |A_jj − A∞_jj|) instead.
     """
@@ -622,7 +623,7 @@ def kramers_kronig_error(
 def reconstruct_added_mass_damping(
     kernel: xr.DataArray, added_mass_inf: ArrayLike, omega: ArrayLike
 ) -> xr.Dataset:
-    """A(ω) and B(ω) from K(t) (Ogilvie; seed 000 eqs. 5.11–5.12).
+    """A(ω) and B(ω) from K(t) (Ogilvie; Hjulstad (2004) eqs. 5.11–5.12).
 
     B(ω) = ∫₀^{t_max} K(t) cos(ωt) dt and A(ω) = A∞ − (1/ω) ∫₀^{t_max} K(t) sin(ωt) dt,
     integrated exactly for the piecewise-linear K through its samples (truncated at
@@ -664,7 +665,7 @@ def reconstruct_added_mass_damping(
 def radiation_restoring(
     kernel: xr.DataArray, ds: xr.Dataset, added_mass_inf: ArrayLike
 ) -> xr.DataArray:
-    """Hjulstad's radiation restoring coefficient c(ω) (seed 000 eq. 5.5).
+    """Hjulstad's radiation restoring coefficient c(ω) (Hjulstad (2004) eq. 5.5).
 
     c(ω) = ω² (A∞ − A(ω)) − ω ∫₀^{t_max} K(t) sin(ωt) dt, at the data frequencies:
     zero for consistent A, B, K and A∞; its size (N/m, N·m/rad) shows where they
@@ -692,7 +693,7 @@ def radiation_restoring(
 def truncate_retardation(
     kernel: xr.DataArray, t_max: float, *, method: str = "subtract", taper_fraction: float = 0.05
 ) -> xr.DataArray:
-    """End K(t) at ``t_max`` so that it is exactly zero there (seed 000 §10.2).
+    """End K(t) at ``t_max`` so that it is exactly zero there (Hjulstad (2004) §10.2).
 
     ``"subtract"``: K̃(t) = K(t) − K(t_max) for t ≤ t_max (the subtracted constant acts
     like a small restoring term); ``"taper"``: multiply the last ``taper_fraction`` of

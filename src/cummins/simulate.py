@@ -1,4 +1,5 @@
-"""Time-domain simulation of the Cummins equation (seed 002 eq. 12; seed 004 eqs. 32–39).
+"""Time-domain simulation of the Cummins equation (Ross, Perez & Fossen (2006) eq. 12; Smogeli et
+al. (2004) eqs. 32–39).
 
 Three solvers of the same equation of :mod:`cummins.vessel`,
 (M_RB + A∞) ξ̈ + B_v ξ̇ + μ + C ξ = τ:
@@ -17,7 +18,7 @@ Runge–Kutta (4th order) on the same state, the nonlinear force τ_nl(t, ξ, ξ
 or cubic damping, a user's callback) added to τ.
 
 **Direct convolution** (:func:`simulate_convolution`, the reference). The memory force
-μ(t_k) = ∫ K(t_k − s) ξ̇(s) ds by the trapezoidal rule on the samples of K (seed 003
+μ(t_k) = ∫ K(t_k − s) ξ̇(s) ds by the trapezoidal rule on the samples of K (de Haan (2022)
 eq. 2.23, first line; the second line as printed misses Δt), with the K(0)Δt/2 term
 implicit, and Newmark's average-acceleration scheme for the rest. Its cost grows with
 the length of K in samples: it is the benchmark's reference and a check of the
@@ -312,7 +313,7 @@ def simulate_convolution(
     initial_motion: ArrayLike | None = None,
     oversampling: int = 1,
 ) -> xr.Dataset:
-    """The reference solver: direct convolution of K(t) (seed 003 eq. 2.23).
+    """The reference solver: direct convolution of K(t) (de Haan (2022) eq. 2.23).
 
     Parameters
     ----------

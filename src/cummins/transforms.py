@@ -16,7 +16,7 @@ with sinc(z) = sin(z)/z and j₁(z) = (sin z − z cos z)/z² the spherical Bess
 both evaluated stably near z = 0 (where the rule reduces to the trapezoid rule).
 
 The principal-value integral PV ∫ f(x)/(x² − y²) dx of the Kramers–Kronig relations
-(seed 000 eqs. 5.23–5.24, seed 001 eq. 2.63) is also exact for piecewise-linear f:
+(Hjulstad (2004) eqs. 5.23–5.24, Unneland (2007) eq. 2.63) is also exact for piecewise-linear f:
 with f = p + s x on a segment, 1/(x² − y²) = [1/(x − y) − 1/(x + y)]/(2y) gives
 [(p + sy) ln|(b − y)/(a − y)| − (p − sy) ln|(b + y)/(a + y)|]/(2y). Where y falls on a
 grid point the two logarithmic singularities of the adjacent segments cancel (f is

@@ -1,4 +1,4 @@
-"""The nonlinear 6-DOF vessel model of the Marine Systems Simulator (seed 004 eq. 56).
+"""The nonlinear 6-DOF vessel model of the Marine Systems Simulator (Smogeli et al. (2004) eq. 56).
 
 Smogeli, Perez, Fossen & Sørensen's "unified" model keeps the kinematics between the
 Earth-fixed north-east-down frame (n) and the body (b) nonlinear and the hydrodynamics
@@ -20,7 +20,7 @@ with M_RB, A∞, B_v (the constant viscous damping) and G (hydrostatic plus moor
 stiffness) as the data give them about W, and η̃ = (N, E, D, φ, θ, ψ − ψ₀) (the restoring
 acts on heave, roll and pitch; assumption A1: small roll and pitch for the h-frame
 transforms, not for the kinematics). C_RB(ν)ν, the rigid-body Coriolis and centripetal
-force (Fossen 2011, Thm. 3.2), is neglected by the seed (assumption A2, low speed) and
+force (Fossen 2011, Thm. 3.2), is neglected by Smogeli et al. (2004) (assumption A2, low speed) and
 optional here. τ_load are the loads of :mod:`cummins.loads` (first-order and drift wave
 forces, current drag, wind, point loads), each a small object with ``force(t, η, ν)``
 returning a b-frame generalized force about O; τ_P the thrust of a controller
@@ -63,7 +63,8 @@ def coriolis_rigid_body(m_rb: NDArray, nu: NDArray) -> NDArray[np.float64]:
 
 @dataclass(frozen=True, eq=False)
 class UnifiedVessel:
-    """The vessel of seed 004 eq. 56, built on the linear :class:`cummins.vessel.Vessel`.
+    """The vessel of Smogeli et al. (2004) eq. 56, built on the linear
+    :class:`cummins.vessel.Vessel`.
 
     Attributes
     ----------
@@ -385,7 +386,7 @@ def _result(t, x, mu, loads, names, thrust, controller) -> xr.Dataset:
         data,
         coords={"time": ("time", t, {"units": "s"}), "dof": list(POSE), "velocity": list(VELOCITY)},
         attrs={
-            "method": "unified model (seed 004 eq. 56), Runge-Kutta 4",
+            "method": "unified model (Smogeli et al. (2004) eq. 56), Runge-Kutta 4",
             "dt": float(t[1] - t[0]),
             "loads": ", ".join(names),
         },

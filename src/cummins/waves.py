@@ -1,6 +1,7 @@
 """Sea states: wave spectra, directional spreading and their realisation as components.
 
-A linear (Airy) sea is a sum of harmonic components (seed 004 §4.1, seed 003 §1.9)
+A linear (Airy) sea is a sum of harmonic components (Smogeli et al. (2004) §4.1, de Haan (2022)
+§1.9)
 
     ζ(x, y, t) = Σ_k a_k cos(ω_k t − k_k (x cos β_k + y sin β_k) + φ_k),
 
@@ -146,7 +147,7 @@ def jonswap(
 
     S(ω) = H_s²/(16 ω_p I) · x⁻⁵ exp(−(5/4) x⁻⁴) γ^{exp(−(x−1)²/(2σ²))}, x = ω/ω_p,
     ω_p = 2π/T_p, σ = σ_a for ω ≤ ω_p, σ_b above (Hasselmann et al. 1973; the form of
-    seed 003 §1.9 with α_J eliminated in favour of H_s), I = ∫₀^∞ x⁻⁵ e^{−1.25x⁻⁴} γ^{…} dx
+    de Haan (2022) §1.9 with α_J eliminated in favour of H_s), I = ∫₀^∞ x⁻⁵ e^{−1.25x⁻⁴} γ^{…} dx
     computed by quadrature (I = 1/5 for γ = 1, the Pierson–Moskowitz spectrum). The
     common factor (1 − 0.287 ln γ) approximates 1/(5I); it is not used.
 

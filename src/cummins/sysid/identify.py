@@ -1,15 +1,16 @@
 """Viscous damping from motion records: residual force and linear regression.
 
-The Cummins equation of the potential-flow model (seed 003 eq. 2.14), with the damping
+The Cummins equation of the potential-flow model (de Haan (2022) eq. 2.14), with the damping
 the model lacks, D(ξ̇), moved to the right:
 
-    D(ξ̇) = τ − [(M_RB + A∞) ξ̈ + μ + B_v ξ̇ + C ξ] ≡ F_res          (seed 003 eq. 2.21)
+    D(ξ̇) = τ − [(M_RB + A∞) ξ̈ + μ + B_v ξ̇ + C ξ] ≡ F_res          (de Haan (2022) eq. 2.21)
 
-— the seed prints [C]ξ̇ where the restoring force is [C]ξ, and writes the memory term
-∫K(t − s)ξ̇(s)ds, here the state-space memory μ = C_r χ, χ̇ = A_r χ + B_r ξ̇ (seed 004 eqs.
+— the thesis prints [C]ξ̇ where the restoring force is [C]ξ, and writes the memory term
+∫K(t − s)ξ̇(s)ds, here the state-space memory μ = C_r χ, χ̇ = A_r χ + B_r ξ̇ (Smogeli et al. (2004)
+eqs.
 32–36) driven by the measured velocities. B_v is whatever linear damping the vessel model
 already holds; the identified coefficients add to it. The damping of a DOF i is modelled
-(seed 003 eq. 2.22) as
+(de Haan (2022) eq. 2.22) as
 
     D_i = b₁ ξ̇_i + b₂ |ξ̇_i| ξ̇_i + b₃ ξ̇_i³  [+ Σ corrections of M, B, C entries + a mean force]
 
@@ -512,7 +513,7 @@ def residual_force(
     cutoff: float | None = None,
 ) -> xr.Dataset:
     """F_res = τ − [(M_RB + A∞)ξ̈ + μ + B_v ξ̇ + Cξ] of every recorded DOF (module
-    docstring; seed 003 eq. 2.21 with Cξ for the printed Cξ̇).
+    docstring; de Haan (2022) eq. 2.21 with Cξ for the printed Cξ̇).
 
     Parameters
     ----------
@@ -765,7 +766,7 @@ def identify_damping(
         The equations to identify, e.g. ``("Roll",)``.
     terms
         Damping terms of each DOF: ``linear`` b₁ξ̇, ``quadratic`` b₂|ξ̇|ξ̇, ``cubic``
-        b₃ξ̇³ (seed 003 eq. 2.22).
+        b₃ξ̇³ (de Haan (2022) eq. 2.22).
     couplings
         Extra terms, e.g. ``"Sway acceleration"``, ``"Roll motion"`` (corrections of the
         model's M, C entries: :class:`Regressor`).

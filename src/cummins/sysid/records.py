@@ -14,7 +14,7 @@ A *record* is an :class:`xarray.Dataset` on a uniform ``time`` axis (s) with
 The output of ``cummins simulate`` (``run.nc``) is a record (its ``external_force`` is
 read as the excitation). Field records are read from CSV with units in the header
 (:func:`read_record`). Scaling and shifting of predicted against measured signals follow
-de Haan (2022) §3.2.1 (seed 003): γ = RMS(predicted)/RMS(measured), and the lag of the
+de Haan (2022) §3.2.1 (de Haan, 2022): γ = RMS(predicted)/RMS(measured), and the lag of the
 largest cross-correlation within a maximum.
 """
 
@@ -380,7 +380,7 @@ class Alignment:
     Attributes
     ----------
     scale
-        γ = RMS(predicted)/RMS(measured) (seed 003 §3.2.1): the prediction is divided by it.
+        γ = RMS(predicted)/RMS(measured) (de Haan (2022) §3.2.1): the prediction is divided by it.
     lag
         s: the prediction runs ``lag`` seconds behind the measurement (a positive lag is
         undone by advancing the prediction).
@@ -394,7 +394,7 @@ class Alignment:
 
 
 def alignment(predicted: ArrayLike, measured: ArrayLike, dt: float, *, max_lag: float) -> Alignment:
-    """Scale and shift of a prediction against a measurement (seed 003 §3.2.1).
+    """Scale and shift of a prediction against a measurement (de Haan (2022) §3.2.1).
 
     The lag is the one of the largest cross-correlation with |lag| ≤ ``max_lag`` (a bound
     is needed: unrealistic lags sometimes correlate better), refined below one sample by
@@ -457,7 +457,7 @@ def shift_signal(x: ArrayLike, dt: float, lag: float) -> NDArray[np.float64]:
 
 def apply_alignment(record: xr.Dataset, align: Alignment) -> xr.Dataset:
     """The record with its ``excitation_force`` divided by ``align.scale`` and advanced by
-    ``align.lag`` (seed 003: one scale and shift, from heave, for all DOFs); the samples
+    ``align.lag`` (de Haan (2022): one scale and shift, from heave, for all DOFs); the samples
     the shift moves out of the record are cut."""
     if "excitation_force" not in record:
         raise HydroDataError("the record has no excitation_force to align")

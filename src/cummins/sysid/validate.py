@@ -1,6 +1,6 @@
 """Re-prediction of recorded motions with identified damping, and its scores.
 
-De Haan (seed 003 §3.2.4, §1.17 of the digest) judges an identification by re-predicting
+De Haan (2022, §3.2.4) judges an identification by re-predicting
 the measured motions with the identified coefficients and computing the correlation
 coefficient between prediction and measurement per DOF and segment, both *in sample*
 (coefficients of the same segment) and *out of sample* (coefficients of the previous
@@ -96,7 +96,7 @@ def identified_vessel(vessel: Vessel, model: DampingModel) -> tuple[Vessel, NDAr
 
 
 def prediction_scores(predicted: xr.DataArray, measured: xr.DataArray) -> xr.Dataset:
-    """Per DOF: Pearson ``correlation`` (seed 003's score), ``rms_error`` relative to the
+    """Per DOF: Pearson ``correlation`` (de Haan (2022) score), ``rms_error`` relative to the
     measured RMS, and ``std_ratio`` σ_predicted/σ_measured."""
     p = predicted.values
     m = measured.sel(dof=predicted.dof).values
