@@ -713,8 +713,8 @@ def lf_model_from_retardation(
     Parameters
     ----------
     ds
-        ``HydroDB`` at one forward speed (zero speed is what Ross, Perez & Fossen (2006) assume), with
-        ``inertia_matrix`` and ``hydrostatic_stiffness``.
+        ``HydroDB`` at one forward speed (zero speed is what Ross, Perez & Fossen (2006)
+        assume), with ``inertia_matrix`` and ``hydrostatic_stiffness``.
     kernel
         K(t) (time from 0, influenced_dof, radiating_dof), kg/s² …; default
         :func:`cummins.retardation.default_retardation_function` of ``ds``.
