@@ -3,7 +3,7 @@
 1. A random 200-state positive-real MIMO model (6 inputs and outputs, D = 0 like a
    radiation model; built through the KYP lemma) reduced to 40 states by every method
    of :func:`cummins.reduce.balanced_truncation`, each timed (best of 3), and by
-   the naive form of seed 001 Table 5.1 (Cholesky factors of the gramians, T from the
+   the naive form of Unneland (2007) Table 5.1 (Cholesky factors of the gramians, T from the
    inverse of a factor) as the reference measured in the same run. Printed: time, ratio
    to the naive Lyapunov reduction, ‖G − G_r‖∞ / ‖G‖∞, Glover's bound (Lyapunov), and
    the positive-realness margin min_ω λ_min(S (G_r + G_rᴴ) S) (DOF-scaled; the PR
@@ -57,7 +57,7 @@ def random_positive_real(rng, n, m):
 
 
 def naive_lyapunov(a, b, c, order):
-    """Seed 001 Table 5.1 as printed: Cholesky factors, T = Σ^{1/2} Uᵀ L_M⁻¹."""
+    """Unneland (2007) Table 5.1 as printed: Cholesky factors, T = Σ^{1/2} Uᵀ L_M⁻¹."""
     p, q = lyapunov_gramians(a, b, c)
     l_m = scipy.linalg.cholesky(p, lower=True)
     l_n = scipy.linalg.cholesky(q, lower=True)

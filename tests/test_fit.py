@@ -78,7 +78,8 @@ def test_joint_added_mass_inf_on_exact_data():
 @given(seed=st.integers(0, 10_000), noise=st.floats(0.0, 0.05), spike=st.booleans())
 def test_noisy_data_never_give_an_unstable_model(seed, noise, spike):
     """Noise up to 5 % and an irregular-frequency spike: every returned model is stable,
-    and the passive one is positive real (seed 001 criteria 1–3)."""
+    and the passive one is positive real (the identification criteria 1–3 at the end of
+    Unneland (2007) §3.3)."""
     rng = np.random.default_rng(seed)
     k = _rational(OMEGA, [1.0, 0.4], [0.3, 0.5], [0.7, 1.9])
     a = 3.0 + k.imag / OMEGA + noise * rng.normal(size=OMEGA.size)

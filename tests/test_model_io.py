@@ -536,7 +536,7 @@ FITTED = {
 
 
 def _r2(y, y_model) -> float:
-    """1 − Σ(y − ŷ)²/Σ(y − ȳ)² (seed 001 eq. 6.19)."""
+    """1 − Σ(y − ŷ)²/Σ(y − ȳ)² (Unneland (2007) eq. 6.19)."""
     y = np.asarray(y)
     return float(1.0 - np.sum((y - y_model) ** 2) / np.sum((y - y.mean()) ** 2))
 

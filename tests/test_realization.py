@@ -1,8 +1,9 @@
 """Time-domain realization of retardation functions: Kung/ERA and Prony.
 
-References nobody here wrote: closed-form impulse responses of rational K(s) (seed 001
-Example 3.1 and sums of damped modes r s/(s² + 2ζω s + ω²)), Hankel singular values from
-the gramians (scipy's Lyapunov solver), and the tanker's frequency-domain data (WAMIT).
+References nobody here wrote: closed-form impulse responses of rational K(s)
+(Unneland (2007) Example 3.1 and sums of damped modes r s/(s² + 2ζω s + ω²)), Hankel
+singular values from the gramians (scipy's Lyapunov solver), and the tanker's
+frequency-domain data (WAMIT).
 """
 
 from __future__ import annotations
@@ -28,7 +29,7 @@ from cummins.retardation import default_time_grid, retardation_function
 
 # ----------------------------------------------------------------------------- references
 
-#: (r, ζ, ω) of K(s) = Σ r s / (s² + 2ζω s + ω²). Example 3.1 of seed 001 is
+#: (r, ζ, ω) of K(s) = Σ r s / (s² + 2ζω s + ω²). Example 3.1 of Unneland (2007) is
 #: b₁ s/(s² + 2s + 4): ω = 2, ζ = 0.5, r = b₁.
 SYSTEMS = {
     "example_3_1": [(1.0, 0.5, 2.0)],

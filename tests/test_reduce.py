@@ -1,4 +1,4 @@
-"""Balanced truncation (seed 001 Ch. 5) and the reduction of radiation models.
+"""Balanced truncation (Unneland (2007) Ch. 5) and the reduction of radiation models.
 
 References from outside :mod:`cummins.reduce`: balanced SISO systems built in closed form
 with known Hankel singular values; positive-real (PR) systems built through the
@@ -225,7 +225,7 @@ def test_gramians_solve_the_lyapunov_equations():
 @PROPERTY
 @given(seed=SEEDS, n=st.integers(2, 7), m=st.integers(1, 3))
 def test_riccati_solutions_are_minimal(seed, n, m):
-    """Σ = √eig(R_min O_min) ≤ 1 (seed 001 eq. 5.47): R_min ≤ R_max = O_min⁻¹."""
+    """Σ = √eig(R_min O_min) ≤ 1 (Unneland (2007) eq. 5.47): R_min ≤ R_max = O_min⁻¹."""
     a, b, c, d = random_positive_real(np.random.default_rng(seed), n, m)
     r, o, shift = positive_real_gramians(a, b, c, d, regularization=0.0)
     assert not shift.any()
@@ -367,7 +367,7 @@ def test_hinf_norm_of_a_resonance():
 @given(seed=SEEDS, n=st.integers(2, 7), m=st.integers(1, 3))
 def test_pr_methods_keep_positive_realness_at_every_order(seed, n, m):
     """Riccati and mixed BT of a PR model with D + Dᵀ ≻ 0: every truncation is PR
-    (seed 001 Def. 5.2, Theorem 5.1), by the Hamiltonian test and on a sweep."""
+    (Unneland (2007) Def. 5.2, Theorem 5.1), by the Hamiltonian test and on a sweep."""
     a, b, c, d = random_positive_real(np.random.default_rng(seed), n, m)
     assert positive_real_by_hamiltonian(a, b, c, d)
     for method in ("riccati", "mixed", "mixed-rq"):
@@ -451,7 +451,7 @@ def test_mimo_mixed_variants_are_transposed(seed, n, m):
 @PROPERTY
 @given(seed=SEEDS, modes=st.integers(2, 4), m=st.integers(2, 3))
 def test_symmetry_is_kept_by_lyapunov_and_riccati(seed, modes, m):
-    """K = Kᵀ stays symmetric under Lyapunov and Riccati BT (seed 001 §6.3.3, T11); the
+    """K = Kᵀ stays symmetric under Lyapunov and Riccati BT (Unneland (2007) §6.3.3); the
     two mixed variants give each other's transpose."""
     a, b, c = passive_modes(np.random.default_rng(seed), modes, m)
     n = a.shape[0]
@@ -495,7 +495,7 @@ def modes_model(modes):
 
 
 def test_lyapunov_truncation_can_lose_positive_realness():
-    """Seed 001 §5.2.4 and Table 6.5: a low-order Lyapunov truncation of a PR model is not
+    """Unneland (2007) §5.2.4 and Table 6.5: a low-order Lyapunov truncation of a PR model is not
     PR where Riccati and mixed truncations are (here with D > 0: exactly)."""
     a, b, c = modes_model(LOSES_PR)
     w = dense_grid(np.linalg.eigvals(a), count=20000)
@@ -748,7 +748,7 @@ def _fitted(ds, model):
 
 
 def _r2(model, k, w, a, b):
-    """R² of A and of B of one coupling against the (symmetrised) data (seed 001 eq. 6.19)."""
+    """R² of A and of B of one coupling against the symmetrised data (Unneland (2007) eq. 6.19)."""
     i, j = k.influenced, k.radiating
     kk = response(k.a, k.b, k.c, None, w)[:, 0, 0]
     r2a = r_squared(a[:, i, j], model.added_mass_inf[i, j] + kk.imag / w)

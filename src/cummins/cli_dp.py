@@ -84,18 +84,18 @@ def dp_demo_command(
     data_path,
     force,
 ):
-    """The S-175 container ship on DP in a seaway, a crane load at t = 100 s (Smogeli et al. (2004)
-    §7).
+    """The S-175 container ship on DP in a seaway, a crane load at t = 100 s.
 
     \b
-    The nonlinear 6-DOF model of the Marine Systems Simulator (Smogeli et al. (2004) eq. 56): body-
-    fixed kinematics, the fluid memory as a state-space model fitted to the MSS data,
-    first-order wave forces at the instantaneous relative heading, Newman drift, ITTC
-    surge resistance and cross-flow drag, optional current and wind, a nonlinear PID
-    with a wave filter and thrust allocation to four thrusters. Sea: JONSWAP Hs 4 m,
-    wp 0.60 rad/s, gamma 3.3, short-crested, from 45 deg off the starboard bow. At
-    t = 100 s a 1000 kN crane load hangs 15 m to starboard: the ship heels to a new mean
-    roll angle, checked against the static heel of its restoring.
+    The scenario of Smogeli et al. (2004) §7, with the nonlinear 6-DOF model of the
+    Marine Systems Simulator (their eq. 56): body-fixed kinematics, the fluid memory as
+    a state-space model fitted to the MSS data, first-order wave forces at the
+    instantaneous relative heading, Newman drift, ITTC surge resistance and cross-flow
+    drag, optional current and wind, a nonlinear PID with a wave filter and thrust
+    allocation to four thrusters. Sea: JONSWAP Hs 4 m, wp 0.60 rad/s, gamma 3.3,
+    short-crested, from 45 deg off the starboard bow. At t = 100 s a 1000 kN crane load
+    hangs 15 m to starboard: the ship heels to a new mean roll angle, checked against
+    the static heel of its restoring.
 
     \b
     Writes DIR/run.nc (eta: North, East, Down, Roll, Pitch, Yaw in m and rad, NED; nu:

@@ -183,7 +183,7 @@ def run_demo(
     say("the low-frequency manoeuvring model (Ross, Perez & Fossen, 2006)")
     steps.append(_lf_step(ds, out, force))
 
-    say("dynamic positioning of the S-175 with a crane load (Smogeli et al., 2004, 5 minutes)")
+    say("dynamic positioning of the S-175 with a crane load, 5 minutes (Smogeli et al., 2004)")
     steps.append(_dp_step(out, force))
 
     (out / "demo_summary.json").write_text(

@@ -1,13 +1,13 @@
 """Dynamic positioning (DP): wave filter, nonlinear PID and thrust allocation.
 
 A small, self-contained station-keeping controller for the nonlinear DP simulation
-(Smogeli, Perez, Fossen & Sørensen, 2004): enough to hold a vessel on position and
+(Smogeli et al., 2004): enough to hold a vessel on position and
 heading against slowly varying environmental loads while ignoring its wave-frequency (WF)
 motion. It is a *sampled* controller: the simulator calls :meth:`DPController.update` once
 per time step and holds the returned generalized force until the next call.
 
-The three parts, after Fossen, *Handbook of Marine Craft Hydrodynamics and Motion
-Control*, 2nd ed., Wiley, 2021 (the chapters on PID control for dynamic positioning,
+The three parts, after Fossen (2021), *Handbook of Marine Craft Hydrodynamics and Motion
+Control*, 2nd ed. (the chapters on PID control for dynamic positioning,
 on wave filtering and observers, and on control allocation); chapter numbers are left out
 on purpose, as they differ between editions:
 
@@ -104,7 +104,7 @@ def rotation_3dof(psi: float) -> NDArray[np.float64]:
     """R(ψ) of the horizontal-plane kinematics η̇ = R(ψ)ν for (N, E, ψ) and (u, v, r).
 
     [[cos ψ, −sin ψ, 0], [sin ψ, cos ψ, 0], [0, 0, 1]]: the upper-left block is
-    R_b^n(0, 0, ψ) (Smogeli et al. (2004) eq. 6), yaw maps to itself (Fossen 2021, 3-DOF
+    R_b^n(0, 0, ψ) (Smogeli et al. (2004) eq. 6), yaw maps to itself (Fossen (2021), 3-DOF
     kinematics).
 
     Examples

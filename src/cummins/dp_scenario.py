@@ -3,7 +3,7 @@
 The S-175 container ship (ShipX/VERES strip theory, processed by MSS; zero speed) holds
 position by DP in short-crested waves — JONSWAP H_s 4 m, ω_p 0.60 rad/s, γ 3.3, mean
 direction 45° off the (starboard) bow — when, at t = 100 s, a crane load of 1000 kN is
-hung at r = [0, 15, 0] m (15 m to starboard of the origin, in the waterline). The seed
+hung at r = [0, 15, 0] m (15 m to starboard of the origin, in the waterline). The paper
 shows the first-order wave and radiation forces (its Fig. 3) and the pose (Fig. 4): "the
 main effect is a new mean roll angle". The model is :mod:`cummins.unified` (eq. 56) with
 the loads of :mod:`cummins.loads` — first-order waves at the instantaneous relative

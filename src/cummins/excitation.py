@@ -12,13 +12,13 @@ the components of :class:`cummins.waves.WaveComponents` (phase at the origin).
 Interpolation (:func:`excitation_transfer`)
 --------------------------------------------
 The components' frequencies and directions are not those of the database, so F is
-interpolated. de Haan (2022, §3.1.2) shows that a *sharply
-peaked* transfer function (its roll RAO, with a 180° phase turn within one Δω) cannot be
-interpolated safely either as amplitude and phase (the phase goes the wrong way round)
-or in the complex plane (the amplitude dips to ~0 between two large values). cummins
-therefore never interpolates the motion RAO: :mod:`cummins.frequency_domain` solves the
-equation of motion at the new frequencies with interpolated A(ω), B(ω) and F(ω), which are
-smooth. What remains is to interpolate F well:
+interpolated. De Haan (2022) §3.1.2 shows that a *sharply peaked* transfer function (its
+roll RAO, with a 180° phase turn within one Δω) cannot be interpolated safely either as
+amplitude and phase (the phase goes the wrong way round) or in the complex plane (the
+amplitude dips to ~0 between two large values). cummins therefore never interpolates the
+motion RAO: :mod:`cummins.frequency_domain` solves the equation of motion at the new
+frequencies with interpolated A(ω), B(ω) and F(ω), which are smooth. What remains is to
+interpolate F well:
 
 1. **Travel phase removed.** The excitation of a body centred at (x_c, y_c) lags the
    elevation at the origin by k(ω)·ℓ(β), ℓ = x_c cos β + y_c sin β (k from the dispersion

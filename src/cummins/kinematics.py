@@ -157,9 +157,8 @@ def rotation_matrix(attitude: ArrayLike) -> NDArray[np.float64]:
 
 
 def attitude_transform(attitude: ArrayLike) -> NDArray[np.float64]:
-    """T_Θ(Θ): body angular velocity (p, q, r) to Euler angle rates, Θ̇ = T_Θ ω (Smogeli et al.
-    (2004)
-    eqs. 7–8); singular at θ = ±π/2 (raises ValueError there)."""
+    """T_Θ(Θ): body angular velocity (p, q, r) to Euler angle rates, Θ̇ = T_Θ ω
+    (Smogeli et al. (2004) eqs. 7–8); singular at θ = ±π/2 (raises ValueError there)."""
     phi, theta, _ = (float(a) for a in np.asarray(attitude, dtype=float).reshape(3))
     ct = np.cos(theta)
     if abs(ct) < 1e-9:
@@ -182,9 +181,8 @@ def point_motion(
     eta: ArrayLike, nu: ArrayLike, r: ArrayLike
 ) -> tuple[NDArray[np.float64], NDArray[np.float64]]:
     """Position in the n-frame and velocity in the b-frame of the point at ``r`` (b-frame,
-    from O): x_p^n = η_{1:3} + R(Θ) r (Smogeli et al. (2004) eq. 42), v_p^b = H(r) ν (eq. 43, its
-    first
-    three components)."""
+    from O): x_p^n = η_{1:3} + R(Θ) r (Smogeli et al. (2004) eq. 42), v_p^b = H(r) ν
+    (eq. 43, its first three components)."""
     eta = np.asarray(eta, dtype=float).reshape(6)
     position = eta[:3] + rotation_matrix(eta[3:]) @ np.asarray(r, dtype=float)
     velocity = (screw_transform(r) @ np.asarray(nu, dtype=float).reshape(6))[:3]
@@ -193,8 +191,8 @@ def point_motion(
 
 def point_load(force: ArrayLike, r: ArrayLike, moment: ArrayLike | None = None):
     """The generalized force at O of a force (and moment) acting at ``r``, all in the
-    b-frame: τ = Hᵀ(r) τ_p (Smogeli et al. (2004) eq. 45), i.e. the force and the moment r × F (+
-    M).
+    b-frame: τ = Hᵀ(r) τ_p (Smogeli et al. (2004) eq. 45), i.e. the force and the moment
+    r × F (+ M).
 
     Examples
     --------

@@ -1,19 +1,16 @@
-"""Low-frequency (manoeuvring) model with constant coefficients (Ross, Perez & Fossen, 2006, Ross,
-Perez & Fossen).
+"""Low-frequency (manoeuvring) model with constant coefficients (Ross, Perez & Fossen, 2006).
 
-The Cummins equation (Ross, Perez & Fossen (2006) eq. 11) has a frequency-independent inertia A∞
-and a
-fluid memory ∫K(t − τ) ξ̇(τ) dτ. A manoeuvring or dynamic-positioning model (Ross, Perez & Fossen
-(2006)
-eqs. 16–17) replaces the memory by constant coefficients,
+The Cummins equation (Ross, Perez & Fossen (2006) eq. 11) has a frequency-independent
+inertia A∞ and a fluid memory ∫K(t − τ) ξ̇(τ) dτ. A manoeuvring or dynamic-positioning
+model (eqs. 16–17) replaces the memory by constant coefficients,
 
     (M_RB + M_A) ν̇ + D ν + G η = τ,
 
-and Ross, Perez & Fossen (2006) §3.1 (Definition 1) says *at which frequency* to take them:
+and §3.1 of the paper (Definition 1) says *at which frequency* to take them:
 
 * **Zero-frequency model, surge/sway/yaw** (mass–damper DOFs, little oscillation while
   manoeuvring): the classical hydrodynamic derivatives, the ω → 0 limits of the
-  Ogilvie relations (Ross, Perez & Fossen (2006) eqs. 8–9),
+  Ogilvie relations (eqs. 8–9),
 
   M_A = A(0) = A∞ − ∫₀^∞ τ K(τ) dτ                                 (eq. 22, 25)
   D   = B(0) + B_v(0) = ∫₀^∞ K(τ) dτ + β                          (eq. 23, 26)
@@ -34,15 +31,14 @@ Two routes compute the same numbers and must agree: :func:`lf_model_from_retarda
 integrates K(t) (exactly, for the piecewise-linear K through its samples; the only
 error is K's truncation at its last time), and :func:`lf_model_from_frequency_data`
 interpolates A(ω), B(ω) (cubic spline) and takes A(0) from the solver's ω = 0 row or a
-low-frequency extrapolation. The seed does not say at which frequency a coupling between
+low-frequency extrapolation. The paper does not say at which frequency a coupling between
 DOFs of different frequencies is taken: cummins takes entry (i, j) at min(ω_i, ω_j)
 (symmetric, passive; the couplings of the zero-frequency DOFs are their derivatives), or
 on request at ω_j, the frequency of the radiating DOF.
 
-Viscous damping B_v(ω) (Ross, Perez & Fossen (2006) §3, the matrix after eq. 21):
-:class:`ExponentialDamping`
-β e^{−αω} (Ross & Fossen 2005; intended for surge, sway and yaw) and, for roll, where the
-seed uses Ikeda et al. (1976), :class:`CriticalDampingFraction` — **a proxy, not Ikeda's
+Viscous damping B_v(ω) (§3 of the paper, the matrix after eq. 21): :class:`ExponentialDamping`
+β e^{−αω} (Ross & Fossen (2005); intended for surge, sway and yaw) and, for roll, where the
+paper uses Ikeda et al. (1976), :class:`CriticalDampingFraction` — **a proxy, not Ikeda's
 method**: B_v = 2ζ ω₀ (M_RB,ii + A_ii(ω₀)) = 2ζ √(C_ii (M_RB,ii + A_ii(ω₀))), a fraction ζ
 of critical damping at the natural frequency (the component-wise Ikeda estimate needs the
 hull form, bilge keels and roll amplitude, which a hydrodynamic database does not hold).
@@ -89,14 +85,14 @@ Couplings = Literal["min", "radiating"]
 
 @dataclass(frozen=True)
 class ExponentialDamping:
-    """Viscous damping B_v(ω) = β e^{−αω} (Ross, Perez & Fossen (2006) §3, Ross & Fossen 2005).
+    """Viscous damping B_v(ω) = β e^{−αω} (Ross, Perez & Fossen (2006) §3; Ross & Fossen (2005)).
 
     Attributes
     ----------
     beta
         β ≥ 0, the zero-frequency viscous damping, kg/s (translation) or kg·m²/s
-        (rotation): the constant that enters D of a zero-frequency DOF (Ross, Perez & Fossen (2006)
-        eq. 26).
+        (rotation): the constant that enters D of a zero-frequency DOF
+        (Ross, Perez & Fossen (2006) eq. 26).
     alpha
         α ≥ 0, the exponential rate, s.
 
@@ -125,9 +121,8 @@ class CriticalDampingFraction:
     """Linear viscous damping as a fraction ζ of critical, at the natural frequency.
 
     B_v = 2ζ ω₀ (M_RB,ii + A_ii(ω₀)), i.e. 2ζ √(C_ii (M_RB,ii + A_ii(ω₀))) when ω₀
-    satisfies Ross, Perez & Fossen (2006) eq. 24. A documented **proxy** for the Ikeda roll damping
-    B_IKEDA(ω₀) of Ross, Perez & Fossen (2006) eq. 30 (typical ζ for a ship in roll: 0.02–0.10 in
-    total,
+    satisfies Ross, Perez & Fossen (2006) eq. 24. A documented **proxy** for the Ikeda roll
+    damping B_IKEDA(ω₀) of their eq. 30 (typical ζ for a ship in roll: 0.02–0.10 in total,
     of which the potential part B_44(ω₀) is often the smaller share); it is not Ikeda's
     component method (friction, eddy, lift, bilge keel), which needs the hull form.
     Only for DOFs with restoring (heave, roll, pitch).
@@ -159,8 +154,9 @@ ViscousSpec = (
 
 @dataclass(frozen=True, eq=False)
 class LowFrequencyModel:
-    """Constant-coefficient LF model (M_RB + M_A) ν̇ + D ν + G η = τ (Ross, Perez & Fossen (2006)
-    eq. 17).
+    """Constant-coefficient LF model (M_RB + M_A) ν̇ + D ν + G η = τ.
+
+    Ross, Perez & Fossen (2006) eq. 17.
 
     Attributes
     ----------
@@ -221,8 +217,9 @@ class LowFrequencyModel:
         return self.dofs.index(dof)
 
     def eq24_residual(self, dof: str) -> float:
-        """ω₀² (M_RB,ii + M_A,ii) − C_ii for ``dof`` (Ross, Perez & Fossen (2006) eq. 24), N/m or
-        N·m/rad."""
+        """ω₀² (M_RB,ii + M_A,ii) − C_ii for ``dof``, N/m or N·m/rad.
+
+        The residual of Ross, Perez & Fossen (2006) eq. 24."""
         i = self.index(dof)
         w = float(self.frequencies[i])
         return float(
@@ -290,8 +287,9 @@ class _Coefficients:
 
 
 class _FromKernel(_Coefficients):
-    """Ross, Perez & Fossen (2006) eqs. 8–9 and 22–23 on a sampled K(t) (exact for piecewise-linear
-    K)."""
+    """Ross, Perez & Fossen (2006) eqs. 8–9 and 22–23 on a sampled K(t).
+
+    Exact for a piecewise-linear K."""
 
     route = "retardation function K(t)"
 
@@ -384,9 +382,8 @@ def extrapolate_zero_frequency(
     """A(0) and B(0) by a least-squares fit of c₀ + c₂ω² to the lowest ``points`` frequencies.
 
     A(ω) and B(ω) are even functions of ω (A(ω) = A∞ + Im K(jω)/ω and B = Re K(jω) for a
-    real kernel), so their expansion about ω = 0 has no odd term. The limits of Ross, Perez &
-    Fossen (2006)
-    eqs. 20–21.
+    real kernel), so their expansion about ω = 0 has no odd term. The limits of
+    Ross, Perez & Fossen (2006) eqs. 20–21.
 
     Returns
     -------
@@ -423,8 +420,9 @@ def natural_frequency(
     tol: float = 1e-10,
     max_iter: int = 100,
 ) -> tuple[float, int]:
-    """ω₀ of Ross, Perez & Fossen (2006) eq. 24 by fixed-point iteration ω ← √(C_ii / (M_RB,ii +
-    A_ii(ω))).
+    """ω₀ of Ross, Perez & Fossen (2006) eq. 24 by fixed-point iteration.
+
+    ω ← √(C_ii / (M_RB,ii + A_ii(ω))).
 
     Parameters
     ----------
@@ -478,8 +476,7 @@ def natural_frequency(
     last = ", ".join(f"{x:.6g}" for x in history[-4:])
     raise FitError(
         f"{dof}: the natural frequency of Ross, Perez & Fossen (2006) eq. 24 did not converge "
-        f"in {max_iter} "
-        f"fixed-point iterations (last iterates {last} rad/s)",
+        f"in {max_iter} fixed-point iterations (last iterates {last} rad/s)",
         hint=f"give it with frequencies={{{dof!r}: ω}} or raise max_iter",
     )
 
@@ -741,12 +738,11 @@ def lf_model_from_retardation(
         ``additional_damping`` into B_v, as :func:`cummins.vessel.vessel_from_hydrodb`.
     potential_b0
         ``"zero"`` (default): the potential part of D in the zero-frequency DOFs is
-        B(0) = ∫K dτ = 0, its value at zero speed in deep water (Ross, Perez & Fossen (2006) eq. 26
-        then
-        leaves the viscous β alone); ``"computed"``: the number the route gives, which
-        is that zero plus truncation noise of either sign (a slightly negative value
-        makes a free DOF unstable). The computed value is kept in
-        :attr:`LowFrequencyModel.zero_frequency_damping` either way.
+        B(0) = ∫K dτ = 0, its value at zero speed in deep water (then
+        Ross, Perez & Fossen (2006) eq. 26 leaves the viscous β alone); ``"computed"``:
+        the number the route gives, which is that zero plus truncation noise of either
+        sign (a slightly negative value makes a free DOF unstable). The computed value is
+        kept in :attr:`LowFrequencyModel.zero_frequency_damping` either way.
     tol, max_iter
         Convergence of eq. 24 (see :func:`natural_frequency`).
 
@@ -798,8 +794,9 @@ def lf_model_from_frequency_data(
     tol: float = 1e-10,
     max_iter: int = 100,
 ) -> LowFrequencyModel:
-    """The LF model directly from A(ω), B(ω) (Ross, Perez & Fossen (2006) eqs. 20–21, 24, 18–19 at
-    ω₀).
+    """The LF model directly from A(ω), B(ω).
+
+    Ross, Perez & Fossen (2006) eqs. 20–21, 24, and 18–19 at ω₀.
 
     The same model as :func:`lf_model_from_retardation` computed without K(t): A and B
     are interpolated by cubic splines at ω₀ (eq. 24 solved on the spline); A(0) is the

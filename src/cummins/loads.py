@@ -1,6 +1,6 @@
 """Environmental and external loads of the nonlinear 6-DOF DP/manoeuvring model.
 
-The loads of Smogeli et al. (2004) §4–5 (Smogeli, Perez, Fossen & Sørensen, the MSS DP model),
+The loads of Smogeli et al. (2004) §4–5 (the DP model of the Marine Systems Simulator),
 each a small frozen dataclass with a ``name`` and a method
 
     force(t, eta, nu) -> ndarray (6,)

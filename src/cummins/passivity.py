@@ -1,7 +1,7 @@
-"""Passivity of radiation models: the exact test and its enforcement (seed 001 §3.2).
+"""Passivity of radiation models: the exact test and its enforcement (Unneland (2007) §3.2).
 
 The map from the body velocities ξ̇ to the memory force μ is passive:
-K(jω) + K(jω)ᴴ = 2 B(ω) ⪰ 0 for all ω (seed 001 Prop. 3.4, eq. 3.24; the MIMO criterion
+K(jω) + K(jω)ᴴ = 2 B(ω) ⪰ 0 for all ω (Unneland (2007) Prop. 3.4, eq. 3.24; the MIMO criterion
 λ_min[K(jω) + Kᵀ(−jω)] ≥ 0, eq. 3.13). A model that is not can feed energy into a
 simulation. Positive-real diagonal terms do not make the MIMO model passive: the
 couplings must not outweigh them anywhere.
@@ -172,7 +172,7 @@ def dof_scaling(model: RadiationModel, omega: ArrayLike | None = None) -> NDArra
 
 
 def passivity_sweep(model: RadiationModel, omega: ArrayLike | None = None) -> PassivitySweep:
-    """λ_min(K(jω) + K(jω)ᴴ) of the MIMO model on a dense sweep (seed 001 eq. 3.13).
+    """λ_min(K(jω) + K(jω)ᴴ) of the MIMO model on a dense sweep (Unneland (2007) eq. 3.13).
 
     The DOFs are scaled by :func:`dof_scaling`, so that translations and rotations weigh
     alike, and the eigenvalues are relative to the largest one; both scales are taken on

@@ -443,7 +443,7 @@ def plot_response_spectra(
 
 def plot_residual_force(res: xr.Dataset, estimate, *, max_points: int = 4000) -> Figure:
     """The residual force of a DOF against each regressor, with their correlation in
-    the titles (de Haan's screening plot, seed 003 Fig. 3.24), and against the DOF's
+    the titles (the screening plot of de Haan (2022) Fig. 3.24), and against the DOF's
     velocity with the identified damping curve and its confidence band of the linear
     term.
 
@@ -529,7 +529,7 @@ def plot_reprediction(
 def plot_segment_validation(validation: xr.Dataset) -> Figure:
     """Coefficients per segment with their confidence intervals, and the correlations
     of the re-predictions in sample, with the previous segment's coefficients and
-    without identified damping (seed 003 Figs. 3.25–3.27)."""
+    without identified damping (de Haan (2022) Figs. 3.25–3.27)."""
     dofs = [str(d) for d in validation.dof.values]
     terms = [str(t) for t in validation.term.values]
     seg = validation.segment.values
@@ -604,7 +604,8 @@ def _dof_axes(fig: Figure, n: int = 6):
 
 def plot_pose(run: xr.Dataset, *, mark: float | None = None) -> Figure:
     """The pose η (N, E, D in m; roll, pitch, yaw in degrees) of a unified-model run
-    (seed 004 Fig. 4); ``mark`` draws a vertical line (e.g. when a load is applied)."""
+    (Smogeli et al. (2004) Fig. 4); ``mark`` draws a vertical line (e.g. when a load is
+    applied)."""
     t = run.time.values
     fig = Figure(figsize=(11, 11), layout="constrained")
     axes = _dof_axes(fig)
@@ -625,8 +626,8 @@ def plot_generalized_forces(
     run: xr.Dataset, variables: Sequence[str], *, labels: Sequence[str] | None = None
 ) -> Figure:
     """Generalized forces of a unified-model run, one panel per DOF (N, kN·m scaled to
-    kN and MN·m), e.g. the first-order wave force and the fluid memory force (seed 004
-    Fig. 3) or every load with the thrust."""
+    kN and MN·m), e.g. the first-order wave force and the fluid memory force
+    (Smogeli et al. (2004) Fig. 3) or every load with the thrust."""
     t = run.time.values
     labels = list(variables) if labels is None else list(labels)
     fig = Figure(figsize=(11, 11), layout="constrained")
@@ -672,9 +673,9 @@ def plot_watch_circle(run: xr.Dataset, setpoint: Sequence[float] = (0.0, 0.0)) -
 def plot_lf_model(ds: xr.Dataset, model, dofs: Sequence[str] | None = None) -> Figure:
     """A_ii(ω) and B_ii(ω) per DOF with the values of a low-frequency model marked.
 
-    Like seed 002 Figs. 1–2 (Ross, Perez & Fossen): the cross marks (ω_i, M_A,ii) and
+    Like Ross, Perez & Fossen (2006) Figs. 1–2: the cross marks (ω_i, M_A,ii) and
     (ω_i, B_p,ii) of a :class:`cummins.lfmodel.LowFrequencyModel` — at ω = 0 for
-    surge, sway and yaw, at the natural frequency ω₀ (seed 002 eq. 24) for heave, roll
+    surge, sway and yaw, at the natural frequency ω₀ (eq. 24) for heave, roll
     and pitch; a diamond marks the total damping D_ii = B_p,ii + B_v,ii when viscous
     damping is present, on the curves of :func:`plot_added_mass_damping` (with A(∞) and
     A(0) when the data hold them).
@@ -704,7 +705,7 @@ def plot_lf_model(ds: xr.Dataset, model, dofs: Sequence[str] | None = None) -> F
         ax_a.set_title(f"{dof}: {where}", fontsize="medium", loc="left")
         for ax in (ax_a, ax_b):
             ax.legend(fontsize="small", loc="best")
-    fig.suptitle(f"Low-frequency model coefficients (seed 002) — {_title(ds)}")
+    fig.suptitle(f"Low-frequency model coefficients (Ross, Perez & Fossen, 2006) — {_title(ds)}")
     return fig
 
 

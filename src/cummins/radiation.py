@@ -1,8 +1,8 @@
 """State-space models of the fluid memory: the ``RadiationModel``.
 
 The radiation force of the Cummins equation is −A∞ ξ̈ − μ with μ(t) = ∫₀ᵗ K(t−τ) ξ̇(τ) dτ.
-cummins represents the convolution by a linear state-space model (seed 004 eq. 36,
-seed 001 eqs. 3.40–3.41)
+cummins represents the convolution by a linear state-space model (Smogeli et al. (2004)
+eq. 36, Unneland (2007) eqs. 3.40–3.41)
 
     χ̇ = A_r χ + B_r ξ̇,    μ = C_r χ + D_r ξ̇,    D_r = 0,
 

@@ -1,26 +1,26 @@
-"""Model-order reduction by balanced truncation (seed 001 Ch. 5).
+"""Model-order reduction by balanced truncation (Unneland (2007) Ch. 5).
 
 A stable continuous-time model G(s) = C (sI − A)⁻¹ B + D of order n is brought into
 coordinates x̄ = T x in which two positive (semi)definite matrices M and N of the model,
 transformed as T M Tᵀ and T⁻ᵀ N T⁻¹, are equal and diagonal, Σ = diag(σ₁ ≥ … ≥ σ_n)
-(seed 001 eq. 5.14); the reduced model keeps the r leading states,
+(Unneland (2007) eq. 5.14); the reduced model keeps the r leading states,
 A_r = Ā₁₁, B_r = B̄₁, C_r = C̄₁, D_r = D (eq. 5.13). The choice of (M, N) is the method:
 
-``"lyapunov"`` (Moore 1981; seed 001 §5.2.1)
+``"lyapunov"`` (Moore (1981); Unneland (2007) §5.2.1)
     M = P and N = Q, the controllability and observability gramians
     A P + P Aᵀ + B Bᵀ = 0 (eq. 5.15), Aᵀ Q + Q A + Cᵀ C = 0 (eq. 5.16). Σ holds the Hankel
     singular values. Every truncation is stable when σ_r > σ_{r+1}, and
-    ‖G − G_r‖∞ ≤ 2 Σ σ_k over the *distinct* discarded values (Glover 1984). Seed 001
-    eq. 5.22 prints the bound without the factor 2: that is an erratum (the digest's §9;
-    MATLAB's ``imp2ss`` reports 2 Σ too), and :func:`glover_bound` has the 2.
+    ‖G − G_r‖∞ ≤ 2 Σ σ_k over the *distinct* discarded values (Glover 1984). The bound
+    printed in Unneland (2007) eq. 5.22 lacks the factor 2: that is an erratum (MATLAB's
+    ``imp2ss`` reports 2 Σ too), and :func:`glover_bound` has the 2.
 ``"riccati"`` (positive-real or phase-system balancing, Desai & Pal 1984, Green 1988;
-seed 001 §5.2.2)
+Unneland (2007) §5.2.2)
     M = R_min and N = O_min, the minimal solutions of the positive-real (PR) Riccati
     equations
     A R + R Aᵀ + (R Cᵀ − B)(D + Dᵀ)⁻¹(C R − Bᵀ) = 0 (eq. 5.43) and
     Aᵀ O + O A + (O B − Cᵀ)(D + Dᵀ)⁻¹(Bᵀ O − C) = 0 (eq. 5.44).
     For a PR G, Σ ≤ I (eq. 5.47) and every truncation is PR (Def. 5.2).
-``"mixed"`` (mixed-gramian balancing, seed 001 §5.2.3, Theorem 5.1)
+``"mixed"`` (mixed-gramian balancing, Unneland (2007) §5.2.3, Theorem 5.1)
     M = P (eq. 5.83) and N = O_min (eq. 5.84): one Lyapunov and one Riccati equation.
     Every truncation of a PR G is PR: the (1, 1) block of eq. 5.84 in the balanced
     coordinates (eq. 5.97) is the dual PR Riccati equation of the truncation, solved by
@@ -30,14 +30,14 @@ seed 001 §5.2.2)
     models both variants give the same transfer function; for MIMO models the (R, Q)
     reduction of G is the transpose of the (P, O) reduction of Gᵀ (eqs. 5.98–5.102), so
     a symmetric G = Gᵀ gives two reductions that are each other's transpose, and neither
-    is symmetric in general (seed 001 §6.3.3). Lyapunov and Riccati truncations of a
+    is symmetric in general (Unneland (2007) §6.3.3). Lyapunov and Riccati truncations of a
     symmetric G are symmetric.
 
 Square-root algorithm
 ---------------------
-Table 5.1 of seed 001 inverts a Cholesky factor of M. Here only factors are used and
-nothing is inverted (Tombs & Postlethwaite 1987, Laub et al. 1987): with M = L_M L_Mᵀ,
-N = L_N L_Nᵀ and the SVD L_Nᵀ L_M = U Σ Vᵀ,
+Table 5.1 of Unneland (2007) inverts a Cholesky factor of M. Here only factors are used
+and nothing is inverted (Tombs & Postlethwaite 1987, Laub et al. 1987): with
+M = L_M L_Mᵀ, N = L_N L_Nᵀ and the SVD L_Nᵀ L_M = U Σ Vᵀ,
 
     T = Σ^{-1/2} Uᵀ L_Nᵀ,      T⁻¹ = L_M V Σ^{-1/2}
 
@@ -62,19 +62,20 @@ i.e. P of the input matrix [B, ω₀ A⁻¹B] and Q of the output matrix [C; ω�
 for ``"lyapunov"``, P for ``"mixed"``, Q for ``"mixed-rq"``; the Riccati gramians are
 never weighted). Its blocks are G(s) − D and ω₀ (G(s) − G(0))/s, which is stable, so
 the weight grows as ω₀/ω below ω₀ and the states that matter at low frequency are kept.
-For a radiation model K(0) = 0 and K(jω)/(jω) = (A(ω) − A∞) − jB(ω)/ω (seed 001 eq.
-2.55): the weighting balances the added mass, whose error is the error of K amplified by
+For a radiation model K(0) = 0 and K(jω)/(jω) = (A(ω) − A∞) − jB(ω)/ω (Unneland (2007)
+eq. 2.55): the weighting balances the added mass, whose error is the error of K amplified by
 1/ω, together with the damping. The (1, 1) block of the truncated G_aug is the
 truncated G, so Lyapunov truncations stay stable (when σ_r > σ_{r+1}) and Glover's
 bound, now on the σ of G_aug, still bounds ‖G − G_r‖∞ (it is larger than the unweighted
 one); mixed truncations stay PR, since one gramian from the PR equations balanced
-against any positive definite matrix gives PR truncations (seed 001 Theorem 5.3; for
-stability alone, Theorem 5.2).
+against any positive definite matrix gives PR truncations (Unneland (2007) Theorem 5.3;
+for stability alone, Theorem 5.2).
 
 Strictly proper models (D = 0): regularisation
 ----------------------------------------------
 Every radiation model is strictly proper (K(s) = C (sI − A)⁻¹ B, A∞ kept apart), so
-D + Dᵀ = 0 and eqs. 5.43–5.44 are singular (seed 001 digest §9, note 11). The Riccati and
+D + Dᵀ = 0 and eqs. 5.43–5.44 are singular (Unneland (2007) does not discuss this: the
+reduced models of the thesis come from Hankel realizations, whose D ≠ 0). The Riccati and
 mixed methods then balance the regularised model G_ε(s) = G(s) + D_ε with the
 feedthrough D_ε = δ S⁻², where S = diag(s_i), s_i = 1/√(max_ω |G_ii(jω)|), scales the
 DOFs so that every diagonal term peaks at 1, and δ = ε − λ_min(S (D + Dᵀ) S)/2 tops the
@@ -93,8 +94,8 @@ exact passivity enforcement must follow when exact positive realness is needed. 
 smaller ε makes the violation smaller and the Riccati equations worse conditioned: as
 ε → 0 the balancing tends to that of the singular PR lemma (X B = Cᵀ) and its leading
 singular values approach 1. Riccati truncation of a strictly proper model is often much
-less accurate than Lyapunov or mixed truncation (seed 001 Table 5.3; the tanker's heave
-kernel at 2 states: R² of B 0.63 against 0.99). ``regularization=0`` refuses to
+less accurate than Lyapunov or mixed truncation (Unneland (2007) Table 5.3; the tanker's
+heave kernel at 2 states: R² of B 0.63 against 0.99). ``regularization=0`` refuses to
 regularise (a singular D + Dᵀ is then an error).
 
 Order selection
@@ -207,7 +208,7 @@ class BalancedTruncation:
     ----------
     a, b, c, d
         Reduced matrices, shapes (r, r), (r, m), (p, r), (p, m); ``d`` is the original D
-        (balanced truncation keeps the feedthrough, seed 001 eq. 5.13).
+        (balanced truncation keeps the feedthrough, Unneland (2007) eq. 5.13).
     singular_values
         Σ of the balancing, descending, one per state of the original model (zeros past
         the numerical rank): Hankel singular values (``"lyapunov"``), the PR-balanced
@@ -218,8 +219,8 @@ class BalancedTruncation:
         One of :data:`METHODS`.
     error_bound
         ``"lyapunov"``: 2 Σ σ_k over the distinct discarded values (Glover's bound on
-        ‖G − G_r‖∞, seed 001 eq. 5.22 with the factor 2 of the erratum); NaN when the
-        order splits a group of equal σ (no bound then). ``None`` for the PR methods.
+        ‖G − G_r‖∞; Unneland (2007) eq. 5.22 omits the factor 2); NaN when the order
+        splits a group of equal σ (no bound then). ``None`` for the PR methods.
     regularization
         δ of the regularising feedthrough D_ε = δ S⁻² (DOF-scaled units; 0: none).
     feedthrough_shift
@@ -464,7 +465,7 @@ def lyapunov_gramians(
 ) -> tuple[NDArray[np.float64], NDArray[np.float64]]:
     """Controllability and observability gramians (P, Q) of a stable model.
 
-    A P + P Aᵀ + B Bᵀ = 0 and Aᵀ Q + Q A + Cᵀ C = 0 (seed 001 eqs. 5.15–5.16), by
+    A P + P Aᵀ + B Bᵀ = 0 and Aᵀ Q + Q A + Cᵀ C = 0 (Unneland (2007) eqs. 5.15–5.16), by
     Bartels–Stewart (``scipy.linalg.solve_continuous_lyapunov``), symmetrised.
     """
     a, b, c, _ = _system(a, b, c)
@@ -588,7 +589,7 @@ def positive_real_gramians(
 ) -> tuple[NDArray[np.float64], NDArray[np.float64], NDArray[np.float64]]:
     """Minimal solutions (R_min, O_min) of the PR Riccati equations and the D_ε used.
 
-    A R + R Aᵀ + (R Cᵀ − B)(D + Dᵀ)⁻¹(C R − Bᵀ) = 0 (seed 001 eq. 5.43, required-supply
+    A R + R Aᵀ + (R Cᵀ − B)(D + Dᵀ)⁻¹(C R − Bᵀ) = 0 (Unneland (2007) eq. 5.43, required-supply
     gramian) and Aᵀ O + O A + (O B − Cᵀ)(D + Dᵀ)⁻¹(Bᵀ O − C) = 0 (eq. 5.44,
     available-storage gramian), with D replaced by D + D_ε when D + Dᵀ is singular or
     small (module docstring). R_min = O_max⁻¹, so √eig(R_min O_min) ≤ 1 (eq. 5.47).
@@ -694,7 +695,7 @@ def glover_bound(sigma: ArrayLike, order: int) -> float:
     """2 Σ σ_k over the distinct values among σ_{order+1} … σ_n (Glover 1984).
 
     The H∞ bound of Lyapunov balanced truncation, ‖G − G_r‖∞ ≤ 2 Σ_{distinct k>r} σ_k
-    (seed 001 eq. 5.22 omits the factor 2: erratum). Values closer than
+    (Unneland (2007) eq. 5.22 omits the factor 2, an erratum). Values closer than
     :data:`DISTINCT_RTOL` (relative) count once. NaN when ``order`` splits a group of equal
     values (the bound does not apply).
 
@@ -734,10 +735,10 @@ def balanced_truncation(
     regularization: float = DEFAULT_REGULARIZATION,
     low_frequency_weight: float | None = None,
 ) -> BalancedTruncation:
-    """Reduce a stable continuous-time model by balanced truncation (seed 001 Ch. 5).
+    """Reduce a stable continuous-time model by balanced truncation (Unneland (2007) Ch. 5).
 
-    Square-root form of seed 001 Table 5.1 with the (M, N) pair of ``method`` (module
-    docstring): Lyapunov (eqs. 5.15–5.16), Riccati / positive-real (eqs. 5.43–5.47),
+    Square-root form of Unneland (2007) Table 5.1 with the (M, N) pair of ``method``
+    (module docstring): Lyapunov (eqs. 5.15–5.16), Riccati / positive-real (eqs. 5.43–5.47),
     mixed (P, O) (eqs. 5.83–5.84, Theorem 5.1) or mixed (R, Q) (eqs. 5.85–5.86). For a
     strictly proper model the PR methods use the regularised feedthrough D_ε and
     guarantee G_r + G_rᴴ ⪰ −2 D_ε (module docstring).
@@ -967,7 +968,7 @@ class _Unique:
 
 def _fit_error(omega: NDArray, reference: NDArray, reduced: NDArray) -> float:
     """max(1 − R² of B, 1 − R² of A − A∞) of a reduced coupling against the unreduced
-    one on ``omega``: B = Re K and A − A∞ = Im K/ω (seed 001 eq. 2.55; R² eq. 6.19)."""
+    one on ``omega``: B = Re K and A − A∞ = Im K/ω (Unneland (2007) eq. 2.55; R² eq. 6.19)."""
     error = 0.0
     for ref, red in (
         (reference.real, reduced.real),
@@ -1223,10 +1224,10 @@ def reduce_radiation_model(
     of :func:`balanced_truncation`; K/s = (A − A∞) − jB/ω is stable because K(0) = 0),
     for ω₀ in :data:`WEIGHT_CANDIDATES` × the frequency of the peak of |K|. At each order
     the candidate (unweighted or weighted) that reproduces the unreduced coupling best,
-    max(1 − R²_A, 1 − R²_B) (seed 001 eq. 6.19), is kept; it is measured at the fitted
-    frequencies of ``data`` when given, else on :data:`MEASURE_POINTS` log-spaced
+    max(1 − R²_A, 1 − R²_B) (Unneland (2007) eq. 6.19), is kept; it is measured at the
+    fitted frequencies of ``data`` when given, else on :data:`MEASURE_POINTS` log-spaced
     frequencies over the fitted range. Every candidate is a balanced truncation: stable
-    (seed 001 Theorem 5.2), with Glover's bound on ‖K − K_r‖∞ (from the σ of the
+    (Unneland (2007) Theorem 5.2), with Glover's bound on ‖K − K_r‖∞ (from the σ of the
     augmented model when weighted) for ``"lyapunov"``, and positive real up to ε for the
     mixed methods (the weighted P against the Riccati O, Theorem 5.3).
 

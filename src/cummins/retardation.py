@@ -467,12 +467,12 @@ def _kramers_kronig_integral(ds: xr.Dataset, tail: str) -> NDArray:
 def added_mass_inf_per_frequency(ds: xr.Dataset, *, tail: str = "auto") -> xr.DataArray:
     """The Ogilvie estimate of A∞ at each frequency: A(ω) − (2/π) PV∫ B(ν)/(ν² − ω²) dν.
 
-    This is A∞ = A(ω) + (1/ω) ∫₀^∞ K(t) sin(ωt) dt (de Haan (2022) eq. 2.16, Unneland (2007) eq.
-    2.46) evaluated in the frequency domain through the Kramers–Kronig relation (seed
-    000 eq. 5.23), exactly for the piecewise-linear damping with its tail. For
-    consistent data the result is the same at every frequency; its variation measures
-    the data's inconsistency and the effect of the unknown tail (largest near the last
-    frequency).
+    This is A∞ = A(ω) + (1/ω) ∫₀^∞ K(t) sin(ωt) dt (de Haan (2022) eq. 2.16,
+    Unneland (2007) eq. 2.46) evaluated in the frequency domain through the
+    Kramers–Kronig relation (Hjulstad (2004) eq. 5.23), exactly for the piecewise-linear
+    damping with its tail. For consistent data the result is the same at every
+    frequency; its variation measures the data's inconsistency and the effect of the
+    unknown tail (largest near the last frequency).
     """
     ds = single_speed(ds)
     values = dof_matrix(ds, "added_mass") - _kramers_kronig_integral(ds, tail)

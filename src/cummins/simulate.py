@@ -1,7 +1,7 @@
-"""Time-domain simulation of the Cummins equation (Ross, Perez & Fossen (2006) eq. 12; Smogeli et
-al. (2004) eqs. 32–39).
+"""Time-domain simulation of the Cummins equation.
 
-Three solvers of the same equation of :mod:`cummins.vessel`,
+Three solvers of the same equation of :mod:`cummins.vessel` (Ross, Perez & Fossen (2006)
+eq. 12; Smogeli et al. (2004) eqs. 32–39),
 (M_RB + A∞) ξ̈ + B_v ξ̇ + μ + C ξ = τ:
 
 **State space, exact** (:func:`simulate`, default). The state x = (ξ, ξ̇, χ) of the
@@ -27,9 +27,9 @@ state-space model against the retardation function of the data.
 Initial conditions: ``initial="rest"`` starts from ξ = ξ̇ = 0 and an unloaded memory;
 ``"steady"`` starts on the periodic (or, for irregular waves, stationary) solution of
 the same linear model at t = 0 — the frequency-domain response of every wave component
-summed — so that the memory holds the right velocity history from the first step (seed
-003 §3.1.1.2 runs "half a minute of negative time" for the same purpose; with the
-state-space model the history is a state and can be set exactly).
+summed — so that the memory holds the right velocity history from the first step
+(de Haan (2022) §3.1.1.2 runs "half a minute of negative time" for the same purpose; with
+the state-space model the history is a state and can be set exactly).
 """
 
 from __future__ import annotations

@@ -1,6 +1,6 @@
 """Forward speed: encounter frequency, per-speed models, STF speed terms, K⁰/K¹/K².
 
-Seed 000 (Hjulstad 2004), ch. 3, 5.3–5.4, 6, 10 and 12.1. Three ways to give a
+Hjulstad (2004), ch. 3, 5.3–5.4, 6, 10 and 12.1. Three ways to give a
 radiation model a forward speed U (m/s):
 
 1. **Per-speed fits** (:func:`fit_per_speed`): one :class:`~cummins.radiation.RadiationModel`
@@ -8,8 +8,8 @@ radiation model a forward speed U (m/s):
    at 5 speeds), blended linearly in U between the two neighbouring fitted speeds
    (:meth:`SpeedModels.at`).
 2. **Salvesen–Tuck–Faltinsen speed terms on zero-speed data** (:func:`stf_speed_terms`,
-   seed 000 eqs. 3.29, 3.33, 5.45–5.46, 10.1, §6; aft-section terms omitted as in the
-   thesis). In impedance form, Z(ω) = B(ω) + jω A(ω) (force −Z·velocity, cummins'
+   Hjulstad (2004) eqs. 3.29, 3.33, 5.45–5.46, 10.1, §6; aft-section terms omitted as in
+   the thesis). In impedance form, Z(ω) = B(ω) + jω A(ω) (force −Z·velocity, cummins'
    convention x(t) = Re{X e^{jωt}}), with s = jω::
 
        Z_U = Z₀ + (U/s)(Z₀E − EᵀZ₀) − (U²/s²) EᵀZ₀E,   E = e_heave e_pitchᵀ − e_sway e_yawᵀ
@@ -36,10 +36,10 @@ radiation model a forward speed U (m/s):
    The terms that are not memory are kept separately, as in the thesis: the U·α∞
    infinite-frequency damping (eqs. 3.35 and §6: B₃₅(∞) = +U A∞₃₃, B₅₃(∞) = −U A∞₃₃,
    B₂₆(∞) = −U A∞₂₂, B₆₂(∞) = +U A∞₂₂ …) and the 1/s terms, which act on the
-   displacement: a *radiation restoring* stiffness (seed 000 §10.2: "the subtracted
-   constant corresponds to a pure integrator … a radiation restoring coefficient"). In
-   pitch it is C₅₅ = −U² A₃₃(0) (a destabilising, Munk-like moment; A₃₃(0) of the
-   model). c a⁻¹ b = K⁰(0) vanishes for fitted models (zero DC), so the 1/s² term is
+   displacement: a *radiation restoring* stiffness (Hjulstad (2004) §10.2: "the
+   subtracted constant corresponds to a pure integrator … a radiation restoring
+   coefficient"). In pitch it is C₅₅ = −U² A₃₃(0) (a destabilising, Munk-like moment;
+   A₃₃(0) of the model). c a⁻¹ b = K⁰(0) vanishes for fitted models (zero DC), so the 1/s² term is
    zero to rounding; its size is recorded in ``attrs`` and it is not modelled.
 
 The causality problem Hjulstad finds (§5.3–5.4: STF terms in 1/ω² cannot form a
@@ -383,9 +383,9 @@ def memory_part(
 ) -> xr.Dataset:
     """The data at ``speed`` less the speed terms that are not memory: B − U D¹ and
     A + (U G¹ + U² G²)/ω² (the U·α∞ damping and the radiation-restoring 1/s parts of
-    seed 000 §6, §10.2, as :func:`speed_dependent_model` separates them). What is left
-    is the causal memory the per-speed fit can identify: without this, the U²B₃₃/ω² term
-    of pitch (STF) is not the damping of a causal system (seed 000 eqs. 5.47–5.51)."""
+    Hjulstad (2004) §6, §10.2, as :func:`speed_dependent_model` separates them). What is
+    left is the causal memory the per-speed fit can identify: without this, the U²B₃₃/ω² term
+    of pitch (STF) is not the damping of a causal system (Hjulstad (2004) eqs. 5.47–5.51)."""
     d1 = np.asarray(damping_inf, dtype=float)
     g = np.asarray(restoring, dtype=float)
     w = ds.omega.values
@@ -523,8 +523,8 @@ def vessel_at_speed(
 ):
     """The time-domain :class:`~cummins.vessel.Vessel` of a ship at forward speed U.
 
-    The radiation force at constant speed, seed 000 eq. 3.28 with the speed terms that
-    are not memory kept apart (§6, §10.2; :class:`SpeedDependentModel`)::
+    The radiation force at constant speed, Hjulstad (2004) eq. 3.28 with the speed terms
+    that are not memory kept apart (§6, §10.2; :class:`SpeedDependentModel`)::
 
         A∞ ν̇ + K_U * ν + U D¹ ν + (U G¹ + U² G²) η
 
@@ -698,10 +698,11 @@ def _speed_impedance(z0: NDArray, omega: NDArray, e: NDArray, speed: float) -> N
 def stf_speed_terms(ds: xr.Dataset, speed: float) -> xr.Dataset:
     """Zero-speed A(ω), B(ω) with the Salvesen–Tuck–Faltinsen speed terms at ``speed``.
 
-    Seed 000 eqs. 3.29, 3.33, 5.45–5.46, 10.1 and §6 (aft-section terms omitted), in the
-    matrix form of the module docstring. Only ``added_mass`` and ``radiation_damping``
-    change; ``added_mass_inf`` (if present) stays (the STF terms vanish in A as ω → ∞);
-    B(∞) becomes U·α∞ in the couplings (:attr:`SpeedDependentModel.damping_inf`).
+    Hjulstad (2004) eqs. 3.29, 3.33, 5.45–5.46, 10.1 and §6 (aft-section terms omitted),
+    in the matrix form of the module docstring. Only ``added_mass`` and
+    ``radiation_damping`` change; ``added_mass_inf`` (if present) stays (the STF terms
+    vanish in A as ω → ∞); B(∞) becomes U·α∞ in the couplings
+    (:attr:`SpeedDependentModel.damping_inf`).
 
     Parameters
     ----------
@@ -743,7 +744,9 @@ def stf_speed_terms(ds: xr.Dataset, speed: float) -> xr.Dataset:
     out["radiation_damping"] = (dims, z.real, ds.radiation_damping.attrs)
     out = out.assign_coords(forward_speed=float(speed))
     out.forward_speed.attrs["units"] = "m/s"
-    add_history(out, f"STF speed terms (seed 000 eqs. 3.29, 3.33) applied for U = {speed:g} m/s")
+    add_history(
+        out, f"STF speed terms (Hjulstad (2004) eqs. 3.29, 3.33) applied for U = {speed:g} m/s"
+    )
     return out
 
 
@@ -772,12 +775,13 @@ class SpeedDependentModel:
 
         τ = −A∞ ν̇ − (K⁰ + U K¹ + U² K²) * ν − U D¹ ν − (U G¹ + U² G²) η
 
-    (``*`` convolution; seed 000 eq. 3.28, with b = U·α∞ of §6/App. C.3).
+    (``*`` convolution; Hjulstad (2004) eq. 3.28, with b = U·α∞ of §6/App. C.3).
 
     For a speed U(t) varying in a simulation, the states of K⁰, K¹, K² are driven by ν
     alone and U, U² scale their *outputs*, so the memory stays stable for any U(t).
     Hjulstad scales the inputs instead (§10.5, "rather arbitrary"); the two agree at
-    constant speed only (digest pitfall 10).
+    constant speed only (a speed that varies in time, or a turn, breaks the steady-speed
+    assumption of eq. 3.28, so neither choice is exact then).
 
     Attributes
     ----------
@@ -919,7 +923,7 @@ def _distinct_sources(model: RadiationModel, e: NDArray, power: int):
 def speed_dependent_model(
     ds: xr.Dataset, model: RadiationModel | None = None, **fit_options: Any
 ) -> SpeedDependentModel:
-    """K⁰, K¹, K² models of Hjulstad's forward-speed formulation (seed 000 eqs. 3.28–3.36).
+    """K⁰, K¹, K² models of the forward-speed formulation of Hjulstad (2004) eqs. 3.28–3.36.
 
     Parameters
     ----------
@@ -990,7 +994,7 @@ def speed_dependent_model(
                         np.concatenate([b for _, b, _ in blocks]),
                         np.concatenate([c for _, _, c in blocks]),
                         f"speed-K{power}",
-                        note=f"K{power} from K0/s^{power} (seed 000 eq. 3.28)",
+                        note=f"K{power} from K0/s^{power} (Hjulstad (2004) eq. 3.28)",
                     )
                 )
         built.append(RadiationModel(model.dofs, tuple(couplings), np.zeros((n, n))))
@@ -1010,7 +1014,7 @@ def speed_dependent_model(
 def stf_causality(
     ds: xr.Dataset, speed: float, *, threshold: float = 0.1, added_mass_inf: ArrayLike | None = None
 ) -> tuple[xr.DataArray, list[str]]:
-    """Kramers–Kronig check of the STF-corrected data (seed 000 §5.3–5.4, eq. 5.23).
+    """Kramers–Kronig check of the STF-corrected data (Hjulstad (2004) §5.3–5.4, eq. 5.23).
 
     The corrected damping minus its infinite-frequency part U·D¹ (D¹ = A∞E − EᵀA∞)
     and the corrected added mass are tested with
@@ -1075,7 +1079,7 @@ def _kk(ds: xr.Dataset, a_inf: NDArray) -> xr.DataArray:
 
 @dataclass(frozen=True)
 class ForcedMotionResult:
-    """Forced-motion verification of one coupling (seed 000 §12.1).
+    """Forced-motion verification of one coupling (Hjulstad (2004) §12.1).
 
     Attributes
     ----------
@@ -1125,8 +1129,8 @@ def forced_motion_error(
 ) -> ForcedMotionResult:
     """Force amplitude of a time-domain forced-motion run against |T(ω)| of the data.
 
-    Seed 000 §12.1: the radiating DOF moves as q(t) = sin ωt (unit amplitude, m or rad);
-    the force on the influenced DOF is (eq. 12.2, cummins' sign: the force the body
+    Hjulstad (2004) §12.1: the radiating DOF moves as q(t) = sin ωt (unit amplitude, m or
+    rad); the force on the influenced DOF is (eq. 12.2, cummins' sign: the force the body
     exerts on the fluid) F = A∞ q̈ + U D¹ q̇ + (K⁰ + U K¹ + U² K²) * q̇ + (U G¹ + U² G²) q,
     the memory term simulated through the state-space models (:func:`scipy.signal.lsim`,
     linear interpolation of the input) from rest until the memory has settled (at least

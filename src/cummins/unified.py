@@ -1,6 +1,6 @@
 """The nonlinear 6-DOF vessel model of the Marine Systems Simulator (Smogeli et al. (2004) eq. 56).
 
-Smogeli, Perez, Fossen & Sørensen's "unified" model keeps the kinematics between the
+The "unified" model of Smogeli et al. (2004) keeps the kinematics between the
 Earth-fixed north-east-down frame (n) and the body (b) nonlinear and the hydrodynamics
 linear, the fluid memory a state-space model, and adds every other force by
 superposition:
@@ -20,11 +20,11 @@ with M_RB, A∞, B_v (the constant viscous damping) and G (hydrostatic plus moor
 stiffness) as the data give them about W, and η̃ = (N, E, D, φ, θ, ψ − ψ₀) (the restoring
 acts on heave, roll and pitch; assumption A1: small roll and pitch for the h-frame
 transforms, not for the kinematics). C_RB(ν)ν, the rigid-body Coriolis and centripetal
-force (Fossen 2011, Thm. 3.2), is neglected by Smogeli et al. (2004) (assumption A2, low speed) and
-optional here. τ_load are the loads of :mod:`cummins.loads` (first-order and drift wave
-forces, current drag, wind, point loads), each a small object with ``force(t, η, ν)``
-returning a b-frame generalized force about O; τ_P the thrust of a controller
-(:mod:`cummins.dp`), sampled once per time step.
+force (Fossen 2011, Thm. 3.2), is neglected by Smogeli et al. (2004) (assumption A2, low
+speed) and optional here. τ_load are the loads of :mod:`cummins.loads` (first-order and
+drift wave forces, current drag, wind, point loads), each a small object with
+``force(t, η, ν)`` returning a b-frame generalized force about O; τ_P the thrust of a
+controller (:mod:`cummins.dp`), sampled once per time step.
 
 The data must be in Fossen's body axes (x forward, y starboard, z down): use
 :func:`cummins.change_axes` (``"z-down"``) on WAMIT/VERES data (:func:`unified_vessel`

@@ -1,5 +1,6 @@
-"""The linear vessel model of the Cummins equation (Smogeli et al. (2004) eqs. 32–39, Ross, Perez &
-Fossen (2006) eq. 12).
+"""The linear vessel model of the Cummins equation.
+
+The equation (Smogeli et al. (2004) eqs. 32–39; Ross, Perez & Fossen (2006) eq. 12) is
 
     (M_RB + A∞) ξ̈ + B_v ξ̇ + μ + C ξ = τ,      μ = C_r χ,   χ̇ = A_r χ + B_r ξ̇,
 

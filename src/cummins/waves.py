@@ -24,9 +24,10 @@ the usual approximate closed-form factors:
   γ = 10); here the integral of the normalised shape ∫₀^∞ x⁻⁵ e^{−1.25 x⁻⁴} γ^{r(x)} dx
   (x = ω/ω_p) is computed once per (γ, σ_a, σ_b) by adaptive quadrature and divides the
   shape.
-* :func:`torsethaugen`: the simplified double-peaked spectrum of Torsethaugen & Haver
-  (2004) (as in DNV-RP-C205 §3.5.6), a wind-sea and a swell peak, each of the form
-  x⁻⁴ e^{−x⁻⁴} γ^{r(x)} normalised numerically to carry H_j²/16, with H₁² + H₂² = H_s².
+* :func:`torsethaugen`: the simplified double-peaked spectrum of
+  Torsethaugen & Haver (2004) (as in DNV-RP-C205 §3.5.6), a wind-sea and a swell peak,
+  each of the form x⁻⁴ e^{−x⁻⁴} γ^{r(x)} normalised numerically to carry H_j²/16, with
+  H₁² + H₂² = H_s².
 * :func:`cos2s_spreading`: Longuet-Higgins' D(θ) = C(s) cos^{2s}((θ − θ̄)/2) on
   (−π, π], C(s) = Γ(s+1)/(2√π Γ(s+½)) so that ∫D dθ = 1.
 

@@ -1,13 +1,13 @@
 """Frequency-domain identification of one coupling K_ij(s) of the fluid memory.
 
-Model structure (seed 001 §3.3, eq. 3.61): a strictly proper rational function of order
+Model structure (Unneland (2007) §3.3, eq. 3.61): a strictly proper rational function of order
 n with relative degree one, a zero at s = 0 and a Hurwitz denominator,
 
     K(s) = (b_{n−1} s^{n−1} + … + b₁ s) / (s^n + a_{n−1} s^{n−1} + … + a₀),
 
 fitted to K(jω) = B(ω) + jω (A(ω) − A∞) at the data frequencies. Three steps:
 
-1. **Levy's linearised least squares** (seed 001 eq. 4.35): minimise Σ |N(jω) − K D(jω)|²,
+1. **Levy's linearised least squares** (Unneland (2007) eq. 4.35): minimise Σ |N(jω) − K D(jω)|²,
    linear in the coefficients, then **Sanathanan–Koerner iterations**, which divide each
    equation by |D(jω)| of the previous iterate so that the linearised error tends to the
    true error N/D − K. Frequencies are scaled by ω_s = √(ω_min ω_max) for conditioning.
@@ -23,7 +23,7 @@ fitted to K(jω) = B(ω) + jω (A(ω) − A∞) at the data frequencies. Three s
 A∞ can be estimated jointly (Perez & Fossen's idea of fitting the added mass with its
 high-frequency limit): A(ω) = A∞ + Im K(jω)/ω is linear in A∞, which simply becomes one
 more linear unknown of step 3. For a diagonal coupling the fit can be required to be
-positive real (Re K(jω) ≥ 0 at all frequencies, seed 001 Prop. 3.4): the residues are
+positive real (Re K(jω) ≥ 0 at all frequencies, Unneland (2007) Prop. 3.4): the residues are
 then re-solved with the poles fixed, minimising the same misfit subject to Re K(jω) ≥ 0
 on a dense grid from 10⁻³ ω_min to 10³ ω_max (a small quadratic programme), until the
 exact positive-real test passes.
@@ -92,7 +92,7 @@ class FrequencyFit:
 
 
 def r_squared(y: ArrayLike, y_model: ArrayLike) -> float:
-    """Coefficient of determination 1 − Σ(y − ŷ)² / Σ(y − ȳ)² (seed 001 eq. 6.19)."""
+    """Coefficient of determination 1 − Σ(y − ŷ)² / Σ(y − ȳ)² (Unneland (2007) eq. 6.19)."""
     y = np.asarray(y, dtype=float)
     y_model = np.asarray(y_model, dtype=float)
     total = np.sum((y - y.mean()) ** 2)
@@ -429,7 +429,7 @@ def fit_frequency_domain(
         instead of the Levy/Sanathanan–Koerner step.
     weight
         Relative weight of each frequency in the least squares (positive, normalised to
-        RMS 1): the frequency weighting W(ω) of seed 001 eq. 4.35. The reported R² stay
+        RMS 1): the frequency weighting W(ω) of Unneland (2007) eq. 4.35. The reported R² stay
         unweighted.
     error_weight
         Weight W(ω) ≥ 0 of the complex error |K̂(jω) − K(jω)| (any unit): the motion

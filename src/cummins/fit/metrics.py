@@ -1,4 +1,4 @@
-"""How well a fluid-memory model matches the data (seed 001 §6.1, Tables 6.2–6.8).
+"""How well a fluid-memory model matches the data (Unneland (2007) §6.1, Tables 6.2–6.8).
 
 Per coupling: R² of A(ω), of B(ω), of |K(jω)| and of ∠K(jω) at the fitted frequencies,
 R² of K(t) against the retardation function of the data, the H∞ error max_ω |K − K̂|

@@ -5,7 +5,7 @@ function of one coupling, find a stable SISO state-space model
 
     K(s) = c (sI − a)⁻¹ b,        K(t) = c e^{at} b,
 
-with the structure a fluid-memory model must have (seed 001 §3.3, eq. 3.61): strictly
+with the structure a fluid-memory model must have (Unneland (2007) §3.3, eq. 3.61): strictly
 proper (D = 0, relative degree 1, K(0⁺) = c b) and, at zero speed, a zero at s = 0
 (K(s=0) = −c a⁻¹ b = B(0) = 0).
 
@@ -13,7 +13,7 @@ Two identifiers are provided:
 
 :func:`era`
     Kung's Hankel-SVD realization in the form of the Eigensystem Realization Algorithm
-    (seed 001 eqs. 4.16–4.27; Kung 1978, Juang & Pappa 1985).
+    (Unneland (2007) eqs. 4.16–4.27; Kung (1978); Juang & Pappa (1985)).
 :func:`prony`
     Prony's method: least-squares linear prediction for the characteristic polynomial,
     its roots as discrete poles, residues by least squares.
@@ -38,12 +38,12 @@ exactly, and frequencies are not warped.
 
 MATLAB's ``imp2ss``, used in the thesis, instead treats its input as the *pulse* response
 h_d of a discrete system (h_d[0] = D_d) and converts with the inverse Tustin transform
-(seed 001 eqs. 4.28–4.31). Tustin maps z = 1 to s = 0, so the continuous DC gain equals
-Σ h_d[m]; with h_d[m] = K(mΔt) that is Σ K(mΔt) ≈ (1/Δt)∫K dt, i.e. the model is about
-1/Δt too large unless the samples are first scaled by Δt (seed 001 digest, note to §3.1a).
-Tustin also leaves D ≠ 0 (relative degree 0, the "wrong structure" of the thesis's TD
-models) and warps frequencies (ω_c = (2/Δt) tan(ω_d Δt/2)). The test suite checks that a
-known K(t) sampled at two different Δt gives the same continuous model.
+(Unneland (2007) eqs. 4.28–4.31). Tustin maps z = 1 to s = 0, so the continuous DC gain
+equals Σ h_d[m]; with h_d[m] = K(mΔt) that is Σ K(mΔt) ≈ (1/Δt)∫K dt, i.e. the model is
+about 1/Δt too large unless the samples are first scaled by Δt (a scaling the thesis does
+not mention). Tustin also leaves D ≠ 0 (relative degree 0, the "wrong structure" of the
+thesis's TD models) and warps frequencies (ω_c = (2/Δt) tan(ω_d Δt/2)). The test suite
+checks that a known K(t) sampled at two different Δt gives the same continuous model.
 
 Modes the logarithm cannot map, and unstable modes
 --------------------------------------------------
@@ -89,9 +89,9 @@ fast as ``svd``). Its row and column lags are the same set ℓ: all of 0 … L
 first ``hankel_size``/2 lags are consecutive and the rest evenly spread up to L, so that
 the matrix still spans the whole record. Rows and columns are weighted by √(Δt w_ℓ), w_ℓ
 the trapezoid weights of the lags, and the shifted matrix H₁[i, j] = k[ℓ_i + ℓ_j + 1]
-gives A_d = Σ^{-1/2} Uᵀ H₁ V Σ^{-1/2} (Juang & Pappa's form of Kung's shift, seed 001 eq.
-4.24). For finite-order data the realization is exact for any lag set whose first lags are
-consecutive (the observability and controllability matrices keep full rank); with
+gives A_d = Σ^{-1/2} Uᵀ H₁ V Σ^{-1/2} (Juang & Pappa's form of Kung's shift, Unneland (2007)
+eq. 4.24). For finite-order data the realization is exact for any lag set whose first lags
+are consecutive (the observability and controllability matrices keep full rank); with
 consecutive lags and unit weights it is Kung's algorithm.
 
 The singular values returned are those of the weighted matrix. They approximate the
@@ -477,7 +477,7 @@ def _sorted_modes(poles: NDArray, residues: NDArray) -> tuple[NDArray, NDArray]:
 
 
 def impose_zero_dc(a: NDArray, b: NDArray, c: NDArray) -> tuple[NDArray[np.float64], float, float]:
-    """The smallest (H₂) change of c giving K(0) = −c a⁻¹ b = 0 (seed 001 eqs. 3.44–3.48).
+    """The smallest (H₂) change of c giving K(0) = −c a⁻¹ b = 0 (Unneland (2007) eqs. 3.44–3.48).
 
     Minimises δc P δcᵀ = ‖δK‖²_H₂ (P the controllability gramian, a P + P aᵀ + b bᵀ = 0)
     subject to (c + δc) a⁻¹ b = 0: δc = −(c g) P⁻¹g / (gᵀ P⁻¹ g), g = a⁻¹ b.
@@ -628,9 +628,10 @@ def era(
 ) -> Realization:
     """Kung's Hankel-SVD realization (ERA) of a retardation function from its samples.
 
-    Seed 001 eqs. 4.16–4.27 (Hankel matrix, SVD, shift), with the exact impulse-invariant
-    conversion a = log(A_d)/Δt instead of the inverse Tustin of eqs. 4.28–4.31 (see the
-    module docstring: no 1/Δt scaling error, D = 0, no frequency warping).
+    Unneland (2007) eqs. 4.16–4.27 (Hankel matrix, SVD, shift), with the exact
+    impulse-invariant conversion a = log(A_d)/Δt instead of the inverse Tustin of
+    eqs. 4.28–4.31 (see the module docstring: no 1/Δt scaling error, D = 0, no frequency
+    warping).
 
     Parameters
     ----------
@@ -644,7 +645,8 @@ def era(
         Order selection 2 Σ σ_tail ≤ tol σ₁ (default :data:`DEFAULT_TOL`); ignored when
         ``order`` is given.
     zero_dc
-        Impose K(s = 0) = 0 (zero speed, seed 001 eq. 3.48) by the smallest H₂ change of c.
+        Impose K(s = 0) = 0 (zero speed, Unneland (2007) eq. 3.48) by the smallest H₂
+        change of c.
     max_order
         Upper bound of the order, selected or given.
     hankel_size
@@ -666,7 +668,7 @@ def era(
     --------
     >>> t = np.arange(400) * 0.05
     >>> k = np.exp(-t) * (np.cos(np.sqrt(3) * t) - np.sin(np.sqrt(3) * t) / np.sqrt(3))
-    >>> model = era(t, k, order=2)          # K(s) = s / (s² + 2s + 4), seed 001 Ex. 3.1
+    >>> model = era(t, k, order=2)          # K(s) = s / (s² + 2s + 4), Unneland (2007) Ex. 3.1
     >>> np.sort_complex(model.poles()).round(6)
     array([-1.-1.732051j, -1.+1.732051j])
     """

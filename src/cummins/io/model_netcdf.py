@@ -7,8 +7,8 @@ content is read too.
 Model
 -----
 The memory force μ of the Cummins equation, μ(t) = ∫₀ᵗ K(t−τ) ξ̇(τ) dτ (the radiation
-force is −A∞ ξ̈ − μ), is approximated by the linear system (seed 004 eq. 36, seed 001
-eqs. 3.40–3.41)
+force is −A∞ ξ̈ − μ), is approximated by the linear system (Smogeli et al. (2004) eq. 36,
+Unneland (2007) eqs. 3.40–3.41)
 
     χ̇ = A χ + B ξ̇,    μ = C χ + D ξ̇,    D = 0,
 

@@ -1,4 +1,4 @@
-"""Identifying viscous damping from motion records (de Haan, 2022, de Haan 2022).
+"""Identifying viscous damping from motion records (de Haan, 2022).
 
 Potential theory leaves out viscous damping, which dominates roll. This package
 estimates it from records of the motions (and the wave force or elevation), says when the

@@ -14,8 +14,8 @@ A *record* is an :class:`xarray.Dataset` on a uniform ``time`` axis (s) with
 The output of ``cummins simulate`` (``run.nc``) is a record (its ``external_force`` is
 read as the excitation). Field records are read from CSV with units in the header
 (:func:`read_record`). Scaling and shifting of predicted against measured signals follow
-de Haan (2022) §3.2.1 (de Haan, 2022): γ = RMS(predicted)/RMS(measured), and the lag of the
-largest cross-correlation within a maximum.
+de Haan (2022) §3.2.1: γ = RMS(predicted)/RMS(measured), and the lag of the largest
+cross-correlation within a maximum.
 """
 
 from __future__ import annotations

@@ -1,12 +1,12 @@
 """Re-prediction of recorded motions with identified damping, and its scores.
 
-De Haan (2022, §3.2.4) judges an identification by re-predicting
-the measured motions with the identified coefficients and computing the correlation
-coefficient between prediction and measurement per DOF and segment, both *in sample*
-(coefficients of the same segment) and *out of sample* (coefficients of the previous
-segment, as a real application would use them). His identified roll damping was
-sometimes negative and the re-predictions then diverged; here such a model is refused
-with a :class:`~cummins.errors.SimulationError` naming the DOF, never a run full of NaN.
+De Haan (2022) §3.2.4 judges an identification by re-predicting the measured motions
+with the identified coefficients and computing the correlation coefficient between
+prediction and measurement per DOF and segment, both *in sample* (coefficients of the
+same segment) and *out of sample* (coefficients of the previous segment, as a real
+application would use them). His identified roll damping was sometimes negative and the
+re-predictions then diverged; here such a model is refused with a
+:class:`~cummins.errors.SimulationError` naming the DOF, never a run full of NaN.
 """
 
 from __future__ import annotations
@@ -96,8 +96,8 @@ def identified_vessel(vessel: Vessel, model: DampingModel) -> tuple[Vessel, NDAr
 
 
 def prediction_scores(predicted: xr.DataArray, measured: xr.DataArray) -> xr.Dataset:
-    """Per DOF: Pearson ``correlation`` (de Haan (2022) score), ``rms_error`` relative to the
-    measured RMS, and ``std_ratio`` σ_predicted/σ_measured."""
+    """Per DOF: Pearson ``correlation`` (the score of de Haan (2022)), ``rms_error``
+    relative to the measured RMS, and ``std_ratio`` σ_predicted/σ_measured."""
     p = predicted.values
     m = measured.sel(dof=predicted.dof).values
     pc, mc = p - p.mean(0), m - m.mean(0)
@@ -189,8 +189,8 @@ def validate_segments(
     length: float,
     **identify_options,
 ) -> xr.Dataset:
-    """Identify per segment, and score in-sample and next-segment re-predictions (seed
-    003 §3.2.4).
+    """Identify per segment, and score in-sample and next-segment re-predictions
+    (de Haan (2022) §3.2.4).
 
     For segment k: coefficients from k (with intervals and flags), the correlation of
     the re-prediction of k with them (``in_sample``), of k with the coefficients of k − 1
