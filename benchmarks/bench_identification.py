@@ -49,6 +49,10 @@ from cummins.hydrodb import dof_matrix, single_speed
 from cummins.radiation import change_model_axes
 
 REPEAT = int(os.environ.get("BENCH_REPEAT", "2"))
+#: What is compared, in the same run: the default (common poles per block, ``"vf"``),
+#: the per-coupling identification with motion weighting (``"fd"``, the default before
+#: the common-pole one) and the default before issue 16 (per coupling, R² alone).
+VARIANTS = (("default", {}), ("fd", {"method": "fd"}), ("previous", PREVIOUS_DEFAULT))
 MSS_FDI_SECONDS = 6.2  # issue 4: MSS FDI on the tanker, this machine
 
 #: The cases: shared data first, then every corpus file a reader takes (first match per
@@ -179,11 +183,13 @@ def main(selection: str | None = None) -> None:
             skipped.append(f"{name}: not read ({type(exc).__name__})")
             continue
         missing = [v for v in ("inertia_matrix", "hydrostatic_stiffness") if v not in ds]
-        if missing:
+        ss = sorted(path.parent.glob("*.ss")) if path.is_file() else []
+        if missing and not ss:
             skipped.append(f"{name}: no {', '.join(missing)}")
             continue
         n_dof = ds.sizes["influenced_dof"]
-        for label, options in (("default", {}), ("previous", PREVIOUS_DEFAULT)):
+        variants = VARIANTS if not missing else VARIANTS[:1]  # no motions: the .ss only
+        for label, options in variants:
             try:
                 seconds, model = timed_fit(ds, options)
             except Exception as exc:
@@ -207,7 +213,6 @@ def main(selection: str | None = None) -> None:
                 f"{k_error(ds, ref):.3f} (ours {k_error(ds, ours):.3f}), RAO "
                 f"{100 * card.rao_error.error:.2f} %, passive {card.passive}"
             )
-        ss = sorted(path.parent.glob("*.ss")) if path.is_file() else []
         for file in ss:
             from cummins.io.openfast import read_openfast_ss
 
@@ -227,7 +232,7 @@ def main(selection: str | None = None) -> None:
                 f"{k_error(ds, ref):.3f} (ours {k_error(ds, ours):.3f})"
             )
     print()
-    for label in ("default", "previous"):
+    for label, _ in VARIANTS:
         mine = [r for r in results if r[1] == label]
         if not mine:
             continue
@@ -238,20 +243,18 @@ def main(selection: str | None = None) -> None:
             f"{100 * worst:.2f} %; passive {sum(r[4].passive for r in mine)}/{len(mine)}; "
             f"total fit time {sum(r[3] for r in mine):.1f} s"
         )
-    pairs = (
-        {r[0]: r[3] for r in results if r[1] == "default"},
-        {r[0]: r[3] for r in results if r[1] == "previous"},
-    )
-    ratios = [pairs[1][k] / pairs[0][k] for k in pairs[0] if k in pairs[1]]
-    if ratios:
-        print(
-            "time previous/default per case: "
-            + ", ".join(
-                f"{k.split('/')[-1][:14]} {pairs[1][k] / pairs[0][k]:.2f}"
-                for k in pairs[0]
-                if k in pairs[1]
+    times = {label: {r[0]: r[3] for r in results if r[1] == label} for label, _ in VARIANTS}
+    for label, _ in VARIANTS[1:]:
+        common = [k for k in times["default"] if k in times[label]]
+        if common:
+            print(
+                f"time {label}/default per case: "
+                + ", ".join(
+                    f"{k.split('/')[-1][:14]} {times[label][k] / times['default'][k]:.2f}"
+                    for k in common
+                )
             )
-        )
+    pairs = (times["default"],)
     tanker = pairs[0].get("mss/tanker/tanker.1")
     if tanker:
         print(

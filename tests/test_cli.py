@@ -125,7 +125,7 @@ def test_demo(runner, tmp_path):
         rtol=1e-6,
         atol=1e-9 * np.abs(model.frequency_response(w).values).max(),
     )
-    fitted = [c for c in model.couplings if c.influenced <= c.radiating]
+    fitted = [c for c in model.modelled if c.influenced <= c.radiating]
     assert len(list((out / cummins.demo.FIT_PLOTS).glob("fit_*.png"))) == len(fitted)
     refused = runner.invoke(main, ["demo", "-o", str(out)])
     assert refused.exit_code == 2 and "--force" in refused.output
@@ -197,13 +197,14 @@ def test_fit_command(runner, tanker_copy, tmp_path):
     summary_path, plots, ss = tmp_path / "fit.json", tmp_path / "plots", tmp_path / "tanker.ss"
     args = ["fit", str(tanker_copy), "-o", str(out), "--json", str(summary_path)]
     result = runner.invoke(
-        main, [*args, "--plot", str(plots), "--openfast", str(ss), "--order", "Heave", "Pitch", "3"]
+        main, [*args, "--plot", str(plots), "--openfast", str(ss), "--order", "Heave", "Pitch", "8"]
     )
     assert result.exit_code == 0, result.output
     assert "3.927 rad/s left out" in result.output and "negative damping" in result.output
     summary = json.loads(summary_path.read_text())
     assert set(summary) == {
         "couplings",
+        "blocks",
         "total_order",
         "mimo_stable",
         "mimo_passive",
@@ -213,12 +214,14 @@ def test_fit_command(runner, tanker_copy, tmp_path):
     }
     assert summary["failures"] == []
     model = cummins.radiation.RadiationModel.load(out)
-    assert (
-        summary["total_order"] == model.total_order == sum(c["order"] for c in summary["couplings"])
-    )
+    # the default: one common-pole block per plane of the ship
+    assert summary["total_order"] == model.total_order == sum(b["order"] for b in summary["blocks"])
+    assert {tuple(b["dofs"]) for b in summary["blocks"]} == {(1, 3, 5), (2, 4, 6)}
     assert summary["mimo_stable"] is True and summary["mimo_passive"] is True
     by_pair = {(c["i"], c["j"]): c for c in summary["couplings"]}
-    assert by_pair[(3, 5)]["order"] == by_pair[(5, 3)]["order"] == 3  # the override, 1-based
+    # the override (1-based pairs): the common poles of the block of heave and pitch
+    assert by_pair[(3, 5)]["order"] == by_pair[(1, 1)]["order"] == 8
+    assert {b["common_poles"] for b in summary["blocks"] if 3 in b["dofs"]} == {8}
     for (i, j), c in by_pair.items():
         assert set(c) == {"i", "j", "order", "r2_added_mass", "r2_damping", "stable", "passive"}
         assert (c["passive"] is None) == (i != j)

@@ -176,12 +176,14 @@ def test_augmentation_adds_poles_without_changing_the_response():
 
 @pytest.mark.parametrize("vessel", ["tanker", "supply"])
 def test_real_vessels_are_passive_after_enforcement_with_diagonal_r2_kept(shared_data, vessel):
-    """Issue 5: the tanker and supply vessel 6×6 models from cummins fit are passive as
-    MIMO systems, every diagonal R² still ≥ 0.99; a dense sweep confirms."""
+    """Issue 5: the tanker and supply vessel 6×6 models of the per-coupling
+    identification (``method="fd"``) are made passive as MIMO systems by the residue
+    enforcement, every diagonal R² still ≥ 0.99; a dense sweep confirms. (The default
+    common-pole identification is passive as fitted: test_identification_targets.py.)"""
     ds = cummins.read(shared_data / "mss" / vessel / f"{vessel}.mat")
-    identified = fit_radiation(ds, passivity="diagonal")
+    identified = fit_radiation(ds, method="fd", passivity="diagonal")
     assert not passivity_test(identified).passive  # the identification alone is not
-    model = fit_radiation(ds)
+    model = fit_radiation(ds, method="fd")
     assert model.attrs["mimo_passive"] is True
     assert passivity_test(model).passive
     sweep = passivity_sweep(model, np.geomspace(1e-3, 1e3, 60_001))

@@ -730,7 +730,7 @@ def tanker_models(tanker_wamit):
     """The default FD fit of the tanker and an ERA realization of order 10 per coupling."""
     from cummins.fit import fit_radiation
 
-    fd = fit_radiation(tanker_wamit)
+    fd = fit_radiation(tanker_wamit, method="fd")
     pairs = [(k.influenced, k.radiating) for k in fd.couplings if k.influenced <= k.radiating]
     era = fit_radiation(tanker_wamit, method="realization", orders=dict.fromkeys(pairs, 10))
     return fd, era

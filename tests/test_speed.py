@@ -231,7 +231,9 @@ def test_speed_kernels_structure(speed_model):
 def test_six_dof_speed_terms_structure(s175):
     """All six DOFs: the K¹/K² couplings and U·α∞ signs of the thesis' table (§6)."""
     zero = s175.sel(forward_speed=0.0)
-    model = sp.speed_dependent_model(zero, fit_radiation(zero, omega_max=2.0))
+    model = sp.speed_dependent_model(
+        zero, fit_radiation(zero, omega_max=2.0, **sp.SPEED_FIT_DEFAULTS)
+    )
     assert model.is_stable()
     names = model.dofs
 

@@ -38,10 +38,11 @@ from cummins.cli_common import (
 )
 @click.option(
     "--method",
-    type=click.Choice(["fd", "realization", "prony"]),
-    default="fd",
+    type=click.Choice(["vf", "fd", "realization", "prony"]),
+    default="vf",
     show_default=True,
-    help="fd: frequency-domain fit (Levy, Sanathanan-Koerner, nonlinear); "
+    help="vf: the coupled DOFs share their poles (vector fitting of each block, passive as "
+    "fitted); fd: one model per coupling (Levy, Sanathanan-Koerner, nonlinear); "
     "realization: Kung/ERA on K(t); prony: Prony on K(t).",
 )
 @click.option(
@@ -61,9 +62,9 @@ from cummins.cli_common import (
 @click.option(
     "--max-order",
     type=click.IntRange(1, 50),
-    default=10,
-    show_default=True,
-    help="Highest order tried.",
+    default=None,
+    help="Highest order tried: common poles of a block (vf, default 20), the order of a "
+    "coupling otherwise (default 10).",
 )
 @click.option(
     "--order",
@@ -71,7 +72,8 @@ from cummins.cli_common import (
     type=(str, str, click.IntRange(1, 50)),
     multiple=True,
     metavar="DOF DOF N",
-    help="Fix the order of a coupling, e.g. --order Heave Pitch 4 (repeatable).",
+    help="Fix the order of a coupling, e.g. --order Heave Pitch 4 (repeatable); with vf "
+    "the number of poles the block of these DOFs shares.",
 )
 @click.option(
     "--added-mass-inf",
@@ -174,13 +176,18 @@ def fit_command(
     body,
     force,
 ):
-    """Identify stable state-space models of the fluid memory, for every significant coupling.
+    """Identify stable, passive state-space models of the fluid memory, every coupling.
 
     \b
-    Each coupling K_ij(s) is fitted at the smallest order whose R-squared of A(w) and
-    B(w) reaches the target; diagonal models are positive real; symmetric couplings
-    are fitted once; negligible couplings and suspect frequencies are left out and
-    reported. The MIMO model (A, B, C, D = 0) and A-infinity go to OUTPUT.
+    By default (vf) the DOFs that radiate into each other (surge-heave-pitch and
+    sway-roll-yaw of a ship, all DOFs of interacting bodies) form a block whose
+    couplings share their poles: vector fitting (Gustavsen & Semlyen 1999), at the
+    smallest number of poles whose R-squared of A(w) and B(w) reaches the targets
+    and whose motion RAOs (with inertia and restoring in the data) are within 1 %
+    of the data's; each block is made passive as fitted. With fd each coupling
+    K_ij(s) gets its own model. Negligible couplings and suspect frequencies are
+    left out and reported. The MIMO model (A, B, C, D = 0) and A-infinity go to
+    OUTPUT; a fit that misses a target it should reach exits with status 3.
 
     \b
     Examples:
@@ -313,21 +320,30 @@ def fit_summary(model, elapsed: float) -> dict:
     from cummins.passivity import is_passive
 
     couplings = []
-    for k in model.couplings:
+    for k in model.modelled:
         m = k.metrics
         couplings.append(
             {
                 "i": k.influenced + 1,
                 "j": k.radiating + 1,
-                "order": k.order,
+                "order": int(m.get("common_poles", k.order)),
                 "r2_added_mass": float(m["r2_added_mass"]),
                 "r2_damping": float(m["r2_damping"]),
                 "stable": bool(m["stable"]),
                 "passive": None if m.get("passive") is None else bool(m["passive"]),
             }
         )
+    blocks = [
+        {
+            "dofs": [d + 1 for d in block.dofs],
+            "order": block.order,
+            "common_poles": int(next(iter(block.metrics.values()), {}).get("common_poles", 0)),
+        }
+        for block in model.blocks
+    ]
     return {
         "couplings": couplings,
+        "blocks": blocks,
         "total_order": model.total_order,
         "mimo_stable": model.is_stable(),
         "mimo_passive": is_passive(model),
@@ -340,7 +356,8 @@ def fit_summary(model, elapsed: float) -> dict:
 def fit_table(model) -> Table:
     """Per-coupling summary printed by ``cummins fit``: narrow enough for an 80-column
     terminal (12-DOF labels included); each coupling's note is numbered in the last column
-    and printed below the table (:func:`fit_notes`)."""
+    and printed below the table (:func:`fit_notes`). The order of a pair of a common-pole
+    block is the number of poles its DOFs share (the block's states are in the notes)."""
     from rich import box
 
     table = Table(
@@ -351,39 +368,49 @@ def fit_table(model) -> Table:
     )
     for column in ("coupling", "order", "R² A", "R² B", "R² K(t)", "stable", "passive", "note"):
         table.add_column(column, justify="left" if column == "coupling" else "right")
-    number = 0
-    for k in model.couplings:
+    numbers: dict[str, int] = {}
+    for k in model.modelled:
         if k.influenced > k.radiating:
             continue
         m = k.metrics
         a, b = model.dofs[k.influenced], model.dofs[k.radiating]
         passive = m.get("passive")
         note = short_note(k.note)
-        if note:
-            number += 1
+        if note and note not in numbers:
+            numbers[note] = len(numbers) + 1
         table.add_row(
             a if a == b else f"{a}-{b}",
-            str(k.order),
+            str(m.get("common_poles", k.order)),
             f"{m['r2_added_mass']:.4f}",
             f"{m['r2_damping']:.4f}",
             "—" if m.get("r2_kernel") is None else f"{m['r2_kernel']:.4f}",
             "yes" if m["stable"] else "NO",
             "—" if passive is None else ("yes" if passive else "NO"),
-            f"[{number}]" if note else "",
+            f"[{numbers[note]}]" if note else "",
         )
     return table
 
 
 def fit_notes(model) -> list[str]:
-    """The numbered notes of :func:`fit_table`, in the same order."""
-    out = []
-    for k in model.couplings:
+    """The numbered notes of :func:`fit_table`, in the same order (a note shared by the
+    pairs of a block once), then one line per common-pole block."""
+    out: list[str] = []
+    seen: set[str] = set()
+    owner = {d: "-".join(model.dofs[x] for x in b.dofs) for b in model.blocks for d in b.dofs}
+    for k in model.modelled:
         if k.influenced > k.radiating:
             continue
         note = short_note(k.note)
-        if note:
+        if note and note not in seen:
+            seen.add(note)
             a, b = model.dofs[k.influenced], model.dofs[k.radiating]
-            out.append(f"[{len(out) + 1}] {a if a == b else f'{a}-{b}'}: {note}")
+            name = owner.get(k.influenced) or (a if a == b else f"{a}-{b}")
+            out.append(f"[{len(out) + 1}] {name}: {note}")
+    for block in model.blocks:
+        poles = next(iter(block.metrics.values()), {}).get("common_poles")
+        names = "-".join(model.dofs[d] for d in block.dofs)
+        shared = f", {poles} common poles" if poles else ""
+        out.append(f"{names}: one block of {block.order} states{shared}")
     return out
 
 

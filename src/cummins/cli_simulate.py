@@ -114,8 +114,8 @@ from cummins.validation import check_simulation_size
 @click.option(
     "--accurate",
     is_flag=True,
-    help="Fit the radiation model for close agreement with the data's RAOs (tight R² "
-    "targets, higher orders, response weighting: minutes instead of a second).",
+    help="Fit the radiation model for closer agreement with the data's RAOs: within "
+    "0.2 % of each DOF's peak instead of 1 % (a few more states).",
 )
 @click.option(
     "--speed",

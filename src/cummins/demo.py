@@ -219,8 +219,8 @@ def _fit_step(ds, out: Path, force: bool) -> tuple[DemoStep, object]:
     write_model_mss_abc(model, ds, out / "tankerABC.mat", force=force)
     (out / FIT_PLOTS).mkdir(exist_ok=True)
     plots = write_fit_plots(model, ds, out / FIT_PLOTS, force=force)
-    diagonal = [k.metrics for k in model.couplings if k.influenced == k.radiating]
-    fitted = sum(k.influenced <= k.radiating for k in model.couplings)
+    diagonal = [k.metrics for k in model.modelled if k.influenced == k.radiating]
+    fitted = sum(k.influenced <= k.radiating for k in model.modelled)
     step = DemoStep(
         "fit",
         f"{fitted} couplings fitted in {elapsed:.2f} s, total order {model.total_order}, "

@@ -148,9 +148,8 @@ class PassivityReport:
 def default_sweep(model: RadiationModel, points_per_decade: int = 100) -> np.ndarray:
     """Log grid from 10⁻³ to 10³ times the range of the model's pole magnitudes, refined
     around each lightly damped resonance."""
-    poles = (
-        np.concatenate([k.poles() for k in model.couplings]) if model.couplings else np.array([1.0])
-    )
+    parts = [k.poles() for k in model.couplings] + [b.poles() for b in model.blocks]
+    poles = np.concatenate(parts) if parts else np.array([1.0])
     mags = np.abs(poles[np.abs(poles) > 0]) if np.any(np.abs(poles) > 0) else np.array([1.0])
     lo, hi = mags.min() * 1e-3, mags.max() * 1e3
     n = int(np.ceil(points_per_decade * np.log10(hi / lo)))
@@ -164,10 +163,11 @@ def dof_scaling(model: RadiationModel, omega: ArrayLike | None = None) -> NDArra
     dimensionless and the DOFs weigh alike."""
     w = default_sweep(model) if omega is None else np.asarray(omega, dtype=float)
     scale = np.zeros(len(model.dofs))
-    for k in model.couplings:
-        if k.influenced == k.radiating and k.order:
-            peak = float(np.abs(k.frequency_response(w)).max())
-            scale[k.influenced] = 1.0 / np.sqrt(peak) if peak > 0 else 0.0
+    diagonal = np.abs(np.diagonal(model.response(w), axis1=1, axis2=2)).max(axis=0)
+    for i in range(len(model.dofs)):
+        modelled = model.coupling(i, i)
+        if modelled is not None and modelled.order and diagonal[i] > 0:
+            scale[i] = 1.0 / np.sqrt(diagonal[i])
     return scale
 
 
@@ -242,6 +242,9 @@ def passivity_test(model: RadiationModel) -> PassivityReport:
     for k in model.couplings:
         if k.order:
             touched[[k.influenced, k.radiating]] = True
+    for block in model.blocks:
+        if block.order:
+            touched[list(block.dofs)] = True
     orphan = touched & ~diagonal
     keep = np.flatnonzero(diagonal)
     tested = tuple(labels[i] for i in keep)
@@ -264,7 +267,7 @@ def passivity_test(model: RadiationModel) -> PassivityReport:
     worst_w, worst_v = float(sweep[worst]), float(low_sweep[worst])
     for lo, hi in itertools.pairwise(edges):
         inside = (sweep > lo) & (sweep < hi)
-        mid = _midpoint(lo, hi, sweep)
+        mid = midpoint(lo, hi, sweep)
         ws = np.r_[sweep[inside], mid]
         vs = np.r_[low_sweep[inside], lam_min(mid)]
         k = int(np.argmin(vs))
@@ -403,6 +406,13 @@ def enforce_passivity(
     before = passivity_test(model)
     if before.passive:
         return PassivityEnforcement(model, before, before, 0, {})
+    if model.blocks:
+        raise FitError(
+            "the model holds blocks of common-pole models, which this enforcement does not "
+            "change (it moves the residues of single couplings)",
+            hint="a block is made passive when it is fitted (cummins.fit.vector); refit "
+            "the data with fit_radiation",
+        )
     w = fit_range_grid(model) if omega is None else np.asarray(omega, dtype=float)
     groups = _coupling_groups(model)
     bases = [_perturbation_basis(model.couplings[g[0]]) for g in groups]
@@ -439,7 +449,7 @@ def enforce_passivity(
         # linearised at the current z: g·(z_new − z) ≥ h  ⇔  g·z_new ≥ h + g·z
         rows.extend(new_rows)
         rhs.extend(h + float(g @ z) for g, h in zip(new_rows, new_rhs, strict=True))
-        z = _constrained_least_squares(misfit, np.array(rows), np.array(rhs))
+        z = constrained_least_squares(misfit, np.array(rows), np.array(rhs))
         current = _apply_step(model, groups, bases, z)
         report = passivity_test(current)
         done += 1
@@ -501,7 +511,8 @@ def _scaled_mimo(model: RadiationModel, scale: NDArray, keep: NDArray):
     return a, b[:, keep] * scale[keep], c[keep] * scale[keep][:, None]
 
 
-def _midpoint(lo: float, hi: float, sweep: NDArray) -> float:
+def midpoint(lo: float, hi: float, sweep: NDArray) -> float:
+    """A frequency inside (lo, hi) for testing the sign of λ_min there (hi may be ∞)."""
     if np.isinf(hi):
         return 10.0 * max(lo, sweep[-1])
     if lo <= 0:
@@ -559,7 +570,10 @@ def fit_range_grid(model: RadiationModel, points: int = 200) -> NDArray:
     attributes), else over a decade beyond its pole magnitudes."""
     lo, hi = model.attrs.get("omega_fit_min"), model.attrs.get("omega_fit_max")
     if lo is None or hi is None:
-        poles = np.concatenate([k.poles() for k in model.couplings if k.order])
+        poles = np.concatenate(
+            [k.poles() for k in model.couplings if k.order]
+            + [b.poles() for b in model.blocks if b.order]
+        )
         lo, hi = np.abs(poles).min() / 10, np.abs(poles).max() * 10
     return np.geomspace(float(lo), float(hi), points)
 
@@ -751,7 +765,7 @@ def _limit_rows(model, groups, bases, scale, keep, rows, rhs, *, high: bool) -> 
         rhs.append(ENFORCEMENT_MARGIN * local - lam[e])
 
 
-def _constrained_least_squares(misfit, g: NDArray, h: NDArray) -> NDArray:
+def constrained_least_squares(misfit, g: NDArray, h: NDArray) -> NDArray:
     """z minimising Σ_k ‖J_k z_k + y_k‖² subject to G z ≥ h (Lawson & Hanson ch. 23).
 
     With J = QR per block and x = Rz + Qᵀy the problem becomes the least-distance

@@ -124,7 +124,7 @@ def write_fit_plots(model, ds: xr.Dataset, folder: Path, *, force: bool = False)
     if "forward_speed" in ds.dims:
         ds = ds.isel(forward_speed=0)
     written = []
-    for k in model.couplings:
+    for k in model.modelled:
         if k.influenced > k.radiating:
             continue
         a, b = model.dofs[k.influenced], model.dofs[k.radiating]
@@ -166,7 +166,10 @@ def model_as_data(model, points: int = 200):
 
     w = fit_range_grid(model, points)
     k = model.response(w)
-    poles = np.concatenate([c.poles() for c in model.couplings if c.order])
+    poles = np.concatenate(
+        [c.poles() for c in model.couplings if c.order]
+        + [b.poles() for b in model.blocks if b.order]
+    )
     t_end = 5.0 / max(float(np.abs(poles.real).min()), 1e-6)
     t = np.linspace(0.0, min(t_end, 100 * 2 * np.pi / w[0]), 500)
     a = model.added_mass_inf[None, :, :] + k.imag / w[:, None, None]

@@ -376,7 +376,9 @@ def plot_coupling_fit(
         if metrics.get(k) is not None
     )
     order = coupling.order if coupling is not None else 0
-    fig.suptitle(f"{title}: order {order}; R² {r2}")
+    poles = metrics.get("common_poles")
+    size = f"{poles} common poles" if poles else f"order {order}"
+    fig.suptitle(f"{title}: {size}; R² {r2}")
     return fig
 
 

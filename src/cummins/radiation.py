@@ -13,6 +13,12 @@ owns a block of states driven by ξ̇_j and read by μ_i. A symmetric pair K_ij 
 fitted once and appears twice (two blocks with the same matrices), so the assembled
 model is symmetric, as the physics requires at zero speed.
 
+The DOFs that radiate into each other can also share their states: a
+:class:`MemoryBlock` is a MIMO model K_D(s) = c (sI − a)⁻¹ b of a group of DOFs D
+(the common-pole identification of :mod:`cummins.fit.vector`), driven by the velocities
+of D and read by their forces. A model holds couplings, blocks or both; a DOF pair is
+modelled by one of them only.
+
 Units: inputs are velocities (m/s, rad/s) in ``input`` DOF order, outputs forces and
 moments (N, N·m) in ``output`` order; the state has no physical unit.
 """
@@ -106,6 +112,129 @@ class CouplingModel(SisoStateSpace):
         )
 
 
+@dataclass(frozen=True)
+class MemoryBlock:
+    """MIMO state-space model of the fluid memory of a group of DOFs that share their
+    states: K_D(s) = c (sI − a)⁻¹ b for the DOFs D = ``dofs``.
+
+    Attributes
+    ----------
+    dofs
+        0-based DOF indices of the block, in the order of the inputs of ``b`` and the
+        outputs of ``c``.
+    a, b, c
+        State matrix (n, n), input matrix (n, m), output matrix (m, n), m = len(dofs).
+    method
+        How it was identified (``"vf"``: common-pole vector fitting).
+    metrics
+        Fit measures per modelled pair, ``{(i, j): {...}}`` with model indices i ≤ j.
+    note
+        Anything the user should know.
+    """
+
+    dofs: tuple[int, ...]
+    a: NDArray[np.float64]
+    b: NDArray[np.float64]
+    c: NDArray[np.float64]
+    method: str = "vf"
+    metrics: Mapping[tuple[int, int], Mapping[str, Any]] = field(default_factory=dict)
+    note: str = ""
+
+    @property
+    def order(self) -> int:
+        """Number of states."""
+        return int(np.shape(self.a)[0])
+
+    def poles(self) -> NDArray[np.complex128]:
+        """Eigenvalues of ``a``."""
+        return np.linalg.eigvals(self.a) if self.order else np.empty(0, dtype=complex)
+
+    def is_stable(self) -> bool:
+        """All poles in the open left half-plane."""
+        return bool(np.all(self.poles().real < 0))
+
+    def element(self, i: int, j: int) -> CouplingModel:
+        """K_ij of the block as a SISO model (model indices; the block's own states, so
+        not minimal), with the pair's metrics."""
+        ii, jj = self.dofs.index(i), self.dofs.index(j)
+        key = (min(i, j), max(i, j))
+        return CouplingModel(
+            i,
+            j,
+            np.asarray(self.a, dtype=float),
+            np.asarray(self.b, dtype=float)[:, jj],
+            np.asarray(self.c, dtype=float)[ii, :],
+            self.method,
+            dict(self.metrics.get(key, {})),
+            self.note,
+        )
+
+    def element_minimal(self, i: int, j: int, rtol: float = 1e-10) -> CouplingModel:
+        """K_ij of the block as a minimal SISO model: the block's modes, those with the
+        same pole merged (a residue matrix of rank r gives r equal poles) and those whose
+        residue in K_ij is below ``rtol`` of the largest left out; real Jordan form
+        (1/(s − p) for a real pole, a 2×2 block for a pair). Exact up to the dropped
+        modes."""
+        ii, jj = self.dofs.index(i), self.dofs.index(j)
+        key = (min(i, j), max(i, j))
+        a, b, c = (np.asarray(x, dtype=float) for x in (self.a, self.b, self.c))
+        if not self.order:
+            empty = np.zeros(0)
+            return CouplingModel(i, j, np.zeros((0, 0)), empty, empty, self.method)
+        lam, v = np.linalg.eig(a)
+        if np.linalg.cond(v) > 1e10:  # defective: keep the block's states
+            return self.element(i, j)
+        residue = (c[ii] @ v) * np.linalg.solve(v, b[:, jj])
+        poles: list[complex] = []
+        sums: list[complex] = []
+        for p, r in zip(lam, residue, strict=True):
+            if p.imag < 0:
+                continue  # the conjugate carries it
+            for k, q in enumerate(poles):
+                if abs(p - q) <= 1e-8 * max(abs(p), 1e-300):
+                    sums[k] += r
+                    break
+            else:
+                poles.append(complex(p))
+                sums.append(complex(r))
+        top = max((abs(r) for r in sums), default=0.0)
+        blocks_a, blocks_c, blocks_b = [], [], []
+        for p, r in zip(poles, sums, strict=True):
+            if abs(r) <= rtol * top:
+                continue
+            if abs(p.imag) <= 1e-12 * abs(p):
+                blocks_a.append(np.array([[p.real]]))
+                blocks_b.append([1.0])
+                blocks_c.append([r.real])
+            else:  # r/(s − p) + r̄/(s − p̄) = c (sI − a)⁻¹ b
+                blocks_a.append(np.array([[p.real, p.imag], [-p.imag, p.real]]))
+                blocks_b.append([2.0, 0.0])
+                blocks_c.append([r.real, r.imag])
+        if not blocks_a:
+            empty = np.zeros(0)
+            return CouplingModel(i, j, np.zeros((0, 0)), empty, empty, self.method)
+        import scipy.linalg
+
+        return CouplingModel(
+            i,
+            j,
+            scipy.linalg.block_diag(*blocks_a),
+            np.concatenate(blocks_b),
+            np.concatenate(blocks_c),
+            self.method,
+            dict(self.metrics.get(key, {})),
+            self.note,
+        )
+
+    def pairs(self) -> list[tuple[int, int]]:
+        """The modelled pairs (i, j), both orders, in row-major order."""
+        keys = set(self.metrics) or {(min(i, j), max(i, j)) for i in self.dofs for j in self.dofs}
+        out = set()
+        for i, j in keys:
+            out |= {(i, j), (j, i)}
+        return sorted(out)
+
+
 def siso_frequency_response(a: ArrayLike, b: ArrayLike, c: ArrayLike, omega: ArrayLike) -> NDArray:
     """c (jωI − a)⁻¹ b for each ω, through the eigen-decomposition of ``a``.
 
@@ -158,6 +287,9 @@ class RadiationModel:
         A∞ (n, n), kg, kg·m, kg·m², used with the model: A(ω) = A∞ + Im K(jω)/ω.
     attrs
         Provenance: source file, history, options, A∞ method …
+    blocks
+        :class:`MemoryBlock` models of groups of DOFs sharing their states (the pairs
+        inside a block are not in ``couplings``).
 
     Examples
     --------
@@ -173,6 +305,7 @@ class RadiationModel:
     couplings: tuple[CouplingModel, ...]
     added_mass_inf: NDArray[np.float64]
     attrs: Mapping[str, Any] = field(default_factory=dict)
+    blocks: tuple[MemoryBlock, ...] = ()
 
     def __post_init__(self) -> None:
         n = len(self.dofs)
@@ -186,13 +319,27 @@ class RadiationModel:
             if not (0 <= k.influenced < n and 0 <= k.radiating < n):
                 raise CumminsError(f"coupling {key} is outside the {n} DOFs")
             seen.add(key)
+        owned: set[int] = set()
+        for block in self.blocks:
+            m = len(block.dofs)
+            if not all(0 <= d < n for d in block.dofs) or len(set(block.dofs)) != m:
+                raise CumminsError(f"block {block.dofs} is not a set of the {n} DOFs")
+            if owned & set(block.dofs):
+                raise CumminsError(f"DOFs {sorted(owned & set(block.dofs))} are in two blocks")
+            owned |= set(block.dofs)
+            r = block.order
+            if np.shape(block.b) != (r, m) or np.shape(block.c) != (m, r):
+                raise CumminsError(f"block {block.dofs}: b must be {r}×{m} and c {m}×{r}")
+        inside = {key for key in seen if key[0] in owned and key[1] in owned}
+        if any(key[0] in b.dofs and key[1] in b.dofs for key in inside for b in self.blocks):
+            raise CumminsError("a coupling lies inside a block: model each pair once")
 
     # ------------------------------------------------------------------ MIMO matrices
 
     @functools.cached_property
     def _mimo(self) -> tuple[NDArray, NDArray, NDArray, NDArray]:
         n = len(self.dofs)
-        total = sum(k.order for k in self.couplings)
+        total = sum(k.order for k in self.couplings) + sum(k.order for k in self.blocks)
         a = np.zeros((total, total))
         b = np.zeros((total, n))
         c = np.zeros((n, total))
@@ -203,6 +350,14 @@ class RadiationModel:
             a[start:stop, start:stop] = k.a
             b[start:stop, k.radiating] = k.b
             c[k.influenced, start:stop] = k.c
+            owner[start:stop] = index
+            start = stop
+        for index, block in enumerate(self.blocks, start=len(self.couplings)):
+            stop = start + block.order
+            dofs = list(block.dofs)
+            a[start:stop, start:stop] = block.a
+            b[start:stop][:, dofs] = block.b
+            c[dofs, start:stop] = block.c
             owner[start:stop] = index
             start = stop
         return a, b, c, owner
@@ -230,8 +385,36 @@ class RadiationModel:
 
     @property
     def state_coupling(self) -> NDArray[np.int_]:
-        """Index in :attr:`couplings` of the coupling owning each state."""
+        """Index in :attr:`couplings` of the coupling owning each state (blocks follow the
+        couplings: block k owns the states marked ``len(couplings) + k``)."""
         return self._mimo[3]
+
+    def as_couplings(self) -> RadiationModel:
+        """The same K(s) with every block written as one minimal SISO model per pair
+        (:meth:`MemoryBlock.element_minimal`): for the file formats that store one model
+        per coupling (MSS ``vesselABC``, BEMIO, OpenFAST's states per radiating DOF). More
+        states than the block (its shared states are repeated per pair)."""
+        if not self.blocks:
+            return self
+        couplings = list(self.couplings)
+        for block in self.blocks:
+            for i, j in block.pairs():
+                if i <= j:
+                    k = block.element_minimal(i, j)
+                    couplings.append(k)
+                    if i != j:
+                        couplings.append(k.transposed())
+        couplings.sort(key=lambda k: (k.influenced, k.radiating))
+        return RadiationModel(self.dofs, tuple(couplings), self.added_mass_inf, self.attrs)
+
+    @property
+    def modelled(self) -> tuple[CouplingModel, ...]:
+        """Every modelled pair (i, j) as a SISO model: the couplings, and each pair of
+        every block as :meth:`MemoryBlock.element` (with the block's states), sorted."""
+        views = list(self.couplings)
+        for block in self.blocks:
+            views += [block.element(i, j) for i, j in block.pairs()]
+        return tuple(sorted(views, key=lambda k: (k.influenced, k.radiating)))
 
     @property
     def total_order(self) -> int:
@@ -239,17 +422,23 @@ class RadiationModel:
         return int(self.A.shape[0])
 
     def coupling(self, i: int | str, j: int | str) -> CouplingModel | None:
-        """The model of coupling (i, j) (indices or DOF labels), or None."""
+        """The model of coupling (i, j) (indices or DOF labels), or None; a pair inside
+        a block as :meth:`MemoryBlock.element`."""
         i = self.dofs.index(i) if isinstance(i, str) else i
         j = self.dofs.index(j) if isinstance(j, str) else j
         for k in self.couplings:
             if (k.influenced, k.radiating) == (i, j):
                 return k
+        for block in self.blocks:
+            if (i, j) in block.pairs():
+                return block.element(i, j)
         return None
 
     def is_stable(self) -> bool:
-        """True when every coupling model is stable (hence the block-diagonal MIMO model)."""
-        return all(k.is_stable() for k in self.couplings)
+        """True when every coupling and block model is stable (hence the MIMO model)."""
+        return all(k.is_stable() for k in self.couplings) and all(
+            b.is_stable() for b in self.blocks
+        )
 
     # ------------------------------------------------------------------ responses
 
@@ -284,6 +473,33 @@ class RadiationModel:
                 out[:, i, j] = k.frequency_response(w)
             else:
                 out[:, i, j] = (1.0 / (s[:, None] - lam[None, :])) @ residues
+        for block, (lam, left, right) in zip(self.blocks, self._block_modal, strict=True):
+            dofs = np.asarray(block.dofs)
+            if left is None:
+                eye = np.eye(block.order)
+                values = np.array(
+                    [block.c @ np.linalg.solve(1j * x * eye - block.a, block.b) for x in w]
+                )
+            else:  # c V diag(1/(s − λ)) V⁻¹ b
+                values = np.einsum("ik,wk,kj->wij", left, 1.0 / (s[:, None] - lam[None, :]), right)
+            out[:, dofs[:, None], dofs[None, :]] = values
+        return out
+
+    @functools.cached_property
+    def _block_modal(self) -> list[tuple[NDArray, NDArray | None, NDArray | None]]:
+        """(poles, c V, V⁻¹ b) per block; (poles, None, None) when ``a`` is defective."""
+        out = []
+        for block in self.blocks:
+            if not block.order:
+                out.append(
+                    (np.empty(0), np.zeros((len(block.dofs), 0)), np.zeros((0, len(block.dofs))))
+                )
+                continue
+            lam, v = np.linalg.eig(block.a)
+            if np.linalg.cond(v) < 1e10:
+                out.append((lam, block.c @ v, np.linalg.solve(v, block.b)))
+            else:
+                out.append((lam, None, None))
         return out
 
     def frequency_response(self, omega: ArrayLike) -> xr.DataArray:
@@ -314,6 +530,9 @@ class RadiationModel:
         out = np.zeros((t.size, n, n))
         for k in self.couplings:
             out[:, k.influenced, k.radiating] = k.impulse_response(t)
+        for block in self.blocks:
+            for i, j in block.pairs():
+                out[:, i, j] = block.element(i, j).impulse_response(t)
         return xr.DataArray(
             out,
             dims=("time", "influenced_dof", "radiating_dof"),
@@ -344,9 +563,10 @@ class RadiationModel:
         )
 
     def summary(self) -> list[dict]:
-        """One dictionary per coupling: i, j (1-based), order, method and metrics."""
+        """One dictionary per modelled pair (:attr:`modelled`): i, j (1-based), order,
+        method and metrics (a pair of a block gives the block's order)."""
         rows = []
-        for k in self.couplings:
+        for k in self.modelled:
             rows.append(
                 {
                     "i": k.influenced + 1,
@@ -443,6 +663,14 @@ def change_model_axes(
         replace(k, c=np.asarray(k.c, dtype=float) * (t[k.influenced] * t[k.radiating]))
         for k in model.couplings
     )
+    blocks = tuple(
+        replace(
+            block,
+            b=np.asarray(block.b, dtype=float) * t[list(block.dofs)][None, :],
+            c=t[list(block.dofs)][:, None] * np.asarray(block.c, dtype=float),
+        )
+        for block in model.blocks
+    )
     flip = np.array([1.0, -1.0, -1.0])
     for key in POSITION_ATTRS:
         if key in attrs and np.size(attrs[key]) and np.size(attrs[key]) % 3 == 0:
@@ -454,7 +682,7 @@ def change_model_axes(
     history = attrs.get("history")
     attrs["history"] = f"{history}\n{line}" if isinstance(history, str) and history else line
     added = t[:, None] * np.asarray(model.added_mass_inf, dtype=float) * t[None, :]
-    return RadiationModel(model.dofs, couplings, added, attrs)
+    return RadiationModel(model.dofs, couplings, added, attrs, blocks)
 
 
 def symmetric_couplings(models: Sequence[CouplingModel]) -> tuple[CouplingModel, ...]:

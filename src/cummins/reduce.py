@@ -1293,7 +1293,8 @@ def reduce_radiation_model(
     ------
     FitError
         Bad order (out of range, below 2 per coupling, unknown coupling) or tol, unknown
-        method, unstable coupling.
+        method, unstable coupling; a model with common-pole blocks (refit it with fewer
+        poles instead).
 
     Examples
     --------
@@ -1306,6 +1307,15 @@ def reduce_radiation_model(
     _check_method(method)
     _check_order_or_tol(order, tol)
     guard_radiation_model(model)  # FitError naming the coupling, before LAPACK sees it
+    if model.blocks:
+        raise FitError(
+            "the model holds common-pole blocks (the default identification, method 'vf'), "
+            "whose DOFs share their states; balanced truncation here reduces models of "
+            "single couplings",
+            hint="fit again with fewer common poles (fit_radiation(..., max_order=N) or "
+            "orders=...; cummins fit --max-order N), or fit per coupling (method='fd') "
+            "and reduce that",
+        )
     if data is not None:
         guard_hydro_data(data, what="reduction")
     fitted = None if data is None else model_fit_data(model, data)

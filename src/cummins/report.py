@@ -342,14 +342,14 @@ def model_sections(path: Path) -> list[Section]:
 
     model = RadiationModel.load(path)
     rows = []
-    for k in model.couplings:
+    for k in model.modelled:
         if k.influenced > k.radiating:
             continue
         m = k.metrics
         rows.append(
             [
                 f"{model.dofs[k.influenced]}–{model.dofs[k.radiating]}",
-                k.order,
+                int(m.get("common_poles", k.order)),
                 m.get("r2_added_mass", np.nan),
                 m.get("r2_damping", np.nan),
                 m.get("r2_kernel", np.nan),
@@ -363,6 +363,11 @@ def model_sections(path: Path) -> list[Section]:
             _note(
                 f"{len(model.dofs)} DOFs, total order {model.total_order}, MIMO passive: "
                 f"{model.attrs.get('mimo_passive', 'not recorded')}."
+                + "".join(
+                    f" {'-'.join(model.dofs[d] for d in b.dofs)}: one block of {b.order} "
+                    "states (the order of its pairs is the number of common poles)."
+                    for b in model.blocks
+                )
             )
             + table_html(
                 ["coupling", "order", "R² A", "R² B", "R² K(t)", "stable", "positive real"], rows
@@ -370,6 +375,7 @@ def model_sections(path: Path) -> list[Section]:
         )
     ]
     poles = [c.poles() for c in model.couplings if c.order]
+    poles += [b.poles() for b in model.blocks if b.order]
     slowest = min(float(np.abs(p.real).min()) for p in poles) if poles else 1.0
     t = np.linspace(0.0, min(5.0 / max(slowest, 1e-3), 200.0), 600)
     sections.append(
@@ -395,7 +401,7 @@ def model_sections(path: Path) -> list[Section]:
             plot_coupling_fit(ds, model, k.influenced, k.radiating, excluded),
             f"{model.dofs[k.influenced]}–{model.dofs[k.radiating]}: data against the model",
         )
-        for k in model.couplings
+        for k in model.modelled
         if k.influenced <= k.radiating
     ]
     sections.append(Section(f"Fits against the data ({Path(str(source)).name})", "".join(figures)))

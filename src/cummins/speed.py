@@ -101,8 +101,14 @@ class SpeedError(CumminsError, ValueError):
 #: :func:`cummins.fit.fit_radiation` uses by default weights the error by the zero-speed
 #: equation of motion, which is not the one at speed; the memory parts are fitted by R²
 #: over the frequencies below the first suspect one, as before motion weighting. Fit a K⁰
-#: for :func:`speed_dependent_model` with the same options.
-SPEED_FIT_DEFAULTS: dict[str, Any] = {"weighting": "uniform", "exclude_suspect": "above_first"}
+#: for :func:`speed_dependent_model` with the same options. The speed terms K¹, K² are
+#: derived coupling by coupling (``method="fd"``: one SISO model per coupling), not from
+#: the common-pole blocks of the zero-speed default.
+SPEED_FIT_DEFAULTS: dict[str, Any] = {
+    "method": "fd",
+    "weighting": "uniform",
+    "exclude_suspect": "above_first",
+}
 
 
 def encounter_frequency(
@@ -952,6 +958,12 @@ def speed_dependent_model(
         from cummins.fit import fit_radiation
 
         model = fit_radiation(ds, **{**SPEED_FIT_DEFAULTS, **fit_options})
+    if model.blocks:
+        raise FitError(
+            "the speed terms are built coupling by coupling, and this K⁰ holds common-pole blocks",
+            hint="fit K⁰ with fit_radiation(ds, **SPEED_FIT_DEFAULTS) (method='fd'), or "
+            "leave model out",
+        )
     labels = list(model.dofs)
     n = len(labels)
     e = speed_coupling_matrix(labels)

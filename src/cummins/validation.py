@@ -355,6 +355,9 @@ def guard_radiation_model(model, error: type[Exception] | None = None) -> None:
         a, b = dofs[k.influenced], dofs[k.radiating]
         pair = a if a == b else f"{a}-{b}"
         guard_state_space(k.a, k.b, k.c, f"the model of coupling {pair}", error)
+    for block in getattr(model, "blocks", ()):
+        name = "-".join(dofs[d] for d in block.dofs)
+        guard_state_space(block.a, block.b, block.c, f"the model of the block {name}", error)
     a_inf = np.asarray(model.added_mass_inf, dtype=float)
     for i, row in enumerate(dofs):
         for j, col in enumerate(dofs):

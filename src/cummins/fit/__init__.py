@@ -20,16 +20,23 @@
    motions (``weighting="motion"``, :mod:`cummins.fit.motion`): every error δK_ij(ω)
    weighs its first-order effect on the motion RAOs (δX = −H jω δK X, Falnes (2002)
    eq. 5.8), besides the R² of A and of B. Without them, the R² alone (``"uniform"``).
-5. **Each coupling**: frequency-domain fit (:mod:`cummins.fit.frequency`) or time-domain
-   realization of K(t) (:mod:`cummins.fit.realization`, Kung/ERA or Prony), at the
-   smallest order whose R² of A and of B reaches the target (default 0.99) and whose
-   share of the motion error is within its budget, up to ``max_order``; users can fix
-   the order of any coupling. Every returned model is stable; diagonal models are
-   required to be positive real.
-6. **MIMO**: the assembled model made passive (:func:`make_passive`), then up to three
-   rounds refit the couplings that carry the motion error of the whole model until it is
-   within ``motion_tol`` (1 %) of each motion's peak. ``attrs["failures"]`` lists what
-   misses a target (:func:`fit_failures`).
+5. **The model** (``method="vf"``, default): the DOFs that radiate into each other form
+   blocks (surge–heave–pitch and sway–roll–yaw of a ship; every DOF of interacting
+   bodies), and the couplings of a block share their poles (:mod:`cummins.fit.vector`:
+   vector fitting, Gustavsen & Semlyen (1999)), at the smallest number of poles whose R²
+   of A and of B reach the targets (default 0.99 on the diagonal, 0.97 off it) and
+   whose motion error is within 80 % of ``motion_tol``; each block is made passive as
+   fitted, by the smallest weighted change of its residues, and realized with one state
+   per rank of each residue matrix. With ``method="fd"``, ``"realization"`` or
+   ``"prony"`` each coupling gets its own model instead
+   (:mod:`cummins.fit.frequency`, :mod:`cummins.fit.realization`), at the smallest
+   order whose R² reaches the target and whose share of the motion error is within its
+   budget, up to ``max_order``; diagonal models are positive real.
+6. **MIMO** (per-coupling methods): the assembled model made passive
+   (:func:`make_passive`), then up to three rounds refit the couplings that carry the
+   motion error of the whole model until it is within ``motion_tol`` (1 %) of each
+   motion's peak. ``attrs["failures"]`` lists what misses a target
+   (:func:`fit_failures`).
 7. **Metrics** per coupling (:mod:`cummins.fit.metrics`); the scoreboard of a model
    against its data, independent of the fit: :mod:`cummins.fit.scorecard`.
 """
@@ -65,14 +72,17 @@ from cummins.retardation import (
 from cummins.retardation import default_retardation_function, significant_couplings
 from cummins.validation import guard_fit_arguments, guard_hydro_data
 
-METHODS = ("fd", "realization", "prony")
+METHODS = ("vf", "fd", "realization", "prony")
 PASSIVITY_OPTIONS = ("mimo", "diagonal", "none")
 ADDED_MASS_INF = ("auto", "data", "fit", "ogilvie")
 WEIGHTINGS = ("auto", "motion", "response", "uniform")
 #: The options that reproduce the default identification before issue 16 (uniform
 #: weighting, R² targets only, every frequency above the first suspect one left out):
 #: ``fit_radiation(ds, **PREVIOUS_DEFAULT)``, for comparisons (benchmarks/bench_identification.py).
-PREVIOUS_DEFAULT = {"weighting": "uniform", "exclude_suspect": "above_first"}
+PREVIOUS_DEFAULT = {"method": "fd", "weighting": "uniform", "exclude_suspect": "above_first"}
+#: Default ``max_order`` per method: the number of common poles of a block (``"vf"``),
+#: the order of one coupling otherwise.
+MAX_ORDER = {"vf": 20, "fd": 10, "realization": 10, "prony": 10}
 #: Default largest relative motion error of a fit (``motion_tol``): the scoreboard's 1 %
 #: (issue 16). A fit above it is reported as a failure (``attrs["failures"]``).
 MOTION_TOL = 0.01
@@ -86,13 +96,12 @@ MOTION_AIM = 0.8
 #: of the order search tighten it where the model misses.
 INITIAL_BUDGET = 1.2
 #: Options of :func:`fit_radiation` for simulations that must reproduce the frequency-domain
-#: RAOs of the data closely (``fit_radiation(ds, **MOTION_ACCURACY)``, ``cummins simulate
-#: --accurate``): tight R² targets, higher orders, response weighting. Measured by the
-#: scoreboard (cummins.fit.scorecard, 2 % critical damping) on the MSS tanker: RAO error
-#: 0.82 % at 237 states and ~100 s, against 0.93 % at 74 states and ~2 s for the default
-#: since issue 16 (6.0 % at 54 states before it). It buys little now; it is kept for
-#: ``--accurate`` and the regular-wave tests, which fix its orders (tests/test_simulate.py).
-MOTION_ACCURACY = {"r2": 0.9999, "r2_coupling": 0.999, "max_order": 20, "weighting": "response"}
+#: RAOs of the data more closely than the default (``cummins simulate --accurate``): a
+#: motion error within 0.2 % of each DOF's peak instead of 1 %. Measured by the
+#: scoreboard (cummins.fit.scorecard, 2 % critical damping): MSS tanker 0.14 % at 51
+#: states (default 0.55 % at 42), supply 0.24 % at 43 (0.31 % at 41), WEC-Sim sphere
+#: 0.20 % at 37 (0.62 % at 22).
+MOTION_ACCURACY = {"motion_tol": 0.002}
 
 __all__ = [
     "METHODS",
@@ -107,10 +116,10 @@ __all__ = [
 def fit_radiation(
     ds: xr.Dataset,
     *,
-    method: str = "fd",
+    method: str = "vf",
     r2: float = 0.99,
     r2_coupling: float | None = 0.97,
-    max_order: int = 10,
+    max_order: int | None = None,
     orders: Mapping[tuple[int, int], int] | None = None,
     threshold: float = 0.01,
     added_mass_inf: str = "auto",
@@ -129,17 +138,21 @@ def fit_radiation(
     ds
         A ``HydroDB`` at one forward speed (zero speed: symmetric couplings).
     method
-        ``"fd"`` (frequency domain, default), ``"realization"`` (Kung/ERA on K(t)) or
-        ``"prony"``.
+        ``"vf"`` (default): common poles per block of coupled DOFs, vector fitting
+        (:mod:`cummins.fit.vector`); ``"fd"``: one frequency-domain model per coupling;
+        ``"realization"`` (Kung/ERA on K(t)) or ``"prony"``, per coupling.
     r2
         Target R² of A(ω) and of B(ω) that selects the order of each diagonal term.
     r2_coupling
         Target for the off-diagonal couplings (``None``: same as ``r2``). Couplings matter less to
         the motions and are harder to fit: a lower target keeps the model compact.
     max_order
-        Highest order tried.
+        Highest order tried: the number of common poles of a block (``"vf"``, default
+        20), the order of one coupling otherwise (default 10).
     orders
-        Fixed orders for some couplings, ``{(i, j): n}`` with 0-based DOF indices.
+        Fixed orders for some couplings, ``{(i, j): n}`` with 0-based DOF indices; with
+        ``"vf"`` the number of poles of the block holding the pair (the largest given
+        for the block).
     threshold
         Couplings below this fraction of the diagonal terms are left out.
     added_mass_inf
@@ -157,7 +170,8 @@ def fit_radiation(
         data-weighted change of the residues, with a pole added where residues alone
         would cost a diagonal term its R² target; each changed coupling's note gives its
         R² before and after). ``"diagonal"``: positive-real diagonal models only (the
-        identification itself). ``"none"``: stability only.
+        identification itself). ``"none"``: stability only. With ``method="vf"`` a block
+        is made passive as a whole when it is fitted (``"mimo"``) or not at all.
     weighting
         ``"auto"`` (default): ``"motion"`` when the data hold the inertia and the
         restoring (and ``method="fd"``), else ``"uniform"``. ``"motion"``: the error of
@@ -180,7 +194,9 @@ def fit_radiation(
     Returns
     -------
     RadiationModel
-        With per-coupling ``metrics`` and ``attrs`` recording the data used.
+        With per-coupling ``metrics`` (per pair of each block for ``"vf"``:
+        ``model.modelled``) and ``attrs`` recording the data used, ``mimo_passive``,
+        ``motion_error`` and ``failures``.
 
     Raises
     ------
@@ -210,6 +226,8 @@ def fit_radiation(
         raise FitError(
             f"unknown passivity option {passivity!r}; use one of {', '.join(PASSIVITY_OPTIONS)}"
         )
+    if max_order is None:
+        max_order = MAX_ORDER[method]
     if max_order < 2:
         raise FitError(
             f"max_order is {max_order}: a radiation model needs at least 2 states "
@@ -245,7 +263,7 @@ def fit_radiation(
     a_inf_mode = added_mass_inf
     if a_inf_mode == "auto":
         a_inf_mode = (
-            "data" if "added_mass_inf" in data else ("fit" if method == "fd" else "ogilvie")
+            "data" if "added_mass_inf" in data else ("fit" if method in ("fd", "vf") else "ogilvie")
         )
     if a_inf_mode == "data" and "added_mass_inf" not in data:
         raise HydroDataError(
@@ -253,7 +271,7 @@ def fit_radiation(
             path=ds.attrs.get("source_file"),
             hint="use added_mass_inf='fit' or 'ogilvie'",
         )
-    if a_inf_mode == "fit" and method != "fd":
+    if a_inf_mode == "fit" and method not in ("fd", "vf"):
         raise FitError("the joint A∞ estimate needs method='fd'; use added_mass_inf='ogilvie'")
     ogilvie_estimate = estimate_added_mass_inf(
         clean.drop_vars("added_mass_inf", errors="ignore"), method="ogilvie"
@@ -264,7 +282,7 @@ def fit_radiation(
     if added_mass_inf == "auto" and a_inf_mode == "data":
         inconsistent = inconsistent_added_mass_inf(clean, ogilvie, ogilvie_spread)
         if inconsistent:
-            a_inf_mode = "fit" if method == "fd" else "ogilvie"
+            a_inf_mode = "fit" if method in ("fd", "vf") else "ogilvie"
             data_notes.append(
                 "the data's infinite-frequency added mass disagrees with its finite "
                 f"frequencies ({'; '.join(inconsistent)}): not used, A∞ estimated "
@@ -281,7 +299,7 @@ def fit_radiation(
     weights = _response_weights(data) if weighting == "response" else None
     if weighting == "auto":
         known = {"inertia_matrix", "hydrostatic_stiffness"} <= set(data)
-        weighting = "motion" if known and method == "fd" else "uniform"
+        weighting = "motion" if known and method in ("fd", "vf") else "uniform"
     sensitivity = None
     if weighting == "motion":
         sensitivity = motion_sensitivity(data, added_mass_inf=a_inf)
@@ -343,7 +361,6 @@ def fit_radiation(
         metrics["elapsed_s"] = time.perf_counter() - started
         return replace(model, metrics=metrics)
 
-    models = {(i, j): fit_one(i, j) for i, j in pairs}
     attrs = {
         "source_file": str(ds.attrs.get("source_file", "")),
         "source_format": str(ds.attrs.get("source_format", "")),
@@ -371,6 +388,38 @@ def fit_radiation(
         "omega_fit_min": float(w_all[0]),
         "omega_fit_max": float(w_all[-1]),
     }
+    if method == "vf":
+        model = _fit_common_poles(
+            labels,
+            w_all,
+            a_raw,
+            b_raw,
+            keep_dof,
+            pairs,
+            measured,
+            a_inf=None if a_inf_mode == "fit" else a_inf,
+            sensitivity=sensitivity,
+            r2=r2,
+            r2_coupling=r2 if r2_coupling is None else r2_coupling,
+            max_order=max_order,
+            orders=orders,
+            motion_tol=motion_tol,
+            passive=passivity == "mimo",
+            attrs=attrs,
+            say=say,
+        )
+        failures = fit_failures(
+            model,
+            r2=r2,
+            r2_coupling=r2 if r2_coupling is None else r2_coupling,
+            passivity=passivity,
+            motion_tol=motion_tol if sensitivity is not None else None,
+        )
+        return replace(
+            model,
+            attrs={**model.attrs, "failures": failures, "elapsed_s": time.perf_counter() - start},
+        )
+    models = {(i, j): fit_one(i, j) for i, j in pairs}
 
     def assemble(last_resort: bool = False) -> RadiationModel:
         out = RadiationModel(
@@ -573,7 +622,7 @@ def fit_failures(
     out = []
     if passivity == "mimo" and not model.attrs.get("mimo_passive", True):
         out.append("the MIMO model is not passive")
-    for k in model.couplings:
+    for k in model.modelled:
         if k.influenced > k.radiating:
             continue
         target = r2 if k.influenced == k.radiating else r2_coupling
@@ -585,8 +634,9 @@ def fit_failures(
             if before is None or after is None:
                 continue
             if after < min(target, before) - 1e-3 and (before >= target or after < before - 0.05):
+                step = "passivity" if k.method == "vf" else "MIMO passivity"
                 out.append(
-                    f"{name}: MIMO passivity took the R² of {what} from {before:.4f} to "
+                    f"{name}: {step} took the R² of {what} from {before:.4f} to "
                     f"{after:.4f} (target {target})"
                 )
     error = model.attrs.get("motion_error")
@@ -1339,3 +1389,149 @@ def _fit_order(method, w, a, b, t, kernel, n, *, a_inf, guess, spread, passive, 
         extra["hankel_singular_values"] = sigma[:HANKEL_VALUES_REPORTED].tolist()
     siso = _Siso(result.a, result.b, result.c, result.note, extra=extra)
     return siso, a_inf, crit.score(r2a, r2b, k, a_inf), ok
+
+
+def _fit_common_poles(
+    labels,
+    w,
+    added_mass,
+    damping,
+    keep_dof,
+    pairs,
+    measured: FitData,
+    *,
+    a_inf,
+    sensitivity: MotionSensitivity | None,
+    r2: float,
+    r2_coupling: float,
+    max_order: int,
+    orders,
+    motion_tol: float,
+    passive: bool,
+    attrs: dict,
+    say: Callable[[str], None],
+) -> RadiationModel:
+    """``method="vf"``: every block of coupled DOFs fitted with common poles
+    (:mod:`cummins.fit.vector`), as :class:`~cummins.radiation.MemoryBlock` models."""
+    from cummins.fit import vector
+    from cummins.radiation import MemoryBlock
+
+    n = len(labels)
+    positive = w > 0
+    omega = w[positive]
+    a_data, b_data = added_mass[positive], damping[positive]
+    keep = keep_dof[positive]
+    inf = np.zeros((n, n)) if a_inf is None else 0.5 * (a_inf + a_inf.T)
+    k_data = None
+    if sensitivity is not None:
+        rows = sensitivity.compared_frequencies()
+        wk = sensitivity.omega[rows]
+        k_data = measured.damping[rows] + 1j * wk[:, None, None] * measured.added_mass[rows]
+    motion_aim = MOTION_AIM * motion_tol if sensitivity is not None else None
+    blocks, notes = [], []
+    for dofs, elements in vector.block_groups(n, pairs):
+        say("block " + "-".join(labels[d] for d in dofs))
+        used = np.stack([keep[:, i] & keep[:, j] for i, j in elements], axis=1)
+        data = vector.block_data(
+            dofs,
+            elements,
+            omega,
+            a_data,
+            b_data,
+            used,
+            added_mass_inf=None if a_inf is None else inf,
+            motion_weight=None if sensitivity is None else sensitivity.coupling_weight,
+            motion_tol=motion_tol,
+        )
+
+        def motion(block, dofs=dofs):
+            if k_data is None:
+                return 0.0
+            k = k_data.copy()
+            local = block.response(wk)
+            a_block = np.zeros((len(dofs), len(dofs)))
+            for e, (i, j) in enumerate(block.elements):
+                ii, jj = dofs.index(i), dofs.index(j)
+                a_block[ii, jj] = a_block[jj, ii] = block.added_mass_inf[e]
+            k[:, np.asarray(dofs)[:, None], np.asarray(dofs)[None, :]] = (
+                local + 1j * wk[:, None, None] * a_block
+            )
+            return sensitivity.error_of(k, np.zeros((n, n)))[0]
+
+        fixed = [
+            (orders or {}).get((i, j), (orders or {}).get((j, i)))
+            for i, j in elements
+            if (orders or {}).get((i, j), (orders or {}).get((j, i)))
+        ]
+        started = time.perf_counter()
+        name = "-".join(labels[d] for d in dofs)
+        try:
+            fitted, _, block_notes = vector.identify_block(
+                data,
+                r2=r2,
+                r2_coupling=r2_coupling,
+                max_count=max_order,
+                motion=motion if k_data is not None else None,
+                motion_aim=motion_aim,
+                fixed_count=max(fixed) if fixed else None,
+                passive=passive,
+            )
+        except FitError as exc:
+            raise FitError(f"{name}: {exc}") from None
+        plain_block = vector.fit_residues_at(data, fitted.poles) if passive else None
+        a, b, c = fitted.realization()
+        for e, (i, j) in enumerate(elements):
+            inf[i, j] = inf[j, i] = fitted.added_mass_inf[e]
+        note = "; ".join(block_notes)
+        block = MemoryBlock(dofs, a, b, c, "vf", {}, note)
+        metrics = {}
+        before = None
+        if plain_block is not None:
+            before = vector.score_block(plain_block, data, r2=r2, r2_coupling=r2_coupling)
+        for e, (i, j) in enumerate(elements):
+            use = used[:, e]
+            view = block.element(i, j)
+            m = coupling_metrics(
+                view,
+                omega[use],
+                a_data[use, i, j],
+                b_data[use, i, j],
+                inf[i, j],
+                time=measured.time,
+                kernel=measured.kernel[:, i, j],
+            )
+            m["n_excluded_frequencies"] = int((~use).sum())
+            m["common_poles"] = fitted.poles.count
+            if before is not None:
+                m["r2_added_mass_before"], m["r2_damping_before"] = before.r2[(i, j)]
+            metrics[(i, j)] = m
+        elapsed = time.perf_counter() - started
+        for m in metrics.values():
+            m["elapsed_s"] = elapsed
+        blocks.append(replace(block, metrics=metrics))
+        notes += [f"{name}: {x}" for x in block_notes]
+    model = RadiationModel(
+        tuple(labels),
+        (),
+        inf,
+        {**attrs, "data_notes": [*attrs.get("data_notes", []), *notes]},
+        tuple(blocks),
+    )
+    extra: dict = {}
+    if passive:
+        report = passivity_test(model)
+        extra["mimo_passive"] = bool(report.passive)
+    if sensitivity is not None:
+        error, per_dof = sensitivity.model_error(model)
+        extra.update(
+            motion_error=float(error),
+            motion_error_by_dof=[float(x) for x in per_dof],
+            motion_target=float(motion_tol),
+        )
+        if error > motion_tol:
+            extra["data_notes"] = [
+                *model.attrs.get("data_notes", []),
+                f"motion error {100 * error:.2f} % of the peak motion, above the target "
+                f"{100 * motion_tol:.2g} % (the data's own consistency may limit it)",
+            ]
+    return replace(model, attrs={**model.attrs, **extra})

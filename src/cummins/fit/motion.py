@@ -111,12 +111,22 @@ class MotionSensitivity:
         the same load cases: max over cases of max_ω |X_model − X_data| / max_ω |X_data|,
         per DOF (the issue-16 RAO error at the fitted frequencies; on full-scale data,
         ω_max < 10 rad/s, those ≥ 0.15 rad/s), and its maximum."""
+        rows = self.compared_frequencies()
+        return self.error_of(model.response(self.omega[rows]), model.added_mass_inf)
+
+    def compared_frequencies(self) -> NDArray[np.bool_]:
+        """Which of :attr:`omega` the motion error compares (on full-scale data,
+        ω_max < 10 rad/s, those ≥ 0.15 rad/s)."""
         w = self.omega
-        rows = w >= RAO_OMEGA_MIN if w.max() < FULL_SCALE_OMEGA_MAX else np.ones(w.size, bool)
-        w = w[rows]
-        k = model.response(w)
+        return w >= RAO_OMEGA_MIN if w.max() < FULL_SCALE_OMEGA_MAX else np.ones(w.size, bool)
+
+    def error_of(self, k, added_mass_inf) -> tuple[float, NDArray[np.float64]]:
+        """:meth:`model_error` of K(jω) given at the compared frequencies
+        (:meth:`compared_frequencies`), with its A∞."""
+        rows = self.compared_frequencies()
+        w = self.omega[rows]
         z = (
-            -(w**2)[:, None, None] * (self.rigid_body_mass + np.asarray(model.added_mass_inf))
+            -(w**2)[:, None, None] * (self.rigid_body_mass + np.asarray(added_mass_inf))
             + 1j * w[:, None, None] * (self.viscous_damping + k)
             + self.stiffness
         )

@@ -941,6 +941,7 @@ def _state_space(model, labels: Sequence[str], t: np.ndarray, rho: float, path: 
             path=path,
         )
     n = len(labels)
+    model = model.as_couplings()  # BEMIO stores one state-space model per coupling
     by_pair = {(k.influenced, k.radiating): k for k in model.couplings}
     order = max([k.order for k in model.couplings] + [1])
     a = np.zeros((n, n, order, order))

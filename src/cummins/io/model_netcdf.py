@@ -25,6 +25,13 @@ its ``a`` as a diagonal block, B its ``b`` in column j of those rows, C its ``c`
 i of those columns, and every other entry of A, B, C is zero. A symmetric pair K_ij =
 K_ji appears as two couplings with the same matrices.
 
+Since format version 2 a model may also hold **blocks** (after the couplings): MIMO
+models K_D(s) = c (sI − a)⁻¹ b of a group D of DOFs sharing their states (the
+common-pole identification). The states of block k are contiguous and follow those of
+the couplings; A holds its ``a`` as a diagonal block, B its ``b`` in the columns of D,
+C its ``c`` in the rows of D (in increasing DOF order). A file without blocks is a valid
+version-1 file.
+
 Dimensions and coordinates
 --------------------------
 ``input``, ``output``
@@ -36,6 +43,8 @@ Dimensions and coordinates
 ``coupling``
     One entry per coupling model; its coordinate numbers them 1, 2, … May be of
     length 0.
+``block``
+    One entry per block (version 2; absent or of length 0 without blocks).
 
 Variables
 ---------
@@ -49,7 +58,18 @@ Variables
     A∞, to use with the model: A(ω) = A∞ + Im K(jω)/ω.
 ``state_coupling`` (state), int32
     Number (the ``coupling`` coordinate, 1-based) of the coupling owning each state:
-    coupling k's ``a``, ``b``, ``c`` are A, B[:, j], C[i, :] restricted to its states.
+    coupling k's ``a``, ``b``, ``c`` are A, B[:, j], C[i, :] restricted to its states;
+    0 for a state of a block.
+``state_block`` (state), int32
+    Number (1-based) of the block owning each state, 0 for a state of a coupling
+    (version 2).
+``block_dof`` (block, input), int8
+    1 where the DOF belongs to the block, 0 elsewhere.
+``block_order`` (block), int32; ``block_method``, ``block_note`` (block), string
+    The block's number of states, how it was identified (``"vf"``) and its note.
+``block_metrics_json`` (block), string
+    The fit measures of each pair of the block: a JSON object ``{"i,j": {metric:
+    value}}`` (1-based DOF indices, i ≤ j; values in cummins' tagged JSON).
 ``coupling_influenced``, ``coupling_radiating`` (coupling), int32
     i (force, output) and j (velocity, input) of each coupling, 1-based DOF indices.
 ``coupling_order`` (coupling), int32
@@ -101,7 +121,7 @@ import xarray as xr
 from numpy.typing import NDArray
 
 from cummins._version import __version__
-from cummins.errors import HydroDataError
+from cummins.errors import CumminsError, HydroDataError
 from cummins.io.netcdf import (
     JSON_ATTRS,
     VERSION_ATTR,
@@ -112,14 +132,16 @@ from cummins.io.netcdf import (
     load_netcdf,
     save_netcdf,
 )
-from cummins.radiation import CouplingModel, RadiationModel
+from cummins.radiation import CouplingModel, MemoryBlock, RadiationModel
 
 __all__ = ["FORMAT_NAME", "FORMAT_VERSION", "read_radiation_model", "write_radiation_model"]
 
 #: Value of the ``cummins_format`` attribute.
 FORMAT_NAME = "cummins-radiation-model"
 #: Value of the ``cummins_format_version`` attribute.
-FORMAT_VERSION = 1
+FORMAT_VERSION = 2
+#: Versions this reader takes.
+READABLE_VERSIONS = (1, 2)
 
 CONVENTIONS = (
     "cummins radiation model v1: chi' = A chi + B v, mu = C chi + D v (D = 0), "
@@ -128,7 +150,8 @@ CONVENTIONS = (
     "= -A_inf v' - mu; block-diagonal stack of SISO couplings: coupling k owns the states "
     "with state_coupling == k (1-based), a = A[k,k], b = B[k, coupling_radiating-1], "
     "c = C[coupling_influenced-1, k]; DOF indices are 1-based; coupling_<metric>: NaN "
-    "(float) or -1 (bool as int8) where absent"
+    "(float) or -1 (bool as int8) where absent; blocks (version 2) follow the couplings: "
+    "block k owns the states with state_block == k, its DOFs are block_dof == 1"
 )
 
 _RESERVED_ATTRS = ("conventions", VERSION_ATTR, "cummins_format", "cummins_format_version")
@@ -216,8 +239,55 @@ def model_to_dataset(model: RadiationModel) -> xr.Dataset:
     for name, var in metric_vars.items():
         ds[name] = var
     ds["coupling_metrics_json"] = (("coupling",), _strings(metrics_json))
+    _block_variables(ds, model)
     ds.attrs = _file_attributes(model.attrs)
+    ds.attrs["cummins_format_version"] = np.int32(2 if model.blocks else 1)
     return ds
+
+
+def _block_variables(ds: xr.Dataset, model: RadiationModel) -> None:
+    """The block variables of version 2 (and ``state_coupling`` 0 on block states); none
+    for a model without blocks (a version-1 file)."""
+    if not model.blocks:
+        return
+    count = len(model.couplings)
+    owner = model.state_coupling
+    ds["state_coupling"].values = np.where(owner < count, owner + 1, 0).astype(np.int32)
+    ds["state_block"] = (
+        ("state",),
+        np.where(owner >= count, owner - count + 1, 0).astype(np.int32),
+        {"long_name": "block number (1-based) owning each state, 0 for couplings"},
+    )
+    blocks = model.blocks
+    ds.coords["block"] = ("block", np.arange(1, len(blocks) + 1, dtype=np.int32))
+    member = np.zeros((len(blocks), len(model.dofs)), dtype=np.int8)
+    for k, block in enumerate(blocks):
+        member[k, list(block.dofs)] = 1
+    ds["block_dof"] = (("block", "input"), member, {"long_name": "DOF belongs to the block"})
+    ds["block_order"] = (
+        ("block",),
+        np.array([block.order for block in blocks], dtype=np.int32),
+        {"long_name": "number of states"},
+    )
+    ds["block_method"] = (("block",), _strings([block.method for block in blocks]))
+    ds["block_note"] = (("block",), _strings([block.note for block in blocks]))
+    ds["block_metrics_json"] = (
+        ("block",),
+        _strings(
+            [
+                json.dumps(
+                    {
+                        f"{i + 1},{j + 1}": {
+                            str(name): encode_attribute(value, str(name))
+                            for name, value in metrics.items()
+                        }
+                        for (i, j), metrics in block.metrics.items()
+                    }
+                )
+                for block in blocks
+            ]
+        ),
+    )
 
 
 def _strings(values: list[str]) -> NDArray:
@@ -356,10 +426,72 @@ def dataset_to_model(raw: xr.Dataset, path: str | os.PathLike[str] | None = None
                 path=path,
                 hint="add D to A∞ as a constant force term instead",
             )
+    version = raw.attrs.get("cummins_format_version", 1)
+    if int(version) not in READABLE_VERSIONS:
+        raise HydroDataError(
+            f"cummins_format_version {version} is newer than this cummins reads "
+            f"({max(READABLE_VERSIONS)})",
+            path=path,
+            hint="update cummins",
+        )
     couplings = _couplings(raw, a, b, c, n, path)
-    model = RadiationModel(tuple(dofs), couplings, added, _model_attributes(raw, path))
+    blocks = _blocks(raw, a, b, c, n, path)
+    try:
+        model = RadiationModel(tuple(dofs), couplings, added, _model_attributes(raw, path), blocks)
+    except CumminsError as exc:
+        raise HydroDataError(str(exc), path=path) from None
     _check_assembly(model, a, b, c, path)
     return model
+
+
+def _blocks(raw: xr.Dataset, a, b, c, n: int, path) -> tuple[MemoryBlock, ...]:
+    """The blocks of a version-2 file (none in a version-1 file)."""
+    count = raw.sizes.get("block", 0)
+    if not count:
+        return ()
+    for name in ("state_block", "block_dof"):
+        if name not in raw.variables:
+            raise HydroDataError(f"missing variable {name} (the file has blocks)", path=path)
+    owner = _integers(raw["state_block"].values, path)
+    member = raw["block_dof"].transpose("block", "input").values
+    methods = raw["block_method"].values if "block_method" in raw else [""] * count
+    notes = raw["block_note"].values if "block_note" in raw else [""] * count
+    texts = raw["block_metrics_json"].values if "block_metrics_json" in raw else [""] * count
+    out = []
+    for k in range(count):
+        states = np.flatnonzero(owner == k + 1)
+        dofs = tuple(int(d) for d in np.flatnonzero(member[k]))
+        if not dofs:
+            raise HydroDataError(f"block {k + 1} has no DOFs (block_dof)", path=path)
+        if states.size and np.any(np.diff(states) != 1):
+            raise HydroDataError(f"block {k + 1}: its states are not contiguous", path=path)
+        metrics = {}
+        if str(texts[k]):
+            try:
+                info = json.loads(str(texts[k]))
+                for key, values in info.items():
+                    i, j = (int(x) - 1 for x in key.split(","))
+                    metrics[(i, j)] = {
+                        name: decode_attribute(item) for name, item in values.items()
+                    }
+            except (ValueError, KeyError, TypeError, AttributeError) as exc:
+                raise HydroDataError(
+                    f"block {k + 1}: unreadable block_metrics_json ({exc})",
+                    path=path,
+                    hint="the file was edited or damaged",
+                ) from None
+        out.append(
+            MemoryBlock(
+                dofs,
+                a[np.ix_(states, states)],
+                b[np.ix_(states, list(dofs))],
+                c[np.ix_(list(dofs), states)],
+                str(methods[k]),
+                metrics,
+                str(notes[k]),
+            )
+        )
+    return tuple(out)
 
 
 def _dof_labels(raw: xr.Dataset, path) -> list[str]:
@@ -420,7 +552,7 @@ def _couplings(raw: xr.Dataset, a, b, c, n: int, path) -> tuple[CouplingModel, .
                 f"{label} holds {int(bad[0])}, outside the DOFs 1…{n} (indices are 1-based)",
                 path=path,
             )
-    unowned = np.setdiff1d(owner, numbers)
+    unowned = np.setdiff1d(owner[owner > 0], numbers)
     if unowned.size:
         raise HydroDataError(
             f"state_coupling refers to coupling {int(unowned[0])}, which does not exist",
@@ -457,7 +589,7 @@ def _couplings(raw: xr.Dataset, a, b, c, n: int, path) -> tuple[CouplingModel, .
                 str(notes[k]),
             )
         )
-    if not np.array_equal(owner, np.repeat(numbers, [k.order for k in out])):
+    if not np.array_equal(owner[owner > 0], np.repeat(numbers, [k.order for k in out])):
         raise HydroDataError(
             "the states are not stacked in the order of the coupling dimension",
             path=path,
@@ -541,8 +673,8 @@ def _check_assembly(model: RadiationModel, a, b, c, path) -> None:
             rows, cols = np.nonzero(expected != found)
             raise HydroDataError(
                 f"{name}[{rows[0] + 1}, {cols[0] + 1}] = {found[rows[0], cols[0]]:g} lies "
-                "outside the blocks of the couplings (state_coupling, coupling_influenced, "
-                "coupling_radiating)",
+                "outside the blocks of the couplings and blocks (state_coupling, "
+                "coupling_influenced, coupling_radiating, state_block, block_dof)",
                 path=path,
                 hint="A must be block-diagonal, B and C nonzero only in each coupling's "
                 "column j and row i",

@@ -142,7 +142,8 @@ def write_mss_abc(
     for key, value in given.items():
         if value is not None:
             attrs[key] = np.asarray(value, dtype=float)
-    model = RadiationModel(model.dofs, model.couplings, model.added_mass_inf, attrs)
+    # one SISO model per coupling: a common-pole block is written pair by pair
+    model = RadiationModel(model.dofs, model.as_couplings().couplings, model.added_mass_inf, attrs)
     z_down = change_model_axes(model, "z-down", current=current)
     struct = _vessel_abc(z_down, path)
     try:

@@ -256,7 +256,9 @@ def write_openfast_ss(
 
 
 def openfast_ss_from_model(model: RadiationModel, *, title: str | None = None) -> OpenFastSS:
-    """The ``.ss`` content of a z-up ``model``: states grouped by radiating DOF, C = −C."""
+    """The ``.ss`` content of a z-up ``model``: states grouped by radiating DOF, C = −C
+    (a common-pole block is written pair by pair, :meth:`RadiationModel.as_couplings`)."""
+    model = model.as_couplings()
     n = len(model.dofs)
     ordered = RadiationModel(model.dofs, ordered_for_openfast(model), model.added_mass_inf)
     per_dof = np.zeros(n, dtype=int)
