@@ -174,6 +174,11 @@ class BlockData:
         A∞ of each element when it is given (then not estimated), else None.
     n_data
         The number of data frequencies (the first ``n_data`` of ``omega``).
+    inf_guess, inf_spread
+        When A∞ is estimated: a prior per element (Ogilvie's estimate and its spread);
+        one more equation (A∞ − guess)/spread weighs like all the added-mass equations
+        of the element together, so that the data decide where they are informative
+        and the prior where the model would extrapolate.
     """
 
     dofs: tuple[int, ...]
@@ -187,6 +192,8 @@ class BlockData:
     added_mass: NDArray[np.float64] = field(repr=False, default=None)
     damping: NDArray[np.float64] = field(repr=False, default=None)
     used: NDArray[np.bool_] = field(repr=False, default=None)
+    inf_guess: NDArray[np.float64] | None = field(repr=False, default=None)
+    inf_spread: NDArray[np.float64] | None = field(repr=False, default=None)
 
 
 def block_data(
@@ -200,12 +207,14 @@ def block_data(
     added_mass_inf=None,
     motion_weight=None,
     motion_tol: float = 0.01,
+    prior=None,
 ) -> BlockData:
     """Equations of a block (see :class:`BlockData`).
 
     ``added_mass``, ``damping``: symmetric parts of the data (omega, n, n); ``used``:
     (omega, n_elements) which frequencies each coupling keeps; ``motion_weight``:
-    callable (i, j) → W_ij(ω) of :class:`cummins.fit.motion.MotionSensitivity` or None.
+    callable (i, j) → W_ij(ω) of :class:`cummins.fit.motion.MotionSensitivity` or None;
+    ``prior``: (guess, spread) matrices of A∞ when it is estimated.
     """
     w = np.asarray(omega, dtype=float)
     tail = w.max() * TAIL_FACTORS
@@ -234,9 +243,12 @@ def block_data(
         last_weight = r_b[last[-1]] if last.size else 0.0
         wr.append(np.r_[r_a, np.zeros(tail.size)])
         wi.append(np.r_[r_b, TAIL_WEIGHT * last_weight * tail / w.max()])
-    fixed = None
+    fixed = guess = spread = None
     if added_mass_inf is not None:
         fixed = np.array([added_mass_inf[i, j] for i, j in elements])
+    elif prior is not None:
+        guess = np.array([prior[0][i, j] for i, j in elements])
+        spread = np.array([prior[1][i, j] for i, j in elements])
     return BlockData(
         tuple(dofs),
         tuple(elements),
@@ -249,6 +261,8 @@ def block_data(
         added_mass,
         damping,
         used,
+        guess,
+        spread,
     )
 
 
@@ -311,6 +325,14 @@ def fit_residues(data: BlockData, poles: Poles) -> tuple[NDArray, NDArray]:
     ):
         rows = _stacked(m, wr, wi)
         rhs = np.concatenate([wr * f.real, wi * f.imag])
+        if data.fixed_inf is None and data.inf_guess is not None and data.inf_spread[e] > 0:
+            # the prior: weighs like all the added-mass equations together (their
+            # weights are 1/spread of A over √n each)
+            weight = 1.0 / data.inf_spread[e]
+            prior_row = np.zeros(m.shape[1])
+            prior_row[-1] = weight
+            rows = np.vstack([rows, prior_row])
+            rhs = np.r_[rhs, weight * data.inf_guess[e]]
         z, *_ = np.linalg.lstsq(rows, rhs, rcond=None)
         x[e] = null @ z[: null.shape[1]]
         if data.fixed_inf is None:
@@ -632,9 +654,24 @@ def identify_block(
             "frequencies (tens) over the range of the motions",
         )
     notes: list[str] = []
-    best = None
-    plain_best = None  # (badness, count, fit) of the best fit before passivity
-    stalled = 0
+    plain_fits: list[tuple[float, int, PoleResidueBlock]] = []
+    tried: dict[int, tuple[tuple[bool, float], PoleResidueBlock, BlockScore]] = {}
+
+    def passivated(count: int, fitted: PoleResidueBlock) -> bool:
+        """The fit made passive and scored; True when it meets every target."""
+        if passive:
+            block, is_passive, _ = enforce_passivity(fitted, data)
+        else:
+            block, is_passive = fitted, True
+        score = score_block(
+            block, data, r2=r2, r2_coupling=r2_coupling, motion=motion, passive=is_passive
+        )
+        badness = round(_badness(score, r2, motion_aim) / TIE) * TIE
+        tried[count] = ((not is_passive, badness), block, score)
+        return is_passive and score.meets(motion_aim)
+
+    stalled, best_plain = 0, np.inf
+    done = False
     for count in counts:
         try:
             fitted = vector_fit(data, count)
@@ -642,32 +679,24 @@ def identify_block(
             continue
         plain = score_block(fitted, data, r2=r2, r2_coupling=r2_coupling, motion=motion)
         bad = _badness(plain, r2, motion_aim)
-        if plain_best is None or bad < (1 - IMPROVEMENT) * plain_best[0] or bad == 0:
-            plain_best, stalled = (bad, count, fitted), 0
+        plain_fits.append((bad, count, fitted))
+        if bad < (1 - IMPROVEMENT) * best_plain or bad == 0:
+            best_plain, stalled = min(bad, best_plain), 0
         else:
             stalled += 1
-        last = count == counts[-1] or stalled >= PATIENCE
-        if not plain.meets(motion_aim) and not last:
-            continue
-        if not plain.meets(motion_aim):  # the search ends: the best fit seen
-            _, count, fitted = plain_best
-        if passive:
-            passive_block, is_passive, _ = enforce_passivity(fitted, data)
-        else:
-            passive_block, is_passive = fitted, True
-        score = score_block(
-            passive_block, data, r2=r2, r2_coupling=r2_coupling, motion=motion, passive=is_passive
-        )
-        rank = (
-            not is_passive,
-            not score.meets(motion_aim),
-            round(score.shortfall / TIE) * TIE,
-            round((score.motion_error or 0.0) / TIE) * TIE,
-        )
-        if best is None or rank < best[0]:
-            best = (rank, passive_block, score, count)
-        if (is_passive and score.meets(motion_aim)) or last:
+        if plain.meets(motion_aim) and passivated(count, fitted):
+            done = True
             break
+        if stalled >= PATIENCE:
+            break
+    if not done:  # nothing met every target: the best few fits, made passive
+        for _, count, fitted in sorted(plain_fits, key=lambda x: (x[0], x[1]))[:FINALISTS]:
+            if count not in tried:
+                passivated(count, fitted)
+    best = None
+    if tried:
+        count = min(tried, key=lambda c: (tried[c][0], c))
+        best = (tried[count][0], tried[count][1], tried[count][2], count)
     if best is None:
         raise FitError("no stable model could be fitted")
     _, block, score, count = best
@@ -682,6 +711,9 @@ def identify_block(
 #: (before passivity) by IMPROVEMENT of its distance to the targets.
 PATIENCE = 4
 IMPROVEMENT = 0.02
+#: When no fit meets every target, the FINALISTS closest to them (before passivity) are
+#: made passive and the best passive one is kept.
+FINALISTS = 5
 
 
 def _badness(score: BlockScore, r2: float, motion_aim: float | None) -> float:
