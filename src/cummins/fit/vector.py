@@ -51,8 +51,12 @@ from numpy.typing import NDArray
 
 from cummins.errors import FitError
 
-#: Iterations of the pole relocation.
+#: Iterations of the pole relocation (at most; it stops when the poles move by less
+#: than CONVERGED, relative).
 ITERATIONS = 12
+CONVERGED = 1e-6
+#: The pole relocation uses at most about this many data frequencies (every k-th).
+RELOCATION_POINTS = 300
 #: Smallest relative damping |Re p| / |p| of a complex pole (radiation memory is broadband:
 #: a needle-sharp resonance would be fitted to an irregular-frequency spike).
 MIN_DAMPING = 0.05
@@ -65,7 +69,7 @@ TAIL_WEIGHT = 0.3
 #: Passivity: a violation is λ_min(Re K) < −VIOLATION · max ‖K‖ on the check grid.
 VIOLATION = 1e-8
 #: Passivity: each linearised constraint asks for λ ≥ MARGIN × the largest |λ| there.
-MARGIN = 1e-8
+MARGIN = 1e-5
 #: Passivity enforcement iterations.
 PASSIVITY_ITERATIONS = 40
 #: Regularisation of the residue change (× the norm of the misfit Jacobian): directions
@@ -73,7 +77,9 @@ PASSIVITY_ITERATIONS = 40
 RIDGE = 1e-3
 #: Frequencies of the passivity check: from CHECK_SPAN⁻¹ ω_min to CHECK_SPAN ω_max.
 CHECK_SPAN = 1e3
-CHECK_POINTS = 4000
+CHECK_POINTS = 1500
+#: At most this many local minima of λ_min per violation band give constraints at once.
+MINIMA = 8
 #: Residue-matrix eigenvalues below RANK_TOL × the largest of the block cost no state.
 RANK_TOL = 0.0
 
@@ -303,6 +309,37 @@ def relocate(data: BlockData, poles: Poles) -> Poles:
     return _poles_from(np.linalg.eigvals(lam - np.outer(b, c) / d))
 
 
+def _thinned(data: BlockData) -> BlockData:
+    """The equations of the pole relocation: every k-th data frequency when there are
+    more than RELOCATION_POINTS (the weights scaled by √k, so that the equations keep
+    their total weight), the tail whole. The residues are then fitted to all."""
+    step = int(np.ceil(data.n_data / RELOCATION_POINTS))
+    if step <= 1:
+        return data
+    rows = np.r_[np.arange(0, data.n_data, step), np.arange(data.n_data, data.omega.size)]
+    scale = np.r_[np.full(rows.size - (data.omega.size - data.n_data), np.sqrt(step)),
+                  np.ones(data.omega.size - data.n_data)]  # fmt: skip
+    return BlockData(
+        data.dofs,
+        data.elements,
+        data.omega[rows],
+        data.values[:, rows],
+        data.weight_real[:, rows] * scale,
+        data.weight_imag[:, rows] * scale,
+        data.fixed_inf,
+        int(np.ceil(data.n_data / step)),
+    )
+
+
+def _same_poles(one: Poles, two: Poles) -> bool:
+    """The relocation has converged: the same poles to CONVERGED (relative)."""
+    if one.real.size != two.real.size or one.pairs.size != two.pairs.size:
+        return False
+    x = np.r_[one.real, one.pairs]
+    y = np.r_[two.real, two.pairs]
+    return bool(np.all(np.abs(x - y) <= CONVERGED * np.abs(y)))
+
+
 def residue_null_space(poles: Poles) -> NDArray[np.float64]:
     """Orthonormal basis of the coefficient vectors with Σ R_k = 0."""
     v = poles.residue_sum()
@@ -420,8 +457,13 @@ class PoleResidueBlock:
 def vector_fit(data: BlockData, count: int) -> PoleResidueBlock:
     """Common poles (``count`` real parameters), residues and A∞ of a block."""
     poles = starting_poles(data.omega[: data.n_data], count)
+    thinned = _thinned(data)
     for _ in range(ITERATIONS):
-        poles = relocate(data, poles)
+        moved = relocate(thinned, poles)
+        converged = _same_poles(moved, poles)
+        poles = moved
+        if converged:
+            break
     coefficients, inf = fit_residues(data, poles)
     return PoleResidueBlock(data.dofs, data.elements, poles, coefficients, inf)
 
@@ -429,24 +471,12 @@ def vector_fit(data: BlockData, count: int) -> PoleResidueBlock:
 # ----------------------------------------------------------------------------- passivity
 
 
-def _eig_re(block: PoleResidueBlock, w: NDArray, dof_scale: NDArray) -> tuple[NDArray, NDArray]:
-    """Eigenvalues and vectors of S Re K(jω) S (K is symmetric: Re K = (K + Kᴴ)/2)."""
-    k = block.response(w).real * dof_scale[None, :, None] * dof_scale[None, None, :]
-    return np.linalg.eigh(k)
-
-
-def block_dof_scale(block: PoleResidueBlock, grid: NDArray) -> NDArray[np.float64]:
-    """s_i = 1/√max_ω |K_ii(jω)|: S K S is dimensionless and translations and rotations
-    weigh alike (as :func:`cummins.passivity.dof_scaling`)."""
-    peak = np.abs(np.diagonal(block.response(grid), axis1=1, axis2=2)).max(axis=0)
-    return np.where(peak > 0, 1.0 / np.sqrt(np.where(peak > 0, peak, 1.0)), 0.0)
-
-
 def passivity_violations(
     block: PoleResidueBlock, omega_min: float, omega_max: float
 ) -> tuple[list[tuple[float, float, NDArray, float]], NDArray]:
-    """(g, λ, w, λ_scale) of the points where S Re K(jω) S (DOF-scaled,
-    :func:`block_dof_scale`) has a negative eigenvalue λ below −:data:`VIOLATION`, at the
+    """(g, λ, w, λ_scale) of the points where S Re K(jω) S (DOF-scaled: s_i =
+    1/√max_ω |K_ii(jω)|, as :func:`cummins.passivity.dof_scaling`, so that translations
+    and rotations weigh alike) has a negative eigenvalue λ below −:data:`VIOLATION`, at the
     worst point of each band between exact crossings and a few points across it, and of
     the limits ω → 0, ∞ (:func:`limit_forms`) below −VIOLATION × their largest
     eigenvalue: g the linear form giving each element of Re K there from its
@@ -455,21 +485,43 @@ def passivity_violations(
     from cummins.passivity import imaginary_axis_zeros, midpoint
 
     grid = np.geomspace(omega_min / CHECK_SPAN, omega_max * CHECK_SPAN, CHECK_POINTS)
-    dof_scale = block_dof_scale(block, grid)
+    k_grid = block.response(grid).real
+    peak = np.abs(np.diagonal(k_grid, axis1=1, axis2=2)).max(axis=0)
+    dof_scale = np.where(peak > 0, 1.0 / np.sqrt(np.where(peak > 0, peak, 1.0)), 0.0)
     a, b, c = block.realization(rank_tol=0.0)
     b, c = b * dof_scale[None, :], dof_scale[:, None] * c  # S K S: well conditioned
     crossings = imaginary_axis_zeros(a, b, c) if a.size else np.zeros(0)
+    edges = np.unique(np.r_[0.0, crossings, np.inf])
+    # every point once: the grid, five inside each band between crossings, its midpoint
+    extra = [midpoint(lo, hi, grid) for lo, hi in itertools.pairwise(edges)]
+    extra += [
+        x
+        for lo, hi in itertools.pairwise(edges)
+        if lo > 0 and np.isfinite(hi)
+        for x in np.geomspace(lo, hi, 7)[1:-1]
+    ]
+    extra = np.setdiff1d(np.asarray(extra, dtype=float), grid)
+    points = np.r_[grid, extra]
+    order = np.argsort(points)
+    points = points[order]
+    k_all = np.concatenate([k_grid, block.response(extra).real])[order]
+    lam_all, vec_all = np.linalg.eigh(k_all * np.outer(dof_scale, dof_scale)[None])
     out = []
     # between consecutive crossings the sign of λ_min is constant
-    for lo, hi in itertools.pairwise(np.unique(np.r_[0.0, crossings, np.inf])):
-        ws = grid[(grid > lo) & (grid < hi)]
-        inner = np.geomspace(lo, hi, 7)[1:-1] if lo > 0 and np.isfinite(hi) else []
-        ws = np.unique(np.r_[ws, inner, midpoint(lo, hi, grid)])
-        lam, vec = _eig_re(block, ws, dof_scale)
+    for lo, hi in itertools.pairwise(edges):
+        inside = np.flatnonzero((points > lo) & (points < hi))
+        if not inside.size:
+            continue
+        lam, vec, ws = lam_all[inside], vec_all[inside], points[inside]
         worst = int(np.argmin(lam[:, 0]))
         if lam[worst, 0] >= -VIOLATION:  # S K S: the diagonal peaks are 1
             continue
-        for q in np.unique(np.r_[worst, np.linspace(0, ws.size - 1, 5).astype(int)]):
+        low = lam[:, 0]
+        minima = np.flatnonzero(
+            (low < -VIOLATION) & (low <= np.r_[np.inf, low[:-1]]) & (low <= np.r_[low[1:], np.inf])
+        )
+        spread = np.linspace(0, ws.size - 1, 5).astype(int)
+        for q in np.unique(np.r_[worst, minima[np.argsort(low[minima])][:MINIMA], spread]):
             local = float(np.abs(lam[q]).max())
             form = np.real(1j * ws[q] * block.poles.basis(np.array([1j * ws[q]]))[0])
             for e in np.flatnonzero(lam[q] < 0):
@@ -522,7 +574,9 @@ def enforce_passivity(
     for wr, wi in zip(data.weight_real, data.weight_imag, strict=True):
         jac = _stacked(phi, wr, wi)
         ridge = RIDGE * np.linalg.norm(jac, 2)
-        misfit.append((np.vstack([jac, ridge * np.eye(q)]), np.zeros(jac.shape[0] + q)))
+        # ‖J z‖ = ‖R z‖: the small triangular factor stands for the whole misfit
+        r = np.linalg.qr(np.vstack([jac, ridge * np.eye(q)]), mode="r")
+        misfit.append((r, np.zeros(q)))
     where = {d: k for k, d in enumerate(block.dofs)}
     rows, rhs = [], []
     start = block.coefficients
