@@ -14,7 +14,8 @@ import cummins
 import cummins.radiation
 from cummins.errors import FitError
 from cummins.fit import PREVIOUS_DEFAULT, fit_radiation
-from cummins.fit.frequency import fit_frequency_domain, is_positive_real, r_squared
+from cummins.fit.frequency import fit_frequency_domain, r_squared
+from cummins.fit.scorecard import diagonal_r2
 from cummins.hydrodb import make_hydrodb
 from cummins.io.mss_abc import read_mss_abc
 from cummins.passivity import passivity_sweep
@@ -33,6 +34,20 @@ def _poles(zeta, w0):
     zeta, w0 = np.asarray(zeta), np.asarray(w0)
     p = -zeta * w0 + 1j * w0 * np.sqrt(1 - zeta**2)
     return np.sort_complex(np.r_[p, np.conj(p)])
+
+
+#: Re K ≥ −this · max|K| is positive real (the definition of ``passive`` of the fits).
+POSITIVE_REAL_TOLERANCE = 1e-6
+#: The dense sweep of Re K(jω): 20 001 log-spaced frequencies, rad/s.
+DENSE = np.geomspace(1e-3, 1e3, 20_001)
+
+
+def _dense_real_part(poles, residues) -> tuple[float, float]:
+    """min_ω Re K(jω) and max_ω |K(jω)| of K(s) = Σ r/(s − p) on :data:`DENSE`."""
+    k = (np.asarray(residues)[None, :] / (1j * DENSE[:, None] - np.asarray(poles)[None, :])).sum(
+        axis=1
+    )
+    return float(k.real.min()), float(np.abs(k).max())
 
 
 # ----------------------------------------------------------------------------- synthetic
@@ -58,7 +73,12 @@ def test_known_system_is_recovered(r, zeta, w0):
     np.testing.assert_allclose(
         fit.frequency_response(grid), _rational(grid, r, zeta, w0), rtol=1e-6, atol=1e-9
     )
-    assert fit.passive and is_positive_real(fit.poles, fit.residues)
+    # K is positive real by construction (r > 0, ζ > 0): the fit must say so, and a dense
+    # sweep of its own poles and residues finds no negative real part (measured minimum
+    # Re K / max|K|: +2.5e-7, +5.1e-7, +4.4e-7, at ω = 10⁻³, where Re K ∝ ω²)
+    assert fit.passive
+    minimum, k_max = _dense_real_part(fit.poles, fit.residues)
+    assert minimum >= -1e-9 * k_max
     # structure: zero at s = 0, relative degree one with k(0+) = Σ residues = Σ r
     assert abs(fit.frequency_response([1e-8])[0]) < 1e-6
     assert np.sum(fit.residues).real == pytest.approx(sum(r), rel=1e-6)
@@ -77,8 +97,14 @@ def test_joint_added_mass_inf_on_exact_data():
 @given(seed=st.integers(0, 10_000), noise=st.floats(0.0, 0.05), spike=st.booleans())
 def test_noisy_data_never_give_an_unstable_model(seed, noise, spike):
     """Noise up to 5 % and an irregular-frequency spike: every returned model is stable,
-    and the passive one is positive real (the identification criteria 1–3 at the end of
-    Unneland (2007) §3.3)."""
+    and what it says about passivity is what a dense sweep of Re K(jω) finds (the
+    identification criteria 1–3 at the end of Unneland (2007) §3.3).
+
+    Passive means Re K ≥ −10⁻⁶ max|K| (PR_TOLERANCE, the rounding the passivity
+    enforcement leaves): over 1200 sampled fits (400 draws × 3 orders, 2026-12-02) the
+    worst passive one reached −4.9e-7 (seed 2226, spike, order 4; −1.5e-7 under
+    OpenBLAS Sandybridge), so the sweep cannot ask for −10⁻⁹; the fits called not passive
+    all dip below −2.9e-5 (the spike's negative damping kept by the fit)."""
     rng = np.random.default_rng(seed)
     k = _rational(OMEGA, [1.0, 0.4], [0.3, 0.5], [0.7, 1.9])
     a = 3.0 + k.imag / OMEGA + noise * rng.normal(size=OMEGA.size)
@@ -89,7 +115,11 @@ def test_noisy_data_never_give_an_unstable_model(seed, noise, spike):
     for order in (2, 4, 6):
         fit = fit_frequency_domain(OMEGA, a, b, order, added_mass_inf=3.0, passive=True)
         assert np.all(fit.poles.real < 0)
-        assert fit.passive == is_positive_real(fit.poles, fit.residues)
+        minimum, k_max = _dense_real_part(fit.poles, fit.residues)
+        if fit.passive:
+            assert minimum >= -POSITIVE_REAL_TOLERANCE * k_max, (order, minimum / k_max)
+        else:
+            assert minimum < -POSITIVE_REAL_TOLERANCE * k_max, (order, minimum / k_max)
 
 
 def test_too_few_frequencies():
@@ -170,10 +200,19 @@ REAL = [
 
 @pytest.mark.parametrize(("relative", "options"), REAL)
 def test_real_vessels(shared_data, relative, options):
-    """Every significant coupling fitted, all stable, diagonal models positive real with
-    R² ≥ 0.99 on A and B over the frequencies kept (suspect ones are reported): the
-    default identification (common poles per block) reaches the diagonal target after
-    passivity, on strip-theory and panel data of ships and buoys."""
+    """Every significant diagonal fitted, all stable, each diagonal positive real on a dense
+    sweep, with R² ≥ 0.985 on A and B recomputed from the model's K(jω) and A∞ against the
+    data on the frequencies kept (:func:`cummins.fit.scorecard.diagonal_r2`: the data's less
+    those the suspect-frequency detector flags; not the fit's own metrics, whose 0.99 is the
+    fit's stopping target): the default identification (common poles per block), on
+    strip-theory and panel data of ships and buoys.
+
+    Measured 2026-12-02, smallest recomputed diagonal R² (the same under OpenBLAS
+    Sandybridge, one thread): tanker 0.9948 (roll A), supply 0.9955 (pitch B), S-175 0.9933
+    (heave A), sphere 0.9981 (heave A), cylinder (WAMIT) 0.9904 (pitch B), cylinder
+    (NEMOH) 0.9923 (roll B); 1 − 0.985 is 1.56× the worst 1 − R² (0.0096). Smallest
+    Re K_ii / max|K_ii| on the sweep: ≥ −3.1e-9 (sphere), against the definition of
+    positive real, ≥ −10⁻⁶."""
     with warnings.catch_warnings():
         warnings.simplefilter("ignore", UserWarning)
         ds = cummins.read(shared_data / relative, **options)
@@ -183,11 +222,15 @@ def test_real_vessels(shared_data, relative, options):
     assert model.is_stable()
     diagonal = [c for c in model.modelled if c.influenced == c.radiating]
     assert diagonal
+    r2 = diagonal_r2(ds, model)
+    assert sorted(r2) == sorted(model.dofs[c.influenced] for c in diagonal)
+    k = model.response(DENSE)
     for c in diagonal:
         label = model.dofs[c.influenced]
-        assert c.metrics["passive"], label
-        assert c.metrics["r2_added_mass"] >= 0.99, (label, c.metrics)
-        assert c.metrics["r2_damping"] >= 0.99, (label, c.metrics)
+        k_ii = k[:, c.influenced, c.influenced]
+        assert k_ii.real.min() >= -POSITIVE_REAL_TOLERANCE * np.abs(k_ii).max(), label
+        assert r2[label][0] >= 0.985, (label, r2[label])
+        assert r2[label][1] >= 0.985, (label, r2[label])
     assert isinstance(model.attrs["excluded_frequencies"], list)
 
 

@@ -101,10 +101,12 @@ def test_runs_describe_the_same_body(solvers):
 @pytest.mark.parametrize("dof", ["Surge", "Sway", "Heave", "Roll", "Pitch"])
 @pytest.mark.parametrize("name", ["added_mass", "radiation_damping"])
 def test_radiation_coefficients_agree(solvers, omega, dof, name):
-    """Diagonal A and B within 4 % of their maximum over 0.25-7.5 rad/s (measured ≤ 3 %).
+    """Diagonal A and B within 4 % of their maximum over 0.25-7.5 rad/s.
 
     WAMIT (finest mesh) is the reference; NEMOH and AQWA are also compared with each
-    other (meshes of 504 and 821 panels: measured ≤ 1.7 %).
+    other (meshes of 504 and 821 panels). Measured 2026-12-02: against WAMIT at most
+    2.95 % (NEMOH, roll and pitch damping; Capytaine above 4 rad/s 2.95 %), bound 4 %
+    (1.36×); NEMOH against AQWA at most 1.64 % (heave damping), bound 2.1 % (1.28×).
     """
     sel = {"influenced_dof": dof, "radiating_dof": dof}
     ref = _on(solvers["wamit"], name, omega, **sel)
@@ -112,7 +114,7 @@ def test_radiation_coefficients_agree(solvers, omega, dof, name):
     values = {n: _on(solvers[n], name, omega, **sel) for n in ("nemoh", "aqwa", "aqwa-ah1")}
     for n, v in values.items():
         assert np.abs(v - ref).max() <= 0.04 * scale, n
-    assert np.abs(values["nemoh"] - values["aqwa"]).max() <= 0.02 * scale
+    assert np.abs(values["nemoh"] - values["aqwa"]).max() <= 0.021 * scale
     deep = omega >= DEEP_ENOUGH
     capy = _on(solvers["capytaine"], name, omega[deep], **sel)
     assert np.abs(capy - ref[deep]).max() <= 0.04 * scale
@@ -130,8 +132,9 @@ def test_capytaine_only_agrees_where_depth_does_not_matter(solvers, omega):
 def test_added_mass_at_infinite_frequency(solvers):
     """AQWA's 100 rad/s added mass against WAMIT's ω = ∞ solution, diagonal and A15.
 
-    Within 2 % (measured: surge 1.7 %, heave 0.55 %, pitch 0.2 %, A15 1.4 %), the mesh
-    differences of the finite-frequency coefficients: the reason it is stored as A∞.
+    Within 2.2 % (measured 2026-12-02, AQWA's .LIS and .AH1 alike: surge 1.69 %, heave
+    0.54 %, pitch 0.32 %, roll 0.20 %, A15 1.39 %, A51 1.28 %; 2.2 % is 1.3× the worst), the
+    mesh differences of the finite-frequency coefficients: the reason it is stored as A∞.
     """
     ref = solvers["wamit"].added_mass_inf / solvers["wamit"].attrs["rho"]
     for name in ("aqwa", "aqwa-ah1"):
@@ -145,7 +148,7 @@ def test_added_mass_at_infinite_frequency(solvers):
             ("Pitch", "Surge"),
         ]:
             sel = {"influenced_dof": i, "radiating_dof": j}
-            assert float(a_inf.sel(**sel)) == pytest.approx(float(ref.sel(**sel)), rel=0.02)
+            assert float(a_inf.sel(**sel)) == pytest.approx(float(ref.sel(**sel)), rel=0.022)
 
 
 def test_nemoh_added_mass_inf_agrees_with_wamit(solvers):

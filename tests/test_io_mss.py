@@ -2,11 +2,12 @@
 
 from __future__ import annotations
 
-import contextlib
+import warnings
 
 import numpy as np
 import pytest
 import scipy.io
+import xarray as xr
 
 import cummins
 from cummins import HydroDataError
@@ -264,15 +265,107 @@ def test_errors(mss_dir, tmp_path):
         )
 
 
-def test_fuzzed_struct_raises_only_hydrodataerror(mss_dir, tmp_path):
-    """Random byte damage: either a valid dataset or HydroDataError, nothing else."""
+def _outcome(path) -> xr.Dataset | HydroDataError:
+    """What ``read_mss`` makes of ``path``: a dataset, or the HydroDataError (any other
+    exception propagates and fails the test)."""
+    try:
+        with warnings.catch_warnings():
+            warnings.simplefilter("ignore", UserWarning)
+            return read_mss(path)
+    except HydroDataError as exc:
+        return exc
+
+
+def _check_success(ds: xr.Dataset) -> None:
+    """A dataset from damaged input is a valid one: the structural validation passes and
+    every number in it, coordinates included, is finite (checked here, not by validate)."""
+    assert cummins.validate(ds) is ds
+    for name in [*ds.data_vars, *ds.coords]:
+        values = np.asarray(ds[name].values)
+        if values.dtype.kind in "fc":
+            assert np.all(np.isfinite(values)), name
+
+
+def test_damaged_bytes_raise_only_hydrodataerror(mss_dir, tmp_path):
+    """Random byte damage: either a valid dataset or HydroDataError naming the file,
+    nothing else. Measured 2026-12-02: the 25 damaged files all raise (the zlib-compressed
+    MAT 5 stream does not survive a changed byte: "not a readable MATLAB .mat file")."""
     data = bytearray((mss_dir / "supply" / "supply.mat").read_bytes())
     rng = np.random.default_rng(7)
+    outcomes = {"error": 0, "dataset": 0}
     for trial in range(25):
         damaged = bytearray(data)
         for k in rng.integers(128, len(data), size=rng.integers(1, 10)):
             damaged[k] = int(rng.integers(256))
         path = tmp_path / f"f{trial}.mat"
         path.write_bytes(bytes(damaged))
-        with contextlib.suppress(HydroDataError):
-            read_mss(path)
+        result = _outcome(path)
+        if isinstance(result, HydroDataError):
+            outcomes["error"] += 1
+            assert path.name in str(result)
+        else:
+            outcomes["dataset"] += 1
+            _check_success(result)
+    assert outcomes["error"] >= 1, outcomes
+    assert sum(outcomes.values()) == 25
+
+
+#: Struct fields damaged by the fuzz below, and what is done to one of them.
+FUZZED_FIELDS = ("MRB", "A", "B", "C", "freqs", "Bv", "velocities")
+FUZZ_OPERATIONS = ("nan", "inf", "scale one entry", "drop the last column", "negate", "remove")
+
+
+def _damaged_struct(vessel, rng) -> tuple[dict, str, str]:
+    """The MSS vessel struct with one field damaged (FUZZ_OPERATIONS)."""
+    fields = {name: vessel[name] for name in vessel.dtype.names}
+    name = FUZZED_FIELDS[rng.integers(len(FUZZED_FIELDS))]
+    op = FUZZ_OPERATIONS[rng.integers(len(FUZZ_OPERATIONS))]
+    x = np.array(fields[name], dtype=float)
+    if op == "remove":
+        del fields[name]
+        return fields, name, op
+    if op == "nan":
+        x.flat[rng.integers(x.size)] = np.nan
+    elif op == "inf":
+        x.flat[rng.integers(x.size)] = np.inf
+    elif op == "scale one entry":
+        x.flat[rng.integers(x.size)] *= 1 + rng.normal()
+    elif op == "drop the last column":
+        x = x[..., :-1]
+    else:
+        x = -x
+    fields[name] = x
+    return fields, name, op
+
+
+def test_fuzzed_struct_raises_only_hydrodataerror(mss_dir, tmp_path):
+    """A readable MAT file whose vessel struct is damaged (one field made NaN or Inf,
+    scaled, truncated, negated or removed, 40 draws): either HydroDataError, or a dataset
+    that validates with every number finite, and which, when A, B and freqs were left
+    alone, holds the original A and B. Both outcomes occur (a wrong sign of the restoring
+    or a missing Bv is for cummins.check, not for the reader).
+
+    Measured 2026-12-02: 23 errors, 17 datasets. Before, a NaN or Inf in vessel.velocities
+    (forward speed NaN m/s) and in vessel.C at a frequency other than the first passed
+    unseen: now HydroDataError naming the field."""
+    source = mss_dir / "supply" / "supply.mat"
+    vessel = _raw_vessel(source)
+    reference = _outcome(source)
+    rng = np.random.default_rng(7)
+    outcomes = {"error": 0, "dataset": 0}
+    for trial in range(40):
+        fields, name, op = _damaged_struct(vessel, rng)
+        path = tmp_path / f"s{trial}.mat"
+        scipy.io.savemat(path, {"vessel": fields})
+        result = _outcome(path)
+        if isinstance(result, HydroDataError):
+            outcomes["error"] += 1
+            assert path.name in str(result), (name, op)
+            continue
+        outcomes["dataset"] += 1
+        assert op not in ("nan", "inf"), (name, op)  # a NaN or Inf is damage wherever it is
+        _check_success(result)
+        if name not in ("A", "B", "freqs"):
+            np.testing.assert_array_equal(result.added_mass, reference.added_mass)
+            np.testing.assert_array_equal(result.radiation_damping, reference.radiation_damping)
+    assert outcomes["error"] >= 1 and outcomes["dataset"] >= 1, outcomes

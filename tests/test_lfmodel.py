@@ -16,7 +16,7 @@ import pytest
 
 import cummins
 from cummins.errors import FitError, HydroDataError
-from cummins.hydrodb import select_dofs
+from cummins.hydrodb import dof_matrix, select_dofs
 from cummins.lfmodel import (
     CriticalDampingFraction,
     ExponentialDamping,
@@ -241,17 +241,18 @@ def test_roll_decay_matches_cummins(tanker):
 
 @pytest.mark.parametrize(
     ("dof", "amplitude", "rms_bound"),
-    [("Roll", 0.1, 0.25), ("Heave", 1.0, 0.3), ("Pitch", 0.02, 0.3)],
+    [("Roll", 0.1, 0.27), ("Heave", 1.0, 0.3), ("Pitch", 0.02, 0.3)],
 )
 def test_six_dof_decay_against_cummins(from_kernel, full_vessel, dof, amplitude, rms_bound):
     """6-DOF free decays, LF model against the full Cummins model (fitted, 54 states).
 
-    Measured RMS relative differences over 10 periods: roll 18 % (the free sway/yaw
-    coupled to roll take A_24(0), A_46(0), while in a roll decay they move at ω_φ),
-    heave 20 %, pitch 22 %: heave and pitch of the tanker are heavily damped
-    (ζ ≈ 0.18) with A and B changing fast near ω₀, so one frequency cannot represent
-    the memory — the Cummins period is 4–5 % shorter than the LF one. The period of
-    the dominant mode still agrees within 6 %.
+    Measured 2026-12-02 (the same under OpenBLAS Sandybridge, one thread), RMS relative
+    differences over 10 periods: roll 21.6 % (the free sway/yaw coupled to roll take
+    A_24(0), A_46(0), while in a roll decay they move at ω_φ), heave 19.1 %, pitch 23.6 %:
+    heave and pitch of the tanker are heavily damped (ζ ≈ 0.18) with A and B changing fast
+    near ω₀, so one frequency cannot represent the memory; bounds 27 %, 30 %, 30 % (≥ 1.25×).
+    The period of the dominant mode still agrees: the Cummins period is 0.35 % (roll),
+    2.5 % (heave), 3.4 % (pitch) shorter than the LF one; bound 6 % (1.75×).
     """
     run = compare_with_cummins(from_kernel, full_vessel, dof, amplitude=amplitude)
     assert run.attrs["rms_relative"] < rms_bound
@@ -262,21 +263,37 @@ def test_six_dof_decay_against_cummins(from_kernel, full_vessel, dof, amplitude,
     assert period_lf == pytest.approx(period_full, rel=0.06)
 
 
-@pytest.mark.parametrize(
-    ("dof", "force", "bound"), [("Surge", 1.0e5, 0.999), ("Sway", 1.0e6, 0.85), ("Yaw", 1.0e8, 0.9)]
-)
-def test_step_force_against_cummins(from_kernel, full_vessel, dof, force, bound):
-    """Step force in surge/sway/yaw for 300 s: the zero-frequency model lags at first
-    (it carries A(0) > A∞ from t = 0, the Cummins model only as the memory builds up)
-    and then drifts at the same rate. Measured LF/Cummins displacement at t = 1 s:
-    surge 0.994, sway 0.81, yaw 0.86 (→ 1.00 by t = 10 s, 1.002, 1.020, 1.009 at
-    300 s); RMS relative difference over 300 s: surge 0.16 %, sway 1.9 %, yaw 0.9 %.
+@pytest.mark.parametrize(("dof", "force"), [("Surge", 1.0e5), ("Sway", 1.0e6), ("Yaw", 1.0e8)])
+def test_step_force_against_cummins(tanker, from_kernel, full_vessel, dof, force):
+    """Step force in surge/sway/yaw for 300 s: the zero-frequency model lags at first and
+    then drifts at the same rate.
+
+    Reference from the data: as t → 0 the memory is not yet loaded, so the Cummins model
+    accelerates with (M + A∞)⁻¹ while the LF model carries A(0) from t = 0: the
+    displacement ratio LF/Cummins starts at r₀ = [(M + A(0))⁻¹]_ii / [(M + A∞)⁻¹]_ii
+    (the solver's ω = 0 and ω = ∞ rows; surge 0.987, sway 0.793, yaw 0.842) and rises
+    towards 1 as the memory builds up (surge, whose A(0) − A∞ is 2.6 % of the mass,
+    first dips by 0.2 % over 3 s). Measured 2026-12-02 (the same under OpenBLAS
+    Sandybridge, one thread): the ratio at t = 1 s is 0.9937, 0.810, 0.861, i.e. r₀ +0.71 %,
+    +2.13 %, +2.19 % (bound +3 %, 1.37×); at 300 s 1.0006, 1.0038, 1.0045 (bound ±1 %);
+    RMS relative difference over 300 s 0.065 %, 0.38 %, 0.45 % (bound 1 %).
     """
+    i = [str(d) for d in tanker.influenced_dof.values].index(dof)
+    m = dof_matrix(tanker, "inertia_matrix")
+    r0 = (
+        np.linalg.inv(m + dof_matrix(tanker, "added_mass_zero"))[i, i]
+        / np.linalg.inv(m + dof_matrix(tanker, "added_mass_inf"))[i, i]
+    )
+    assert r0 < 1  # A(0) > A∞ in these DOFs: the LF model is heavier at first
     run = compare_with_cummins(from_kernel, full_vessel, dof, kind="step", amplitude=force)
-    assert run.attrs["rms_relative"] < 0.03
-    early = run.sel(time=1.0, dof=dof)
-    ratio = float(early.lf / early.cummins)
-    assert ratio < bound
+    assert run.attrs["rms_relative"] < 0.01
+
+    def ratio(t):
+        early = run.sel(time=t, dof=dof)
+        return float(early.lf / early.cummins)
+
+    assert r0 <= ratio(1.0) < min(1.0, 1.03 * r0)
+    assert ratio(300.0) == pytest.approx(1.0, abs=0.01)
 
 
 # --------------------------------------------------------------------------- interfaces

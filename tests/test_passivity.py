@@ -26,6 +26,7 @@ from cummins.passivity import (
     passivity_test,
 )
 from cummins.radiation import CouplingModel, RadiationModel
+from cummins.repair import find_suspect_frequencies
 
 
 def _mode(i: int, j: int, residue: float, zeta: float, w0: float) -> CouplingModel:
@@ -197,6 +198,47 @@ def test_real_vessels_are_passive_after_enforcement_with_diagonal_r2_kept(shared
     assert changed and all("→" in c.note for c in changed)
 
 
+def _diagonal_r2(ds, model) -> dict[str, tuple[float, float]]:
+    """R² (1 − Σ(y − ŷ)²/Σ(y − ȳ)², Unneland (2007) eq. 6.19) of A_ii and B_ii of each
+    modelled diagonal, from the model's own K(jω) and A∞ (A = A∞ + Im K/ω, B = Re K) against
+    the data, at the data's frequencies less those the suspect-frequency detector of
+    cummins.repair flags (not the fit's own metrics nor its own list of exclusions)."""
+    w = ds.omega.values.astype(float)
+    suspect = [s.omega for s in find_suspect_frequencies(ds)]
+    keep = ~np.isclose(w[:, None], np.reshape(suspect, (1, -1)), rtol=1e-12, atol=0.0).any(axis=1)
+    w = w[keep]
+    k = model.response(w)
+    a = ds.added_mass.transpose("omega", "influenced_dof", "radiating_dof").values[keep]
+    b = ds.radiation_damping.transpose("omega", "influenced_dof", "radiating_dof").values[keep]
+
+    def r2(y, y_model):
+        return 1.0 - np.sum((y - y_model) ** 2) / np.sum((y - y.mean()) ** 2)
+
+    out = {}
+    for c in model.modelled:
+        i = c.influenced
+        if i != c.radiating:
+            continue
+        a_model = model.added_mass_inf[i, i] + k[:, i, i].imag / w
+        out[model.dofs[i]] = (
+            float(r2(a[:, i, i], a_model)),
+            float(r2(b[:, i, i], k[:, i, i].real)),
+        )
+    return out
+
+
+def _scaled_lambda_min(model, w) -> float:
+    """min_ω λ_min(S(K + Kᴴ)S) / max_ω λ_max(S(K + Kᴴ)S), S = diag(1/√max_ω|K_ii|): a dense
+    sweep of the model's K(jω) written here. S is a congruence (passivity is unchanged),
+    which keeps the translations from vanishing next to the rotations."""
+    k = model.response(w)
+    herm = k + np.conj(np.swapaxes(k, 1, 2))
+    peak = np.abs(np.diagonal(k, axis1=1, axis2=2)).max(axis=0)
+    s = np.where(peak > 0, 1.0 / np.sqrt(np.where(peak > 0, peak, 1.0)), 1.0)
+    eig = np.linalg.eigvalsh(herm * s[None, :, None] * s[None, None, :])
+    return float(eig[:, 0].min() / eig[:, -1].max())
+
+
 @pytest.mark.parametrize(
     ("relative", "options"),
     [
@@ -207,17 +249,35 @@ def test_real_vessels_are_passive_after_enforcement_with_diagonal_r2_kept(shared
     ],
 )
 def test_other_bodies_are_passive_after_enforcement(shared_data, relative, options):
-    """Every body of the shared data ends passive and stable. The price in R² is
-    reported per coupling; measured 2026-11-22, smallest diagonal R² after enforcement:
-    S-175 0.987, sphere 0.992, cylinder 0.982 (axisymmetric: surge–pitch and sway–roll
-    damping are nearly singular at every frequency), supply (VERES) 0.995."""
+    """Every body of the shared data ends passive and stable with the default (common-pole)
+    identification, every DOF whose damping is not rounding noise modelled on the diagonal
+    (``model.modelled``: the default fit has blocks, no ``couplings``), each diagonal R² of
+    A and B ≥ 0.985 recomputed here from the model's response.
+
+    Measured 2026-12-02 (the same under OPENBLAS_CORETYPE=Sandybridge, one thread):
+    smallest diagonal R² S-175 0.9933 (heave A), sphere 0.9981 (heave A), cylinder 0.9904
+    (pitch B: axisymmetric, surge–pitch and sway–roll damping are nearly singular at every
+    frequency), supply (VERES) 0.9955 (pitch B); the bound 1 − 0.985 = 0.015 is 1.56× the
+    worst 1 − R² (0.0096). Scaled λ_min of K + Kᴴ over 10⁻³–10³ rad/s (20 001 points),
+    relative to the largest: S-175 7e-13, sphere −1.6e-9, cylinder 0, supply −4.5e-9,
+    against the definition of passive, ≥ −PASSIVITY_TOLERANCE (10⁻⁶)."""
     with warnings.catch_warnings():
         warnings.simplefilter("ignore", UserWarning)
         ds = cummins.read(shared_data / relative, **options)
     if "forward_speed" in ds.dims:
         ds = ds.sel(forward_speed=0.0)
     model = fit_radiation(ds)
-    assert model.is_stable() and passivity_test(model).passive
-    for c in model.couplings:
-        if c.influenced == c.radiating:
-            assert min(c.metrics["r2_added_mass"], c.metrics["r2_damping"]) >= 0.98, c.note
+    assert model.is_stable()
+    assert np.all(np.linalg.eigvals(model.A).real < 0)
+    assert _scaled_lambda_min(model, np.geomspace(1e-3, 1e3, 20_001)) >= -PASSIVITY_TOLERANCE
+    r2 = _diagonal_r2(ds, model)
+    # nothing vanishes silently: a DOF without a diagonal model is reported as negligible
+    # and its damping is rounding noise (yaw of the axisymmetric sphere and cylinder:
+    # 2e-11 of the largest diagonal peak; VERES gives no surge damping: 0)
+    peak = np.abs(np.diagonal(ds.radiation_damping.values, axis1=1, axis2=2)).max(axis=0)
+    for dof, p in zip(ds.influenced_dof.values, peak, strict=True):
+        if str(dof) not in r2:
+            assert str(dof) in model.attrs["negligible_couplings"], dof
+            assert p <= 1e-9 * peak.max(), (dof, p / peak.max())
+    for dof, (r2_a, r2_b) in r2.items():
+        assert min(r2_a, r2_b) >= 0.985, (dof, r2_a, r2_b)

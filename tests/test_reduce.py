@@ -758,30 +758,36 @@ def _r2(model, k, w, a, b):
 
 def test_tanker_era_reduced_to_the_fd_orders(tanker_wamit, tanker_models):
     """An order-10 ERA realization of every coupling, reduced to the orders the FD fit
-    chose, reproduces the data about as well as the FD fit: R² of A and B ≥ 0.98 on the
-    diagonal; off the diagonal ≥ 0.98 or within 0.02 of the FD fit's own R² (roll–yaw:
-    the FD fit reaches 0.975 at 3 states)."""
+    chose, reproduces the data about as well as the FD fit: R² of A and B (recomputed here
+    on the fitted frequencies, for the reduced and the FD model alike) ≥ 0.99 on the
+    diagonal; off the diagonal ≥ 0.98 or within 0.02 of the FD fit's R².
+
+    Measured 2026-12-02 (the same under OpenBLAS Sandybridge, one thread), min(R² A, R² B)
+    reduced / FD: diagonals surge 0.9949 / 0.9914, sway 0.9998 / 0.9997, heave 0.9980 /
+    0.9983, roll 0.9985 / 0.9981, pitch 0.9959 / 0.9980, yaw 0.9996 / 0.9996 (worst
+    1 − R² 0.0051, bound 0.01: 1.96×); off the diagonal the lowest are surge–heave 0.9840
+    / 0.9853 and roll–yaw 0.9845 / 0.9926 (floors 0.9653 and 0.9726: 1 − R² 0.016 against
+    0.035 and 0.0155 against 0.027, ≥ 1.77×)."""
     fd, era = tanker_models
     orders = {(k.influenced, k.radiating): k.order for k in fd.couplings}
     reduced = reduce_radiation_model(era, order=orders, data=tanker_wamit)
     assert reduced.total_order == fd.total_order
     _check_structure(reduced, era)
     w, a, b = _fitted(tanker_wamit, era)
+    checked = 0
     for k in reduced.couplings:
         if k.influenced > k.radiating:
             continue
         r2 = min(_r2(reduced, k, w, a, b))
-        reference = fd.coupling(k.influenced, k.radiating).metrics
-        floor = (
-            0.98
-            if k.influenced == k.radiating
-            else min(0.98, min(reference["r2_added_mass"], reference["r2_damping"]) - 0.02)
-        )
-        assert r2 >= floor, (k.influenced, k.radiating, r2)
+        reference = min(_r2(fd, fd.coupling(k.influenced, k.radiating), w, a, b))
+        floor = 0.99 if k.influenced == k.radiating else min(0.98, reference - 0.02)
+        assert r2 >= floor, (k.influenced, k.radiating, r2, reference)
         # the metrics recomputed with data= are the same measures
         assert k.metrics["r2_added_mass"] == pytest.approx(_r2(reduced, k, w, a, b)[0], abs=1e-9)
         assert k.metrics["r2_damping"] == pytest.approx(_r2(reduced, k, w, a, b)[1], abs=1e-9)
         assert k.metrics["stable"]
+        checked += 1
+    assert checked == len([k for k in fd.couplings if k.influenced <= k.radiating]) == 12
 
 
 def test_tanker_era_reduced_to_the_fd_total_order(tanker_wamit, tanker_models):

@@ -211,11 +211,16 @@ def _r2(y, y_hat):
     ],
 )
 def test_reconstruction_of_real_data(shared_data, relative, options, repair):
-    """A(ω), B(ω) rebuilt from K(t) (eqs. 5.11–5.12) match the data: R² ≥ 0.99 on the
+    """A(ω), B(ω) rebuilt from K(t) (eqs. 5.11–5.12) match the data: R² ≥ 0.988 on the
     diagonals inside the data range. Data with suspect frequencies are repaired first, as
     one would before fitting: the supply vessel's inconsistent lowest frequency gives R²
-    0.33 in heave A; the tanker's irregular-frequency spikes above 3.6 rad/s give 0.990
-    in roll A (both measured 2026-11-22)."""
+    0.33 in heave A (measured 2026-11-22).
+
+    Smallest diagonal R² measured 2026-12-02 (the same under OpenBLAS Sandybridge, one
+    thread): tanker 0.9975 (surge A), sphere (WAMIT) 0.9988 (heave A), supply 0.9912
+    (heave A: strip theory, whose A33 near the lowest consistent frequency K cannot
+    rebuild, as for the S-175 below), cylinder WAMIT 0.99997, NEMOH 0.9966 (heave A), AQWA
+    0.9992, sphere (Capytaine) 0.99993; 1 − 0.988 is 1.36× the worst 1 − R² (0.0088)."""
     with warnings.catch_warnings():
         warnings.simplefilter("ignore", UserWarning)
         ds = cummins.read(shared_data / relative, **options)
@@ -230,7 +235,7 @@ def test_reconstruction_of_real_data(shared_data, relative, options, repair):
             continue
         for name in ("added_mass", "radiation_damping"):
             r2 = _r2(ds[name].values[:, i, i], rebuilt[name].values[:, i, i])
-            assert r2 >= 0.99, (relative, name, str(ds.influenced_dof.values[i]), r2)
+            assert r2 >= 0.988, (relative, name, str(ds.influenced_dof.values[i]), r2)
 
 
 def test_strip_theory_low_frequencies(shared_data):

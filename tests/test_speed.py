@@ -144,9 +144,11 @@ def test_per_speed_fits_stable_and_accurate(per_speed, s175):
     radiation-restoring (U G¹ + U² G²)/s of the zero-speed model (measured: ≥ 0.9994 at
     every speed). The whole per-speed model (the fitted symmetric memory, U K¹ for the
     antisymmetric part of the heave–pitch pair, U D¹ and the restoring terms) reproduces
-    the VERES data at speed over 0.21–1.57 rad/s within 4 % of the largest |Z| on the
-    diagonals and 6 % on the coupling (fitted to R² 0.97, the default for couplings);
-    without U K¹ the coupling was off by 77 %."""
+    the VERES data at speed over 0.21–1.57 rad/s, relative to the largest |Z| of each term:
+    measured 2026-12-02 (the same under OpenBLAS Sandybridge, one thread) 3.6 % on the
+    diagonals (pitch, 5.14 m/s) and 5.96 % on the couplings (pitch–heave, 2.57 m/s;
+    heave–pitch 5.3 % at zero speed: the R² 0.97 fit, the default for couplings), bounds
+    1.25× those, 4.5 % and 7.5 %; without U K¹ the coupling was off by 77 %."""
     assert per_speed.speeds == pytest.approx([0.0, 2.572, 5.144, 7.717, 10.289], abs=1e-3)
     assert per_speed.is_stable()
     r2 = _diagonal_r2(per_speed)
@@ -163,9 +165,9 @@ def test_per_speed_fits_stable_and_accurate(per_speed, s175):
         error = np.abs(model[band] - data[band]).max(axis=0) / scale
         errors[u] = error
     diagonal = max(float(e[i, i]) for e in errors.values() for i in range(2))
-    coupling = max(float(e[0, 1]) for e in errors.values())
-    assert diagonal < 0.04, errors  # measured 3.6 % (pitch, 2.57 m/s)
-    assert coupling < 0.06, errors  # measured 5.3 % (zero speed: the R² 0.97 fit)
+    coupling = max(max(float(e[0, 1]), float(e[1, 0])) for e in errors.values())
+    assert diagonal < 0.045, errors  # measured 3.60 % (pitch, 5.14 m/s)
+    assert coupling < 0.075, errors  # measured 5.96 % (pitch–heave, 2.57 m/s)
 
 
 def test_per_speed_fits_of_the_raw_data_fail_where_kk_says(s175, zero):
@@ -259,7 +261,8 @@ def test_six_dof_speed_terms_structure(s175):
 
 def test_speed_model_reproduces_stf_force(zero, speed_model):
     """The K⁰/K¹/K² model against the STF-corrected frequency-domain data: max relative
-    error of Z = B + jωA over 0.21–1.57 rad/s, at every S-175 speed (measured ≤ 1.5 %)."""
+    error of Z = B + jωA over 0.21–1.57 rad/s, at every S-175 speed (measured 2026-12-02:
+    1.46 %, the same under OpenBLAS Sandybridge; bound 1.37× that)."""
     w = zero.omega.values
     worst = 0.0
     for u in (0.0, 2.572, 5.144, 7.717, 10.289):
@@ -271,21 +274,31 @@ def test_speed_model_reproduces_stf_force(zero, speed_model):
 
 
 def test_kk_flags_stf_speed_terms(zero):
-    """KK diagnostic: the zero-speed data pass (≤ 0.094), the STF-corrected data at speed
-    fail in Heave-Pitch, Pitch-Heave and Pitch (Hjulstad (2004) §5.3–5.4), heave is unchanged."""
+    """KK diagnostic: the zero-speed data pass, the STF-corrected data at speed fail in
+    Heave-Pitch, Pitch-Heave and Pitch (Hjulstad (2004) §5.3–5.4), heave is unchanged.
+
+    Measured 2026-12-02 (the same under OpenBLAS Sandybridge): the relative KK error of the
+    zero-speed data is at most 0.092 (heave: strip-theory data truncated at 0.21 and
+    2.5 rad/s), bound 0.115 (1.25×); at 10.29 m/s heave–pitch 0.75, pitch–heave 0.62,
+    pitch 1.16, bound 0.45 (the smallest over 1.25): the two groups are 5× apart. (At
+    zero speed no coupling has speed terms, so ``flagged`` is empty whatever the errors:
+    the bound on the errors is the check.)"""
     data = zero.isel(omega=slice(1, None))  # the first frequency is suspect (fit excludes it)
     errors, flagged = sp.stf_causality(data, 0.0)
     assert flagged == []
-    assert float(errors.max()) < 0.1
+    assert float(errors.max()) < 0.115
     errors, flagged = sp.stf_causality(data, 10.289)
     assert flagged == ["Heave-Pitch", "Pitch-Heave", "Pitch"]
-    assert errors.sel(influenced_dof="Pitch", radiating_dof="Pitch") > 0.5
+    for i, j in (("Heave", "Pitch"), ("Pitch", "Heave"), ("Pitch", "Pitch")):
+        assert errors.sel(influenced_dof=i, radiating_dof=j) > 0.45
     assert "Heave" not in flagged
 
 
 def test_forced_motion_matches_frequency_domain(zero, speed_model):
     """§12.1 forced-motion test at Fn 0.25 (10.29 m/s): time-domain force amplitude vs
-    |T(ω)| of the STF data (eq. 12.3) within 2 % over 0.2–1.5 rad/s in every coupling."""
+    |T(ω)| of the STF data (eq. 12.3) within 2 % over 0.2–1.5 rad/s in every coupling
+    (measured 2026-12-02: at most 1.10 %, pitch–heave at 1.5 rad/s; the same under
+    OpenBLAS Sandybridge; bound 1.8× that)."""
     u = 10.289
     data = sp.stf_speed_terms(zero, u)
     w = np.array([0.25, 0.5, 0.8, 1.1, 1.5])
@@ -299,14 +312,16 @@ def test_forced_motion_matches_frequency_domain(zero, speed_model):
 def test_speed_model_reproduces_the_strip_theory_data_at_speed(s175, zero, speed_model):
     """Acceptance: the K⁰/K¹/K² model, built from the zero-speed data only, against the
     strip-theory (VERES) data at each speed of the S-175 — the frequency-domain force per
-    unit velocity Z = B + jωA, max relative error over 0.21–1.57 rad/s."""
+    unit velocity Z = B + jωA, max relative error over 0.21–1.57 rad/s. Measured
+    2026-12-02 (the same under OpenBLAS Sandybridge, one thread): 1.32 %, 1.42 %, 1.49 %,
+    1.68 %, 1.89 % at 0, 2.57, 5.14, 7.72, 10.29 m/s; bound 2.4 % (1.25× the worst)."""
     w = zero.omega.values
     worst = {}
     for k, u in enumerate(s175.forward_speed.values):
         data = _impedance(select_dofs(s175, VERTICAL).isel(forward_speed=k))
         rel = np.abs(speed_model.impedance(w, float(u)) - data) / np.abs(data)
         worst[round(float(u), 2)] = float(rel[INTEREST].max())
-    assert max(worst.values()) < 0.02, worst
+    assert max(worst.values()) < 0.024, worst
 
 
 def test_encounter_frequency_of_the_data(s175):
@@ -353,7 +368,11 @@ def test_radiation_force_with_a_varying_speed(zero, speed_model):
 def test_speed_terms_on_three_dimensional_data():
     """Hjulstad's use: STF speed terms on zero-speed 3-D panel data (the WAMIT tanker):
     the K⁰/K¹/K² model is stable, exact at U = 0, reproduces the STF-corrected force at
-    5 m/s, and the KK diagnostic flags the pitch terms the speed makes non-causal."""
+    5 m/s, and the KK diagnostic flags the pitch terms the speed makes non-causal.
+
+    Measured 2026-12-02, error relative to each term's largest |Z| over 0.25–1.5 rad/s (the
+    same under OpenBLAS Sandybridge, one thread): heave 0.76 %, heave–pitch 2.78 %,
+    pitch–heave 2.96 %, pitch 0.94 %; bound 3.7 % (1.25× the worst)."""
     tanker = select_dofs(cummins.demo_dataset(), VERTICAL)
     model = sp.speed_dependent_model(tanker, omega_max=2.0, r2=0.999)
     assert model.is_stable()
@@ -362,6 +381,6 @@ def test_speed_terms_on_three_dimensional_data():
     np.testing.assert_array_equal(model.response(w, 0.0), model.k0.response(w))
     data = _impedance(sp.stf_speed_terms(tanker, 5.0))[band]
     error = np.abs(model.impedance(w, 5.0)[band] - data).max(axis=0) / np.abs(data).max(axis=0)
-    assert float(error.max()) < 0.03, error  # relative to each coupling's largest |Z|
+    assert float(error.max()) < 0.037, error  # relative to each coupling's largest |Z|
     _, flagged = sp.stf_causality(tanker.drop_vars("added_mass_inf", errors="ignore"), 5.0)
     assert "Pitch" in flagged

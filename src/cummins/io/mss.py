@@ -591,6 +591,13 @@ def _read_mss(path, rho, g, speed, rao_reference) -> xr.Dataset:
     )
     if velocities.size == 0:
         velocities = np.zeros(1)
+    if not np.all(np.isfinite(velocities)):
+        raise HydroDataError(
+            "non-finite forward speed (NaN or Inf)",
+            path=path,
+            quantity="vessel.velocities",
+            hint="the file is damaged",
+        )
     nspeed = velocities.size
     a_all = _as_4d(
         _numeric(_field(vessel, "A", path), path, "vessel.A"), freqs.size, nspeed, path, "A"
@@ -677,7 +684,7 @@ def _read_mss(path, rho, g, speed, rao_reference) -> xr.Dataset:
             kw["added_mass_zero"] = extra_attrs["added_mass_zero"]
         if c_all is not None:
             kw["hydrostatic_stiffness"] = _constant_stiffness(
-                c_all[:, :, sl, s], history, velocities[s], nspeed
+                c_all[:, :, sl, s], history, velocities[s], nspeed, path
             )
         if "additional_stiffness" in extra_attrs:
             kw["additional_stiffness"] = extra_attrs["additional_stiffness"]
@@ -727,8 +734,20 @@ def _read_mss(path, rho, g, speed, rao_reference) -> xr.Dataset:
     return out
 
 
-def _constant_stiffness(c: NDArray, history: list[str], speed: float, nspeed: int) -> NDArray:
-    """The restoring matrix from ``C(:, :, freq)``, which MSS repeats for every frequency."""
+def _constant_stiffness(
+    c: NDArray, history: list[str], speed: float, nspeed: int, path: Path
+) -> NDArray:
+    """The restoring matrix from ``C(:, :, freq)``, which MSS repeats for every frequency.
+
+    A non-finite entry at any frequency is damage, not a value to pass over unseen."""
+    if not np.all(np.isfinite(c)):
+        k = np.argwhere(~np.isfinite(c))[0]
+        raise HydroDataError(
+            f"non-finite value (NaN or Inf) at C({k[0] + 1}, {k[1] + 1}, {k[2] + 1})",
+            path=path,
+            quantity="vessel.C",
+            hint="the file is damaged",
+        )
     first = c[:, :, 0]
     scale = max(float(np.abs(c).max()), 1e-300)
     deviation = float(np.abs(c - first[:, :, None]).max()) / scale
