@@ -3,11 +3,14 @@
 For every case of ``../shared/data`` and its corpus that reads with the rigid-body inertia
 and the restoring matrix, one run fits
 
-* the **default** identification (``fit_radiation(ds)``), and
-* the **previous default** (``fit_radiation(ds, **PREVIOUS_DEFAULT)``: uniform weighting,
-  R² targets only, every frequency above the first suspect one left out),
+* the **default** identification (``fit_radiation(ds)``: common poles per block),
+* the **per-coupling** identification with motion weighting (``method="fd"``, the
+  default before the common poles), and
+* the **previous default** (``fit_radiation(ds, **PREVIOUS_DEFAULT)``: per coupling,
+  uniform weighting, R² targets only, every frequency above the first suspect one left
+  out),
 
-and prints the scoreboard of :mod:`cummins.fit.scorecard` for both: total order, smallest
+and prints the scoreboard of :mod:`cummins.fit.scorecard` for each: total order, smallest
 diagonal R² of A and of B (recomputed from the model against the data), stable, passive
 (independent sweep of λ_min(K + Kᴴ), 3000 frequencies 10⁻³–50 rad/s), the motion-RAO
 error with 2 % of critical damping, the A∞ error (where the data have the ω = ∞ row: a
@@ -21,8 +24,9 @@ It also compares with the reference models shipped with the cases — MSS's ``*A
 K(jω) error (max over the diagonal of max_ω |K̂ − K| / max_ω |K|) and RAO error against
 ours, and the tanker's fit time against MSS's FDI (6.2 s on this machine, issue 4).
 
-Corpus cases whose reader does not give the inertia yet are listed as skipped (the
-readers are being extended: the benchmark picks them up when they land).
+Corpus cases without the inertia in their files are skipped, unless they come with an
+OpenFAST ``.ss`` model: then the default alone is fitted and compared with it (order, K
+error; no RAOs without inertia).
 
 Run: ``python benchmarks/bench_identification.py [filter]`` (a substring of the case
 path selects cases).
