@@ -1,12 +1,17 @@
 """Fuzz every reader with many damaged copies of real files and count the outcomes.
 
-Usage: python benchmarks/fuzz_readers.py [N per case] [seed] [name filter]
+Usage: python benchmarks/fuzz_readers.py [N per case] [seed] [name filter] [--markdown]
 
-The cases are the ``CASES`` lists of ``tests/test_fuzz_*.py``; the rule each outcome is
-judged by is in ``tests/_mutate.py``: a damaged file must raise ``HydroDataError``, warn
-(``HydroDataWarning``) or read exactly the undamaged data; re-encodings (BOM, CRLF, CR,
-tabs) must read identically. Prints one line per case and every failure; exit status 1
-when there is any.
+The cases are the ``CASES`` lists of ``tests/test_fuzz_*.py``: WAMIT numeric files and
+``.out`` logs, HAMS projects (WAMIT-format output, ``ControlFile.in``,
+``Hydrostatic.in``), NEMOH, AQWA, ShipX/VERES, MSS ``.mat`` (``vessel`` and ``RAO``
+structs), Capytaine and BEMIO files, OpenFAST SS_Fitting ``.ss``/``.ssexctn``. Cases
+read by another function than :func:`cummins.read` name it (``FuzzCase.reader``). The
+rule each outcome is judged by is in ``tests/_mutate.py``: a damaged file must raise
+``HydroDataError``, warn (``HydroDataWarning``) or read exactly the undamaged data;
+re-encodings (BOM, CRLF, CR, tabs) must read identically. Prints one line per case and
+every failure, then the totals (with ``--markdown``, a table for BENCHMARKS.md); exit
+status 1 when there is any failure.
 """
 
 from __future__ import annotations
@@ -24,6 +29,7 @@ sys.path.insert(0, str(ROOT / "tests"))
 from _mutate import Damager, failures  # noqa: E402
 
 SHARED = Path(os.environ.get("CUMMINS_SHARED_DATA", ROOT.parent / "shared" / "data"))
+KINDS = ("error", "warned", "same", "blind", "different", "crash")
 
 
 def _cases():
@@ -31,30 +37,55 @@ def _cases():
         spec = importlib.util.spec_from_file_location(path.stem, path)
         module = importlib.util.module_from_spec(spec)
         spec.loader.exec_module(module)
-        yield from getattr(module, "CASES", [])
+        for case in getattr(module, "CASES", []):
+            yield path.stem.removeprefix("test_fuzz_"), case
 
 
 def main() -> int:
-    n = int(sys.argv[1]) if len(sys.argv) > 1 else 200
-    seed = int(sys.argv[2]) if len(sys.argv) > 2 else 1
-    only = sys.argv[3] if len(sys.argv) > 3 else ""
+    args = [a for a in sys.argv[1:] if a != "--markdown"]
+    markdown = "--markdown" in sys.argv[1:]
+    n = int(args[0]) if len(args) > 0 else 200
+    seed = int(args[1]) if len(args) > 1 else 1
+    only = args[2] if len(args) > 2 else ""
     warnings.simplefilter("ignore")
     bad = 0
-    for case in _cases():
-        if only not in case.name:
+    rows = []
+    for group, case in _cases():
+        if only not in case.name and only != group:
             continue
         t0 = time.perf_counter()
         with Damager(SHARED, case) as damager:
-            outcomes = list(damager.cases(n, seed)) + list(damager.encodings())
-        counts = collections.Counter(o.kind for _, _, o in outcomes)
+            damaged = list(damager.cases(n, seed))
+            encoded = list(damager.encodings())
+        outcomes = damaged + encoded
+        counts = collections.Counter(o.kind for _, _, o in damaged)
         wrong = failures(outcomes)
         bad += len(wrong)
-        summary = ", ".join(f"{k} {v}" for k, v in sorted(counts.items()))
         elapsed = time.perf_counter() - t0
-        print(f"{case.name:40s} {len(outcomes):5d} cases {elapsed:6.1f} s  {summary}")
+        summary = ", ".join(f"{k} {counts[k]}" for k in KINDS if counts[k])
+        print(
+            f"{case.name:40s} {len(damaged):5d} damaged + {len(encoded):2d} re-encoded "
+            f"{elapsed:6.1f} s  {summary}",
+            flush=True,
+        )
         for line in wrong:
-            print("   ", line)
-    print(f"failures: {bad}")
+            print("   ", line, flush=True)
+        rows.append((group, case.name, len(damaged), len(encoded), counts, len(wrong), elapsed))
+    total = collections.Counter()
+    for *_, counts, _, _ in rows:
+        total.update(counts)
+    print(
+        f"total: {sum(r[2] for r in rows)} damaged copies of {len(rows)} cases, "
+        + ", ".join(f"{k} {total[k]}" for k in KINDS)
+        + f"; failures: {bad}"
+    )
+    if markdown:
+        print()
+        print("| reader | case | damaged | error | warned | same | blind | failures | s |")
+        print("|---|---|---:|---:|---:|---:|---:|---:|---:|")
+        for group, name, count, _, counts, wrong, elapsed in rows:
+            values = " | ".join(str(counts[k]) for k in ("error", "warned", "same", "blind"))
+            print(f"| {group} | {name} | {count} | {values} | {wrong} | {elapsed:.0f} |")
     return 1 if bad else 0
 
 

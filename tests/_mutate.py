@@ -22,7 +22,7 @@ import random
 import shutil
 import tempfile
 import warnings
-from collections.abc import Iterator
+from collections.abc import Callable, Iterator
 from pathlib import Path
 
 import numpy as np
@@ -62,7 +62,17 @@ class FuzzCase:
         Files whose rows carry no label (wrapped continuation lines, unlabelled matrix
         rows, the same DOF's row in another frequency block): two of their lines swapped
         leave no trace any reader could see. Such swaps are judged ``blind``, counted but
-        not a failure; the test that lists a file here says why.
+        not a failure; the test that lists a file here says why. An entry
+        ``"file:first-last"`` limits this to swaps of two lines within those lines
+        (1-based, inclusive), ``"file:same-label"`` to swaps of two rows with the same
+        label (the same leading integers, e.g. DOF index I or I J, and as many fields)
+        in blocks told apart only by a header line: the rest of the file is judged as
+        usual.
+    reader
+        The public function that reads ``entry`` when it is not :func:`cummins.read`
+        (an OpenFAST ``.ss`` file, an MSS ``RAO`` struct): called with the path, it
+        returns an :class:`xarray.Dataset` or :class:`xarray.DataArray` holding every
+        number the function reads (``format`` and ``options`` are then not used).
     """
 
     name: str
@@ -72,6 +82,7 @@ class FuzzCase:
     format: str | None = None
     options: tuple[tuple[str, object], ...] = ()
     swap_blind: tuple[str, ...] = ()
+    reader: Callable[[Path], xr.Dataset | xr.DataArray] | None = None
 
 
 @dataclasses.dataclass(frozen=True)
@@ -141,7 +152,12 @@ def mutate_bytes(data: bytes, rng: random.Random) -> bytes:
 def _read(path: Path, case: FuzzCase) -> tuple[xr.Dataset, list[str]]:
     with warnings.catch_warnings(record=True) as caught:
         warnings.simplefilter("always")
-        ds = cummins.read(path, format=case.format, **dict(case.options))
+        if case.reader is None:
+            ds = cummins.read(path, format=case.format, **dict(case.options))
+        else:
+            ds = case.reader(path)
+            if isinstance(ds, xr.DataArray):
+                ds = ds.to_dataset(name=ds.name or "data")
     damage = [str(w.message) for w in caught if issubclass(w.category, HydroDataWarning)]
     return ds, damage
 
@@ -231,9 +247,29 @@ class Damager:
             if content == data:
                 continue
             outcome = self.judge(target, content)
-            if op == "swap" and target in self.case.swap_blind and outcome.kind == "different":
+            if op == "swap" and outcome.kind == "different" and self._blind(target, text, content):
                 outcome = Outcome("blind", outcome.detail)
             yield target, op, outcome
+
+    def _blind(self, target: str, text: str, content: bytes) -> bool:
+        """Whether the swap that made ``content`` is one :attr:`FuzzCase.swap_blind` allows."""
+        if target in self.case.swap_blind:
+            return True
+        before, after = text.splitlines(), content.decode("utf-8").splitlines()
+        moved = [k + 1 for k, (x, y) in enumerate(zip(before, after, strict=False)) if x != y]
+        for entry in self.case.swap_blind:
+            name, _, span = entry.rpartition(":")
+            if name != target or not span or len(moved) != 2:
+                continue
+            if span == "same-label":
+                a, b = (before[k - 1].split() for k in moved)
+                if len(a) == len(b) and _label(a) and _label(a) == _label(b):
+                    return True
+                continue
+            first, last = (int(v) for v in span.split("-"))
+            if all(first <= k <= last for k in moved):
+                return True
+        return False
 
     def encodings(self) -> Iterator[tuple[str, str, Outcome]]:
         """Every text target in every encoding of :data:`ENCODINGS`."""
@@ -248,6 +284,16 @@ class Damager:
                     encoding,
                     self.judge(target, encode_text(text, encoding), encoding_only=True),
                 )
+
+
+def _label(fields: list[str]) -> tuple[str, ...]:
+    """The leading integer fields of a row (its label: a DOF index, an I J pair)."""
+    out = []
+    for field in fields:
+        if not field.lstrip("+-").isdigit():
+            break
+        out.append(field)
+    return tuple(out)
 
 
 def _is_binary(data: bytes) -> bool:

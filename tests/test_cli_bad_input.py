@@ -277,6 +277,8 @@ CASES: dict[str, tuple[list[str], int, str]] = {
     "report-exists": (["report", T, "-o", "old.html"], 2, "exists"),
     "report-under-file": (["report", T, "-o", "afile/r.html"], 2, "is a file"),
     "report-g-negative": (["report", T, "-o", "r.html", "--g", "-9.81"], 2, "--g"),
+    "report-rho-nan": (["report", T, "-o", "r.html", "--rho", "nan"], 2, "--rho"),
+    "report-ulen-zero": (["report", T, "-o", "r.html", "--ulen", "0"], 2, "--ulen"),
 }
 
 

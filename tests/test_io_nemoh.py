@@ -573,6 +573,34 @@ def test_hydrostatics_of_another_mesh_are_refused_with_a_warning(corpus, case, r
     assert damage[0] in ds.attrs["read_warnings"]
 
 
+def test_cubes_history_says_the_single_mesh_files_are_not_used(corpus):
+    """The Cubes' Mesh/Inertia_hull.dat and the 'Mass = 0.1000006E+07' line of its
+    Hydrostatics_0/1.dat (rho x 1000 m^3, both cubes) are the NEMOH mesher's output for
+    the two cubes meshed as one (GC_hull.dat: centre at x = 50 m, between the cubes'
+    reference points x = 0 and 100 m of Nemoh.cal): one history line says they are not
+    used, and nothing is taken from them."""
+    folder = corpus / "WEC-Sim/nemoh_v3.0.2_Cubes_2body"
+    assert "Mass = 0.1000006E+07" in (folder / "Mesh/Hydrostatics_0.dat").read_text()
+    ds, _ = _read_warned(folder)
+    lines = [
+        line
+        for line in ds.attrs["history"].splitlines()
+        if "Inertia_hull.dat" in line or "Mass line" in line
+    ]
+    assert len(lines) == 1
+    assert re.fullmatch(
+        r"Mesh/Inertia_hull\.dat and the Mass line of Hydrostatics_0\.dat, "
+        r"Hydrostatics_1\.dat not used: NEMOH's mesher writes them for one mesh, not per "
+        r"body \(here the 2 bodies meshed together: Mesh/GC_hull\.dat puts its centre at "
+        r"x = 50\.00 m, y = 0\.00 m, between the bodies' reference points\)",
+        lines[0],
+    )
+    assert "inertia_matrix" not in ds and "mass" not in ds
+    # a one-body run uses its Mass line: no such history line there
+    spar, _ = _read_warned(corpus / "WEC-Sim/nemoh_v3.0.2_OC3_Hywind_spar")
+    assert "Mass line" not in spar.attrs["history"]
+
+
 def test_froude_krylov_limit_confirms_matching_hydrostatics(cylinder):
     """The cylinder's KH.dat C33 and its own Froude-Krylov heave force at 0.04 rad/s
     agree (3764.56 vs 3764.21 N/m, 0.01 %), so the stiffness is kept and history says it was

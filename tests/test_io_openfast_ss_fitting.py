@@ -81,9 +81,17 @@ def test_both_ssexctn_layouts(corpus):
 
 
 def test_damaged_ssexctn_is_refused(corpus, tmp_path):
+    """Each damage is refused with the file and the line at fault."""
     lines = (corpus / SEMI / "marin_semi.ssexctn").read_text().splitlines()
-    for k, damaged in enumerate((lines[:-1], lines[:5] + lines[6:], [lines[0], "x", *lines[2:]])):
+    damages = [
+        (50, lines[:-1]),  # the last row of C lost: 50 lines of the 51 the header implies
+        (50, lines[:5] + lines[6:]),  # a row of A lost
+        (2, [lines[0], "x", *lines[2:]]),  # the heading
+    ]
+    for k, (line, damaged) in enumerate(damages):
         path = tmp_path / f"d{k}.ssexctn"
         path.write_text("\n".join(damaged) + "\n")
-        with pytest.raises(HydroDataError):
+        with pytest.raises(HydroDataError, match=r"line \d+") as info:
             read_openfast_ssexctn(path)
+        assert str(path) in str(info.value)
+        assert info.value.line == line

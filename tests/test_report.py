@@ -3,6 +3,7 @@ and shown by a real headless browser (Debian's Chromium) with their figures."""
 
 from __future__ import annotations
 
+import itertools
 import os
 import re
 import shutil
@@ -149,6 +150,54 @@ def test_report_refuses_to_overwrite_and_names_bad_input(reports, tmp_path):
     assert bad.exit_code == 1 and "junk.txt" in bad.output
     with pytest.raises(cummins.CumminsError):
         write_report(junk, tmp_path / "y.html")
+
+
+def _report_text(page: Path) -> list[str]:
+    """The visible text of a report, one item per line (no figures, no style)."""
+    import html
+
+    text = re.sub(r"<img[^>]*>|<style.*?</style>", "", page.read_text(), flags=re.S)
+    text = re.sub(r"<[^>]+>", "\n", text)
+    return [html.unescape(line).strip() for line in text.splitlines() if line.strip()]
+
+
+def test_report_of_nondimensional_files_with_rho_g_ulen(tmp_path):
+    """``--rho 1000 --g 9.80665 --ulen 2`` on the tanker's .1/.3/.hst without its .out
+    (so neither constant is in the files): the page states them, and its dimensional
+    values are those of reading the files with the same constants through the API
+    (heave A-infinity, the 'data row' of the K(t) table: rho L^3 times the .1's value),
+    not those of the defaults (1025 kg/m^3, L = 1 m)."""
+    for suffix in (".1", ".3", ".hst"):
+        shutil.copy(TANKER.with_suffix(suffix), tmp_path / f"tanker{suffix}")
+    data = tmp_path / "tanker.1"
+    page = tmp_path / "tanker.html"
+    options = ["--rho", "1000", "--g", "9.80665", "--ulen", "2"]
+    result = CliRunner().invoke(main, ["report", str(data), "-o", str(page), *options])
+    assert result.exit_code == 0, result.output
+    lines = _report_text(page)
+    assert lines[lines.index("rho, g") + 1] == "1000 kg/m³, 9.80665 m/s²"
+    heave = [b for a, b in itertools.pairwise(lines) if a == "Heave" and "K(0)" in b]
+    assert len(heave) == 1, heave
+    printed = float(re.search(r"data row (\S+);", heave[0])[1])
+    given = cummins.read(data, rho=1000, g=9.80665, ulen=2)
+    default = cummins.read(data)
+    pick = {"influenced_dof": "Heave", "radiating_dof": "Heave"}
+    expected = float(given.added_mass_inf.sel(pick))
+    assert printed == float(f"{expected:.4g}")
+    # the constants did reach the numbers: rho 1000/1025 and L^3 = 8 apart
+    ratio = expected / float(default.added_mass_inf.sel(pick))
+    assert ratio == pytest.approx(8 * 1000 / 1025, rel=1e-12)
+
+
+def test_report_with_a_bad_rho_is_one_error_line(tmp_path):
+    """``--rho nan``: exit status 2 (a bad option), one error line naming --rho, no
+    traceback, no page."""
+    page = tmp_path / "r.html"
+    result = CliRunner().invoke(main, ["report", str(TANKER), "-o", str(page), "--rho", "nan"])
+    assert result.exit_code == 2
+    assert "Traceback" not in result.output and not page.exists()
+    errors = [line for line in result.output.splitlines() if "error" in line.lower()]
+    assert len(errors) == 1 and "--rho" in errors[0] and "nan" in errors[0], result.output
 
 
 def _browser():

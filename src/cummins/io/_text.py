@@ -135,6 +135,41 @@ def check_cut_numbers(text: TextFile, lines, columns, *, minimum_rows: int = 10)
             )
 
 
+def check_line_ends(text: TextFile, lines, *, minimum_rows: int = 10) -> None:
+    """Error on a row that ends before the others of its table in fixed-column output.
+
+    Fortran writes every row of a table in one format, numbers right-aligned in fields
+    of fixed width, so every row ends at the same column; a row that ends before all
+    but at most one in fifty of the others (at least one deviant is allowed for) was
+    cut short, which a number of free width (a phase in whole degrees: ``-177`` cut to
+    ``-17``) would otherwise hide. Tables whose rows end at varying columns, shorter
+    than ``minimum_rows``, or holding tabs (columns unknown) are not checked.
+
+    Parameters
+    ----------
+    text
+        The file.
+    lines
+        0-based indices of the table's lines (rows of one layout: same fields).
+    """
+    lines = [int(i) for i in lines]
+    if len(lines) < minimum_rows or any("\t" in text.lines[i] for i in lines):
+        return
+    ends = np.fromiter((len(text.lines[i].rstrip()) for i in lines), int, len(lines))
+    values, counts = np.unique(ends, return_counts=True)
+    if counts.max() < ends.size - max(1, int(0.02 * ends.size)):
+        return  # free format: rows of varying length
+    usual = values[np.argmax(counts)]
+    short = np.flatnonzero(ends < usual)
+    if short.size:
+        raise text.error(
+            f"this row ends at column {ends[short[0]]}, the others of its table at "
+            f"column {usual}: a cut or edited line",
+            lines[short[0]],
+            hint="the file is damaged; take it again from the solver run",
+        )
+
+
 def parse_numbers(line: str) -> np.ndarray | None:
     """All numbers of a line, or ``None`` if the line holds anything but numbers.
 

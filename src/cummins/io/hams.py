@@ -21,6 +21,15 @@ files, read here with :func:`cummins.io.wamit.read_wamit_run`, with three differ
   external quadratic damping is not linear and is not used (history says so).
   Matrices of zeros (a run without mass properties) are not data.
 
+The inputs are checked against the run: the water depth, reference length and centre
+of ``ControlFile.in`` against those the run's Hydrostar_format headers print (an error
+when they differ), the Hydrostatic Restoring Matrix of ``Hydrostatic.in`` against the
+run's ``.hst`` (HAMS writes it from that matrix). ``Hydrostatic.in`` is read as HAMS
+reads it (blocks in a fixed order, numbers in ``E12.5``): a block missing, a row outside
+a block or a cut number is an error naming the line; matrices no user could have given
+(a mass matrix that is not a rigid body's, damping that adds energy, restoring far from
+symmetric: rows moved) are a warning, and none of the file's matrices is then used.
+
 A project may hold the run's ``Output/`` and a reference ``Output_Benchmark/``. The
 run's own output is read; when it holds no finite frequency (HAMS/DeepCwind's
 ``Output/Buoy.1`` has only the ω = 0 and ω = ∞ blocks), the benchmark set is read
@@ -38,7 +47,8 @@ import numpy as np
 import xarray as xr
 
 from cummins.errors import HydroDataError
-from cummins.io._text import parse_numbers
+from cummins.io._common import warn_damage
+from cummins.io._text import check_cut_numbers, parse_numbers
 from cummins.io.wamit import RunSettings, _parse_dot1, _read_text, numeric_kind, read_wamit_run
 
 __all__ = ["read_hams", "sniff", "sniff_dir"]
@@ -123,13 +133,22 @@ def _control(path: Path) -> dict:
             values.append(float(v[0]))
         if not values:
             raise text.error(f"expected a number after {tokens[0]}", i)
+        if not np.all(np.isfinite(values)):
+            raise text.error(f"expected a finite number after {tokens[0]}", i)
         key = keys[tokens[0].lower()]
+        if key == "center" and len(values) != 3:
+            raise text.error(
+                f"expected the 3 coordinates x y z after {tokens[0]}, found {len(values)}", i
+            )
         out[key] = values if key == "center" else values[0]
         out[key + "_line"] = i
     for needed in ("depth", "output_type"):
         if needed not in out:
             raise text.error(f"no {needed.replace('_', ' ')} line in ControlFile.in")
-    if int(out["output_type"]) not in FREQUENCY_TYPES:
+    if (
+        out["output_type"] != int(out["output_type"])
+        or int(out["output_type"]) not in FREQUENCY_TYPES
+    ):
         raise text.error(
             f"Output_frequency_type {out['output_type']:g} is not one of 1–5",
             out["output_type_line"],
@@ -147,45 +166,235 @@ _MATRIX_TITLES = {
 }
 
 
-def _hydrostatic_in(path: Path) -> dict[str, np.ndarray]:
-    """The 6×6 matrices and the centre of gravity of ``Input/Hydrostatic.in``."""
+#: The blocks of ``Hydrostatic.in`` in the order HAMS reads them (``ReadHydroStatic``:
+#: a title line, then the values); the quadratic damping is absent from older files.
+_SECTION_ORDER = ("cog", "mass", "damping", "quadratic_damping", "restoring", "external_restoring")
+_REQUIRED = {
+    "cog": "Center of Gravity:",
+    "mass": "Body Mass Matrix:",
+    "damping": "External Linear Damping Matrix:",
+    "restoring": "Hydrostatic Restoring Matrix:",
+    "external_restoring": "External Restoring Matrix:",
+}
+
+
+def _hydrostatic_in(path: Path) -> tuple[dict[str, np.ndarray], dict[str, int]]:
+    """The 6×6 matrices and the centre of gravity of ``Input/Hydrostatic.in``, and the
+    line of each block's title.
+
+    HAMS reads the blocks in a fixed order, the matrix rows in a fixed format
+    (``6(2x,E12.5)``): a block missing, out of order or twice, a row outside a block and
+    a number shorter than the others (a cut line) are errors naming the line.
+    """
     text = _read_text(path)
     out: dict[str, np.ndarray] = {}
+    titles: dict[str, int] = {}
+    matrix_rows: list[int] = []
     i = 0
     while i < len(text):
         title = text.lines[i].strip().rstrip(":").lower()
-        if title == "center of gravity":
+        key = "cog" if title == "center of gravity" else _MATRIX_TITLES.get(title)
+        if key is not None:
+            if key in titles:
+                raise text.error(f"a second '{text.lines[i].strip()}' block", i)
+            later = [k for k in titles if _SECTION_ORDER.index(k) > _SECTION_ORDER.index(key)]
+            if later:
+                raise text.error(
+                    f"'{text.lines[i].strip()}' after the block of line {titles[later[0]] + 1}: "
+                    "HAMS reads the blocks in the order centre of gravity, mass, damping, "
+                    "restoring (a line moved?)",
+                    i,
+                )
+            titles[key] = i
+        if key == "cog":
             out["cog"] = text.numbers(i + 1, 3)
+            if not np.all(np.isfinite(out["cog"])):
+                raise text.error("non-finite centre of gravity", i + 1)
             i += 2
             continue
-        if title in _MATRIX_TITLES:
+        if key is not None:
             rows = [text.numbers(i + 1 + k, 6) for k in range(6)]
             m = np.vstack(rows)
             if not np.all(np.isfinite(m)) or np.any(np.abs(m) >= 1e30):
                 raise text.error("non-finite or implausible value in this matrix", i + 1)
-            out[_MATRIX_TITLES[title]] = m
+            out[key] = m
+            matrix_rows.extend(range(i + 1, i + 7))
             i += 7
             continue
         if text.lines[i].strip() and parse_numbers(text.lines[i]) is not None:
             raise text.error("a row of numbers outside any matrix (a line added or lost?)", i)
         i += 1
-    if "mass" not in out:
-        raise text.error("no 'Body Mass Matrix:' in Hydrostatic.in")
-    return out
+    missing = [k for k in _REQUIRED if k not in titles]
+    if missing:
+        raise text.error(
+            f"no '{_REQUIRED[missing[0]]}' block: HAMS reads "
+            f"{', '.join(_REQUIRED.values())} in this order (the file is truncated or edited?)",
+            len(text) - 1,
+        )
+    check_cut_numbers(text, matrix_rows, range(6))
+    return out, titles
 
 
-def _constants(output: Path) -> tuple[float | None, float | None, str | None]:
-    """ρ, g and the depth line printed in the Hydrostar_format headers of an output."""
+def _implausible(matrices: dict[str, np.ndarray], titles: dict[str, int]) -> tuple[str, int] | None:
+    """Why the matrices of ``Hydrostatic.in`` cannot be as HAMS's user gave them, with the
+    line of the block at fault, or None.
+
+    The rows carry no label (HAMS reads them in order), so a row moved or swapped shows
+    only in what the matrices must be: a rigid body's mass matrix is symmetric, m·I in
+    translation, with positive moments of inertia and positive semi-definite; linear and
+    quadratic damping dissipate energy (symmetric part positive semi-definite); the
+    external restoring is nearly symmetric (DeepCwind's: 0.9 % apart, HywindSpar's
+    0.18 %; a swap makes an entry face a zero or a much different value).
+    Matrices of zeros (a run without them) pass.
+    """
+    m = matrices["mass"]
+    if np.any(m):
+        scale = np.abs(m).max()
+        bad = np.abs(m - m.T) > 1e-3 * np.maximum(np.abs(m), np.abs(m.T)) + 1e-9 * scale
+        if bad.any():
+            i, j = np.argwhere(bad)[0]
+            return (
+                f"the body mass matrix is not symmetric: M({i + 1},{j + 1}) = {m[i, j]:g}, "
+                f"M({j + 1},{i + 1}) = {m[j, i]:g}",
+                titles["mass"],
+            )
+        mass = float(m[0, 0])
+        if mass <= 0 or np.abs(m[:3, :3] - mass * np.eye(3)).max() > 1e-6 * scale:
+            return (
+                "the body mass matrix of a rigid body has the mass on its first three diagonal "
+                f"entries and zeros beside them; here {np.diag(m)[:3].tolist()}",
+                titles["mass"],
+            )
+        if np.any(np.diag(m)[3:] <= 0):
+            k = 3 + int(np.argmax(np.diag(m)[3:] <= 0))
+            return (
+                f"the body mass matrix has the mass {mass:g} kg but the moment of inertia "
+                f"M({k + 1},{k + 1}) = {m[k, k]:g}, not positive",
+                titles["mass"],
+            )
+    for key, what in (
+        ("mass", "body mass"),
+        ("damping", "external linear damping"),
+        ("quadratic_damping", "external quadratic damping"),
+    ):
+        if key not in matrices or not np.any(matrices[key]):
+            continue
+        x = matrices[key]
+        lowest = float(np.linalg.eigvalsh(0.5 * (x + x.T)).min())
+        if lowest < -1e-9 * np.abs(x).max():
+            return (
+                f"the {what} matrix is not positive semi-definite (eigenvalue {lowest:.4g})",
+                titles[key],
+            )
+    x = matrices["external_restoring"]
+    larger = np.maximum(np.abs(x), np.abs(x.T))
+    bad = (np.abs(x - x.T) > 0.5 * larger) & (larger > 1e-6 * np.abs(x).max())
+    if bad.any():
+        i, j = np.argwhere(bad)[0]
+        return (
+            f"the external restoring matrix is far from symmetric: K({i + 1},{j + 1}) = "
+            f"{x[i, j]:g}, K({j + 1},{i + 1}) = {x[j, i]:g}",
+            titles["external_restoring"],
+        )
+    return None  # the hydrostatic restoring (WAMIT's C46, C56 have no C64, C65) is
+    # checked against the run's .hst instead: _restoring_against_hst
+
+
+def _restoring_against_hst(
+    restoring: np.ndarray, hst: Path | None, rho: float, g: float
+) -> str | None:
+    """How the Hydrostatic Restoring Matrix of ``Hydrostatic.in`` differs from the run's
+    ``.hst``, or None.
+
+    HAMS writes the ``.hst`` from that very matrix (``ReadHydroStatic``: C/(ρg)), so the
+    two agree to the five digits of ``Hydrostatic.in`` (HAMS/Cylinder, DeepCwind,
+    HywindSpar: within 3e-5 relative). An unreadable ``.hst`` is left to the WAMIT-format
+    reader, which says so.
+    """
+    from cummins.io.wamit import _read_hst
+
+    if hst is None or not hst.is_file() or not hst.stat().st_size:
+        return None
+    try:
+        c = _read_hst(hst, 6)
+    except HydroDataError:
+        return None
+    written = c * rho * g
+    scale = max(np.abs(restoring).max(), np.abs(written).max())
+    gap = np.abs(restoring - written)
+    bad = gap > 2e-4 * np.abs(written) + 1e-6 * scale
+    if bad.any():
+        i, j = np.argwhere(bad)[0]
+        return (
+            f"its Hydrostatic Restoring Matrix gives C({i + 1},{j + 1}) = {restoring[i, j]:g}, "
+            f"the run's {hst.name} {written[i, j]:g} (HAMS writes the .hst from that matrix)"
+        )
+    return None
+
+
+_HEADER_VALUES = {
+    "rho": re.compile(r"Water density \(rho\)\s*:\s*([-+0-9.Ee]+)"),
+    "g": re.compile(r"Gravity acceleration\s*:\s*([-+0-9.Ee]+)"),
+    "depth": re.compile(r"Waterdepth\s*:\s*(Inf\.?|[-+0-9.Ee]+)"),
+    "ulen": re.compile(r"Reference length\s*:\s*([-+0-9.Ee]+)"),
+    "center": re.compile(
+        r"Reference point of body 1\s*:\s*\(\s*([-+0-9.Ee]+)\s+([-+0-9.Ee]+)\s+([-+0-9.Ee]+)\s*\)"
+    ),
+}
+
+
+def _constants(output: Path) -> tuple[float | None, float | None, str | None, dict]:
+    """ρ, g, the file they come from, and the depth, reference length and centre the run
+    used, as printed in the Hydrostar_format headers of an output."""
     for f in sorted((output / "Hydrostar_format").glob("*.rao"))[:1]:
-        head = f.read_text(errors="replace").splitlines()[:12]
-        rho = g = None
+        head = f.read_text(errors="replace").splitlines()[:16]
+        found: dict = {}
         for line in head:
-            if m := re.search(r"Water density \(rho\)\s*:\s*([-+0-9.Ee]+)", line):
-                rho = float(m.group(1))
-            if m := re.search(r"Gravity acceleration\s*:\s*([-+0-9.Ee]+)", line):
-                g = float(m.group(1))
-        return rho, g, f.name
-    return None, None, None
+            for key, rx in _HEADER_VALUES.items():
+                if key not in found and (m := rx.search(line)):
+                    try:
+                        values = [
+                            np.inf if v.lower().startswith("inf") else float(v) for v in m.groups()
+                        ]
+                    except ValueError:
+                        continue
+                    found[key] = values if key == "center" else values[0]
+        return found.get("rho"), found.get("g"), f"{output.name}/Hydrostar_format/{f.name}", found
+    return None, None, None, {}
+
+
+def _check_control_against_run(control: dict, printed: dict, where: str, path: Path) -> None:
+    """The ControlFile.in settings the run's own output headers print must agree."""
+    text = _read_text(path)
+    depth = float(control["depth"])
+    checks = [
+        ("depth", np.inf if depth <= 0 else depth, "Waterdepth", "m"),
+        ("ulen", float(control.get("ulen", 1.0)), "Reference_body_length", "m"),
+    ]
+    for key, value, name, unit in checks:
+        if key not in printed or (key == "ulen" and "ulen" not in control):
+            continue
+        run = float(printed[key])
+        same = (np.isinf(run) and np.isinf(value)) or (
+            np.isfinite(run) and np.isfinite(value) and abs(run - value) <= 1e-3 + 1e-4 * abs(run)
+        )
+        if not same:
+            raise text.error(
+                f"{name} is {value:g} {unit} here, but the run's output was computed with "
+                f"{run:g} {unit} ({where})",
+                control.get(f"{key}_line"),
+                hint="this ControlFile.in is not the run's, or was edited since",
+            )
+    if "center" in printed and "center" in control:
+        run = np.asarray(printed["center"], dtype=float)
+        here = np.asarray(control["center"], dtype=float)
+        if np.abs(run - here).max() > 1e-3 + 1e-4 * np.abs(run).max():
+            raise text.error(
+                f"Reference_body_center is {here.tolist()} m here, but the run's output was "
+                f"computed about {run.tolist()} m ({where})",
+                control.get("center_line"),
+                hint="this ControlFile.in is not the run's, or was edited since",
+            )
 
 
 def read_hams(
@@ -248,7 +457,8 @@ def read_hams(
             chosen = outputs[1]
     history.append(f"output read from {chosen.name}/Wamit_format")
 
-    rho_file, g_file, where = _constants(chosen)
+    rho_file, g_file, where, printed = _constants(chosen)
+    _check_control_against_run(control, printed, where, control_path)
     if g_file is not None and abs(g_file - HAMS_G) < 5e-5:
         history.append(f"g printed as {g_file:g} in {where}: the standard 9.80665 m/s^2")
         g_file = HAMS_G
@@ -272,16 +482,38 @@ def read_hams(
     )
     hydrostatic = project / "Input" / "Hydrostatic.in"
     if hydrostatic.is_file() and hydrostatic.stat().st_size:
-        matrices = _hydrostatic_in(hydrostatic)
+        matrices, titles = _hydrostatic_in(hydrostatic)
+        problem = _implausible(matrices, titles)
+        if problem is None:
+            mismatch = _restoring_against_hst(
+                matrices["restoring"],
+                _dot1(chosen).with_suffix(".hst"),
+                rho_file,  # HAMS divided by its own constants
+                g_file,
+            )
+            problem = None if mismatch is None else (mismatch, titles["restoring"])
+        if problem is not None:
+            warn_damage(
+                f"{problem[0]}: a row moved or edited? The matrices of Input/Hydrostatic.in "
+                "are not read (no inertia_matrix, additional_damping, additional_stiffness "
+                "from it)",
+                path=hydrostatic,
+                line=problem[1] + 1,
+                notes=settings.notes,
+            )
+            matrices = {}
+    else:
+        matrices = {}
+    if matrices:
         if np.any(matrices["mass"]):
             settings.inertia_matrix = matrices["mass"]
             history.append("inertia matrix from Input/Hydrostatic.in (Body Mass Matrix)")
         else:
             history.append("no inertia matrix: Input/Hydrostatic.in gives a mass matrix of zeros")
-        if "damping" in matrices and np.any(matrices["damping"]):
+        if np.any(matrices["damping"]):
             settings.additional_damping = matrices["damping"]
             history.append("external linear damping from Input/Hydrostatic.in")
-        if "external_restoring" in matrices and np.any(matrices["external_restoring"]):
+        if np.any(matrices["external_restoring"]):
             settings.additional_stiffness = matrices["external_restoring"]
             history.append("external restoring from Input/Hydrostatic.in as additional_stiffness")
         if "quadratic_damping" in matrices and np.any(matrices["quadratic_damping"]):

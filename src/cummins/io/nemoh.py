@@ -1192,8 +1192,11 @@ def _hydrostatics(run: _Run, bodies: _BodyInfo, omega, forces: dict, constants, 
             )
             values = []
             break
+    mass_lines = [p.name for p, v in zip(hydro_files, values, strict=False) if "mass" in v]
     if len(values) != nb:
         values = []
+    if nb > 1:
+        _single_mesh_files(run, bodies, mass_lines, history)
     mechanics = _mechanics(run, n, omega.size, history, notes)
     if "kh" in mechanics:
         if c is None:
@@ -1265,6 +1268,53 @@ def _hydrostatics(run: _Run, bodies: _BodyInfo, omega, forces: dict, constants, 
             f"{variable} from Mechanics/{name} (about the reference point, as NEMOH requires)"
         )
     return out
+
+
+def _single_mesh_files(run: _Run, bodies: _BodyInfo, mass_lines: list[str], history) -> None:
+    """Say that a multi-body run's ``Mesh/Inertia_hull.dat`` and the ``Mass`` lines of its
+    hydrostatics files are not used (one history line).
+
+    NEMOH's mesher writes them for the one mesh it processed, so they describe no single
+    body of the run; when ``GC_hull.dat`` puts that mesh's centre between the bodies'
+    reference points (the WEC-Sim Cubes: x = 50 m, bodies at 0 and 100 m), it was the
+    bodies meshed together, and the line says so.
+    """
+    hull = _companion(run, ["Inertia_hull.dat"])
+    if hull is None and not mass_lines:
+        return
+
+    def shown(path: Path) -> str:
+        try:
+            return path.relative_to(run.folder).as_posix()
+        except ValueError:
+            return path.name
+
+    unused = [shown(hull)] if hull is not None else []
+    if mass_lines:
+        unused.append(f"the Mass line of {', '.join(mass_lines)}")
+    where = ""
+    centre_file = _companion(run, ["GC_hull.dat"])
+    if centre_file is not None:
+        try:
+            centre = TextFile.read(centre_file).numbers(0, 3)
+        except HydroDataError:
+            centre = None
+        points = bodies.points
+        if centre is not None and bodies.count > 1:
+            low, high = points.min(axis=0), points.max(axis=0)
+            span = float(np.linalg.norm(high - low))
+            inside = np.all((centre[:2] >= low[:2] - 1e-6) & (centre[:2] <= high[:2] + 1e-6))
+            apart = np.linalg.norm(points[:, :2] - centre[:2], axis=1).min() > 0.05 * span
+            if span > 0 and inside and apart:
+                where = (
+                    f" (here the {bodies.count} bodies meshed together: {shown(centre_file)} "
+                    f"puts its centre at x = {centre[0]:.2f} m, y = {centre[1]:.2f} m, between "
+                    "the bodies' reference points)"
+                )
+    history.append(
+        f"{' and '.join(unused)} not used: NEMOH's mesher writes them for one mesh, not per "
+        + (f"body{where}" if where else f"body of this {bodies.count}-body run")
+    )
 
 
 def _mechanics(run: _Run, n: int, n_omega: int, history, notes) -> dict:

@@ -42,6 +42,7 @@ matrices bit for bit (HydroDyn itself stores them in single precision).
 from __future__ import annotations
 
 import os
+import warnings
 from dataclasses import dataclass
 from pathlib import Path
 
@@ -49,10 +50,10 @@ import numpy as np
 from numpy.typing import ArrayLike, NDArray
 
 from cummins._version import __version__
-from cummins.errors import HydroDataError, check_writable
+from cummins.errors import HydroDataError, HydroDataWarning, check_writable
 from cummins.hydrodb import DOF_NAMES
 from cummins.io._model_common import resolve_axis_convention
-from cummins.io._text import TextFile, parse_numbers
+from cummins.io._text import TextFile, check_cut_numbers, parse_numbers
 from cummins.radiation import CouplingModel, RadiationModel, change_model_axes
 
 __all__ = [
@@ -307,8 +308,18 @@ def read_openfast_ss(path: str | os.PathLike[str]) -> OpenFastSS:
     Raises
     ------
     HydroDataError
-        Naming the file and line: missing or malformed header, wrong counts, a matrix
-        row with the wrong number of values, lines after the C matrix.
+        Naming the file and line: missing or malformed header, wrong counts, a header
+        line that lost its ``%`` comment, a matrix row with the wrong number of values
+        or a number shorter than the others (a cut line), lines after the C matrix;
+        states that break the grouping of line 4 (A block-diagonal by DOF, B driving
+        them by their DOF's velocity only), a block of A that does not decay or has no
+        input or output, a DOF's states with no force on that DOF.
+
+    Warns
+    -----
+    HydroDataWarning
+        K(jω) is not a radiation memory function: K(0) ≠ 0, negative damping on the
+        diagonal, K_ij ≠ K_ji (:data:`RESPONSE_LIMITS`; two rows of B or C swapped).
     """
     text = TextFile.read(path)
     if len(text) < 4:
@@ -342,6 +353,7 @@ def read_openfast_ss(path: str | os.PathLike[str]) -> OpenFastSS:
         raise text.error(
             f"the states per DOF add up to {int(per_dof.sum())}, not to {n_states} (line 3)", 3
         )
+    _check_header_comments(text, range(1, 4))
     expected = 4 + 2 * n_states + n_dofs
     if len(text) != expected:
         where = min(len(text), expected) - 1
@@ -354,6 +366,9 @@ def read_openfast_ss(path: str | os.PathLike[str]) -> OpenFastSS:
     a = _rows(text, 4, n_states, n_states)
     b = _rows(text, 4 + n_states, n_states, n_dofs)
     c = _rows(text, 4 + 2 * n_states, n_dofs, n_states)
+    check_cut_numbers(text, range(4, expected), range(max(n_states, n_dofs)))
+    _check_structure(text, 4, a, b, c, per_dof.astype(int), excitation=False)
+    _check_radiation_response(text, 4, a, b, c, per_dof.astype(int))
     return OpenFastSS(
         title=text.lines[0].strip(),
         dof_flags=flags.astype(int),
@@ -376,10 +391,197 @@ def _leading_integers(text: TextFile, index: int, what: str) -> NDArray[np.int_]
                 number = float(field.replace("D", "E").replace("d", "e"))
             except ValueError:
                 break
-            if number != int(number):
+            if not np.isfinite(number) or number != int(number):
                 raise text.error(f"expected integers ({what}), found {field!r}", index) from None
             values.append(int(number))
     return np.asarray(values, dtype=int)
+
+
+def _check_header_comments(text: TextFile, indices: range) -> None:
+    """Every header line keeps its ``%`` comment when the others have one.
+
+    SS_Fitting, SS_Excitation_Fitting and cummins end each header line with a comment
+    after the numbers; a line cut short loses it first, and a cut number ("10" read as
+    "1") would otherwise pass as a plausible value.
+    """
+    present = [i for i in indices if i < len(text) and "%" in text.lines[i]]
+    if not present or len(present) == len(indices):
+        return
+    missing = next(i for i in indices if i not in present)
+    raise text.error(
+        f"this header line has no '%' comment, unlike lines "
+        f"{', '.join(str(i + 1) for i in present)}: a line cut short?",
+        missing,
+        hint="the file is damaged; write it again (SS_Fitting, cummins fit --openfast)",
+    )
+
+
+def _check_structure(
+    text: TextFile, start: int, a: NDArray, b: NDArray, c: NDArray, per_dof, *, excitation: bool
+) -> None:
+    """The state grouping of the header, and decaying blocks that have an input and an output.
+
+    The states are grouped by DOF (line of states per DOF): those of DOF j form one
+    diagonal block of A; in a radiation file B drives them by velocity j only, in an
+    excitation file C gives force j only from them. Each connected block of A must
+    decay (a memory or an excitation impulse response dies out) and have an input and
+    an output. SS_Fitting and cummins write files so; a row moved, swapped or edited
+    breaks one of these.
+    """
+    n = a.shape[0]
+    group = np.repeat(np.arange(per_dof.size), per_dof)
+    rows_b, rows_c = start + n, start + 2 * n
+    hint = "the file is damaged or edited; write it again (SS_Fitting, cummins fit --openfast)"
+    cross = (a != 0) & (group[:, None] != group[None, :])
+    if cross.any():
+        k, m = np.argwhere(cross)[0]
+        raise text.error(
+            f"A couples state {k + 1} (of DOF {group[k] + 1}) with state {m + 1} (of DOF "
+            f"{group[m] + 1}): the states of each DOF form one block of A (line "
+            f"{start}): a row moved?",
+            start + k,
+            hint=hint,
+        )
+    if b.ndim == 2:
+        wrong = (b != 0) & (np.arange(b.shape[1])[None, :] != group[:, None])
+        if wrong.any():
+            k, j = np.argwhere(wrong)[0]
+            raise text.error(
+                f"state {k + 1} belongs to DOF {group[k] + 1} (line {start}) but B drives it "
+                f"by the velocity of DOF {j + 1}: a row moved?",
+                rows_b + k,
+                hint=hint,
+            )
+    if excitation:
+        wrong = (c != 0) & (np.arange(c.shape[0])[:, None] != group[None, :])
+        if wrong.any():
+            i, k = np.argwhere(wrong)[0]
+            raise text.error(
+                f"C gives the force of DOF {i + 1} from state {k + 1}, which belongs to DOF "
+                f"{group[k] + 1} (line {start}): a row moved?",
+                rows_c + i,
+                hint=hint,
+            )
+    b2 = b.reshape(n, -1)
+    for block in _connected_blocks(a):
+        span = (
+            f"states {block[0] + 1}…{block[-1] + 1}" if block.size > 1 else f"state {block[0] + 1}"
+        )
+        growth = float(np.linalg.eigvals(a[np.ix_(block, block)]).real.max())
+        if growth >= 0:
+            raise text.error(
+                f"the block of {span} does not decay (an eigenvalue of A with real part "
+                f"{growth:.4g} >= 0): "
+                "not a fitted impulse response; a row of A moved or edited?",
+                start + block[0],
+                hint=hint,
+            )
+        if not np.any(b2[block]):
+            raise text.error(
+                f"the block of {span} receives no input (its rows of B are zero): a row of B "
+                "moved?",
+                rows_b + block[0],
+                hint=hint,
+            )
+        if not np.any(c[:, block]):
+            raise text.error(
+                f"the block of {span} acts on no force (its columns of C are zero): a row of "
+                "C moved?",
+                rows_c,
+                hint=hint,
+            )
+    if not excitation:
+        for j in np.flatnonzero(per_dof):
+            if not np.any(c[j, group == j]):
+                raise text.error(
+                    f"the {per_dof[j]} states driven by the velocity of DOF {j + 1} (line "
+                    f"{start}) give no force on DOF {j + 1}: a radiation model always has "
+                    "the diagonal term; a row of C moved?",
+                    rows_c + j,
+                    hint=hint,
+                )
+
+
+#: Limits of :func:`_check_radiation_response`, as fractions of each entry's peak |K(jω)|.
+#: Measured on SS_Fitting's files (ITI barge, OC3 spar): |K(0)| <= 1.2e-16, the lowest
+#: Re K_jj >= -0.0073, |K_ij - K_ji| <= 3.9e-4; two rows of B or C swapped give 0.45-0.81,
+#: -0.80 to -1.0 and 0.996-1.05.
+RESPONSE_LIMITS = {"zero_frequency": 0.1, "negative_damping": 0.2, "reciprocity": 0.5}
+
+
+def _check_radiation_response(
+    text: TextFile, start: int, a: NDArray, b: NDArray, c: NDArray, per_dof: NDArray
+) -> None:
+    """Warn when K(jω) = −C (jωI − A)⁻¹ B is not a radiation memory function.
+
+    Three properties every fit of B(ω) + jω(A(ω) − A∞) keeps, whatever its method:
+    K(0) = 0 (B(0) = 0, SS_Fitting and cummins build the zero in), Re K_jj ≥ 0 (the
+    radiation damping of a DOF is positive) and K_ij = K_ji (reciprocity, where both are
+    modelled). Two rows of B or C swapped within a block of states break one of them
+    but no rule of the layout; a poor fit may break them mildly, hence warnings with
+    generous limits (:data:`RESPONSE_LIMITS`).
+    """
+    n = a.shape[0]
+    if n == 0:
+        return
+    magnitudes = np.abs(np.linalg.eigvals(a))
+    omega = np.logspace(np.log10(magnitudes.min() / 10), np.log10(magnitudes.max() * 10), 300)
+    eye = np.eye(n)
+    k = np.stack([-c @ np.linalg.solve(1j * w * eye - a, b) for w in omega])
+    k0 = -c @ np.linalg.solve(-a, b)
+    peak = np.abs(k).max(axis=0)
+    group = np.repeat(np.arange(per_dof.size), per_dof)
+    first_b = {j: start + n + int(np.argmax(group == j)) for j in np.flatnonzero(per_dof)}
+    rows_c = start + 2 * n
+    found: list[tuple[str, int]] = []
+    modelled = peak > 0
+    ratio = np.abs(k0) / np.where(modelled, peak, 1.0)
+    if np.any(ratio > RESPONSE_LIMITS["zero_frequency"]):
+        i, j = np.argwhere(ratio > RESPONSE_LIMITS["zero_frequency"])[0]
+        found.append(
+            (
+                f"K({i + 1},{j + 1}) at ω = 0 is {ratio[i, j]:.2g} of its peak, not 0: a radiation "
+                "memory function vanishes at ω = 0 (a row of B moved?)",
+                first_b.get(j, start + n),
+            )
+        )
+    for j in np.flatnonzero(np.diag(modelled)):
+        lowest = float(k[:, j, j].real.min()) / peak[j, j]
+        if lowest < -RESPONSE_LIMITS["negative_damping"]:
+            found.append(
+                (
+                    f"the damping Re K({j + 1},{j + 1}) falls to {lowest:.2g} of its peak: "
+                    "the radiation damping of a DOF is positive (a row of C moved?)",
+                    rows_c + j,
+                )
+            )
+            break
+    for i in range(c.shape[0]):
+        for j in range(i + 1, c.shape[0]):
+            if modelled[i, j] and modelled[j, i]:
+                gap = np.abs(k[:, i, j] - k[:, j, i]).max() / max(peak[i, j], peak[j, i])
+                if gap > RESPONSE_LIMITS["reciprocity"]:
+                    found.append(
+                        (
+                            f"K({i + 1},{j + 1}) and K({j + 1},{i + 1}) differ by {gap:.2g} of "
+                            "their peak: radiation couplings are reciprocal (a row of C moved?)",
+                            rows_c + i,
+                        )
+                    )
+                    break
+    for message, line in found[:1]:
+        warnings.warn(
+            HydroDataWarning(
+                str(
+                    text.error(
+                        message,
+                        line,
+                        hint="check the file against the data it was fitted to",
+                    )
+                )
+            ),
+            stacklevel=3,
+        )
 
 
 def _rows(text: TextFile, start: int, count: int, width: int) -> NDArray[np.float64]:
@@ -488,7 +690,10 @@ def read_openfast_ssexctn(path: str | os.PathLike[str]) -> OpenFastExcitationSS:
     Raises
     ------
     HydroDataError
-        Naming the file and line.
+        Naming the file and line: the counts, headers and matrix rows as for
+        :func:`read_openfast_ss`, and the grouping of the states per DOF (A
+        block-diagonal, C giving each DOF's force from its own states only), blocks
+        of A that decay and have an input and an output.
     """
     text = TextFile.read(path)
     if len(text) < 5:
@@ -523,6 +728,7 @@ def read_openfast_ssexctn(path: str | os.PathLike[str]) -> OpenFastExcitationSS:
         raise text.error(f"{flags.size} DOF flags but {per_dof.size} numbers of states per DOF", 4)
     if int(per_dof.sum()) != n_states:
         raise text.error(f"the states per DOF add up to {int(per_dof.sum())}, not to {n_states}", 4)
+    _check_header_comments(text, range(1, 5))
     n_dofs = per_dof.size
     expected = 5 + 2 * n_states + n_dofs
     if len(text) != expected:
@@ -535,6 +741,8 @@ def read_openfast_ssexctn(path: str | os.PathLike[str]) -> OpenFastExcitationSS:
     a = _rows(text, 5, n_states, n_states)
     b = _rows(text, 5 + n_states, n_states, 1)[:, 0]
     c = _rows(text, 5 + 2 * n_states, n_dofs, n_states)
+    check_cut_numbers(text, range(5, expected), range(n_states))
+    _check_structure(text, 5, a, b, c, per_dof.astype(int), excitation=True)
     return OpenFastExcitationSS(
         title=text.lines[0].strip(),
         heading=float(heading[0]),

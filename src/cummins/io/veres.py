@@ -331,17 +331,41 @@ def _read_re7(path: Path) -> _Re7:
     grid = _Grid(cur, nhead, nfreq)
     speeds = []
     matrix_lines: list[int] = []
+    first_line = np.empty((nvel, nhead, nfreq), dtype=int)
     for v in range(nvel):
         speeds.append(_speed_line(cur))
         for h in range(nhead):
             grid.heading(h, cur.take(1)[0])
             for k in range(nfreq):
                 grid.frequency(k, cur.take(1)[0])
+                first_line[v, h, k] = cur.index
                 matrix_lines.extend(range(cur.index, cur.index + 6 * nblock))
                 blocks[v, h, k] = cur.rows(6 * nblock, 6).reshape(nblock, 6, 6)
                 roll[v, h, k] = cur.take(3)
     check_cut_numbers(text, matrix_lines, range(6))
+    for v, speed in enumerate(speeds):
+        if speed.speed == 0:
+            _check_headings_alike(text, blocks[v], first_line[v], grid.headings)
     return _Re7(header, version, speeds, grid.headings, grid.freqs, mass, blocks, roll)
+
+
+def _check_headings_alike(text: TextFile, blocks: NDArray, first_line: NDArray, headings) -> None:
+    """At zero speed the matrices of every heading are the same (VERES writes them per
+    heading for the encounter frequency, which equals the wave frequency without speed;
+    the MSS supply: identical to the last digit): a row that differs was moved or edited.
+    """
+    scale = np.abs(blocks).max(axis=(0, 1, 3, 4), keepdims=True)  # per matrix
+    off = np.abs(blocks - blocks[:1]) > 1e-6 * np.maximum(scale, 1e-300)
+    if not off.any():
+        return
+    h, k, b, r, _ = np.argwhere(off)[0]
+    raise text.error(
+        f"at zero speed this row differs from the same row for heading {headings[0]:g} deg "
+        f"(VERES writes the same matrices for every heading without speed): a row moved or "
+        "edited?",
+        int(first_line[h, k]) + 6 * int(b) + int(r),
+        hint="the file is damaged; take it again from the VERES run",
+    )
 
 
 @dataclass(frozen=True)
@@ -627,10 +651,6 @@ def _speed_dataset(
     else:
         a, b, c = (blocks[:, k] for k in range(3))
         a_add = b_add = c_add = np.zeros_like(a)
-    if sp.speed == 0 and not np.allclose(
-        re7.blocks[v, :, :, 0], a[None], rtol=1e-6, atol=1e-9 * np.abs(a).max()
-    ):
-        history.append("note: at zero speed the added mass differs between headings")
     extra: dict = {
         "hydrostatic_stiffness": _flip(_frequency_independent(c, "restoring", history)),
         "inertia_matrix": _flip(re7.mass),

@@ -61,7 +61,13 @@ from cummins.io._common import (
     rotation_flags,
     warn_damage,
 )
-from cummins.io._text import TextFile, check_cut_numbers, numeric_table, parse_numbers
+from cummins.io._text import (
+    TextFile,
+    check_cut_numbers,
+    check_line_ends,
+    numeric_table,
+    parse_numbers,
+)
 from cummins.kinematics import skew
 
 __all__ = ["read_wamit", "read_wamit_out", "sniff", "sniff_dir"]
@@ -1075,6 +1081,9 @@ class RunSettings:
         Point about which the run's moments are taken, m.
     rao_times_rho_g
         The ``.4`` holds i·ξ/(ρg) instead of the RAO ξ (HAMS does so).
+    notes
+        Damage the project's own files showed (warned about already), for the
+        dataset's ``read_warnings``.
     """
 
     source_format: str = "wamit"
@@ -1089,6 +1098,7 @@ class RunSettings:
     additional_stiffness: np.ndarray | None = None
     reference_point: np.ndarray | None = None
     rao_times_rho_g: bool = False
+    notes: list[str] = field(default_factory=list)
 
 
 def _hams_project(dot1: Path) -> Path | None:
@@ -1207,7 +1217,7 @@ def read_wamit_run(
     ``settings`` carry what another program's project fixes (HAMS)."""
     settings = settings or RunSettings()
     history: list[str] = [f"read {dot1.name}", *settings.history]
-    notes: list[str] = []
+    notes: list[str] = list(settings.notes)
 
     def sibling(suffix: str) -> Path | None:
         if not siblings and not (entry is not None and entry.suffix.lower() == suffix):
@@ -1577,8 +1587,8 @@ def _rows_after(text: TextFile, i: int, stop: int) -> tuple[list[np.ndarray], li
 def _skip_column_titles(text: TextFile, i: int, stop: int) -> int:
     """Number of lines from ``i`` up to and including the column-title line (I J …)."""
     for k in range(i, min(i + 6, stop)):
-        stripped = text.lines[k].strip()
-        if stripped.startswith("I ") or stripped == "I":
+        fields = text.lines[k].split()  # "I  J …", with blanks or tabs between
+        if fields and fields[0] == "I":
             return k - i + 1
     return 0
 
@@ -1626,6 +1636,38 @@ def _out_blocks(text: TextFile, starts: list[int]) -> list[tuple[str, dict, int]
             content[kind] = per_heading
         blocks.append((label, content, i0))
     return blocks
+
+
+def _check_out_tables(text: TextFile, blocks) -> None:
+    """Every row of the log's tables as WAMIT writes it: as many numbers as the other
+    rows of its kind of table (limit blocks print A alone; the drift tables mix 3- and
+    5-number rows), in WAMIT's fixed columns (:func:`check_line_ends`, per kind and
+    number of fields). A garbled number that splits in two ("1.2.3" reads as 1.2 and
+    0.3) or a cut row would otherwise pass."""
+    groups: dict[tuple[str, int], list[int]] = {}
+    sizes: dict[tuple[str, bool], dict[int, list[int]]] = {}
+    for label, content, _ in blocks:
+        limit = label in ("infinite", "zero")
+        for kind, value in content.items():
+            tables = [value] if kind == "radiation" else list(value.values())
+            for rows, where in tables:
+                for r, w in zip(rows, where, strict=True):
+                    groups.setdefault((kind, r.size), []).append(w)
+                    if not kind.startswith("drift"):
+                        sizes.setdefault((kind, limit), {}).setdefault(r.size, []).append(w)
+    for (kind, limit), by_size in sizes.items():
+        usual = max(by_size, key=lambda size: len(by_size[size]))
+        odd = [size for size in by_size if size != usual]
+        if odd:
+            line = min(by_size[odd[0]])
+            raise text.error(
+                f"expected {usual} numbers, as on the other rows of the {kind} tables"
+                f"{' of the limit blocks' if limit else ''}, found {odd[0]}",
+                line,
+                hint="the file is damaged; take it again from the WAMIT run",
+            )
+    for lines in groups.values():
+        check_line_ends(text, lines)
 
 
 def read_wamit_out(
@@ -1682,6 +1724,7 @@ def read_wamit_out(
             "no 'Wave period' blocks: the run did not reach the FORCE output (truncated log?)"
         )
     blocks = _out_blocks(text, starts)
+    _check_out_tables(text, blocks)
     if header.announced_blocks is not None and header.announced_blocks != len(blocks):
         warn_damage(
             f"the header lists {header.announced_blocks} periods, the log holds "
