@@ -389,6 +389,12 @@ def fit_radiation(
         "omega_fit_min": float(w_all[0]),
         "omega_fit_max": float(w_all[-1]),
     }
+    target_args = {
+        "r2": r2,
+        "r2_coupling": r2 if r2_coupling is None else r2_coupling,
+        "passivity": passivity,
+        "motion_tol": motion_tol if sensitivity is not None else None,
+    }
     if method == "vf":
         model = _fit_common_poles(
             labels,
@@ -410,13 +416,7 @@ def fit_radiation(
             attrs=attrs,
             say=say,
         )
-        failures = fit_failures(
-            model,
-            r2=r2,
-            r2_coupling=r2 if r2_coupling is None else r2_coupling,
-            passivity=passivity,
-            motion_tol=motion_tol if sensitivity is not None else None,
-        )
+        failures = fit_failures(model, **target_args)
         return replace(
             model,
             attrs={**model.attrs, "failures": failures, "elapsed_s": time.perf_counter() - start},
@@ -455,12 +455,6 @@ def fit_radiation(
             assemble,
             fixed_pairs,
         )
-    target_args = {
-        "r2": r2,
-        "r2_coupling": r2 if r2_coupling is None else r2_coupling,
-        "passivity": passivity,
-        "motion_tol": motion_tol if sensitivity is not None else None,
-    }
     if passivity == "mimo" and sensitivity is not None:
         degraded = [f for f in fit_failures(model, **target_args) if "MIMO passivity took" in f]
         if degraded:  # the last resort: lighter motion rows in the passivity step
@@ -477,26 +471,9 @@ def fit_radiation(
             )
             if not [f for f in fit_failures(again, **target_args) if "MIMO passivity took" in f]:
                 model = again
-    error = model.attrs.get("motion_error")
-    if sensitivity is not None and error is not None and error > motion_tol:
-        model = replace(
-            model,
-            attrs={
-                **model.attrs,
-                "data_notes": [
-                    *model.attrs.get("data_notes", []),
-                    f"motion error {100 * error:.2f} % of the peak motion, above the target "
-                    f"{100 * motion_tol:.2g} % (the data's own consistency may limit it)",
-                ],
-            },
-        )
-    failures = fit_failures(
-        model,
-        r2=r2,
-        r2_coupling=r2 if r2_coupling is None else r2_coupling,
-        passivity=passivity,
-        motion_tol=motion_tol if sensitivity is not None else None,
-    )
+    if sensitivity is not None:
+        model = with_motion_note(model, motion_tol)
+    failures = fit_failures(model, **target_args)
     if passivity == "mimo" and sensitivity is not None and not model.attrs.get("mimo_passive"):
         # never a non-passive model when one can be had: the R²-only identification
         # (the sphere: surge–pitch damping rank-1, B15² ≈ B11 B55 to 0.3 %, which the
@@ -531,13 +508,7 @@ def fit_radiation(
                 "motion_target": float(motion_tol),
             }
             model = replace(fallback, attrs=attrs)
-            failures = fit_failures(
-                model,
-                r2=r2,
-                r2_coupling=r2 if r2_coupling is None else r2_coupling,
-                passivity=passivity,
-                motion_tol=motion_tol,
-            )
+            failures = fit_failures(model, **{**target_args, "motion_tol": motion_tol})
     return replace(
         model,
         attrs={**model.attrs, "failures": failures, "elapsed_s": time.perf_counter() - start},
@@ -1533,10 +1504,19 @@ def _fit_common_poles(
             motion_error_by_dof=[float(x) for x in per_dof],
             motion_target=float(motion_tol),
         )
-        if error > motion_tol:
-            extra["data_notes"] = [
-                *model.attrs.get("data_notes", []),
-                f"motion error {100 * error:.2f} % of the peak motion, above the target "
-                f"{100 * motion_tol:.2g} % (the data's own consistency may limit it)",
-            ]
-    return replace(model, attrs={**model.attrs, **extra})
+    model = replace(model, attrs={**model.attrs, **extra})
+    return with_motion_note(model, motion_tol) if sensitivity is not None else model
+
+
+def with_motion_note(model: RadiationModel, motion_tol: float) -> RadiationModel:
+    """The model with a data note when its motion error (``attrs["motion_error"]``) is
+    above the target ``motion_tol``."""
+    error = model.attrs.get("motion_error")
+    if error is None or error <= motion_tol:
+        return model
+    note = (
+        f"motion error {100 * error:.2f} % of the peak motion, above the target "
+        f"{100 * motion_tol:.2g} % (the data's own consistency may limit it)"
+    )
+    notes = [*model.attrs.get("data_notes", []), note]
+    return replace(model, attrs={**model.attrs, "data_notes": notes})
