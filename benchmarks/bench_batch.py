@@ -29,7 +29,7 @@ from pathlib import Path
 import xarray as xr
 
 import cummins
-from cummins.batch import Study, run_study
+from cummins.studies.batch import Study, run_study
 
 STUDY = {
     "analysis": "simulate",

@@ -25,8 +25,8 @@ import warnings
 
 import numpy as np
 
-from cummins.dp_scenario import build_scenario, s175_data, simulate_scenario
-from cummins.unified import simulate_unified
+from cummins.cli.dp_scenario import build_scenario, s175_data, simulate_scenario
+from cummins.timedomain.unified import simulate_unified
 
 DURATION, DT = 3600.0, 0.2
 

@@ -33,9 +33,9 @@ import numpy as np
 
 import cummins
 from _timing import SHARED_DATA, timed
-from cummins.fit import fit_radiation
-from cummins.fit.realization import era, prony
-from cummins.passivity import is_passive
+from cummins.radiation.fit import fit_radiation
+from cummins.radiation.fit.realization import era, prony
+from cummins.radiation.passivity import is_passive
 
 DATA = SHARED_DATA / "mss" / "tanker" / "tanker.mat"
 MSS_FDI_SECONDS = 6.2  # issue 4: MSS FDI on the same data, this machine, 18 couplings

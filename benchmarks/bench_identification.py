@@ -10,7 +10,7 @@ and the restoring matrix, one run fits
   uniform weighting, R² targets only, every frequency above the first suspect one left
   out),
 
-and prints the scoreboard of :mod:`cummins.fit.scorecard` for each: total order, smallest
+and prints the scoreboard of :mod:`cummins.radiation.fit.scorecard` for each: total order, smallest
 diagonal R² of A and of B (recomputed from the model against the data), stable, passive
 (independent sweep of λ_min(K + Kᴴ), 3000 frequencies 10⁻³–50 rad/s), the motion-RAO
 error with 2 % of critical damping, the A∞ error (where the data have the ω = ∞ row: a
@@ -47,10 +47,10 @@ import numpy as np
 
 import cummins
 from _timing import SHARED_DATA
-from cummins.fit import PREVIOUS_DEFAULT, fit_radiation
-from cummins.fit.scorecard import data_frequencies, scorecard
 from cummins.hydrodb import dof_matrix, single_speed
-from cummins.radiation import change_model_axes
+from cummins.radiation.fit import PREVIOUS_DEFAULT, fit_radiation
+from cummins.radiation.fit.scorecard import data_frequencies, scorecard
+from cummins.radiation.model import change_model_axes
 
 REPEAT = int(os.environ.get("BENCH_REPEAT", "2"))
 #: What is compared, in the same run: the default (common poles per block, ``"vf"``),

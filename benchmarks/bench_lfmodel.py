@@ -21,8 +21,8 @@ import numpy as np
 
 import cummins
 from _timing import timed
-from cummins.lfmodel import lf_model_from_frequency_data, lf_model_from_retardation
-from cummins.simulate import simulate
+from cummins.timedomain.lfmodel import lf_model_from_frequency_data, lf_model_from_retardation
+from cummins.timedomain.simulate import simulate
 from cummins.vessel import vessel_from_hydrodb
 
 

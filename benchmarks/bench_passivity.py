@@ -3,12 +3,12 @@
 The identified tanker model (MSS's ``tanker.mat``, ``passivity="diagonal"``: 54 states,
 not passive as a MIMO system) is tested, in one run, by
 
-* the exact test (:func:`cummins.passivity.passivity_test`: crossings from the pencil of
+* the exact test (:func:`cummins.radiation.passivity.passivity_test`: crossings from the pencil of
   K(s) + Kᵀ(−s), one evaluation per interval, the limits), and
 * a dense sweep of λ_min(K + Kᴴ) on 100 000 log-spaced frequencies (the reference: what
   a user without the exact test would do, and still only a sample),
 
-and then made passive (:func:`cummins.passivity.enforce_passivity` with the data). The
+and then made passive (:func:`cummins.radiation.passivity.enforce_passivity` with the data). The
 ratio of the times and the agreement of the two tests are printed.
 
 Run: ``python benchmarks/bench_passivity.py``.
@@ -25,8 +25,8 @@ import numpy as np
 
 import cummins
 from _timing import SHARED_DATA, timed
-from cummins.fit import fit_radiation
-from cummins.passivity import enforce_passivity, passivity_sweep, passivity_test
+from cummins.radiation.fit import fit_radiation
+from cummins.radiation.passivity import enforce_passivity, passivity_sweep, passivity_test
 
 DATA = SHARED_DATA / "mss" / "tanker" / "tanker.mat"
 

@@ -2,7 +2,7 @@
 
 1. A random 200-state positive-real MIMO model (6 inputs and outputs, D = 0 like a
    radiation model; built through the KYP lemma) reduced to 40 states by every method
-   of :func:`cummins.reduce.balanced_truncation`, each timed (best of 3), and by
+   of :func:`cummins.radiation.reduce.balanced_truncation`, each timed (best of 3), and by
    the naive form of Unneland (2007) Table 5.1 (Cholesky factors of the gramians, T from the
    inverse of a factor) as the reference measured in the same run. Printed: time, ratio
    to the naive Lyapunov reduction, ‖G − G_r‖∞ / ‖G‖∞, Glover's bound (Lyapunov), and
@@ -12,7 +12,7 @@
    naive form fails, the square-root form does not.
 3. The tanker's ERA realization at order 11 per coupling stacked into one MIMO model
    (about 200 states), reduced by Lyapunov BT as a MIMO model (which mixes the
-   couplings), and coupling by coupling by :func:`cummins.reduce.reduce_radiation_model`
+   couplings), and coupling by coupling by :func:`cummins.radiation.reduce.reduce_radiation_model`
    to the default FD fit's total order.
 
 Run: ``python benchmarks/bench_reduce.py``.
@@ -31,8 +31,8 @@ import scipy.linalg
 import cummins
 from _timing import SHARED_DATA, timed
 from cummins.errors import FitError
-from cummins.fit import fit_radiation
-from cummins.reduce import (
+from cummins.radiation.fit import fit_radiation
+from cummins.radiation.reduce import (
     METHODS,
     balanced_truncation,
     frequency_response,

@@ -20,7 +20,7 @@ import numpy as np
 import cummins
 from _timing import timed
 from cummins.hydrodb import make_hydrodb
-from cummins.retardation import retardation_function
+from cummins.radiation.retardation import retardation_function
 
 N_TIMES = 2000
 REPEAT = 5

@@ -27,10 +27,10 @@ import numpy as np
 
 import cummins
 from _timing import timed
-from cummins.excitation import excitation_coefficients
-from cummins.simulate import simulate, simulate_convolution, simulate_waves, steady_state
+from cummins.seakeeping.excitation import excitation_coefficients
+from cummins.seakeeping.waves import harmonic_sum, irregular_waves, jonswap
+from cummins.timedomain.simulate import simulate, simulate_convolution, simulate_waves, steady_state
 from cummins.vessel import vessel_from_hydrodb
-from cummins.waves import harmonic_sum, irregular_waves, jonswap
 
 DURATION, DT, COMPONENTS = 3 * 3600.0, 0.05, 200
 VISCOUS = [1e6, 1e6, 0.0, 0.0, 0.0, 1e10]

@@ -26,7 +26,12 @@ import numpy as np
 import cummins
 from _timing import timed
 from cummins.hydrodb import select_dofs
-from cummins.speed import fit_per_speed, forced_motion_error, speed_dependent_model, stf_speed_terms
+from cummins.radiation.speed import (
+    fit_per_speed,
+    forced_motion_error,
+    speed_dependent_model,
+    stf_speed_terms,
+)
 
 OPTIONS = {"omega_max": 2.0, "r2": 0.999, "max_order": 6}
 

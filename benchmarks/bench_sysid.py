@@ -28,10 +28,10 @@ import scipy.integrate
 
 import cummins
 from _timing import timed
-from cummins.simulate import simulate_waves
+from cummins.seakeeping.waves import irregular_waves, wave_spectrum
 from cummins.sysid import identify_damping, make_record, roll_decay
 from cummins.sysid.identify import memory_response
-from cummins.waves import irregular_waves, wave_spectrum
+from cummins.timedomain.simulate import simulate_waves
 
 DURATION, DT = 3600.0, 0.1
 

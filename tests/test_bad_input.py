@@ -10,9 +10,10 @@ import numpy as np
 import pytest
 
 import cummins
-from cummins import validation, waves
+from cummins import validation
 from cummins.check import check
 from cummins.errors import ArgumentError, CumminsWarning, FitError, HydroDataError
+from cummins.seakeeping import waves
 
 # --------------------------------------------------------------------------- validation
 
@@ -83,8 +84,8 @@ def test_a_drawn_seed_fits_an_int64_and_repeats_the_sea():
 
 
 def test_simulate_waves_refuses_bad_duration_and_step():
-    from cummins.radiation import RadiationModel
-    from cummins.simulate import simulate_waves
+    from cummins.radiation.model import RadiationModel
+    from cummins.timedomain.simulate import simulate_waves
     from cummins.vessel import vessel_from_hydrodb
 
     ds = cummins.select_dofs(cummins.demo_dataset(), ["Heave"])
@@ -112,7 +113,7 @@ def _damaged(value, var="added_mass", index=(5, 2, 2)):
 def test_fit_refuses_absurd_data_naming_the_pair(var, value):
     """Values of 1e300 or -9.99e99 reached LAPACK (a raw LinAlgError); now a FitError names
     the DOF and the frequency before any fit starts."""
-    from cummins.fit import fit_radiation
+    from cummins.radiation.fit import fit_radiation
 
     ds = _damaged(value, var)
     w = float(ds.omega.values[5])
@@ -121,7 +122,7 @@ def test_fit_refuses_absurd_data_naming_the_pair(var, value):
 
 
 def test_fit_targets_are_checked():
-    from cummins.fit import fit_radiation
+    from cummins.radiation.fit import fit_radiation
 
     ds = cummins.demo_dataset()
     for options in ({"r2": 1.5}, {"r2": np.nan}, {"r2": 1.0}, {"threshold": -1.0}):
@@ -130,9 +131,9 @@ def test_fit_targets_are_checked():
 
 
 def test_passivity_and_reduction_refuse_a_model_with_nan():
-    from cummins.passivity import enforce_passivity, passivity_test
-    from cummins.radiation import CouplingModel, RadiationModel
-    from cummins.reduce import reduce_radiation_model
+    from cummins.radiation.model import CouplingModel, RadiationModel
+    from cummins.radiation.passivity import enforce_passivity, passivity_test
+    from cummins.radiation.reduce import reduce_radiation_model
 
     a = np.array([[-0.1, 1.0], [-1.0, -0.1]])
     good = CouplingModel(1, 1, a, np.array([0.0, 1.0]), np.array([1.0, 0.0]))
@@ -208,7 +209,7 @@ def test_lf_model_heave_damping_of_a_spar_is_not_negative(corpus):
     the truncation error of K(t) is larger than the damping itself. B(ω₀) is now taken
     from the data, linearly interpolated (25.7), with a warning."""
     from cummins.kinematics import rigid_body_inertia
-    from cummins.lfmodel import lf_model_from_frequency_data, lf_model_from_retardation
+    from cummins.timedomain.lfmodel import lf_model_from_frequency_data, lf_model_from_retardation
 
     ds = cummins.read(corpus / "WEIS" / "ss_fitting_OC3_spar")
     # OC3 Hywind platform mass (Jonkman 2010, 7.466e6 kg); rotations do not matter in heave
@@ -232,7 +233,7 @@ def test_lf_model_heave_damping_of_a_spar_is_not_negative(corpus):
 def test_lf_model_refuses_data_negative_at_the_natural_frequency():
     ds = cummins.select_dofs(cummins.demo_dataset(), ["Heave"]).copy(deep=True)
     ds["radiation_damping"] = -ds.radiation_damping
-    from cummins.lfmodel import lf_model_from_frequency_data
+    from cummins.timedomain.lfmodel import lf_model_from_frequency_data
 
     with pytest.raises(HydroDataError, match="negative at the natural frequency"):
         lf_model_from_frequency_data(ds)

@@ -19,7 +19,9 @@ import xarray as xr
 from click.testing import CliRunner
 
 import cummins
-from cummins.batch import (
+from cummins.cli import main
+from cummins.errors import OutputExistsError
+from cummins.studies.batch import (
     Limit,
     Study,
     StudyError,
@@ -30,9 +32,7 @@ from cummins.batch import (
     prepare_study,
     run_study,
 )
-from cummins.cli import main
-from cummins.errors import OutputExistsError
-from cummins.operability import limiting_hs, operability
+from cummins.studies.operability import limiting_hs, operability
 
 distributed = pytest.importorskip("distributed")
 
@@ -115,9 +115,9 @@ def test_one_and_two_workers_give_identical_results(two_workers, model_file, tmp
     )
     assert single.results.significant_amplitude.dims == ("heading", "hs", "tp", "seed", "dof")
     # one case again, in this process, from its documented ingredients
-    from cummins.simulate import simulate_waves
+    from cummins.seakeeping.waves import irregular_waves, wave_spectrum
+    from cummins.timedomain.simulate import simulate_waves
     from cummins.vessel import vessel_from_hydrodb
-    from cummins.waves import irregular_waves, wave_spectrum
 
     ds = cummins.demo_dataset()
     vessel = vessel_from_hydrodb(
@@ -262,9 +262,13 @@ def test_ctrl_c_then_rerun_computes_only_the_missing_cases(two_workers, model_fi
 
 def test_frequency_domain_statistics_match_an_independent_computation(fd_run):
     """Significant amplitude, T_z and the most probable maximum of one case from
-    cummins.frequency_domain and the Rayleigh formula written out here."""
-    from cummins.frequency_domain import motion_rao, response_spectrum, significant_amplitude
-    from cummins.waves import jonswap
+    cummins.seakeeping.frequency_domain and the Rayleigh formula written out here."""
+    from cummins.seakeeping.frequency_domain import (
+        motion_rao,
+        response_spectrum,
+        significant_amplitude,
+    )
+    from cummins.seakeeping.waves import jonswap
 
     ds = cummins.demo_dataset()
     w = np.linspace(ds.omega.values[0], ds.omega.values[-1], 250)
@@ -314,7 +318,7 @@ def test_operability_against_a_hand_count(fd_run):
     assert lim.dims == ("heading", "tp")
     study = _fd_study()
     context, _ = prepare_study(study)
-    from cummins.batch import Case
+    from cummins.studies.batch import Case
 
     hs = float(lim.sel(heading=90, tp=10.0))
     stats = case_statistics(context, Case(heading=90, hs=hs, tp=10.0))
@@ -411,7 +415,7 @@ def test_limit_on_a_dof_the_data_lack(tmp_path):
 
 def test_zarr_results(fd_run, tmp_path):
     """The same results through a Zarr store (zarr is in the test extra: never skipped)."""
-    from cummins.batch import write_results
+    from cummins.studies.batch import write_results
 
     write_results(fd_run.results, tmp_path / "results.zarr")
     back = load_results(tmp_path / "results.zarr")
@@ -451,7 +455,7 @@ def test_without_dask_import_works_and_batch_says_what_to_install(tmp_path):
         """\
         import sys
         sys.modules["dask"] = sys.modules["distributed"] = None
-        import cummins, cummins.batch, cummins.report, cummins.operability
+        import cummins, cummins.studies.batch, cummins.cli.html_report, cummins.studies.operability
         from click.testing import CliRunner
         from cummins.cli import main
         assert CliRunner().invoke(main, ["--help"]).exit_code == 0

@@ -286,7 +286,7 @@ def test_missing_capytaine_is_a_clear_error(monkeypatch):
 
 @needs_capytaine
 def test_cli_box_run_and_overwrite_protection(tmp_path):
-    from cummins.cli_bem import bem_command
+    from cummins.cli.bem import bem_command
 
     out = tmp_path / "barge.nc"
     args = [
@@ -332,7 +332,7 @@ def test_cli_box_run_and_overwrite_protection(tmp_path):
 
 @needs_capytaine
 def test_cli_usage_errors(tmp_path):
-    from cummins.cli_bem import bem_command
+    from cummins.cli.bem import bem_command
 
     runner = CliRunner()
     common = ["--omega-min", "0.5", "--omega-max", "1", "-o", str(tmp_path / "x.nc")]

@@ -10,8 +10,8 @@ import pytest
 from click.testing import CliRunner
 
 import cummins
-import cummins.demo
-import cummins.radiation
+import cummins.cli.demo
+import cummins.radiation.model
 from cummins.cli import main
 
 
@@ -107,12 +107,12 @@ def test_demo(runner, tmp_path):
     out = tmp_path / "demo"
     result = runner.invoke(main, ["demo", "-o", str(out)])
     assert result.exit_code == 0, result.output
-    for name in cummins.demo.DEMO_FILES:
+    for name in cummins.cli.demo.DEMO_FILES:
         assert (out / name).is_file(), name
     assert (out / "added_mass_damping.png").stat().st_size > 10_000
     # the fit stage: model file, summary, exports and one plot per fitted coupling agree
     from cummins.io.openfast import read_openfast_ss
-    from cummins.radiation import RadiationModel
+    from cummins.radiation.model import RadiationModel
 
     model = RadiationModel.load(out / "tanker_model.nc")
     summary = json.loads((out / "fit.json").read_text())
@@ -126,7 +126,7 @@ def test_demo(runner, tmp_path):
         atol=1e-9 * np.abs(model.frequency_response(w).values).max(),
     )
     fitted = [c for c in model.modelled if c.influenced <= c.radiating]
-    assert len(list((out / cummins.demo.FIT_PLOTS).glob("fit_*.png"))) == len(fitted)
+    assert len(list((out / cummins.cli.demo.FIT_PLOTS).glob("fit_*.png"))) == len(fitted)
     refused = runner.invoke(main, ["demo", "-o", str(out)])
     assert refused.exit_code == 2 and "--force" in refused.output
     assert runner.invoke(main, ["demo", "-o", str(out), "--force"]).exit_code == 0
@@ -213,7 +213,7 @@ def test_fit_command(runner, tanker_copy, tmp_path):
         "elapsed_s",
     }
     assert summary["failures"] == []
-    model = cummins.radiation.RadiationModel.load(out)
+    model = cummins.radiation.model.RadiationModel.load(out)
     # the default: one common-pole block per plane of the ship
     assert summary["total_order"] == model.total_order == sum(b["order"] for b in summary["blocks"])
     assert {tuple(b["dofs"]) for b in summary["blocks"]} == {(1, 3, 5), (2, 4, 6)}
@@ -248,7 +248,7 @@ def test_fit_command(runner, tanker_copy, tmp_path):
     # model is written, the failure named, the exit status 3
     result = runner.invoke(main, [*args, "--force", "--method", "realization"])
     assert result.exit_code == 3 and "failure: Surge: MIMO passivity took" in result.output
-    assert cummins.radiation.RadiationModel.load(out).attrs["method"] == "realization"
+    assert cummins.radiation.model.RadiationModel.load(out).attrs["method"] == "realization"
     assert runner.invoke(main, [*args, "--force", "--no-passive"]).exit_code == 0
     assert json.loads(summary_path.read_text())["mimo_passive"] is False  # identification only
 
@@ -270,7 +270,7 @@ def test_reduce_command(runner, tanker_copy, tmp_path):
     era = tmp_path / "era.nc"
     args = ["fit", str(tanker_copy), "-o", str(era), "--method", "realization", "--no-passive"]
     assert runner.invoke(main, [*args, "--r2", "0.999", "--max-order", "12"]).exit_code == 0
-    model = cummins.radiation.RadiationModel.load(era)
+    model = cummins.radiation.model.RadiationModel.load(era)
     small, summary_path = tmp_path / "small.nc", tmp_path / "reduce.json"
     result = runner.invoke(
         main,
@@ -290,11 +290,11 @@ def test_reduce_command(runner, tanker_copy, tmp_path):
     assert result.exit_code == 0, result.output
     assert "R² against the data" in result.output
     summary = json.loads(summary_path.read_text())
-    reduced = cummins.radiation.RadiationModel.load(small)
+    reduced = cummins.radiation.model.RadiationModel.load(small)
     assert summary["order_before"] == model.total_order > 54
     assert summary["total_order"] == reduced.total_order == 54
     assert summary["mimo_stable"] and summary["mimo_passive"]
-    assert cummins.passivity.passivity_test(reduced).passive
+    assert cummins.radiation.passivity.passivity_test(reduced).passive
     for c in summary["couplings"]:
         if c["i"] == c["j"]:
             assert min(c["r2_added_mass"], c["r2_damping"]) >= 0.97, c
@@ -304,7 +304,7 @@ def test_reduce_command(runner, tanker_copy, tmp_path):
     )
     assert result.exit_code == 0, result.output
     assert "R² against the unreduced model" in result.output
-    assert cummins.radiation.RadiationModel.load(by_tol).total_order < model.total_order
+    assert cummins.radiation.model.RadiationModel.load(by_tol).total_order < model.total_order
     both = runner.invoke(
         main, ["reduce", str(era), "-o", str(by_tol), "--order", "40", "--tol", "0.1"]
     )
@@ -390,7 +390,7 @@ def test_simulate_command(runner, tanker_copy, tmp_path):
     )
     assert result.exit_code == 0, result.output
     run = xr.load_dataset(regular, engine="h5netcdf")
-    from cummins.excitation import excitation_transfer
+    from cummins.seakeeping.excitation import excitation_transfer
     from cummins.vessel import vessel_from_hydrodb
 
     ds = cummins.read(tanker_copy)
@@ -415,7 +415,7 @@ def test_simulate_accurate_reproduces_the_data_raos_more_closely(runner, shared_
     (measured 0.19 %, roll at 12 s) and closer than the default; more states (51 vs 42)."""
     import xarray as xr
 
-    from cummins.frequency_domain import motion_rao
+    from cummins.seakeeping.frequency_domain import motion_rao
 
     data = shared_data / "mss" / "tanker" / "tanker.1"
     damping = [1e6, 1e6, 1e7, 5e8, 1e10, 1e10]

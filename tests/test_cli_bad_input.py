@@ -393,7 +393,7 @@ def test_regular_wave_summary_gives_the_amplitude(work, monkeypatch):
     assert "amplitude" in result.output and "2σ" not in result.output
     import xarray as xr
 
-    from cummins.frequency_domain import motion_rao
+    from cummins.seakeeping.frequency_domain import motion_rao
 
     ds = cummins.select_dofs(cummins.read(work / T), ["Heave", "Pitch"])
     rao = motion_rao(ds, [2 * np.pi / 10], [np.pi])

@@ -58,7 +58,7 @@ def test_mss_export_reads_back_as_the_same_model(fitted):
     """`fit --mss` writes MSS's vesselABC; read back, its fluid memory has the fitted
     model's K(jω) (in MSS's z-down axes: T K T with T = diag(1, −1, −1, 1, −1, −1))."""
     from cummins.io.mss_abc import read_mss_abc
-    from cummins.radiation import RadiationModel
+    from cummins.radiation.model import RadiationModel
 
     model_path, abc = fitted
     model = RadiationModel.load(model_path)
@@ -226,7 +226,7 @@ def test_quadratic_roll_damping_equals_its_equivalent_linearisation(fitted, tmp_
     assert 0.5 * (roll_lin.max() - roll_lin.min()) == pytest.approx(amplitude, rel=0.03)
     # viscous work of the linear run, recomputed from its record (Simpson, not trapezoid)
     lin_run = _open(lin)
-    from cummins.radiation import RadiationModel
+    from cummins.radiation.model import RadiationModel
 
     given = {"Surge": 1e6, "Sway": 1e6, "Roll": b_eq, "Yaw": 1e10}
     ds = cummins.read(shared_data / "mss" / "tanker" / "tanker.1")
@@ -344,7 +344,7 @@ def test_identify_damping_bounded_with_a_coupling_term(fitted, shared_data, tmp_
     coupling (measured 0.06 %)."""
     import json
 
-    from cummins.radiation import RadiationModel
+    from cummins.radiation.model import RadiationModel
 
     model, _ = fitted
     record = tmp_path / "roll.nc"

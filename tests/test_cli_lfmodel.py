@@ -9,7 +9,7 @@ from click.testing import CliRunner
 
 import cummins
 from cummins.cli import main
-from cummins.lfmodel import lf_model_from_frequency_data
+from cummins.timedomain.lfmodel import lf_model_from_frequency_data
 
 
 def test_cli_writes_the_model_of_the_python_api(tmp_path):
@@ -30,7 +30,7 @@ def test_cli_writes_the_model_of_the_python_api(tmp_path):
     result = CliRunner().invoke(main, args)
     assert result.exit_code == 0, result.output
     written = xr.open_dataset(out, engine="h5netcdf")
-    from cummins.lfmodel import CriticalDampingFraction
+    from cummins.timedomain.lfmodel import CriticalDampingFraction
 
     same = lf_model_from_frequency_data(
         cummins.read(tanker), viscous={"Roll": CriticalDampingFraction(0.05)}

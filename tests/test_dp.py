@@ -1,4 +1,5 @@
-"""The DP controller example: wave filter, nonlinear PID, thrust allocation (cummins.dp)."""
+"""The DP controller example: wave filter, nonlinear PID, thrust allocation
+(cummins.timedomain.dp)."""
 
 from __future__ import annotations
 
@@ -6,7 +7,9 @@ import numpy as np
 import pytest
 import scipy.linalg
 
-from cummins.dp import (
+from cummins.errors import CumminsError, SimulationError
+from cummins.kinematics import point_load
+from cummins.timedomain.dp import (
     DPConfigError,
     DPController,
     DPGains,
@@ -15,8 +18,6 @@ from cummins.dp import (
     rotation_3dof,
     wrap_angle,
 )
-from cummins.errors import CumminsError, SimulationError
-from cummins.kinematics import point_load
 
 # An S-175-like container ship at low speed: m = 2.5e7 kg, LF inertia M = M_RB + A(0)
 # (surge, sway, yaw) and linear damping with time constants of 100–150 s.

@@ -8,7 +8,7 @@ import xarray as xr
 from click.testing import CliRunner
 
 from cummins.cli import main
-from cummins.dp_scenario import CRANE_LOAD, CRANE_POINT, run_scenario, s175_data, static_heel
+from cummins.cli.dp_scenario import CRANE_LOAD, CRANE_POINT, run_scenario, s175_data, static_heel
 
 
 @pytest.fixture(scope="module")

@@ -16,11 +16,11 @@ from click.testing import CliRunner
 import cummins
 from cummins.cli import main
 from cummins.errors import SimulationError
-from cummins.excitation import encounter_excitation, encounter_frequencies, forward_speed
-from cummins.frequency_domain import impedance, motion_rao
-from cummins.simulate import simulate_waves
-from cummins.speed import SpeedError, vessel_at_speed
-from cummins.waves import regular_wave
+from cummins.radiation.speed import SpeedError, vessel_at_speed
+from cummins.seakeeping.excitation import encounter_excitation, encounter_frequencies, forward_speed
+from cummins.seakeeping.frequency_domain import impedance, motion_rao
+from cummins.seakeeping.waves import regular_wave
+from cummins.timedomain.simulate import simulate_waves
 
 S175 = str(resources.files("cummins") / "data" / "s175" / "s175.mat")
 VERTICAL = ["Heave", "Pitch"]

@@ -7,7 +7,7 @@ import pytest
 
 import cummins
 from cummins.errors import HydroDataError
-from cummins.excitation import (
+from cummins.seakeeping.excitation import (
     INTERPOLATION_METHODS,
     excitation_coefficients,
     excitation_force,
@@ -16,7 +16,7 @@ from cummins.excitation import (
     leave_one_out_error,
     wave_response,
 )
-from cummins.waves import (
+from cummins.seakeeping.waves import (
     WaveComponents,
     harmonic_sum,
     irregular_waves,

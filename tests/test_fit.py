@@ -11,14 +11,14 @@ from hypothesis import given, settings
 from hypothesis import strategies as st
 
 import cummins
-import cummins.radiation
+import cummins.radiation.model
 from cummins.errors import FitError
-from cummins.fit import PREVIOUS_DEFAULT, fit_radiation
-from cummins.fit.frequency import fit_frequency_domain, r_squared
-from cummins.fit.scorecard import diagonal_r2
 from cummins.hydrodb import make_hydrodb
 from cummins.io.mss_abc import read_mss_abc
-from cummins.passivity import passivity_sweep
+from cummins.radiation.fit import PREVIOUS_DEFAULT, fit_radiation
+from cummins.radiation.fit.frequency import fit_frequency_domain, r_squared
+from cummins.radiation.fit.scorecard import diagonal_r2
+from cummins.radiation.passivity import passivity_sweep
 
 OMEGA = np.r_[np.linspace(0.05, 1.5, 30), np.geomspace(1.6, 8.0, 25)]
 
@@ -202,7 +202,8 @@ REAL = [
 def test_real_vessels(shared_data, relative, options):
     """Every significant diagonal fitted, all stable, each diagonal positive real on a dense
     sweep, with R² ≥ 0.985 on A and B recomputed from the model's K(jω) and A∞ against the
-    data on the frequencies kept (:func:`cummins.fit.scorecard.diagonal_r2`: the data's less
+    data on the frequencies kept (:func:`cummins.radiation.fit.scorecard.diagonal_r2`: the data's
+    less
     those the suspect-frequency detector flags; not the fit's own metrics, whose 0.99 is the
     fit's stopping target): the default identification (common poles per block), on
     strip-theory and panel data of ships and buoys.
@@ -348,7 +349,7 @@ def test_mimo_passivity_option(tanker_wamit):
 def test_model_file_round_trip(tanker_wamit, tmp_path):
     model = fit_radiation(tanker_wamit)
     path = model.save(tmp_path / "model.nc")
-    back = cummins.radiation.RadiationModel.load(path)
+    back = cummins.radiation.model.RadiationModel.load(path)
     np.testing.assert_array_equal(back.A, model.A)
     np.testing.assert_array_equal(back.added_mass_inf, model.added_mass_inf)
     assert [b.dofs for b in back.blocks] == [b.dofs for b in model.blocks]
@@ -383,7 +384,7 @@ def test_time_domain_realization_of_the_tanker(tanker_wamit, method, tmp_path):
             assert np.all(np.diff(sigma) <= 0) and sigma[c.order] / sigma[0] < 0.05
             assert c.metrics["hankel_sv_ratio"] == pytest.approx(sigma[c.order] / sigma[0])
     model.save(tmp_path / "model.nc")
-    loaded = cummins.radiation.RadiationModel.load(tmp_path / "model.nc")
+    loaded = cummins.radiation.model.RadiationModel.load(tmp_path / "model.nc")
     assert [c.metrics for c in loaded.couplings] == [c.metrics for c in model.couplings]
 
 
@@ -418,8 +419,8 @@ def test_a_passivity_step_that_ruins_a_coupling_is_a_failure():
     """Issue 16's two-body WEC: a passivity step took a surge R² of A from 0.994 to −29.6
     and the fit said nothing. fit_failures names it; a small loss above the target is not
     a failure, nor is a target the identification itself never reached."""
-    from cummins.fit import fit_failures
-    from cummins.radiation import CouplingModel, RadiationModel
+    from cummins.radiation.fit import fit_failures
+    from cummins.radiation.model import CouplingModel, RadiationModel
 
     def coupling(i, before, after):
         metrics = {

@@ -8,8 +8,9 @@ import xarray as xr
 
 import cummins
 from cummins.errors import HydroDataError
-from cummins.excitation import excitation_transfer, wave_response
-from cummins.frequency_domain import (
+from cummins.plots import plot_rao
+from cummins.seakeeping.excitation import excitation_transfer, wave_response
+from cummins.seakeeping.frequency_domain import (
     impedance,
     load_rao,
     motion_rao,
@@ -19,8 +20,7 @@ from cummins.frequency_domain import (
     significant_amplitude,
     spectral_moment,
 )
-from cummins.plots import plot_rao
-from cummins.waves import irregular_waves, spreading_weights, wave_spectrum
+from cummins.seakeeping.waves import irregular_waves, spreading_weights, wave_spectrum
 
 
 @pytest.fixture(scope="module")

@@ -166,7 +166,7 @@ def test_axis_change_of_models_matches_the_data_with_generalized_modes(corpus):
     signs are those hydrodb.change_axes applies to the data (rigid modes T, beam modes 1),
     and check's rigid-body consistency runs on the six rigid modes only."""
     import cummins
-    from cummins.radiation import _axis_signs
+    from cummins.radiation.model import _axis_signs
 
     ds = cummins.read(corpus / "WEC-Sim_Applications" / "wamit_generalized_modes_barge")
     labels = [str(d) for d in ds.influenced_dof.values]

@@ -46,9 +46,9 @@ import numpy as np
 import pytest
 
 import cummins
-from cummins.fit import PREVIOUS_DEFAULT, fit_radiation
-from cummins.fit.scorecard import diagonal_r2, motion_rao_error
-from cummins.passivity import passivity_test
+from cummins.radiation.fit import PREVIOUS_DEFAULT, fit_radiation
+from cummins.radiation.fit.scorecard import diagonal_r2, motion_rao_error
+from cummins.radiation.passivity import passivity_test
 
 SHARED = {
     "tanker": "mss/tanker/tanker.1",
@@ -148,8 +148,8 @@ def test_an_inconsistent_infinite_frequency_row_is_not_used(corpus):
     R² 0 (measured −299), with it estimated R² of A ≥ 0.98 (measured 0.998, identification
     only)."""
     ds = _read(corpus / "WEC-Sim" / "aqwa_19.1_PEND_hull" / "19_1.AH1")
-    from cummins.fit import inconsistent_added_mass_inf
-    from cummins.retardation import added_mass_inf
+    from cummins.radiation.fit import inconsistent_added_mass_inf
+    from cummins.radiation.retardation import added_mass_inf
 
     estimate = added_mass_inf(ds.drop_vars("added_mass_inf"), method="ogilvie")
     spread = np.maximum(estimate.spread.values, 0.005 * np.abs(estimate.values))

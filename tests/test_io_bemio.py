@@ -164,7 +164,7 @@ def test_state_space_of_bemio_reproduces_its_own_impulse_response(corpus):
 
 def test_fitted_model_is_written_as_bemio_state_space(shared_data, tmp_path):
     ds = cummins.select_dofs(cummins.demo_dataset(), list(cummins.hydrodb.DOF_NAMES))
-    from cummins.radiation import CouplingModel, RadiationModel
+    from cummins.radiation.model import CouplingModel, RadiationModel
 
     heave = CouplingModel(
         2,

@@ -9,8 +9,8 @@ import numpy as np
 import pytest
 
 import cummins
-from cummins.frequency_domain import motion_rao
 from cummins.io.wamit import _parse_dot1, _read_text, _read_wave_file
+from cummins.seakeeping.frequency_domain import motion_rao
 
 
 def test_frequency_types_follow_the_control_file(corpus):

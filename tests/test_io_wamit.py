@@ -9,7 +9,7 @@ import pytest
 
 import cummins
 from cummins import HydroDataError
-from cummins.frequency_domain import motion_rao
+from cummins.seakeeping.frequency_domain import motion_rao
 
 
 @pytest.fixture(scope="module")

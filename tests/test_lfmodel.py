@@ -17,7 +17,7 @@ import pytest
 import cummins
 from cummins.errors import FitError, HydroDataError
 from cummins.hydrodb import dof_matrix, select_dofs
-from cummins.lfmodel import (
+from cummins.timedomain.lfmodel import (
     CriticalDampingFraction,
     ExponentialDamping,
     LowFrequencyModel,

@@ -1,7 +1,8 @@
-"""Environmental and external loads (cummins.loads; Smogeli et al. (2004) §4–5, eqs. 40–55).
+"""Environmental and external loads (cummins.timedomain.loads; Smogeli et al. (2004) §4–5, eqs.
+40–55).
 
 Wave loads are checked on the real S-175 data (MSS, z-down axes) against the data
-themselves and against cummins.excitation; the other loads against hand computations
+themselves and against cummins.seakeeping.excitation; the other loads against hand computations
 and closed forms.
 """
 
@@ -15,10 +16,16 @@ import pytest
 from scipy import integrate
 
 import cummins
-from cummins import loads as L
 from cummins.errors import CumminsError, HydroDataError
-from cummins.excitation import excitation_coefficients, excitation_transfer
-from cummins.waves import WaveComponents, harmonic_sum, irregular_waves, jonswap, regular_wave
+from cummins.seakeeping.excitation import excitation_coefficients, excitation_transfer
+from cummins.seakeeping.waves import (
+    WaveComponents,
+    harmonic_sum,
+    irregular_waves,
+    jonswap,
+    regular_wave,
+)
+from cummins.timedomain import loads as L
 
 ZERO = np.zeros(6)
 

@@ -14,9 +14,9 @@ from click.testing import CliRunner
 import cummins
 from cummins import ArgumentError
 from cummins.cli import main
-from cummins.frequency_domain import impedance
 from cummins.kinematics import center_of_gravity_from_inertia, skew
 from cummins.mass_properties import inertia_from_radii, read_matrix_file, with_inertia
+from cummins.seakeeping.frequency_domain import impedance
 
 COER = "WEC-Sim/capytaine_COER_comp/outputs/coer_comp_hydrodynamics.nc"
 OSWEC = "WEC-Sim/capytaine_OSWEC_flap/outputs/oswec_hydrodynamics.nc"
@@ -158,7 +158,7 @@ def test_cli_completes_the_data_with_mass_properties_and_moorings(corpus, tmp_pa
     result = CliRunner().invoke(main, args)
     assert result.exit_code == 0, result.output
     assert "inertia_matrix" in result.output and "additional_stiffness" in result.output
-    from cummins.frequency_domain import load_rao
+    from cummins.seakeeping.frequency_domain import load_rao
 
     rao = load_rao(out)
     heave = np.abs(rao.sel(dof="Heave").isel(wave_direction=0).values)

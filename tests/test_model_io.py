@@ -16,15 +16,15 @@ import xarray as xr
 import cummins
 from cummins.errors import CumminsError, HydroDataError, OutputExistsError
 from cummins.hydrodb import DOF_NAMES
-from cummins.io.model_netcdf import (
+from cummins.io.mss_abc import MSS_COUPLINGS, read_mss_abc, write_mss_abc
+from cummins.io.openfast import read_openfast_ss, write_openfast_ss
+from cummins.radiation.model import CouplingModel, RadiationModel, symmetric_couplings
+from cummins.radiation.model_file import (
     FORMAT_NAME,
     model_to_dataset,
     read_radiation_model,
     write_radiation_model,
 )
-from cummins.io.mss_abc import MSS_COUPLINGS, read_mss_abc, write_mss_abc
-from cummins.io.openfast import read_openfast_ss, write_openfast_ss
-from cummins.radiation import CouplingModel, RadiationModel, symmetric_couplings
 
 OMEGA = np.linspace(0.02, 4.0, 120)
 T = np.array([1.0, -1.0, -1.0, 1.0, -1.0, -1.0])  # z-up ↔ z-down

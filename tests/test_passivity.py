@@ -16,8 +16,9 @@ from scipy.optimize import brentq
 
 import cummins
 from cummins.errors import FitError
-from cummins.fit import fit_radiation
-from cummins.passivity import (
+from cummins.radiation.fit import fit_radiation
+from cummins.radiation.model import CouplingModel, RadiationModel
+from cummins.radiation.passivity import (
     PASSIVITY_TOLERANCE,
     augment_for_passivity,
     enforce_passivity,
@@ -25,7 +26,6 @@ from cummins.passivity import (
     passivity_sweep,
     passivity_test,
 )
-from cummins.radiation import CouplingModel, RadiationModel
 from cummins.repair import find_suspect_frequencies
 
 

@@ -13,8 +13,8 @@ import pytest
 from click.testing import CliRunner
 
 import cummins
-from cummins.cli_rao import expand_list_options, rao_command
-from cummins.frequency_domain import load_rao, motion_rao
+from cummins.cli.rao import expand_list_options, rao_command
+from cummins.seakeeping.frequency_domain import load_rao, motion_rao
 
 
 @pytest.fixture

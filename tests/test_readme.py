@@ -80,8 +80,8 @@ def _read_back(args: list[str], workdir: Path) -> None:
     import numpy as np
     import xarray as xr
 
-    from cummins.frequency_domain import load_rao
-    from cummins.radiation import RadiationModel
+    from cummins.radiation.model import RadiationModel
+    from cummins.seakeeping.frequency_domain import load_rao
 
     command = args[0]
     outputs = [workdir / f for f in _outputs(args)]

@@ -14,7 +14,7 @@ import scipy.linalg
 
 import cummins
 from cummins.errors import FitError
-from cummins.fit.realization import (
+from cummins.radiation.fit.realization import (
     Realization,
     era,
     hankel_lags,
@@ -23,9 +23,9 @@ from cummins.fit.realization import (
     prony,
     select_order,
 )
-from cummins.radiation import CouplingModel, RadiationModel
+from cummins.radiation.model import CouplingModel, RadiationModel
+from cummins.radiation.retardation import default_time_grid, retardation_function
 from cummins.repair import remove_suspect_frequencies
-from cummins.retardation import default_time_grid, retardation_function
 
 # ----------------------------------------------------------------------------- references
 
@@ -258,7 +258,7 @@ def test_the_dc_projection_is_the_smallest_h2_change_in_any_coordinates():
     inverse = np.linalg.inv(transform)
     c2, _, change2 = impose_zero_dc(transform @ a @ inverse, transform @ b, c @ inverse)
     w = np.geomspace(0.01, 10, 50)
-    from cummins.radiation import siso_frequency_response
+    from cummins.radiation.model import siso_frequency_response
 
     np.testing.assert_allclose(
         siso_frequency_response(transform @ a @ inverse, transform @ b, c2, w),
@@ -354,7 +354,7 @@ def test_modal_realization_matches_the_partial_fractions():
     assert np.isrealobj(a) and np.isrealobj(b) and np.isrealobj(c)
     s = 1j * OMEGA
     reference = np.sum(residues[:, None] / (s[None, :] - poles[:, None]), axis=0)
-    from cummins.radiation import siso_frequency_response
+    from cummins.radiation.model import siso_frequency_response
 
     np.testing.assert_allclose(siso_frequency_response(a, b, c, OMEGA), reference, rtol=1e-10)
     np.testing.assert_allclose(np.sort_complex(np.linalg.eigvals(a)), np.sort_complex(poles))

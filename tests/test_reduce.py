@@ -1,6 +1,6 @@
 """Balanced truncation (Unneland (2007) Ch. 5) and the reduction of radiation models.
 
-References from outside :mod:`cummins.reduce`: balanced SISO systems built in closed form
+References from outside :mod:`cummins.radiation.reduce`: balanced SISO systems built in closed form
 with known Hankel singular values; positive-real (PR) systems built through the
 Kalman–Yakubovich–Popov lemma or as sums of passive modes; the Hamiltonian test of
 positive realness (the zeros of G(s) + Gᵀ(−s)); frequency responses, H∞ errors and
@@ -21,9 +21,9 @@ from hypothesis import strategies as st
 from scipy.optimize import minimize_scalar
 
 from cummins.errors import FitError
-from cummins.fit.realization import modal_realization
-from cummins.radiation import CouplingModel, RadiationModel
-from cummins.reduce import (
+from cummins.radiation.fit.realization import modal_realization
+from cummins.radiation.model import CouplingModel, RadiationModel
+from cummins.radiation.reduce import (
     METHODS,
     balanced_truncation,
     glover_bound,
@@ -728,7 +728,7 @@ def test_reduced_radiation_model_round_trips_through_the_file(tmp_path, method):
 @pytest.fixture(scope="module")
 def tanker_models(tanker_wamit):
     """The default FD fit of the tanker and an ERA realization of order 10 per coupling."""
-    from cummins.fit import fit_radiation
+    from cummins.radiation.fit import fit_radiation
 
     fd = fit_radiation(tanker_wamit, method="fd")
     pairs = [(k.influenced, k.radiating) for k in fd.couplings if k.influenced <= k.radiating]
@@ -820,8 +820,8 @@ def test_a_reduction_that_misses_its_tolerance_is_a_failure():
     as a success. reduction_failures names the coupling when both the measured change and
     Glover's bound exceed the tolerance, and any negative R²; not when the bound meets it
     (the zero at s = 0 re-imposed afterwards moves K a little)."""
-    from cummins.radiation import CouplingModel, RadiationModel
-    from cummins.reduce import reduction_failures
+    from cummins.radiation.model import CouplingModel, RadiationModel
+    from cummins.radiation.reduce import reduction_failures
 
     def coupling(i, change, bound, r2=0.99):
         metrics = {

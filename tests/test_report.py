@@ -14,7 +14,9 @@ import pytest
 from click.testing import CliRunner
 
 import cummins
-from cummins.batch import (
+from cummins.cli import main
+from cummins.cli.html_report import detect_kind, write_report
+from cummins.studies.batch import (
     Study,
     case_ids,
     case_statistics,
@@ -22,8 +24,6 @@ from cummins.batch import (
     prepare_study,
     write_results,
 )
-from cummins.cli import main
-from cummins.report import detect_kind, write_report
 
 TANKER = cummins.demo_files() / "tanker.1"
 CHROMIUM = Path("/usr/bin/chromium")
@@ -40,11 +40,11 @@ BROWSER_ARGS = [
 @pytest.fixture(scope="module")
 def files(tmp_path_factory):
     """One file of each kind a report is made of (the bundled tanker)."""
-    from cummins.frequency_domain import motion_rao, save_rao
     from cummins.io.netcdf import save_netcdf
-    from cummins.simulate import simulate_waves
+    from cummins.seakeeping.frequency_domain import motion_rao, save_rao
+    from cummins.seakeeping.waves import irregular_waves, wave_spectrum
+    from cummins.timedomain.simulate import simulate_waves
     from cummins.vessel import vessel_from_hydrodb
-    from cummins.waves import irregular_waves, wave_spectrum
 
     folder = tmp_path_factory.mktemp("report")
     for f in cummins.demo_files().glob("tanker.*"):
@@ -130,9 +130,9 @@ def test_report_is_self_contained(reports, kind):
 
 
 def test_batch_report_tables(reports, files):
-    """The operability table in the page is the one of cummins.operability."""
-    from cummins.batch import load_results
-    from cummins.operability import operability
+    """The operability table in the page is the one of cummins.studies.operability."""
+    from cummins.studies.batch import load_results
+    from cummins.studies.operability import operability
 
     page = reports["batch"].read_text(encoding="utf-8")
     op = operability(load_results(files["batch"]))
@@ -258,7 +258,7 @@ def test_reports_of_dp_runs_and_lf_models(tmp_path):
     """`cummins report` on the outputs of `cummins dp-demo` and `cummins lf-model`: the
     kinds are detected from the content, and the pages hold their checks, tables and
     figures, self-contained."""
-    from cummins.report import detect_kind
+    from cummins.cli.html_report import detect_kind
 
     runner = CliRunner()
     dp = tmp_path / "dp"

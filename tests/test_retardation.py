@@ -15,8 +15,7 @@ import pytest
 
 import cummins
 from cummins.hydrodb import make_hydrodb
-from cummins.repair import remove_suspect_frequencies
-from cummins.retardation import (
+from cummins.radiation.retardation import (
     added_mass_inf,
     added_mass_inf_per_frequency,
     default_time_grid,
@@ -29,6 +28,7 @@ from cummins.retardation import (
     significant_couplings,
     truncate_retardation,
 )
+from cummins.repair import remove_suspect_frequencies
 
 #: A realistic grid: dense below the peak, geometric above, ending at 5× the highest mode.
 OMEGA = np.r_[np.linspace(0.05, 1.5, 30), np.geomspace(1.6, 10.0, 25)]
@@ -330,8 +330,8 @@ def test_multi_speed_needs_a_choice(shared_data):
 def test_inverse_square_tail_in_closed_form(cos):
     """The ω⁻² tail's transform (sine/cosine integrals) against the exact transform of
     its piecewise-linear interpolant on a 20 000-point grid up to 10⁴ ω_N."""
-    from cummins.retardation import DampingTail
-    from cummins.transforms import cosine_transform, sine_transform
+    from cummins.radiation.retardation import DampingTail
+    from cummins.radiation.transforms import cosine_transform, sine_transform
 
     w_n, t = 3.4, np.linspace(-2.0, 60.0, 125)
     tail = DampingTail(

@@ -14,8 +14,8 @@ from scipy.integrate import solve_ivp
 
 import cummins
 from cummins.errors import SimulationError
-from cummins.radiation import CouplingModel, RadiationModel
-from cummins.simulate import (
+from cummins.radiation.model import CouplingModel, RadiationModel
+from cummins.timedomain.simulate import (
     discretize,
     energy_balance,
     simulate,
@@ -140,10 +140,10 @@ def test_regular_waves_reproduce_the_data_raos(shared_data, relative):
     complex error measures it). Measured: :data:`REGULAR_WAVE_MEASURED`. Against the
     frequency-domain solution of the same model the simulation agrees to 0.1 %/0.1°
     (test_regular_waves_reach_the_frequency_domain_response)."""
-    from cummins.fit.scorecard import critical_damping
-    from cummins.frequency_domain import motion_rao
-    from cummins.simulate import simulate_waves
-    from cummins.waves import regular_wave
+    from cummins.radiation.fit.scorecard import critical_damping
+    from cummins.seakeeping.frequency_domain import motion_rao
+    from cummins.seakeeping.waves import regular_wave
+    from cummins.timedomain.simulate import simulate_waves
 
     ds = cummins.read(shared_data / relative)
     if "forward_speed" in ds.dims:
@@ -233,7 +233,7 @@ def test_free_decay_never_gains_energy(shared_data, relative, options):
     if "forward_speed" in ds.dims:
         ds = ds.sel(forward_speed=0.0)
     vessel = vessel_from_hydrodb(ds)
-    assert cummins.passivity.passivity_test(vessel.radiation).passive
+    assert cummins.radiation.passivity.passivity_test(vessel.radiation).passive
     n = len(vessel.dofs)
     x0 = np.zeros(vessel.n_states)
     x0[:n] = [0.5, 0.5, 1.0, 0.1, 0.02, 0.05][:n]
@@ -290,9 +290,13 @@ def test_irregular_seas_reproduce_the_data_response_spectra(shared_data):
     spectra differ by ≤ 4.3 % of their peak, RMS)."""
     from scipy.signal import welch
 
-    from cummins.frequency_domain import motion_rao, response_spectrum, significant_amplitude
-    from cummins.simulate import simulate_waves
-    from cummins.waves import irregular_waves, wave_spectrum
+    from cummins.seakeeping.frequency_domain import (
+        motion_rao,
+        response_spectrum,
+        significant_amplitude,
+    )
+    from cummins.seakeeping.waves import irregular_waves, wave_spectrum
+    from cummins.timedomain.simulate import simulate_waves
 
     ds = cummins.read(shared_data / "mss" / "tanker" / "tanker.mat")
     with warnings.catch_warnings():

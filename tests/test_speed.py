@@ -1,4 +1,4 @@
-"""Forward speed (cummins.speed): Hjulstad (2004) ch. 3, 5.3–5.4, 6, 10, 12.1.
+"""Forward speed (cummins.radiation.speed): Hjulstad (2004) ch. 3, 5.3–5.4, 6, 10, 12.1.
 
 Real data: the MSS S-175 (ShipX/VERES strip theory, 5 speeds, z-down), vertical modes
 (heave, pitch) as in the thesis. Range of interest 0.2–1.6 rad/s (wave periods 4–30 s;
@@ -13,10 +13,10 @@ import pytest
 import xarray as xr
 
 import cummins
-from cummins import speed as sp
 from cummins.errors import CumminsError
-from cummins.fit import fit_radiation
 from cummins.hydrodb import dof_matrix, select_dofs
+from cummins.radiation import speed as sp
+from cummins.radiation.fit import fit_radiation
 
 VERTICAL = ["Heave", "Pitch"]
 #: fit options for the S-175: fitted range up to 2 rad/s (module docstring), tight targets

@@ -19,12 +19,11 @@ import scipy.integrate
 from click.testing import CliRunner
 
 import cummins
-from cummins import waves as wv
 from cummins.cli import main
 from cummins.errors import HydroDataError, IdentificationError, SimulationError
 from cummins.hydrodb import select_dofs
-from cummins.radiation import RadiationModel
-from cummins.simulate import simulate, simulate_waves
+from cummins.radiation.model import RadiationModel
+from cummins.seakeeping import waves as wv
 from cummins.sysid import (
     DampingModel,
     alignment,
@@ -39,6 +38,7 @@ from cummins.sysid import (
     segments,
     validate_segments,
 )
+from cummins.timedomain.simulate import simulate, simulate_waves
 
 NOISE = 0.02  # standard deviation of the measurement noise, share of the signal's
 SIX_DOF_DAMPING = {"Surge": 1e6, "Sway": 1e6, "Yaw": 1e10}
@@ -253,7 +253,8 @@ def test_roll_decay_recovers_known_damping(p1, p2, method):
 
 
 def test_roll_decay_of_the_simulator_with_dimensional_coefficients(roll_data, roll_vessel):
-    """A decay simulated by cummins.simulate (constant added mass at ω₀, linear + quadratic
+    """A decay simulated by cummins.timedomain.simulate (constant added mass at ω₀, linear +
+    quadratic
     viscous damping): B1 and B2 within 5 %."""
     inertia, stiffness = roll_vessel.mass[0, 0], roll_vessel.stiffness[0, 0]
     b1, b2 = 0.05 * 2 * np.sqrt(stiffness * inertia), 0.3 * inertia

@@ -10,7 +10,7 @@ from hypothesis import given, settings
 from hypothesis import strategies as st
 from scipy.integrate import quad
 
-from cummins.transforms import cosine_transform, hilbert_pv, sine_transform
+from cummins.radiation.transforms import cosine_transform, hilbert_pv, sine_transform
 
 
 def test_linear_function_closed_form():

@@ -1,4 +1,5 @@
-"""The nonlinear 6-DOF model of Smogeli et al. (2004) (cummins.unified) and its kinematics."""
+"""The nonlinear 6-DOF model of Smogeli et al. (2004) (cummins.timedomain.unified) and its
+kinematics."""
 
 from __future__ import annotations
 
@@ -11,7 +12,6 @@ from hypothesis import strategies as st
 
 import cummins
 from cummins.errors import SimulationError
-from cummins.excitation import excitation_coefficients
 from cummins.kinematics import (
     attitude_transform,
     point_load,
@@ -20,9 +20,15 @@ from cummins.kinematics import (
     screw_transform,
     velocity_transform,
 )
-from cummins.simulate import simulate
-from cummins.unified import UnifiedVessel, coriolis_rigid_body, simulate_unified, unified_vessel
-from cummins.waves import irregular_waves, wave_spectrum
+from cummins.seakeeping.excitation import excitation_coefficients
+from cummins.seakeeping.waves import irregular_waves, wave_spectrum
+from cummins.timedomain.simulate import simulate
+from cummins.timedomain.unified import (
+    UnifiedVessel,
+    coriolis_rigid_body,
+    simulate_unified,
+    unified_vessel,
+)
 
 angles = st.floats(-1.4, 1.4)
 

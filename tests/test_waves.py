@@ -8,7 +8,7 @@ import numpy as np
 import pytest
 from scipy import integrate
 
-from cummins.waves import (
+from cummins.seakeeping.waves import (
     WaveComponents,
     cos2s_spreading,
     energy_range,

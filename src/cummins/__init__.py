@@ -20,7 +20,7 @@ from pathlib import Path
 
 import xarray as xr
 
-from cummins import frequency_domain, passivity, reduce, repair, waves
+from cummins import _compat, repair
 from cummins._version import __version__
 from cummins.check import CheckReport, Finding, check
 from cummins.errors import (
@@ -33,8 +33,6 @@ from cummins.errors import (
     OutputExistsError,
     SimulationError,
 )
-from cummins.fit import fit_radiation
-from cummins.frequency_domain import motion_rao
 from cummins.hydrodb import (
     DOF_NAMES,
     change_axes,
@@ -46,14 +44,20 @@ from cummins.hydrodb import (
 )
 from cummins.io import FORMATS, detect_format, read, write
 from cummins.mass_properties import with_external_terms, with_inertia
-from cummins.radiation import CouplingModel, RadiationModel
-from cummins.retardation import (
+from cummins.radiation import passivity, reduce
+from cummins.radiation.fit import fit_radiation
+from cummins.radiation.model import CouplingModel, RadiationModel
+from cummins.radiation.retardation import (
     added_mass_inf,
     kramers_kronig_error,
     retardation_function,
 )
-from cummins.simulate import simulate_waves
+from cummins.seakeeping import frequency_domain, waves
+from cummins.seakeeping.frequency_domain import motion_rao
+from cummins.timedomain.simulate import simulate_waves
 from cummins.vessel import Vessel, vessel_from_hydrodb
+
+_compat.install()  # the module paths of earlier releases (cummins.retardation, …)
 
 
 def demo_files() -> Path:

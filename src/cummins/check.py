@@ -29,7 +29,7 @@ changed in the data. Each finding says what was measured, where, and what to do.
 * ``retardation`` — per significant coupling: K(0), ∫K dt against B(0) = 0,
   K(t_max)/max|K|, the tail's share of ∫B dω, the Ogilvie estimate of A∞ and its spread
   over frequency (and its distance from the solver's ω = ∞ row), and the
-  Kramers–Kronig error (:func:`cummins.retardation.retardation_diagnostics`).
+  Kramers–Kronig error (:func:`cummins.radiation.retardation.retardation_diagnostics`).
 """
 
 from __future__ import annotations
@@ -43,8 +43,8 @@ import xarray as xr
 
 from cummins.hydrodb import DOF_NAMES, dof_matrix, is_rotation, split_dof, validate
 from cummins.kinematics import center_of_gravity_from_inertia
+from cummins.radiation.retardation import retardation_diagnostics
 from cummins.repair import find_suspect_frequencies
-from cummins.retardation import retardation_diagnostics
 from cummins.validation import coefficient_limit
 
 SEVERITIES = ("ok", "info", "warning", "error")
@@ -727,7 +727,7 @@ def _check_retardation(ds: xr.Dataset) -> list[Finding]:
                     "retardation",
                     "info",
                     f"not evaluated{_speed_suffix(sub)}: forward speed needs the speed-"
-                    "dependent kernels (see cummins.speed)",
+                    "dependent kernels (see cummins.radiation.speed)",
                 )
             )
             continue
@@ -833,7 +833,7 @@ def _check_wave_parity(ds: xr.Dataset) -> list[Finding]:
     F(ω, −β) = T F(ω, β), T = diag(1, −1, 1, −1, 1, −1) (surge, heave, pitch keep their
     sign; sway, roll, yaw change it). A file that breaks this for a symmetric body holds
     magnitudes instead of signed values, or a sign error (the MSS S-175's yaw drift)."""
-    from cummins.excitation import MIRROR_SIGNS, symmetry_evidence
+    from cummins.seakeeping.excitation import MIRROR_SIGNS, symmetry_evidence
 
     out: list[Finding] = []
     for sub in _speeds(ds):

@@ -119,7 +119,7 @@ def plot_rao(
     headings_deg: Sequence[float] | None = None,
 ) -> Figure:
     """|RAO| and its phase per DOF, one line per heading (at most eight shown by default);
-    ``rao`` from :func:`cummins.frequency_domain.motion_rao`."""
+    ``rao`` from :func:`cummins.seakeeping.frequency_domain.motion_rao`."""
     labels = [str(d) for d in rao.dof.values]
     source = str(rao.attrs.get("source_file", "")).rpartition("/")[2]
     return _amplitude_phase_by_heading(
@@ -299,14 +299,14 @@ def plot_coupling_fit(
     ds
         The data (one forward speed).
     model
-        A :class:`cummins.radiation.RadiationModel`.
+        A :class:`cummins.radiation.model.RadiationModel`.
     i, j
         0-based DOF indices (force, velocity).
     left_out
         Frequencies (rad/s) of ``ds`` the fit left out: drawn as open circles, and not
         used for K(t) from the data.
     """
-    from cummins.retardation import default_time_grid, retardation_function
+    from cummins.radiation.retardation import default_time_grid, retardation_function
 
     dof_i, dof_j = model.dofs[i], model.dofs[j]
     title = dof_i if i == j else f"{dof_i} ← {dof_j}"
@@ -676,7 +676,7 @@ def plot_lf_model(ds: xr.Dataset, model, dofs: Sequence[str] | None = None) -> F
     """A_ii(ω) and B_ii(ω) per DOF with the values of a low-frequency model marked.
 
     Like Ross, Perez & Fossen (2006) Figs. 1–2: the cross marks (ω_i, M_A,ii) and
-    (ω_i, B_p,ii) of a :class:`cummins.lfmodel.LowFrequencyModel` — at ω = 0 for
+    (ω_i, B_p,ii) of a :class:`cummins.timedomain.lfmodel.LowFrequencyModel` — at ω = 0 for
     surge, sway and yaw, at the natural frequency ω₀ (eq. 24) for heave, roll
     and pitch; a diamond marks the total damping D_ii = B_p,ii + B_v,ii when viscous
     damping is present, on the curves of :func:`plot_added_mass_damping` (with A(∞) and
@@ -687,7 +687,7 @@ def plot_lf_model(ds: xr.Dataset, model, dofs: Sequence[str] | None = None) -> F
     ds
         The ``HydroDB`` the model was made from (one forward speed).
     model
-        The :class:`cummins.lfmodel.LowFrequencyModel`.
+        The :class:`cummins.timedomain.lfmodel.LowFrequencyModel`.
     dofs
         DOF labels to show (default: those of the model).
     """
@@ -713,7 +713,7 @@ def plot_lf_model(ds: xr.Dataset, model, dofs: Sequence[str] | None = None) -> F
 
 def plot_lf_comparison(result: xr.Dataset, dof: str, kind: str) -> Figure:
     """A decay or step response of the low-frequency model against the Cummins model
-    (:func:`cummins.lfmodel.compare_with_cummins`)."""
+    (:func:`cummins.timedomain.lfmodel.compare_with_cummins`)."""
     fig = Figure(figsize=(9, 3.5), layout="constrained")
     ax = fig.subplots()
     for n, (name, label) in enumerate(

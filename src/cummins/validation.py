@@ -2,7 +2,7 @@
 
 Every public function that takes a sea state, a duration, a time step, a count or a
 tolerance checks it here, and the command line checks its options with the click types of
-:mod:`cummins.cli_common` built on the same rules. A value that is not usable raises
+:mod:`cummins.cli.common` built on the same rules. A value that is not usable raises
 :class:`cummins.errors.ArgumentError` (a ``ValueError`` too) whose message names the
 argument, the value given, the range accepted with its unit, and what to pass instead:
 

@@ -8,7 +8,7 @@ with ξ the 6 (or 6N) generalized displacements about the database's reference p
 (m, rad, in its axes), M_RB the rigid-body inertia, A∞ the infinite-frequency added mass,
 B_v a linear viscous damping added by the user, C the restoring matrix (hydrostatic plus
 any additional stiffness of the database: moorings), μ the fluid-memory force of the
-radiation model (A_r, B_r, C_r) identified by :func:`cummins.fit.fit_radiation`, and τ the
+radiation model (A_r, B_r, C_r) identified by :func:`cummins.radiation.fit.fit_radiation`, and τ the
 external (wave) force. With the state x = (ξ, ξ̇, χ):
 
     ẋ = F x + G τ,   F = [[0, I, 0], [−M⁻¹C, −M⁻¹B_v, −M⁻¹C_r], [0, B_r, A_r]],
@@ -32,7 +32,7 @@ from numpy.typing import ArrayLike, NDArray
 
 from cummins.errors import HydroDataError, SimulationError
 from cummins.hydrodb import dof_matrix, single_speed
-from cummins.radiation import RadiationModel
+from cummins.radiation.model import RadiationModel
 
 
 @dataclass(frozen=True, eq=False)
@@ -128,7 +128,7 @@ class Vessel:
                 f"the vessel model is unstable: eigenvalue {lam[k]:.4g} 1/s, mode dominated "
                 f"by {dof}",
                 hint="check the restoring matrix (negative stiffness?) and that the "
-                "radiation model is passive (cummins.passivity.passivity_test)",
+                "radiation model is passive (cummins.radiation.passivity.passivity_test)",
             )
         return lam
 
@@ -185,7 +185,7 @@ def vessel_from_hydrodb(
         One forward speed; needs ``inertia_matrix`` and ``hydrostatic_stiffness``;
         ``additional_stiffness`` (moorings) is added to C when present.
     model
-        A radiation model of the same DOFs (default: :func:`cummins.fit.fit_radiation` of
+        A radiation model of the same DOFs (default: :func:`cummins.radiation.fit.fit_radiation` of
         ``ds`` with ``fit_options``).
     viscous_damping
         B_v as :func:`viscous_damping_matrix` takes it: an (n, n) matrix, the n diagonal
@@ -193,20 +193,20 @@ def vessel_from_hydrodb(
     additional
         Take the database's ``additional_stiffness`` (moorings) into C and its
         ``additional_damping`` (WAMIT external damping, MSS ``Bv``, VERES viscous roll
-        damping) into B_v — as :func:`cummins.frequency_domain.motion_rao` does. A linear
+        damping) into B_v — as :func:`cummins.seakeeping.frequency_domain.motion_rao` does. A linear
         time-domain model has one constant B_v: entries of ``additional_damping`` that
         vary with frequency (MSS's surge/sway/yaw estimates) are left out with a
         warning naming them; give the value you want through ``viscous_damping``.
         Frequency-dependent ``additional_added_mass`` is likewise left out.
     fit_options
-        Passed to :func:`cummins.fit.fit_radiation` when ``model`` is None.
+        Passed to :func:`cummins.radiation.fit.fit_radiation` when ``model`` is None.
 
     Returns
     -------
     Vessel
         ``attrs["viscous_damping_source"]`` says where each part of B_v came from.
     """
-    from cummins.fit import fit_radiation
+    from cummins.radiation.fit import fit_radiation
 
     ds = single_speed(ds)
     dofs = tuple(str(d) for d in ds.influenced_dof.values)

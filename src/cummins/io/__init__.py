@@ -247,7 +247,7 @@ def write(ds: xr.Dataset, path: str | os.PathLike[str], *, force: bool = False, 
     layout WEC-Sim reads) or ``.mat`` (MSS).
 
     Refuses to overwrite an existing file unless ``force=True``. ``model`` (a fitted
-    :class:`~cummins.radiation.RadiationModel`) goes into a ``.h5`` file's state-space
+    :class:`~cummins.radiation.model.RadiationModel`) goes into a ``.h5`` file's state-space
     datasets (see :func:`cummins.io.bemio.write_bemio`).
     """
     p = Path(path)

@@ -1,8 +1,8 @@
-"""Pieces shared by the writers of :class:`~cummins.radiation.RadiationModel` files.
+"""Pieces shared by the writers of :class:`~cummins.radiation.model.RadiationModel` files.
 
 The writers need to know which axes a model is in (``axis_convention``: ``"z-up"`` or
 ``"z-down"``, see :mod:`cummins.hydrodb`) before converting it with
-:func:`cummins.radiation.change_model_axes`.
+:func:`cummins.radiation.model.change_model_axes`.
 """
 
 from __future__ import annotations
@@ -11,7 +11,7 @@ import os
 
 from cummins.errors import CumminsError
 from cummins.hydrodb import AXIS_CONVENTIONS
-from cummins.radiation import RadiationModel
+from cummins.radiation.model import RadiationModel
 
 
 def resolve_axis_convention(

@@ -559,7 +559,7 @@ def _check_polar(coeffs, group: str, value: np.ndarray, path, notes) -> None:
 
 def read_bemio_state_space(path: str | os.PathLike[str]):
     """The radiation state-space models BEMIO fitted (``radiationIRFSS``), as a
-    :class:`~cummins.radiation.RadiationModel` (memory term μ = K * q̇, SI units).
+    :class:`~cummins.radiation.model.RadiationModel` (memory term μ = K * q̇, SI units).
 
     Per coupling (i, j) the first ``it(i, j)`` states of ``A/all``, ``B/all``,
     ``C/all`` (×ρ, as WEC-Sim's ``bodyClass`` does) form one SISO model; couplings with
@@ -573,7 +573,7 @@ def read_bemio_state_space(path: str | os.PathLike[str]):
     """
     import h5py
 
-    from cummins.radiation import CouplingModel, RadiationModel
+    from cummins.radiation.model import CouplingModel, RadiationModel
 
     path = Path(path)
     ds = read_bemio(path)
@@ -637,7 +637,7 @@ def write_bemio(ds: xr.Dataset, path: str | os.PathLike[str], *, model=None) -> 
     read (module docstring): normalised coefficients, A∞ (Ogilvie's estimate from A(ω),
     B(ω) when the data have none, said in the dataset's description), the radiation
     impulse response K(t) (cummins' exact integral of B(ω), on
-    :func:`cummins.retardation.default_time_grid`), and with ``model`` its state space.
+    :func:`cummins.radiation.retardation.default_time_grid`), and with ``model`` its state space.
     Not written: the excitation impulse response (WEC-Sim needs it only for
     ``nonlinearHydro``/``yawNonLin``), QTFs, mean drift (its method — momentum or
     control surface — is not known here) and the generalized-mode matrices ``gbm``.
@@ -654,7 +654,7 @@ def write_bemio(ds: xr.Dataset, path: str | os.PathLike[str], *, model=None) -> 
     path
         Output file. Written to a temporary name first, then renamed.
     model
-        A :class:`~cummins.radiation.RadiationModel` of the same DOFs: written to
+        A :class:`~cummins.radiation.model.RadiationModel` of the same DOFs: written to
         ``radiation_damping/state_space`` (A, B, C/ρ of each coupling, padded to the
         largest order; ``it`` the orders, ``r2t`` the R² of B when the fit recorded it,
         ``conv`` 1; D = 0; ``K`` the model's impulse response/ρ). A coupling without a
@@ -705,7 +705,7 @@ def write_bemio(ds: xr.Dataset, path: str | os.PathLike[str], *, model=None) -> 
     if "added_mass_inf" in ds:
         inf = dof_matrix(ds, "added_mass_inf")
     else:
-        from cummins.retardation import added_mass_inf
+        from cummins.radiation.retardation import added_mass_inf
 
         inf = np.asarray(
             added_mass_inf(ds).transpose("influenced_dof", "radiating_dof").values, dtype=float
@@ -724,7 +724,7 @@ def write_bemio(ds: xr.Dataset, path: str | os.PathLike[str], *, model=None) -> 
         forces["excitation/scattering"] = ds.diffraction_force.transpose(
             "omega", "wave_direction", "influenced_dof"
         ).values
-    from cummins.retardation import default_time_grid, retardation_function
+    from cummins.radiation.retardation import default_time_grid, retardation_function
 
     t = default_time_grid(ds)
     kernel = retardation_function(ds, t).transpose("time", "influenced_dof", "radiating_dof")

@@ -13,7 +13,7 @@ files, read here with :func:`cummins.io.wamit.read_wamit_run`, with three differ
   them they are taken as those values, and ``history`` says so;
 * the ``.4`` holds i·ξ/(ρg), not the motion RAO ξ (found by solving the equation of
   motion with the run's own matrices: −iρg × ``.4`` agrees with
-  :func:`cummins.frequency_domain.motion_rao` to 3e-5 in modulus and 0.03° in phase on
+  :func:`cummins.seakeeping.frequency_domain.motion_rao` to 3e-5 in modulus and 0.03° in phase on
   HAMS/Cylinder and DeepCwind, see ``tests/test_io_hams.py``); it is converted here;
 * the mass matrix, external linear damping and external restoring matrices are
   inputs in ``Input/Hydrostatic.in`` (about the reference body centre): they become

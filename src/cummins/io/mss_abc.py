@@ -32,7 +32,7 @@ Conventions: Fossen's body axes (x forward, y to starboard, z down: cummins'
 (checked against the ``vessel`` structs in the tests). The Simulink models add the
 memory force as −μ, with μ the output of these models, as cummins does.
 
-:func:`read_mss_abc` returns a :class:`~cummins.radiation.RadiationModel` with method
+:func:`read_mss_abc` returns a :class:`~cummins.radiation.model.RadiationModel` with method
 ``"mss"``, ``added_mass_inf`` = ``MA``, and attributes ``axis_convention="z-down"``,
 ``inertia_matrix`` (``MRB``), ``hydrostatic_stiffness`` (``G``) and ``mss_r_g``
 (``r_g``); cells holding zeros or nothing give no coupling.
@@ -63,7 +63,7 @@ from cummins.hydrodb import DOF_NAMES
 from cummins.io._model_common import resolve_axis_convention
 from cummins.io.mss import load_mat_struct
 from cummins.io.netcdf import decode_attribute, encode_attribute
-from cummins.radiation import CouplingModel, RadiationModel, change_model_axes
+from cummins.radiation.model import CouplingModel, RadiationModel, change_model_axes
 
 __all__ = ["MSS_COUPLINGS", "read_mss_abc", "write_mss_abc"]
 

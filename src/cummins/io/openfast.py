@@ -33,7 +33,7 @@ Conventions of the file (from HydroDyn and SS_Fitting's writer):
   driven by the surge velocity, then the n₂ of sway, … HydroDyn relies on this to drop
   the states of a disabled DOF. :func:`write_openfast_ss` therefore orders the
   couplings by (radiating j, influenced i), which permutes the states of the
-  :class:`~cummins.radiation.RadiationModel` (whose states follow its couplings).
+  :class:`~cummins.radiation.model.RadiationModel` (whose states follow its couplings).
 
 Numbers are written with 17 significant digits, so a file read back gives the same
 matrices bit for bit (HydroDyn itself stores them in single precision).
@@ -54,7 +54,7 @@ from cummins.errors import HydroDataError, HydroDataWarning, check_writable
 from cummins.hydrodb import DOF_NAMES
 from cummins.io._model_common import resolve_axis_convention
 from cummins.io._text import TextFile, check_cut_numbers, parse_numbers
-from cummins.radiation import CouplingModel, RadiationModel, change_model_axes
+from cummins.radiation.model import CouplingModel, RadiationModel, change_model_axes
 
 __all__ = [
     "OpenFastExcitationSS",
@@ -113,7 +113,7 @@ class OpenFastSS:
         dofs: tuple[str, ...] | None = None,
         added_mass_inf: ArrayLike | None = None,
     ) -> RadiationModel:
-        """The file as a :class:`~cummins.radiation.RadiationModel` of SISO couplings.
+        """The file as a :class:`~cummins.radiation.model.RadiationModel` of SISO couplings.
 
         The states are split into the connected blocks of A; each block must be driven
         by one velocity j and seen by one force i (a SISO model, as SS_Fitting and
@@ -303,7 +303,7 @@ def read_openfast_ss(path: str | os.PathLike[str]) -> OpenFastSS:
 
     The file is checked as HydroDyn checks it (counts of lines and states), so a file
     that reads here is one HydroDyn accepts. Use :meth:`OpenFastSS.to_radiation_model`
-    for a :class:`~cummins.radiation.RadiationModel`.
+    for a :class:`~cummins.radiation.model.RadiationModel`.
 
     Raises
     ------

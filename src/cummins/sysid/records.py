@@ -479,12 +479,12 @@ def excitation_from_elevation(
     τ(t) = F⁻¹[F(ω, β) η̂(ω)], with η̂ the discrete Fourier transform of the elevation at
     the origin (long-crested waves travelling towards ``heading_deg``) and F(ω, β) the
     excitation per metre of wave amplitude of ``ds``
-    (:func:`cummins.excitation.excitation_transfer`); zero outside the data's
+    (:func:`cummins.seakeeping.excitation.excitation_transfer`); zero outside the data's
     frequencies (a warning says how much wave energy lies there). The filter is not
     causal: it suits records analysed after the fact, as model tests are.
     """
-    from cummins.excitation import excitation_transfer
     from cummins.hydrodb import single_speed
+    from cummins.seakeeping.excitation import excitation_transfer
 
     if "wave_elevation" not in record:
         raise HydroDataError("the record has no wave_elevation")

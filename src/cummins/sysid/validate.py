@@ -148,8 +148,8 @@ def repredict(
     SimulationError
         The identified model is unstable or the run diverges (naming DOF and time).
     """
-    from cummins.simulate import simulate
     from cummins.sysid.identify import full_motions
+    from cummins.timedomain.simulate import simulate
 
     source = record if history is None else history
     res = residual_force(source, vessel, cutoff=cutoff) if residual is None else residual

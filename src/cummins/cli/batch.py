@@ -1,0 +1,159 @@
+"""``cummins batch``: a study of many cases on a Dask cluster, with operability."""
+
+from __future__ import annotations
+
+from pathlib import Path
+
+import click
+import numpy as np
+from rich.markup import escape
+from rich.table import Table
+
+from cummins.cli.common import (
+    console,
+    prepare_outputs,
+    progress_bar,
+    reports_errors,
+    run_reporting_errors,
+)
+
+
+@click.command(name="batch")
+@click.argument("study_file", metavar="STUDY", type=click.Path(dir_okay=False))
+@click.option(
+    "-o",
+    "--output",
+    type=click.Path(),
+    default=None,
+    help="Results: NetCDF (.nc) or Zarr (.zarr). Finished cases are kept in OUTPUT.parts "
+    "until the end: run the same command again to resume an interrupted study.",
+)
+@click.option(
+    "--scheduler",
+    metavar="ADDR",
+    default=None,
+    help="Address of a running Dask scheduler (e.g. tcp://10.0.0.5:8786); default: a local "
+    "cluster on this machine.",
+)
+@click.option(
+    "--workers",
+    type=click.IntRange(min=1),
+    default=None,
+    metavar="N",
+    help="Worker processes of the local cluster (default: one per core).",
+)
+@click.option(
+    "--example",
+    is_flag=True,
+    help="First write an example study (the bundled tanker) to STUDY; with -o, then run it.",
+)
+@click.option("--force", is_flag=True, help="Overwrite OUTPUT (and STUDY with --example).")
+@reports_errors
+def batch_command(study_file, output, scheduler, workers, example, force):
+    """Run a study of many cases (headings x sea states x seeds) on a Dask cluster.
+
+    \b
+    STUDY is a YAML file (`cummins batch --example study.yaml` writes a commented
+    one): the vessel data (and a model file), the analysis — `rao`, frequency domain:
+    significant amplitude 2 sqrt(m0) and most probable maximum per DOF, or `simulate`,
+    time domain: the same from a run in a realisation of the sea —, the cases as a
+    grid (heading, hs, tp, gamma, spreading, seed) or a list, and limits such as
+    `Roll: 4 deg` (significant) or `Heave: {max: 2.5 m}`.
+
+    \b
+    Cases run in parallel on Dask (pip install cummins[dask]): a local cluster of
+    single-threaded processes, or --scheduler ADDR (its workers need cummins
+    installed; the data are sent to them). Each finished case is saved at once;
+    after an interruption, the same command computes only the missing ones.
+    Results: one dataset with dims (heading, hs, tp, ..., dof), the response/limit
+    ratios and `operable` per case; printed: operability per heading and the
+    limiting Hs per heading and Tp. `cummins report OUTPUT -o report.html` draws them.
+
+    \b
+    Examples:
+      cummins batch --example study.yaml
+      cummins batch study.yaml -o results.nc --workers 2
+      cummins batch study.yaml -o results.zarr --scheduler tcp://10.0.0.5:8786
+    """
+    from cummins.studies.batch import example_study_text, load_study, run_study
+
+    study_path = Path(study_file)
+    if scheduler and workers:
+        raise click.UsageError("--workers sizes a local cluster: not with --scheduler")
+    if example:
+        prepare_outputs(study_path, force=force)
+        here = (study_path.parent / "tanker.1").exists()
+        from cummins import demo_files
+
+        data = "tanker.1" if here else str(demo_files() / "tanker.1")
+        study_path.write_text(example_study_text(data), encoding="utf-8")
+        console.print(f"wrote {study_path} (an example study: edit it, then run it with -o)")
+        if output is None:
+            return
+    elif output is None:
+        raise click.UsageError("give the results file with -o/--output")
+    elif not study_path.exists():
+        raise click.BadParameter(f"{study_path} does not exist", param_hint="STUDY")
+    study = load_study(study_path)
+    _require_dask()
+    prepare_outputs(output, force=force)
+    n = len(study.all_cases)
+    console.print(
+        f"{study.name or study_path.name}: {n} cases, analysis {study.analysis}, "
+        f"data {study.data.name}"
+    )
+    with progress_bar() as bar:
+        task = bar.add_task(f"{n} cases", total=n)
+        run = run_study(
+            study,
+            output,
+            scheduler=scheduler,
+            workers=workers,
+            force=force,
+            progress=lambda done, total: bar.update(task, completed=done),
+            say=lambda message: console.print(message),
+        )
+    where = f"{run.workers} workers" if run.workers else "nothing to compute"
+    console.print(
+        f"{run.computed} cases computed, {run.skipped} resumed from saved parts ({where}) "
+        f"in {run.elapsed:.1f} s"
+    )
+    _print_tables(run.results)
+    console.print(f"wrote {output}")
+
+
+def _require_dask() -> None:
+    """One line and exit status 2 without Dask (it names the extra to install)."""
+    from cummins.studies.batch import _dask
+
+    run_reporting_errors(_dask)
+
+
+def _print_tables(results) -> None:
+    from cummins.studies.operability import limiting_hs, operability
+
+    if not results.sizes.get("criterion", 0):
+        console.print("no limits in the study: no operability table")
+        return
+    op = operability(results)
+    criteria = "; ".join(str(c) for c in results.criterion.values)
+    table = Table(title=escape(f"Operability ({op.attrs['weights']} weights): {criteria}"))
+    frame = op.to_dataframe().reset_index()
+    keys = [c for c in frame.columns if c != "operability"]
+    for key in keys:
+        table.add_column(escape("heading [deg]") if key == "heading" else key, justify="right")
+    table.add_column("operability", justify="right")
+    for _, row in frame.iterrows():
+        table.add_row(*(f"{row[k]:g}" for k in keys), f"{100 * row['operability']:.1f} %")
+    console.print(table)
+    lim = limiting_hs(results)
+    if set(lim.dims) == {"heading", "tp"}:
+        lim = lim.transpose("heading", "tp")
+        grid = Table(title=escape("Limiting Hs [m] per heading [deg] (rows) and Tp [s] (columns)"))
+        grid.add_column("heading", justify="right")
+        for tp in lim.tp.values:
+            grid.add_column(f"{tp:g}", justify="right")
+        for h in lim.heading.values:
+            values = lim.sel(heading=h).values
+            grid.add_row(f"{h:g}", *(f"{v:.3g}" if np.isfinite(v) else "-" for v in values))
+        console.print(grid)

@@ -1,0 +1,538 @@
+"""Pieces shared by the ``cummins`` commands: consoles, error reporting, read options."""
+
+from __future__ import annotations
+
+import contextlib
+import functools
+import math
+import os
+import sys
+import warnings
+from collections.abc import Iterator
+from pathlib import Path
+from typing import NoReturn
+
+import click
+import numpy as np
+from rich.console import Console
+from rich.markup import escape
+from rich.progress import BarColumn, Progress, TaskProgressColumn, TextColumn, TimeElapsedColumn
+
+from cummins.errors import (
+    ArgumentError,
+    CumminsError,
+    CumminsWarning,
+    OutputExistsError,
+    check_writable,
+)
+
+console = Console(highlight=False, soft_wrap=True)
+err_console = Console(stderr=True, highlight=False, soft_wrap=True)
+
+
+def progress_bar() -> Progress:
+    """A transient bar for work measured as a fraction (``total=1.0``) or in steps."""
+    return Progress(
+        TextColumn("{task.description}"),
+        BarColumn(),
+        TaskProgressColumn(),
+        TimeElapsedColumn(),
+        console=console,
+        transient=True,
+    )
+
+
+def exit_status(exc: BaseException) -> int:
+    """2 for a bad argument or option (``ArgumentError``, an output that exists), 1 for
+    data that cannot be used and every other error of cummins."""
+    return 2 if isinstance(exc, (ArgumentError, OutputExistsError)) else 1
+
+
+def report_error(exc: BaseException) -> NoReturn:
+    """Print ``exc`` as one line on standard error and exit with :func:`exit_status`: the
+    one place where the commands report their errors."""
+    err_console.print(f"[bold red]error:[/] {escape(_one_line(exc))}")
+    sys.exit(exit_status(exc))
+
+
+def _one_line(exc: BaseException) -> str:
+    if isinstance(exc, MemoryError):
+        return (
+            "not enough memory for this request"
+            + (f" ({exc})" if str(exc) else "")
+            + ": ask for less (a shorter run, a coarser grid, fewer DOFs)"
+        )
+    if isinstance(exc, OSError) and not isinstance(exc, CumminsError):
+        where = f"{exc.filename}: " if getattr(exc, "filename", None) else ""
+        return f"{where}{exc.strerror or exc}"
+    return " ".join(str(exc).split())
+
+
+@contextlib.contextmanager
+def warnings_as_notes() -> Iterator[None]:
+    """Show the warnings raised inside as one-line notes on standard error, each text
+    once, without the source line and path Python prints."""
+    seen: set[str] = set()
+
+    def show(message, category, filename, lineno, file=None, line=None) -> None:
+        text = " ".join(str(message).split())
+        if text in seen:
+            return
+        seen.add(text)
+        label = "warning" if issubclass(category, CumminsWarning) else "note"
+        err_console.print(f"[yellow]{label}:[/] {escape(text)}")
+
+    with warnings.catch_warnings():
+        warnings.simplefilter("always")
+        for quiet in (
+            DeprecationWarning,
+            PendingDeprecationWarning,
+            ImportWarning,
+            ResourceWarning,
+        ):
+            warnings.simplefilter("ignore", quiet)
+        warnings.showwarning = show
+        yield
+
+
+def run_reporting_errors(function, *args, **kwargs):
+    """Call ``function`` with warnings shown as notes; a CumminsError (or an error of the
+    file system, or a lack of memory) becomes a one-line message and the exit status of
+    :func:`exit_status`."""
+    try:
+        with warnings_as_notes():
+            return function(*args, **kwargs)
+    except (CumminsError, OSError, MemoryError) as exc:
+        report_error(exc)
+
+
+def reports_errors(func):
+    """Decorator form of :func:`run_reporting_errors` for the commands."""
+
+    @functools.wraps(func)
+    def wrapper(*args, **kwargs):
+        return run_reporting_errors(func, *args, **kwargs)
+
+    return wrapper
+
+
+class Number(click.FloatRange):
+    """A finite float in a range, with its unit in the messages (``--dt 0`` → "0.0 is not
+    in the range x>0 s"); NaN is refused, and infinity unless ``infinite`` (a water depth)."""
+
+    def __init__(
+        self,
+        min: float | None = None,
+        max: float | None = None,
+        *,
+        min_open: bool = False,
+        max_open: bool = False,
+        unit: str = "",
+        infinite: bool = False,
+    ) -> None:
+        super().__init__(min, max, min_open=min_open, max_open=max_open)
+        self.unit = unit
+        self.infinite = infinite
+
+    def convert(self, value, param, ctx):
+        x = click.FLOAT.convert(value, param, ctx)
+        if math.isnan(x) or (math.isinf(x) and not self.infinite):
+            self.fail(f"{value!r} is not a finite number{_unit(self.unit)}", param, ctx)
+        if self.min is None and self.max is None:
+            return x
+        return super().convert(x, param, ctx)
+
+    def _describe_range(self) -> str:
+        if self.min is None and self.max is None:
+            return f"finite{_unit(self.unit)}"
+        return super()._describe_range() + _unit(self.unit)
+
+
+def _unit(unit: str) -> str:
+    return f" {unit}" if unit else ""
+
+
+def positive(unit: str = "") -> Number:
+    """Finite and > 0 (durations, time steps, periods, lengths)."""
+    return Number(0.0, min_open=True, unit=unit)
+
+
+def non_negative(unit: str = "") -> Number:
+    """Finite and >= 0 (wave heights, amplitudes, damping)."""
+    return Number(0.0, unit=unit)
+
+
+def finite(unit: str = "") -> Number:
+    """Any finite number (headings, coordinates)."""
+    return Number(unit=unit)
+
+
+def viscous_damping_option(func):
+    """--viscous-damping DOF VALUE (repeatable), passed as ``viscous_damping``."""
+    return click.option(
+        "--viscous-damping",
+        "viscous_damping",
+        type=(str, non_negative()),
+        multiple=True,
+        metavar="DOF VALUE",
+        help="Linear viscous damping B_v on a DOF, e.g. --viscous-damping Roll 5e8 (kg/s, "
+        "kg m^2/s; repeatable, repeated values add up). Surge, sway and yaw have no "
+        "restoring: without it they drift in a simulation.",
+    )(func)
+
+
+def viscous_damping_values(
+    pairs, labels, option: str = "--viscous-damping"
+) -> dict[str, float] | None:
+    """``{dof: value}`` from the (DOF, value) pairs of ``option`` (None when there are
+    none)."""
+    if not pairs:
+        return None
+    values: dict[str, float] = {}
+    for dof, value in pairs:
+        if dof not in labels:
+            raise click.BadParameter(
+                f"unknown DOF {dof!r}; the data have {', '.join(labels)}",
+                param_hint=option,
+            )
+        values[dof] = values.get(dof, 0.0) + value
+    return values
+
+
+#: Where :func:`read_options` leaves the mass-property options for :func:`read_hydrodb`.
+_EOM_KEY = "cummins.equation_of_motion"
+_EOM_OPTIONS = (
+    "mass",
+    "center_of_gravity",
+    "radii_of_gyration",
+    "inertia_matrix",
+    "external_stiffness",
+    "external_damping",
+)
+
+
+def _check_format(ctx, param, value):
+    """--format NAME: one of the readers' names (a usage error otherwise)."""
+    if value is None:
+        return None
+    from cummins.io import FORMATS
+
+    names = [str(name) for name in FORMATS]
+    if value.lower() not in names:
+        raise click.BadParameter(f"unknown format {value!r}; choose one of {', '.join(names)}")
+    return value.lower()
+
+
+def read_options(func):
+    """--format, --rho, --g, --ulen: how to read solver files; --mass,
+    --center-of-gravity, --radii-of-gyration, --inertia-matrix, --external-stiffness,
+    --external-damping: what to complete them with (the terms of the equation of motion
+    that the files lack), applied by :func:`read_hydrodb`."""
+    decorators = [
+        click.option(
+            "--format",
+            "format_",
+            metavar="NAME",
+            default=None,
+            callback=_check_format,
+            help="Solver format (wamit, wamit-out, nemoh, aqwa, veres, netcdf, mss); "
+            "detected from the content by default.",
+        ),
+        click.option(
+            "--rho",
+            type=positive("kg/m^3"),
+            default=None,
+            metavar="KG/M3",
+            help="Water density for nondimensional formats (WAMIT does not record it "
+            "everywhere; default 1025).",
+        ),
+        click.option(
+            "--g",
+            "g",
+            type=positive("m/s^2"),
+            default=None,
+            metavar="M/S2",
+            help="Acceleration of gravity for nondimensional formats (default 9.81, or "
+            "the value in the WAMIT .out).",
+        ),
+        click.option(
+            "--ulen",
+            type=positive("m"),
+            default=None,
+            metavar="M",
+            help="WAMIT length scale ULEN (default: from the .out, else 1).",
+        ),
+        click.option(
+            "--mass",
+            type=positive("kg"),
+            multiple=True,
+            metavar="KG",
+            help="Mass of the body (repeat once per body, in their order). With "
+            "--radii-of-gyration it builds the rigid-body inertia matrix when the files lack "
+            "it (or replaces theirs). Default with radii given: rho times the displaced "
+            "volume (a freely floating body).",
+        ),
+        click.option(
+            "--center-of-gravity",
+            type=(finite("m"), finite("m"), finite("m")),
+            multiple=True,
+            metavar="X Y Z",
+            help="Centre of gravity in m, in the data's axes (once per body; default: the "
+            "files' value).",
+        ),
+        click.option(
+            "--radii-of-gyration",
+            type=(positive("m"), positive("m"), positive("m")),
+            multiple=True,
+            metavar="RXX RYY RZZ",
+            help="Radii of gyration about the centre of gravity in m (once per body), e.g. "
+            "0.35 B, 0.25 L, 0.26 L for a ship.",
+        ),
+        click.option(
+            "--inertia-matrix",
+            type=click.Path(exists=True, dir_okay=False),
+            default=None,
+            metavar="FILE",
+            help="The inertia matrix instead: a text file (or .npy) with the n x n matrix of "
+            "all DOFs, or a 6 x 6 matrix per body one below the other, about the reference "
+            "point (kg, kg m, kg m^2).",
+        ),
+        click.option(
+            "--external-stiffness",
+            type=(str, str, finite()),
+            multiple=True,
+            metavar="DOF DOF VALUE",
+            help="External stiffness (moorings, a PTO spring) added to the restoring, e.g. "
+            "--external-stiffness Surge Surge 8e4 (N/m, N m/rad; repeatable; give both (i, j) and "
+            "(j, i) for a symmetric coupling).",
+        ),
+        click.option(
+            "--external-damping",
+            type=(str, str, finite()),
+            multiple=True,
+            metavar="DOF DOF VALUE",
+            help="External linear damping (a PTO, dampers) between two DOFs, e.g. "
+            "--external-damping body1__Pitch body1__Pitch 1e6 (kg/s, kg m^2/s; repeatable).",
+        ),
+    ]
+
+    @functools.wraps(func)
+    def wrapper(*args, **kwargs):
+        context = click.get_current_context()
+        context.meta[_EOM_KEY] = {name: kwargs.pop(name) for name in _EOM_OPTIONS}
+        return func(*args, **kwargs)
+
+    for decorator in reversed(decorators):
+        wrapper = decorator(wrapper)
+    return wrapper
+
+
+def read_hydrodb(
+    path: str, format_: str | None, rho: float | None, g: float | None, ulen: float | None
+):
+    """Read ``path`` with the options of :func:`read_options`, completed by the
+    mass-property and external-term options of the same command."""
+    from cummins.io import read
+
+    ds = read(path, format=format_, rho=rho, g=g, ulen=ulen)
+    context = click.get_current_context(silent=True)
+    options = context.meta.get(_EOM_KEY) if context is not None else None
+    return complete_equation_of_motion(ds, **options) if options else ds
+
+
+def complete_equation_of_motion(
+    ds,
+    *,
+    mass=(),
+    center_of_gravity=(),
+    radii_of_gyration=(),
+    inertia_matrix=None,
+    external_stiffness=(),
+    external_damping=(),
+):
+    """``ds`` with the inertia and external terms of the command-line options."""
+    from cummins.mass_properties import read_matrix_file, with_external_terms, with_inertia
+
+    if inertia_matrix is not None:
+        if mass or radii_of_gyration or center_of_gravity:
+            raise click.UsageError(
+                "give either --inertia-matrix or --mass/--center-of-gravity/"
+                "--radii-of-gyration, not both"
+            )
+        ds = with_inertia(ds, matrix=read_matrix_file(inertia_matrix))
+    elif radii_of_gyration:
+        ds = with_inertia(
+            ds,
+            mass=list(mass) if mass else None,
+            center_of_gravity=[list(c) for c in center_of_gravity] or None,
+            radii_of_gyration=[list(r) for r in radii_of_gyration],
+        )
+    elif mass or center_of_gravity:
+        raise click.UsageError(
+            "--mass and --center-of-gravity build the inertia matrix together with "
+            "--radii-of-gyration RXX RYY RZZ: give the radii too"
+        )
+    labels = [str(d) for d in ds.influenced_dof.values]
+    terms = {}
+    for name, given in (("stiffness", external_stiffness), ("damping", external_damping)):
+        if given:
+            values: dict[tuple[str, str], float] = {}
+            for i, j, value in given:
+                for dof in (i, j):
+                    if dof not in labels:
+                        raise click.BadParameter(
+                            f"unknown DOF {dof!r}; the data have {', '.join(labels)}",
+                            param_hint=f"--external-{name}",
+                        )
+                values[(i, j)] = values.get((i, j), 0.0) + value
+            terms[name] = values
+    return with_external_terms(ds, **terms) if terms else ds
+
+
+def prepare_outputs(*paths, force: bool, folders=()) -> None:
+    """Before any work: refuse to overwrite without ``--force``, refuse a path under an
+    existing file (or a folder where a file is to be written), create missing folders.
+
+    ``folders`` are output folders (``--plot DIR``): checked the same way, not created.
+    """
+    files = [Path(p) for p in paths if p]
+    dirs = [Path(p) for p in folders if p]
+    for path in files:
+        if path.is_dir() and path.suffix.lower() != ".zarr":  # a Zarr store is a folder
+            raise ArgumentError(
+                f"{path} is a folder: cannot write a file there",
+                hint="Give the name of a file",
+            )
+        check_writable(path, force)
+    for path in [*files, *dirs]:
+        _check_parents(path)
+    for path in dirs:
+        if path.exists() and not path.is_dir():
+            raise ArgumentError(
+                f"{path} is a file, not a folder", hint="Give the name of a folder for the output"
+            )
+    for path in files:
+        path.parent.mkdir(parents=True, exist_ok=True)
+
+
+def _check_parents(path: Path) -> None:
+    """ArgumentError when a folder above ``path`` exists as a file or is not writable."""
+    for parent in path.parents:
+        if parent.exists():
+            if not parent.is_dir():
+                raise ArgumentError(
+                    f"cannot write {path}: {parent} is a file, not a folder",
+                    hint="Choose an output path in a folder",
+                )
+            if not os.access(parent, os.W_OK | os.X_OK):
+                raise ArgumentError(
+                    f"cannot write {path}: the folder {parent} is not writable",
+                    hint="Choose an output path in a folder you may write to",
+                )
+            return
+
+
+def select_speed(ds, speed: float | None):
+    """The data at one forward speed (``--speed``): required when there are several, and
+    one of them (within 1 mm/s), never the nearest."""
+    if "forward_speed" not in ds.dims:
+        if speed is not None:
+            held = float(ds.forward_speed) if "forward_speed" in ds.coords else 0.0
+            if not np.isfinite(speed) or abs(speed - held) > 1e-3:
+                raise click.BadParameter(
+                    f"the data hold one forward speed, {held:g} m/s, not {speed:g} m/s: "
+                    "give data computed at that speed, or leave --speed out",
+                    param_hint="--speed",
+                )
+        return ds
+    speeds = ds.forward_speed.values
+    listed = ", ".join(f"{u:g}" for u in speeds)
+    if speed is None:
+        if speeds.size > 1:
+            raise click.UsageError(
+                f"the data hold several forward speeds: choose one with --speed ({listed} m/s)"
+            )
+        return ds.isel(forward_speed=0)
+    matches = [k for k, u in enumerate(speeds) if abs(u - speed) <= 1e-3]
+    if not matches:
+        raise click.UsageError(f"no data at --speed {speed:g} m/s; the data hold {listed} m/s")
+    return ds.isel(forward_speed=matches[0])
+
+
+def model_and_data(path):
+    """(model or None, data path): a model file names the data it was fitted to."""
+    from cummins.radiation.model import RadiationModel
+    from cummins.radiation.model_file import FORMAT_NAME
+
+    p = Path(path)
+    if p.is_file() and p.suffix.lower() == ".nc":
+        import h5py
+
+        try:
+            with h5py.File(p, "r") as f:
+                kind = f.attrs.get("cummins_format")
+        except OSError:
+            kind = None
+        if isinstance(kind, bytes):
+            kind = kind.decode()
+        if kind == FORMAT_NAME:
+            model = RadiationModel.load(p)
+            source = model.attrs.get("source_file")
+            if not source or not Path(source).exists():
+                raise click.UsageError(
+                    f"{p} does not name an existing data file ({source!r}): give the data "
+                    "file instead (the model is then fitted again)"
+                )
+            return model, source
+    return None, path
+
+
+def select_body(ds, body: str, option: str = "--body"):
+    """The six rigid-body DOFs of one body of a multi-body dataset (``--body N``, 1-based,
+    or the body's label prefix or name), relabelled ``Surge`` … ``Yaw``, with that body's
+    reference point, centre of gravity and buoyancy (:func:`cummins.select_dofs`)."""
+    from cummins.hydrodb import DOF_NAMES, bodies, body_names, select_dofs
+
+    groups = bodies(ds)
+    if groups == [None]:
+        raise click.BadParameter("the data hold one body: leave --body out", param_hint=option)
+    names = body_names(ds)
+    choices = [str(g) for g in groups]
+    if str(body).isdigit() and 1 <= int(body) <= len(groups):
+        k = int(body) - 1
+    elif str(body) in choices:
+        k = choices.index(str(body))
+    elif str(body) in names and len(names) == len(groups):
+        k = names.index(str(body))
+    else:
+        listed = ", ".join(
+            f"{n + 1} ({c}{'' if len(names) != len(groups) or names[n] == c else ', ' + names[n]})"
+            for n, c in enumerate(choices)
+        )
+        raise click.BadParameter(f"no body {body!r}; the data hold {listed}", param_hint=option)
+    prefix = choices[k]
+    labels = [f"{prefix}__{name}" for name in DOF_NAMES]
+    have = [str(d) for d in ds.influenced_dof.values]
+    missing = [label for label in labels if label not in have]
+    if missing:
+        raise click.BadParameter(
+            f"body {prefix} lacks {', '.join(missing)}: it has no six rigid-body DOFs",
+            param_hint=option,
+        )
+    out = select_dofs(ds, labels)
+    out = out.assign_coords(
+        {dim: list(DOF_NAMES) for dim in ("influenced_dof", "radiating_dof") if dim in out.coords}
+    )
+    for key in ("reference_point", "center_of_gravity", "center_of_buoyancy"):
+        if key in out.attrs:
+            values = np.asarray(out.attrs[key], dtype=float).reshape(-1)
+            if values.size == 3 * len(groups):
+                out.attrs[key] = values[3 * k : 3 * k + 3]
+    name = names[k] if len(names) == len(groups) else prefix
+    out.attrs["body_name"] = name
+    out.attrs.pop("body_names", None)
+    history = str(out.attrs.get("history", ""))
+    out.attrs["history"] = (history + "\n" if history else "") + (
+        f"body {k + 1} of {len(groups)} ({name}) selected: its six DOFs relabelled Surge … Yaw"
+    )
+    return out

@@ -1,0 +1,123 @@
+"""`cummins convert`: canonical NetCDF, BEMIO .h5 or an MSS vessel struct."""
+
+from __future__ import annotations
+
+import warnings
+from pathlib import Path
+
+import click
+
+from cummins.cli.common import (
+    console,
+    finite,
+    prepare_outputs,
+    read_hydrodb,
+    read_options,
+    reports_errors,
+    select_body,
+)
+from cummins.errors import CumminsWarning
+
+
+@click.command(name="convert")
+@click.argument("source", type=click.Path(exists=True))
+@click.argument("destination", type=click.Path())
+@read_options
+@click.option(
+    "--axes",
+    type=click.Choice(["z-up", "z-down"]),
+    default=None,
+    help="Axis convention to write: z-up (x fwd, y port, z up: solvers) or z-down "
+    "(x fwd, y starboard, z down: Fossen/MSS). Default: .mat files z-down, else as read.",
+)
+@click.option(
+    "--reference-point",
+    nargs=3,
+    type=finite("m"),
+    default=None,
+    metavar="X Y Z",
+    help="Move the reference point to X Y Z (m, in the axes written).",
+)
+@click.option(
+    "--body",
+    metavar="N|NAME",
+    default=None,
+    help="Of several bodies, write only this one (1-based number or name): its six DOFs "
+    "as Surge … Yaw, e.g. for an MSS .mat, which holds one body.",
+)
+@click.option("--force", is_flag=True, help="Overwrite DESTINATION if it exists.")
+@reports_errors
+def convert_command(source, destination, format_, rho, g, ulen, axes, reference_point, body, force):
+    """Convert SOURCE to canonical NetCDF (.nc), a BEMIO .h5 for WEC-Sim, or an MSS
+    vessel struct (.mat).
+
+    \b
+    The NetCDF has Capytaine's layout (complex values on a re/im dimension) plus
+    cummins' variables (added_mass_inf, ...), in SI units. The .h5 has the layout
+    WEC-Sim's readBEMIOH5 reads (normalised coefficients, z-up axes, K(t)).
+
+    \b
+    Examples:
+      cummins convert tanker.1 tanker.nc
+      cummins convert tanker.1 tanker.h5
+      cummins convert input.re7 supply.mat --reference-point 0 0 0
+    """
+    from cummins.hydrodb import change_axes, move_reference_point
+    from cummins.io import write
+
+    to_mat = Path(destination).suffix.lower() == ".mat"
+    if Path(destination).suffix.lower() not in (".nc", ".mat", ".h5"):
+        raise click.BadParameter(
+            f"{destination}: write .nc (canonical NetCDF), .h5 (BEMIO, for WEC-Sim) or .mat "
+            "(MSS vessel struct)",
+            param_hint="DESTINATION",
+        )
+    prepare_outputs(destination, force=force)
+    ds = read_hydrodb(source, format_, rho, g, ulen)
+    if body is not None:
+        ds = select_body(ds, body)
+    if to_mat:
+        _check_mss_body(ds)
+    if axes is None and to_mat:
+        axes = "z-down"
+    if axes is not None:
+        ds = change_axes(ds, axes)
+    if reference_point is not None:
+        ds = move_reference_point(ds, reference_point)
+    write(ds, destination, force=force)
+    console.print(
+        f"wrote {destination} ({ds.attrs.get('axis_convention')} axes, reference point "
+        f"{[float(x) for x in ds.attrs['reference_point']]} m)"
+    )
+
+
+def _check_mss_body(ds) -> None:
+    """An MSS struct holds one rigid body: say how to choose one, and what it will lack."""
+    from cummins.hydrodb import DOF_NAMES, bodies
+
+    labels = [str(d) for d in ds.influenced_dof.values]
+    if labels != list(DOF_NAMES):
+        groups = bodies(ds)
+        several = groups != [None]
+        raise click.BadParameter(
+            f"an MSS vessel struct holds one body with six DOFs (Surge … Yaw); the data "
+            f"have {len(labels)} DOFs"
+            + (
+                f" of {len(groups)} bodies: choose one with --body 1 … {len(groups)}"
+                if several
+                else ""
+            ),
+            param_hint="DESTINATION",
+        )
+    for name, what in (
+        ("inertia_matrix", "MRB (the rigid-body inertia) is written as zeros"),
+        ("hydrostatic_stiffness", "C (the restoring) is written as zeros"),
+    ):
+        if name not in ds:
+            warnings.warn(
+                f"the data have no {name}: {what}; MSS needs it to simulate. Give it with "
+                "cummins.with_inertia(...) / --mass … --radii-of-gyration … (inertia) or "
+                "the solver's hydrostatics file",
+                CumminsWarning,
+                stacklevel=2,
+            )

@@ -1,0 +1,273 @@
+"""The dynamic-positioning scenario of Smogeli et al. (2004) §7 with the S-175 data of MSS.
+
+The S-175 container ship (ShipX/VERES strip theory, processed by MSS; zero speed) holds
+position by DP in short-crested waves — JONSWAP H_s 4 m, ω_p 0.60 rad/s, γ 3.3, mean
+direction 45° off the (starboard) bow — when, at t = 100 s, a crane load of 1000 kN is
+hung at r = [0, 15, 0] m (15 m to starboard of the origin, in the waterline). The paper
+shows the first-order wave and radiation forces (its Fig. 3) and the pose (Fig. 4): "the
+main effect is a new mean roll angle". The model is :mod:`cummins.timedomain.unified` (eq. 56) with
+the loads of :mod:`cummins.timedomain.loads` — first-order waves at the instantaneous relative
+heading, Newman drift, ITTC surge resistance and cross-flow drag (with an optional
+current), optional wind with gusts, the crane load (its weight along the NED down axis)
+— and the controller of :mod:`cummins.timedomain.dp` (nonlinear PID with a wave filter,
+pseudo-inverse allocation to two bow tunnels and two stern azimuths).
+
+Checks (:func:`scenario_checks`): the change of the mean roll after the load against the
+static heel of the linearised restoring (heave, roll and pitch solved together:
+G ξ = τ_crane), and the watch circle (largest horizontal distance from the setpoint).
+"""
+
+from __future__ import annotations
+
+from collections.abc import Callable
+from dataclasses import dataclass
+from pathlib import Path
+
+import numpy as np
+import xarray as xr
+
+#: The paper's sea state and load.
+HS, OMEGA_P, GAMMA = 4.0, 0.60, 3.3
+WAVES_FROM_DEG = 45.0  # off the bow, starboard side
+CRANE_LOAD, CRANE_POINT, CRANE_TIME = 1.0e6, (0.0, 15.0, 0.0), 100.0
+#: cos-2s spreading exponent of the short-crested sea (the paper does not give it).
+SPREADING = 5.0
+#: Linear viscous damping of surge, sway and yaw, N s/m and N m s/rad: the lowest
+#: frequency values of MSS's frequency-dependent ``Bv`` of this ship (rounded).
+LOW_FREQUENCY_DAMPING = {"Surge": 2.3e4, "Sway": 1.7e4, "Yaw": 1.65e8}
+
+
+@dataclass(frozen=True)
+class Scenario:
+    """What :func:`run_scenario` built and ran: the model, the loads, the controller."""
+
+    model: object
+    loads: tuple
+    controller: object
+    sea: object
+    run: xr.Dataset
+
+
+def s175_data(path: str | Path | None = None) -> xr.Dataset:
+    """The S-175 at zero speed from MSS's ``s175.mat``: the copy bundled with cummins
+    (MIT licence, ``cummins/data/s175``), or ``path`` (the file, or a folder holding
+    ``mss/s175/s175.mat`` such as ``../shared/data``)."""
+    from importlib import resources
+
+    import cummins
+
+    if path is None:
+        file = Path(str(resources.files("cummins") / "data" / "s175" / "s175.mat"))
+    else:
+        file = Path(path)
+        if file.is_dir():
+            file = file / "mss" / "s175" / "s175.mat"
+    if not file.is_file():
+        from cummins.errors import HydroDataError
+
+        raise HydroDataError("no S-175 data (s175.mat of MSS) there", path=file)
+    return cummins.read(file).sel(forward_speed=0.0)
+
+
+def build_scenario(
+    ds: xr.Dataset,
+    *,
+    duration: float = 600.0,
+    seed: int = 1,
+    n_components: int = 40,
+    n_directions: int = 5,
+    current_speed: float = 0.0,
+    current_from_deg: float = 0.0,
+    wind_speed: float = 0.0,
+    wind_from_deg: float = 30.0,
+    crane: bool = True,
+    bandwidth: float = 0.1,
+    filter_cutoff: float = 0.3,
+):
+    """The unified model, loads and controller of the scenario (module docstring);
+    ``bandwidth`` (rad/s) of the position loop and ``filter_cutoff`` (rad/s) of the
+    wave filter (keep it ≈ 4 × the bandwidth and well below the waves' 0.6 rad/s).
+
+    Returns (model, loads, controller, sea).
+    """
+    import warnings
+
+    from cummins.seakeeping import waves as wv
+    from cummins.timedomain import loads as ld
+    from cummins.timedomain.dp import DPController, DPGains, Thrusters, WaveFilter
+    from cummins.timedomain.unified import unified_vessel
+
+    length = float(ds.attrs.get("ship_length", 175.0))
+    breadth = float(ds.attrs.get("ship_breadth", 25.4))
+    draught = float(ds.attrs.get("ship_draught", 9.5))
+    block = float(ds.attrs.get("block_coefficient", 0.572))
+    current = None
+    if current_speed > 0:
+        # "from" as sailors give it: the current flows to the opposite direction
+        current = ld.Current(current_speed, np.radians(current_from_deg) + np.pi)
+    with warnings.catch_warnings():
+        warnings.simplefilter("ignore")  # MSS's frequency-dependent Bv: replaced below
+        model = unified_vessel(ds, viscous_damping=LOW_FREQUENCY_DAMPING, current=current)
+    direction = np.radians(WAVES_FROM_DEG) + np.pi  # waves travel to 225°
+    omega_max = float(ds.omega.values.max())
+    sea = wv.irregular_waves(
+        wv.wave_spectrum("jonswap", HS, 2 * np.pi / OMEGA_P, gamma=GAMMA),
+        duration=duration,
+        n_components=n_components,
+        direction=direction,
+        spreading=SPREADING,
+        n_directions=n_directions,
+        seed=seed,
+        omega_max=omega_max,
+    )
+    loads = [
+        ld.FirstOrderWaveLoad.from_hydrodb(ds, sea),
+        ld.WaveDriftLoad.from_hydrodb(ds, sea, extrapolate="zero"),
+        ld.SurgeResistance.from_main_particulars(length, breadth, draught, block, current=current),
+        ld.CrossFlowDrag.from_main_particulars(length, breadth, draught, current=current),
+    ]
+    if wind_speed > 0:
+        loads.append(
+            ld.WindLoad(
+                wind=ld.Wind(wind_speed, np.radians(wind_from_deg)),
+                frontal_area=breadth * 10.0,
+                lateral_area=length * 10.0,
+                length_overall=length * 1.05,
+                point=np.array([0.0, 0.0, -8.0]),
+            )
+        )
+    if crane:
+        loads.append(
+            ld.PointLoad(
+                force_vector=np.array([0.0, 0.0, CRANE_LOAD]),
+                point=np.array(CRANE_POINT),
+                frame="ned",
+                start=CRANE_TIME,
+                name="crane",
+            )
+        )
+    gains = DPGains.from_vessel(model.mass, model.damping, bandwidth=bandwidth)
+    thrusters = Thrusters.typical(length, max_thrust=1.0e6, beam=breadth)
+    controller = DPController(
+        gains, thrusters, wave_filter=WaveFilter(cutoff=filter_cutoff), setpoint=(0.0, 0.0, 0.0)
+    )
+    return model, tuple(loads), controller, sea
+
+
+def run_scenario(
+    ds: xr.Dataset | None = None,
+    *,
+    duration: float = 600.0,
+    dt: float = 0.2,
+    seed: int = 1,
+    progress: Callable[[float], None] | None = None,
+    **options,
+) -> Scenario:
+    """Build (:func:`build_scenario`) and simulate the scenario for ``duration`` s."""
+    from cummins.validation import check_simulation_size
+
+    check_simulation_size(duration, dt, 60, 54)  # before the model is built (~60 states)
+    ds = s175_data() if ds is None else ds
+    model, loads, controller, sea = build_scenario(ds, duration=duration, seed=seed, **options)
+    run = simulate_scenario(model, loads, controller, duration=duration, dt=dt, progress=progress)
+    run["wave_elevation"] = ("time", sea.elevation(run.time.values), {"units": "m"})
+    run.attrs.update(
+        {
+            "scenario": "Smogeli et al. (2004) section 7: S-175 under DP, crane load 1000 kN "
+            "at t = 100 s",
+            "hs": HS,
+            "omega_p": OMEGA_P,
+            "gamma": GAMMA,
+            "waves_from_deg_off_bow": WAVES_FROM_DEG,
+            "seed": seed,
+        }
+    )
+    run.attrs.update({f"check_{k}": v for k, v in scenario_checks(run, model).items()})
+    return Scenario(model, loads, controller, sea, run)
+
+
+def simulate_scenario(
+    model, loads, controller, *, duration: float, dt: float, progress=None
+) -> xr.Dataset:
+    """Run the loads of :func:`build_scenario`: the first-order wave force at every
+    Runge–Kutta stage, the slow loads (drift, drag, wind, crane) once a step."""
+    from cummins.timedomain.unified import simulate_unified
+
+    return simulate_unified(
+        model,
+        duration=duration,
+        dt=dt,
+        loads=loads[:1],
+        slow_loads=loads[1:],
+        controller=controller,
+        progress=progress,
+    )
+
+
+def static_heel(model, force: np.ndarray) -> np.ndarray:
+    """(heave, roll, pitch) of the linearised static equilibrium G ξ = τ (m, rad, rad)."""
+    idx = [2, 3, 4]
+    return np.linalg.solve(model.restoring[np.ix_(idx, idx)], np.asarray(force)[idx])
+
+
+def scenario_checks(run: xr.Dataset, model, *, settle: float = 100.0) -> dict[str, float]:
+    """Mean roll before the crane load and after it has settled (``settle`` s later),
+    the static heel it should give, and the watch circle (m)."""
+    t = run.time.values
+    roll = run.eta.sel(dof="Roll").values
+    out = {
+        "watch_circle_m": float(np.hypot(run.eta.sel(dof="North"), run.eta.sel(dof="East")).max()),
+        "max_yaw_deg": float(np.degrees(np.abs(run.eta.sel(dof="Yaw")).max())),
+    }
+    if "force_crane" in run and t[-1] > CRANE_TIME + settle + 60:
+        before = (t > 30) & (t < CRANE_TIME)
+        after = t > CRANE_TIME + settle
+        crane = run.force_crane.values[after].mean(axis=0)
+        heel = static_heel(model, crane)
+        out.update(
+            {
+                "mean_roll_before_deg": float(np.degrees(roll[before].mean())),
+                "mean_roll_after_deg": float(np.degrees(roll[after].mean())),
+                "static_heel_deg": float(np.degrees(heel[1])),
+            }
+        )
+        change = out["mean_roll_after_deg"] - out["mean_roll_before_deg"]
+        out["heel_error"] = float(change / out["static_heel_deg"] - 1.0)
+    return out
+
+
+def write_scenario_plots(scenario: Scenario, folder: Path, *, force: bool = False) -> list[Path]:
+    """pose.png (seed Fig. 4), wave_and_radiation_forces.png (Fig. 3), loads.png (the
+    other loads and the thrust), watch_circle.png."""
+    from cummins.plots import (
+        plot_generalized_forces,
+        plot_pose,
+        plot_watch_circle,
+        save_figure,
+    )
+
+    run = scenario.run
+    forces = [name for name in run.data_vars if name.startswith("force_")]
+    first = next((n for n in forces if "first-order" in n), forces[0])
+    slow = [n for n in forces if n != first]  # the first-order force would hide them
+    files = [
+        save_figure(plot_pose(run, mark=CRANE_TIME), folder / "pose.png", force=force),
+        save_figure(
+            plot_generalized_forces(
+                run,
+                [first, "memory_force"],
+                labels=["first-order wave force τ_W1", "fluid memory force μ"],
+            ),
+            folder / "wave_and_radiation_forces.png",
+            force=force,
+        ),
+        save_figure(
+            plot_generalized_forces(
+                run, [*slow, "thrust"], labels=[n[6:] for n in slow] + ["thrust (DP)"]
+            ),
+            folder / "loads.png",
+            force=force,
+        ),
+        save_figure(plot_watch_circle(run), folder / "watch_circle.png", force=force),
+    ]
+    return files

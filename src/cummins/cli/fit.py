@@ -1,0 +1,437 @@
+"""``cummins fit``: state-space models of the fluid memory of every significant coupling."""
+
+from __future__ import annotations
+
+import json
+import sys
+import time
+from pathlib import Path
+
+import click
+from rich.progress import BarColumn, Progress, TextColumn, TimeElapsedColumn
+from rich.table import Table
+
+from cummins.cli.common import (
+    Number,
+    console,
+    finite,
+    non_negative,
+    positive,
+    prepare_outputs,
+    read_hydrodb,
+    read_options,
+    reports_errors,
+    select_body,
+    select_speed,
+)
+
+
+@click.command(name="fit")
+@click.argument("path", type=click.Path(exists=True))
+@read_options
+@click.option(
+    "-o",
+    "--output",
+    type=click.Path(dir_okay=False),
+    required=True,
+    help="NetCDF file for the model (A, B, C, D, A-infinity, per-coupling metrics).",
+)
+@click.option(
+    "--method",
+    type=click.Choice(["vf", "fd", "realization", "prony"]),
+    default="vf",
+    show_default=True,
+    help="vf: the coupled DOFs share their poles (vector fitting of each block, passive as "
+    "fitted); fd: one model per coupling (Levy, Sanathanan-Koerner, nonlinear); "
+    "realization: Kung/ERA on K(t); prony: Prony on K(t).",
+)
+@click.option(
+    "--r2",
+    type=Number(0.0, 1.0, min_open=True, max_open=True),
+    default=0.99,
+    show_default=True,
+    help="Target R-squared of A(w) and B(w) for the diagonal terms.",
+)
+@click.option(
+    "--r2-coupling",
+    type=Number(0.0, 1.0, min_open=True, max_open=True),
+    default=0.97,
+    show_default=True,
+    help="Target for the off-diagonal couplings.",
+)
+@click.option(
+    "--max-order",
+    type=click.IntRange(1, 50),
+    default=None,
+    help="Highest order tried: common poles of a block (vf, default 20), the order of a "
+    "coupling otherwise (default 10).",
+)
+@click.option(
+    "--order",
+    "orders",
+    type=(str, str, click.IntRange(1, 50)),
+    multiple=True,
+    metavar="DOF DOF N",
+    help="Fix the order of a coupling, e.g. --order Heave Pitch 4 (repeatable); with vf "
+    "the number of poles the block of these DOFs shares.",
+)
+@click.option(
+    "--added-mass-inf",
+    type=click.Choice(["auto", "data", "fit", "ogilvie"]),
+    default="auto",
+    show_default=True,
+    help="A-infinity: the data row (auto when present), a joint estimate (fit), or "
+    "Ogilvie's relation.",
+)
+@click.option(
+    "--omega-min", type=non_negative("rad/s"), default=None, metavar="RAD/S", help="Fitting range."
+)
+@click.option(
+    "--omega-max", type=positive("rad/s"), default=None, metavar="RAD/S", help="Fitting range."
+)
+@click.option(
+    "--keep-suspect",
+    is_flag=True,
+    help="Fit the suspect frequencies too (irregular frequencies, spikes).",
+)
+@click.option(
+    "--threshold",
+    type=Number(0.0, 1.0, max_open=True),
+    default=0.01,
+    show_default=True,
+    help="Couplings below this fraction of the diagonal terms are left out.",
+)
+@click.option(
+    "--json",
+    "json_path",
+    type=click.Path(dir_okay=False),
+    default=None,
+    help="Write a summary as JSON (couplings with order, R2, stable, passive).",
+)
+@click.option(
+    "--plot",
+    "plot_dir",
+    type=click.Path(file_okay=False),
+    default=None,
+    help="Write one PNG per coupling (A, B, |K|, phase of K, K(t)).",
+)
+@click.option(
+    "--openfast",
+    type=click.Path(dir_okay=False),
+    default=None,
+    help="Also write the model as an OpenFAST HydroDyn .ss file.",
+)
+@click.option(
+    "--mss",
+    "mss_path",
+    type=click.Path(dir_okay=False),
+    default=None,
+    help="Also write an MSS vesselABC .mat (Fossen axes).",
+)
+@click.option(
+    "--speed",
+    type=finite("m/s"),
+    default=None,
+    metavar="M/S",
+    help="Forward speed to use when the data hold several.",
+)
+@click.option(
+    "--passive/--no-passive",
+    default=True,
+    show_default=True,
+    help="Make the MIMO model passive (K + K^H >= 0 at every frequency) by the smallest "
+    "data-weighted change of the residues. Diagonal models are positive real either way.",
+)
+@click.option(
+    "--body",
+    metavar="N|NAME",
+    default=None,
+    help="Of several bodies, fit only this one (1-based number or name), e.g. for --mss.",
+)
+@click.option("--force", is_flag=True, help="Overwrite the output files.")
+@reports_errors
+def fit_command(
+    path,
+    format_,
+    rho,
+    g,
+    ulen,
+    output,
+    method,
+    r2,
+    r2_coupling,
+    max_order,
+    orders,
+    added_mass_inf,
+    omega_min,
+    omega_max,
+    keep_suspect,
+    threshold,
+    json_path,
+    plot_dir,
+    openfast,
+    mss_path,
+    speed,
+    passive,
+    body,
+    force,
+):
+    """Identify stable, passive state-space models of the fluid memory, every coupling.
+
+    \b
+    By default (vf) the DOFs that radiate into each other (surge-heave-pitch and
+    sway-roll-yaw of a ship, all DOFs of interacting bodies) form a block whose
+    couplings share their poles: vector fitting (Gustavsen & Semlyen 1999), at the
+    smallest number of poles whose R-squared of A(w) and B(w) reaches the targets
+    and whose motion RAOs (with inertia and restoring in the data) are within 1 %
+    of the data's; each block is made passive as fitted. With fd each coupling
+    K_ij(s) gets its own model. Negligible couplings and suspect frequencies are
+    left out and reported. The MIMO model (A, B, C, D = 0) and A-infinity go to
+    OUTPUT; a fit that misses a target it should reach exits with status 3.
+
+    \b
+    Examples:
+      cummins fit tanker.1 -o tanker_model.nc --json fit.json --plot fit-plots
+      cummins fit input.re7 -o supply_model.nc --method realization --max-order 12
+      cummins fit tanker.1 -o model.nc --order Heave Pitch 4 --openfast tanker.ss
+    """
+    from cummins.radiation.fit import fit_radiation
+
+    prepare_outputs(output, json_path, openfast, mss_path, force=force, folders=[plot_dir])
+    ds = select_speed(read_hydrodb(path, format_, rho, g, ulen), speed)
+    if body is not None:
+        ds = select_body(ds, body)
+    labels = [str(d) for d in ds.influenced_dof.values]
+    check_model_outputs(labels, mss_path=mss_path, openfast=openfast)
+    fixed = {}
+    for a, b, n in orders:
+        for label in (a, b):
+            if label not in labels:
+                raise click.BadParameter(
+                    f"unknown DOF {label!r}; use {', '.join(labels)}", param_hint="--order"
+                )
+        fixed[(labels.index(a), labels.index(b))] = n
+    start = time.perf_counter()
+    with Progress(
+        TextColumn("fitting {task.description}"),
+        BarColumn(),
+        TextColumn("{task.completed}/{task.total}"),
+        TimeElapsedColumn(),
+        console=console,
+        transient=True,
+    ) as bar:
+        from cummins.radiation.retardation import significant_couplings
+
+        task = bar.add_task("couplings", total=len(significant_couplings(ds, threshold)))
+        started = []
+
+        def progress(message: str) -> None:
+            if started:
+                bar.advance(task)
+            started.append(message)
+            bar.update(task, description=message)
+
+        model = fit_radiation(
+            ds,
+            method=method,
+            r2=r2,
+            r2_coupling=r2_coupling,
+            max_order=max_order,
+            orders=fixed or None,
+            threshold=threshold,
+            added_mass_inf=added_mass_inf,
+            omega_min=omega_min,
+            omega_max=omega_max,
+            exclude_suspect=not keep_suspect,
+            passivity="mimo" if passive else "diagonal",
+            progress=progress,
+        )
+    elapsed = time.perf_counter() - start
+    console.print(fit_table(model))
+    for line in fit_notes(model):
+        console.print(line, highlight=False)
+    summary = fit_summary(model, elapsed)
+    console.print(
+        f"total order {summary['total_order']}, every model stable: {summary['mimo_stable']}, "
+        f"MIMO passive: {summary['mimo_passive']}, {elapsed:.2f} s"
+    )
+    for note in model.attrs.get("data_notes", []):
+        console.print(f"[yellow]data:[/yellow] {note}")
+    negligible = [c for c in model.attrs.get("negligible_couplings", []) if "-" in c]
+    if negligible:
+        console.print(
+            f"negligible couplings (< {threshold:g} of the diagonal terms): "
+            + ", ".join(negligible)
+        )
+    model.save(output, force=force)
+    console.print(f"wrote {output}")
+    if json_path:
+        Path(json_path).write_text(json.dumps(summary, indent=2) + "\n", encoding="utf-8")
+        console.print(f"wrote {json_path}")
+    if openfast:
+        from cummins.io.openfast import write_openfast_ss
+
+        write_openfast_ss(model, openfast, force=force)
+        console.print(f"wrote {openfast}")
+    if mss_path:
+        from cummins.cli.pipeline import write_model_mss_abc
+
+        write_model_mss_abc(model, ds, Path(mss_path), force=force)
+        console.print(f"wrote {mss_path} (Fossen axes, about the data's reference point)")
+    if plot_dir:
+        from cummins.cli.pipeline import write_fit_plots
+
+        for file in write_fit_plots(model, ds, Path(plot_dir), force=force):
+            console.print(f"wrote {file}")
+    failures = model.attrs.get("failures", [])
+    for failure in failures:
+        console.print(f"[bold red]failure:[/bold red] {failure}", highlight=False)
+    if failures:
+        sys.exit(FIT_FAILED)
+
+
+#: Exit status of ``cummins fit`` when the model was written but misses a target
+#: (``model.attrs["failures"]``: not passive, a coupling degraded, motion error).
+FIT_FAILED = 3
+
+
+def check_model_outputs(labels, *, mss_path=None, openfast=None) -> None:
+    """Before the fit: the model files asked for can hold a model of these DOFs (an MSS
+    vesselABC one body of six, HydroDyn six per body)."""
+    from cummins.hydrodb import DOF_NAMES
+
+    n = len(labels)
+    several = len({label.rpartition("__")[0] for label in labels}) > 1
+    if mss_path and [label.rpartition("__")[2] for label in labels] != list(DOF_NAMES):
+        raise click.BadParameter(
+            f"an MSS vesselABC holds one body with six DOFs; the data have {n} DOFs"
+            + (": fit one body with --body N" if several else ""),
+            param_hint="--mss",
+        )
+    if openfast and (n == 0 or n % 6):
+        raise click.BadParameter(
+            f"HydroDyn needs all six DOFs of each body; the data have {n} DOFs",
+            param_hint="--openfast",
+        )
+
+
+def fit_summary(model, elapsed: float) -> dict:
+    """The ``--json`` summary: couplings (1-based i, j), total order, stability, passivity."""
+    from cummins.radiation.passivity import is_passive
+
+    couplings = []
+    for k in model.modelled:
+        m = k.metrics
+        couplings.append(
+            {
+                "i": k.influenced + 1,
+                "j": k.radiating + 1,
+                "order": int(m.get("common_poles", k.order)),
+                "r2_added_mass": float(m["r2_added_mass"]),
+                "r2_damping": float(m["r2_damping"]),
+                "stable": bool(m["stable"]),
+                "passive": None if m.get("passive") is None else bool(m["passive"]),
+            }
+        )
+    blocks = [
+        {
+            "dofs": [d + 1 for d in block.dofs],
+            "order": block.order,
+            "common_poles": int(next(iter(block.metrics.values()), {}).get("common_poles", 0)),
+        }
+        for block in model.blocks
+    ]
+    return {
+        "couplings": couplings,
+        "blocks": blocks,
+        "total_order": model.total_order,
+        "mimo_stable": model.is_stable(),
+        "mimo_passive": is_passive(model),
+        "motion_error": model.attrs.get("motion_error"),
+        "failures": list(model.attrs.get("failures", [])),
+        "elapsed_s": elapsed,
+    }
+
+
+def fit_table(model) -> Table:
+    """Per-coupling summary printed by ``cummins fit``: narrow enough for an 80-column
+    terminal (12-DOF labels included); each coupling's note is numbered in the last column
+    and printed below the table (:func:`fit_notes`). The order of a pair of a common-pole
+    block is the number of poles its DOFs share (the block's states are in the notes)."""
+    from rich import box
+
+    table = Table(
+        title=f"fluid-memory model ({model.attrs.get('method')}; A∞: "
+        f"{model.attrs.get('added_mass_inf_method')})",
+        box=box.SIMPLE_HEAD,
+        pad_edge=False,
+    )
+    for column in ("coupling", "order", "R² A", "R² B", "R² K(t)", "stable", "passive", "note"):
+        table.add_column(column, justify="left" if column == "coupling" else "right")
+    numbers: dict[str, int] = {}
+    for k in model.modelled:
+        if k.influenced > k.radiating:
+            continue
+        m = k.metrics
+        a, b = model.dofs[k.influenced], model.dofs[k.radiating]
+        passive = m.get("passive")
+        note = short_note(k.note)
+        if note and note not in numbers:
+            numbers[note] = len(numbers) + 1
+        table.add_row(
+            a if a == b else f"{a}-{b}",
+            str(m.get("common_poles", k.order)),
+            f"{m['r2_added_mass']:.4f}",
+            f"{m['r2_damping']:.4f}",
+            "—" if m.get("r2_kernel") is None else f"{m['r2_kernel']:.4f}",
+            "yes" if m["stable"] else "NO",
+            "—" if passive is None else ("yes" if passive else "NO"),
+            f"[{numbers[note]}]" if note else "",
+        )
+    return table
+
+
+def fit_notes(model) -> list[str]:
+    """The numbered notes of :func:`fit_table`, in the same order (a note shared by the
+    pairs of a block once), then one line per common-pole block."""
+    out: list[str] = []
+    seen: set[str] = set()
+    owner = {d: "-".join(model.dofs[x] for x in b.dofs) for b in model.blocks for d in b.dofs}
+    for k in model.modelled:
+        if k.influenced > k.radiating:
+            continue
+        note = short_note(k.note)
+        if note and note not in seen:
+            seen.add(note)
+            a, b = model.dofs[k.influenced], model.dofs[k.radiating]
+            name = owner.get(k.influenced) or (a if a == b else f"{a}-{b}")
+            out.append(f"[{len(out) + 1}] {name}: {note}")
+    for block in model.blocks:
+        poles = next(iter(block.metrics.values()), {}).get("common_poles")
+        names = "-".join(model.dofs[d] for d in block.dofs)
+        shared = f", {poles} common poles" if poles else ""
+        out.append(f"{names}: one block of {block.order} states{shared}")
+    return out
+
+
+#: Steps every fit may take; the table leaves them out (the model file keeps the note).
+ROUTINE_STEPS = (
+    "refined by nonlinear least squares",
+    "Steiglitz–McBride refinement",
+    "zero at s = 0 imposed",
+    "started from the pruned poles",
+)
+
+
+def short_note(note: str) -> str:
+    """The parts of a coupling's note worth a line in the table."""
+    parts = [p.strip() for p in note.split(";") if p.strip()]
+    kept = [
+        p.replace("residues adjusted for MIMO passivity: ", "MIMO passivity: ")
+        for p in parts
+        if not p.startswith(ROUTINE_STEPS)
+    ]
+    siso = [p for p in kept if "passivity" in p and "MIMO" not in p]
+    if siso and not any(p.startswith("not passive") for p in kept):
+        kept = [p for p in kept if p not in siso] + ["passivity enforced"]
+    return "; ".join(kept)

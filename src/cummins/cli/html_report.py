@@ -1,0 +1,832 @@
+"""Self-contained HTML reports of what cummins reads and writes.
+
+:func:`write_report` looks at a file, decides what it is (:func:`detect_kind`) and writes
+one HTML page of the pipeline's figures and tables for it:
+
+``data`` (a hydrodynamic database: any solver file or folder cummins reads)
+    the data checks (:func:`cummins.check`), added mass and damping, excitation, the
+    retardation functions K(t) and the coupled motion RAOs;
+``model`` (a radiation model from ``cummins fit``/``reduce``)
+    the per-coupling table (order, R² of A, B, K(t), passivity) and, when the data it was
+    fitted to are at hand, the data against the model for every coupling, and K(t);
+``rao`` (a RAO file from ``cummins rao``)
+    the RAOs and their largest values;
+``run`` (a simulation from ``cummins simulate``)
+    the response statistics (the amplitude in regular waves), time series and response
+    spectra;
+``kernel`` (the output of ``cummins kernel``)
+    the diagnostics of every significant coupling and K(t);
+``batch`` (results of ``cummins batch``)
+    the study, the operability per heading, the limiting H_s per heading and T_p, and
+    the statistics of the cases (all, or the worst when there are many).
+
+The figures are the library's (:mod:`cummins.plots`), drawn as PNG and embedded as
+``data:`` URIs; the style sheet is inline. The page makes no request of its own: it can
+be mailed, archived or opened offline.
+
+Examples
+--------
+>>> import cummins, tempfile, pathlib
+>>> out = pathlib.Path(tempfile.mkdtemp()) / "tanker.html"
+>>> page = write_report(cummins.demo_files() / "tanker.1", out)   # doctest: +SKIP
+"""
+
+from __future__ import annotations
+
+import base64
+import html
+import io
+import os
+from collections.abc import Callable, Mapping, Sequence
+from dataclasses import dataclass
+from datetime import UTC, datetime
+from pathlib import Path
+
+import numpy as np
+import xarray as xr
+
+from cummins.errors import CumminsError, check_writable
+from cummins.hydrodb import is_rotation
+
+__all__ = ["KINDS", "Section", "detect_kind", "render_html", "report_sections", "write_report"]
+
+#: What a report can be made of.
+KINDS: dict[str, str] = {
+    "data": "hydrodynamic database",
+    "model": "radiation model",
+    "rao": "motion RAOs",
+    "run": "time-domain simulation",
+    "dp": "nonlinear 6-DOF (DP) simulation",
+    "lf": "low-frequency manoeuvring model",
+    "kernel": "retardation functions (cummins kernel)",
+    "batch": "batch study results",
+}
+_DPI = 80
+_CSS = """
+body{font-family:system-ui,-apple-system,'Segoe UI',Roboto,sans-serif;margin:0;color:#1d2433;
+background:#fff}
+header{background:#17324d;color:#fff;padding:1.2em 2em}
+header h1{margin:0 0 .2em 0;font-size:1.5em}
+header p{margin:0;opacity:.85}
+main{padding:1em 2em;max-width:1200px}
+h2{border-bottom:2px solid #17324d;padding-bottom:.2em;margin-top:1.6em}
+table{border-collapse:collapse;margin:.6em 0 1.2em 0;font-size:.9em}
+th,td{border:1px solid #c9d1dc;padding:.25em .6em;text-align:right}
+th{background:#eef2f7}
+td.text,th.text{text-align:left}
+td.bad{background:#fbe3e3}
+td.good{background:#e3f5e6}
+td.warning{background:#fff3d6}
+figure{margin:1em 0}
+figure img{max-width:100%;border:1px solid #dde3ea}
+figcaption{font-size:.85em;color:#4a5568}
+p.note{color:#4a5568;font-size:.9em}
+nav a{margin-right:1em}
+"""
+
+
+class ReportError(CumminsError, ValueError):
+    """A file a report cannot be made of."""
+
+
+@dataclass(frozen=True)
+class Section:
+    """One part of a report: a title and its HTML body (tables, figures, notes)."""
+
+    title: str
+    body: str
+
+
+# --------------------------------------------------------------------------- html parts
+
+
+def figure_html(fig, caption: str) -> str:
+    """A matplotlib figure as an ``<img>`` with an embedded PNG, and its caption."""
+    buffer = io.BytesIO()
+    fig.savefig(buffer, format="png", dpi=_DPI)
+    data = base64.b64encode(buffer.getvalue()).decode("ascii")
+    text = html.escape(caption)
+    return (
+        f'<figure><img src="data:image/png;base64,{data}" alt="{text}">'
+        f"<figcaption>{text}</figcaption></figure>"
+    )
+
+
+def table_html(
+    header: Sequence[str],
+    rows: Sequence[Sequence[object]],
+    *,
+    classes: Sequence[Sequence[str]] | None = None,
+    caption: str = "",
+) -> str:
+    """An HTML table; text cells left-aligned, numbers right; optional cell classes."""
+    out = ["<table>"]
+    if caption:
+        out.append(f"<caption>{html.escape(caption)}</caption>")
+    if any(str(h) for h in header):
+        out.append("<tr>" + "".join(f"<th>{html.escape(str(h))}</th>" for h in header) + "</tr>")
+    for r, row in enumerate(rows):
+        cells = []
+        for c, value in enumerate(row):
+            kind = [] if classes is None else [classes[r][c]] if classes[r][c] else []
+            if isinstance(value, str):
+                kind.append("text")
+            attr = f' class="{" ".join(kind)}"' if kind else ""
+            cells.append(f"<td{attr}>{html.escape(_cell(value))}</td>")
+        out.append("<tr>" + "".join(cells) + "</tr>")
+    out.append("</table>")
+    return "".join(out)
+
+
+def _cell(value: object) -> str:
+    if isinstance(value, bool | np.bool_):
+        return "yes" if value else "no"
+    if isinstance(value, float | np.floating):
+        return "–" if not np.isfinite(value) else f"{value:.4g}"
+    return str(value)
+
+
+def _note(text: str) -> str:
+    return f'<p class="note">{html.escape(text)}</p>'
+
+
+def render_html(title: str, subtitle: str, sections: Sequence[Section]) -> str:
+    """The whole page: inline CSS, a table of contents, the sections; no scripts."""
+    from cummins._version import __version__
+
+    nav = "".join(f'<a href="#s{k}">{html.escape(s.title)}</a>' for k, s in enumerate(sections))
+    body = "".join(
+        f'<section id="s{k}"><h2>{html.escape(s.title)}</h2>{s.body}</section>'
+        for k, s in enumerate(sections)
+    )
+    stamp = datetime.now(UTC).strftime("%Y-%m-%d %H:%M UTC")
+    return (
+        '<!DOCTYPE html>\n<html lang="en"><head><meta charset="utf-8">'
+        '<meta name="viewport" content="width=device-width, initial-scale=1">'
+        f"<title>{html.escape(title)}</title><style>{_CSS}</style></head><body>"
+        f"<header><h1>{html.escape(title)}</h1><p>{html.escape(subtitle)}</p>"
+        f"<p>cummins {__version__}, {stamp}</p></header>"
+        f"<main><nav>{nav}</nav>{body}</main></body></html>\n"
+    )
+
+
+# --------------------------------------------------------------------------- detection
+
+
+def detect_kind(path: str | os.PathLike[str]) -> str:
+    """What ``path`` holds: one of :data:`KINDS` (by content, not by name).
+
+    Raises
+    ------
+    ReportError
+        ``path`` does not exist.
+    """
+    p = Path(path)
+    if not p.exists():
+        raise ReportError(f"{p} does not exist")
+    if p.is_dir() and p.suffix.lower() != ".zarr":
+        return "data"
+    if p.suffix.lower() == ".zarr":
+        return "batch"
+    with open(p, "rb") as f:
+        magic = f.read(8)
+    if magic != b"\x89HDF\r\n\x1a\n":
+        return "data"
+    import h5py
+
+    from cummins.radiation.model_file import FORMAT_NAME
+
+    try:
+        with h5py.File(p, "r") as f:
+            kind = f.attrs.get("cummins_format")
+            result_kind = f.attrs.get("cummins_kind")
+            names = set(f.keys())
+    except OSError as exc:  # an HDF5 signature on a damaged or truncated file
+        raise ReportError(
+            f"{p} starts like an HDF5/NetCDF file but cannot be opened ({exc})",
+            hint="The file is damaged or truncated: write it again",
+        ) from None
+    kind = kind.decode() if isinstance(kind, bytes) else kind
+    result_kind = result_kind.decode() if isinstance(result_kind, bytes) else result_kind
+    if kind == FORMAT_NAME:
+        return "model"
+    from cummins.studies.study import _RESULT_KIND
+
+    if result_kind == _RESULT_KIND:
+        return "batch"
+    if "rao" in names and "complex" in names:
+        return "rao"
+    if {"motion", "time", "wave_elevation"} <= names:
+        return "run"
+    if {"eta", "nu", "time"} <= names:
+        return "dp"
+    if {"added_mass", "damping", "stiffness", "frequency", "provenance"} <= names:
+        return "lf"
+    if {"retardation_function", "K0", "significant"} <= names:
+        return "kernel"
+    return "data"
+
+
+def _check_kind(path: Path, kind: str) -> None:
+    """ArgumentError when ``kind`` (``--kind``) is not what the file holds."""
+    from cummins.errors import ArgumentError
+
+    if kind not in KINDS:
+        raise ArgumentError(f"unknown report kind {kind!r}; use one of {', '.join(KINDS)}")
+    found = detect_kind(path)
+    if found != kind:
+        raise ArgumentError(
+            f"{path} is a {found} file ({KINDS[found]}), not a {kind} file ({KINDS[kind]})",
+            hint=f"Leave --kind out (it is detected from the content), or give a {kind} file",
+        )
+
+
+# --------------------------------------------------------------------------- sections
+
+
+def _check_section(ds) -> Section:
+    from cummins.check import check
+
+    report = check(ds)
+    rows, classes = [], []
+    style = {"error": "bad", "warning": "warning", "ok": "good", "info": ""}
+    for f in report:
+        rows.append([f.severity, f.check, f.where or "", f.message])
+        classes.append([style.get(f.severity, ""), "", "", ""])
+    verdict = "usable" if report.ok else "NOT usable as it is"
+    body = _note(f"Result: {verdict} (worst finding: {report.worst()}).") + table_html(
+        ["severity", "check", "where", "finding"], rows, classes=classes
+    )
+    return Section("Data checks", body)
+
+
+def data_sections(ds: xr.Dataset) -> list[Section]:
+    """Checks, added mass and damping, excitation, K(t) and RAOs of a ``HydroDB``."""
+    from cummins.hydrodb import describe
+    from cummins.plots import plot_added_mass_damping, plot_excitation, plot_retardation
+    from cummins.radiation.retardation import retardation_function
+
+    info = describe(ds)
+    rows = [
+        ["file", f"{info['source_file']} ({info['source_format']})"],
+        ["DOFs", ", ".join(info["dofs"])],
+        [
+            "frequencies",
+            f"{info['n_omega']} from {info['omega_min_rad_s']:.4g} to "
+            f"{info['omega_max_rad_s']:.4g} rad/s",
+        ],
+        ["wave directions", ", ".join(f"{b:g}" for b in info["wave_directions_deg"]) + " deg"],
+        ["forward speeds", ", ".join(f"{u:g}" for u in info["forward_speeds_m_s"]) + " m/s"],
+        ["rho, g", f"{info['rho_kg_m3']:g} kg/m³, {info['g_m_s2']:g} m/s²"],
+    ]
+    sections = [Section("Contents", table_html(["", ""], rows)), _check_section(ds)]
+    one = ds.isel(forward_speed=0) if "forward_speed" in ds.dims else ds
+    figures = [figure_html(plot_added_mass_damping(one), "Added mass A(ω) and damping B(ω)")]
+    if "excitation_force" in one and "wave_direction" in one.dims:
+        figures.append(figure_html(plot_excitation(one), "Wave excitation force per heading"))
+    sections.append(Section("Added mass, damping and excitation", "".join(figures)))
+    kernel = retardation_function(one)
+    sections.append(
+        Section(
+            "Retardation functions K(t)",
+            figure_html(plot_retardation(kernel), "K(t) = (2/π)∫B(ω)cos(ωt)dω, diagonal"),
+        )
+    )
+    sections.append(_rao_data_section(one))
+    return sections
+
+
+def _rao_data_section(ds: xr.Dataset) -> Section:
+    from cummins.plots import plot_rao
+    from cummins.seakeeping.frequency_domain import motion_rao
+
+    try:
+        headings = np.radians([90.0, 135.0, 180.0])
+        w = ds.omega.values
+        rao = motion_rao(ds, np.linspace(w[0], w[-1], 300), headings)
+    except CumminsError as exc:
+        return Section("Motion RAOs", _note(f"not computed: {exc}"))
+    return Section(
+        "Motion RAOs",
+        figure_html(plot_rao(rao), "Coupled motion RAOs, beam to head seas (90°, 135°, 180°)")
+        + rao_table_html(rao),
+    )
+
+
+def rao_table_html(rao: xr.DataArray) -> str:
+    """Largest |RAO| of each DOF with its frequency and heading."""
+    w = rao.omega.values
+    rows = []
+    for dof in rao.dof.values:
+        amp = np.abs(rao.sel(dof=dof).transpose("omega", "wave_direction").values)
+        i, j = np.unravel_index(int(np.argmax(amp)), amp.shape)
+        rows.append(
+            [
+                str(dof),
+                float(amp[i, j]),
+                "rad/m" if is_rotation(str(dof)) else "m/m",
+                float(w[i]),
+                float(2 * np.pi / w[i]),
+                float(np.degrees(rao.wave_direction.values[j])),
+            ]
+        )
+    return table_html(
+        ["DOF", "max |RAO|", "unit", "ω [rad/s]", "period [s]", "heading [deg]"], rows
+    )
+
+
+def model_sections(path: Path) -> list[Section]:
+    """The fit table, K(t) of the model and, with its data, the fit of every coupling."""
+    from cummins.plots import plot_coupling_fit, plot_retardation
+    from cummins.radiation.model import RadiationModel
+
+    model = RadiationModel.load(path)
+    rows = []
+    for k in model.modelled:
+        if k.influenced > k.radiating:
+            continue
+        m = k.metrics
+        rows.append(
+            [
+                f"{model.dofs[k.influenced]}–{model.dofs[k.radiating]}",
+                int(m.get("common_poles", k.order)),
+                m.get("r2_added_mass", np.nan),
+                m.get("r2_damping", np.nan),
+                m.get("r2_kernel", np.nan),
+                bool(k.is_stable()),
+                m.get("passive", "") if k.influenced == k.radiating else "",
+            ]
+        )
+    sections = [
+        Section(
+            "Fitted couplings",
+            _note(
+                f"{len(model.dofs)} DOFs, total order {model.total_order}, MIMO passive: "
+                f"{model.attrs.get('mimo_passive', 'not recorded')}."
+                + "".join(
+                    f" {'-'.join(model.dofs[d] for d in b.dofs)}: one block of {b.order} "
+                    "states (the order of its pairs is the number of common poles)."
+                    for b in model.blocks
+                )
+            )
+            + table_html(
+                ["coupling", "order", "R² A", "R² B", "R² K(t)", "stable", "positive real"], rows
+            ),
+        )
+    ]
+    poles = [c.poles() for c in model.couplings if c.order]
+    poles += [b.poles() for b in model.blocks if b.order]
+    slowest = min(float(np.abs(p.real).min()) for p in poles) if poles else 1.0
+    t = np.linspace(0.0, min(5.0 / max(slowest, 1e-3), 200.0), 600)
+    sections.append(
+        Section(
+            "Retardation functions of the model",
+            figure_html(plot_retardation(model.impulse_response(t)), "K(t) = C e^{At} B"),
+        )
+    )
+    source = model.attrs.get("source_file")
+    if not source or not Path(str(source)).exists():
+        sections.append(
+            Section("Fits", _note(f"the data the model was fitted to ({source}) are not at hand"))
+        )
+        return sections
+    from cummins.io import read
+
+    ds = read(source)
+    if "forward_speed" in ds.dims:
+        ds = ds.isel(forward_speed=0)
+    excluded = model.attrs.get("excluded_frequencies", [])
+    figures = [
+        figure_html(
+            plot_coupling_fit(ds, model, k.influenced, k.radiating, excluded),
+            f"{model.dofs[k.influenced]}–{model.dofs[k.radiating]}: data against the model",
+        )
+        for k in model.modelled
+        if k.influenced <= k.radiating
+    ]
+    sections.append(Section(f"Fits against the data ({Path(str(source)).name})", "".join(figures)))
+    return sections
+
+
+def rao_sections(path: Path) -> list[Section]:
+    """The RAOs of a ``cummins rao`` file."""
+    from cummins.plots import plot_rao
+    from cummins.seakeeping.frequency_domain import load_rao
+
+    rao = load_rao(path)
+    return [
+        Section(
+            "Motion RAOs",
+            figure_html(plot_rao(rao), "Coupled motion RAOs per metre of wave amplitude")
+            + rao_table_html(rao),
+        )
+    ]
+
+
+def run_sections(path: Path) -> list[Section]:
+    """Statistics, time series and response spectra of a simulation file."""
+    from cummins.plots import plot_response_spectra, plot_time_series
+
+    with xr.open_dataset(path, engine="h5netcdf") as f:
+        run = f.load()
+    units = run.motion.attrs.get("units", "").split(" | ")
+    regular = str(run.attrs.get("spectrum", "")) == "regular"
+    t = run.time.values
+    period = float(run.attrs.get("tp", np.nan))
+    last = t >= t[-1] - period if regular and 0 < period < t[-1] else np.ones(t.size, bool)
+    rows = []
+    for k, dof in enumerate(run.dof.values):
+        xi = run.motion.values[:, k]
+        rows.append(
+            [
+                str(dof),
+                float(0.5 * np.ptp(xi[last]) if regular else 2 * xi.std()),
+                float(np.abs(xi).max()),
+                units[k] if k < len(units) else "",
+            ]
+        )
+    duration = float(run.time.values[-1] - run.time.values[0])
+    notes = _note(
+        f"{run.attrs.get('sea', 'simulation')}; {duration:g} s at dt "
+        f"{float(run.attrs.get('dt', np.nan)):g} s; energy balance error "
+        f"{float(run.attrs.get('energy_relative_residual', np.nan)):.2g}."
+    )
+    return [
+        Section(
+            "Response statistics",
+            notes
+            + table_html(
+                [
+                    "DOF",
+                    "amplitude" if regular else "significant amplitude (2σ)",
+                    "max |ξ|",
+                    "unit",
+                ],
+                rows,
+            ),
+        ),
+        Section(
+            "Time series",
+            figure_html(plot_time_series(run), "Wave elevation and motions (last 600 s)"),
+        ),
+        Section(
+            "Response spectra",
+            figure_html(plot_response_spectra(run, {}), "Response spectra (Welch)"),
+        ),
+    ]
+
+
+def dp_sections(path: Path) -> list[Section]:
+    """Checks, pose, forces and watch circle of a run of :mod:`cummins.timedomain.unified`
+    (``cummins dp-demo``)."""
+    from cummins.plots import plot_generalized_forces, plot_pose, plot_watch_circle
+
+    with xr.open_dataset(path, engine="h5netcdf") as f:
+        run = f.load()
+    checks = [[k[6:].replace("_", " "), v] for k, v in run.attrs.items() if k.startswith("check_")]
+    rows = []
+    for k, dof in enumerate(run.dof.values):
+        x = run.eta.values[:, k]
+        scale, unit = (np.degrees(1.0), "deg") if k >= 3 else (1.0, "m")
+        rows.append(
+            [
+                str(dof),
+                float(scale * x.mean()),
+                float(scale * 2 * x.std()),
+                float(scale * np.abs(x).max()),
+                unit,
+            ]
+        )
+    forces = [v for v in run.data_vars if str(v).startswith("force_")]
+    sections = [
+        Section(
+            "Pose statistics",
+            _note(str(run.attrs.get("scenario", run.attrs.get("method", ""))))
+            + table_html(["DOF", "mean", "2σ", "max |η|", "unit"], rows),
+        ),
+        Section("Pose", figure_html(plot_pose(run), "Pose η in the north-east-down frame")),
+    ]
+    if checks:
+        sections.insert(1, Section("Checks", table_html(["check", "value"], checks)))
+    if forces:
+        extra = ["thrust"] if "thrust" in run else []
+        sections.append(
+            Section(
+                "Loads",
+                figure_html(
+                    plot_generalized_forces(
+                        run, [*forces, *extra], labels=[str(f)[6:] for f in forces] + extra
+                    ),
+                    "Generalized forces of every load (body frame, about the origin)",
+                ),
+            )
+        )
+    sections.append(Section("Watch circle", figure_html(plot_watch_circle(run), "Track")))
+    return sections
+
+
+def lf_sections(path: Path) -> list[Section]:
+    """The coefficients of a low-frequency model file (``cummins lf-model``)."""
+    with xr.open_dataset(path, engine="h5netcdf") as f:
+        lf = f.load()
+    rows = []
+    for dof in lf.dof.values:
+        pick = {"influenced_dof": dof, "radiating_dof": dof}
+        rows.append(
+            [
+                str(dof),
+                float(lf.frequency.sel(dof=dof)),
+                float(lf.inertia_matrix.sel(pick) + lf.added_mass.sel(pick)),
+                float(lf.damping.sel(pick)),
+                float(lf.stiffness.sel(pick)),
+                str(lf.provenance.sel(dof=dof).values),
+            ]
+        )
+    return [
+        Section(
+            "Coefficients (diagonal)",
+            table_html(["DOF", "taken at ω [rad/s]", "M_RB + M_A", "D", "G", "provenance"], rows),
+        )
+    ]
+
+
+def batch_sections(results: xr.Dataset) -> list[Section]:
+    """The study, operability, limiting H_s and the statistics of the cases."""
+    import json
+
+    from cummins.studies.operability import limiting_hs, operability
+
+    study = json.loads(results.attrs.get("study", "{}"))
+    crit = [str(c) for c in results.criterion.values] if "criterion" in results.dims else []
+    rows = [
+        ["analysis", f"{results.attrs['analysis']}: {results.attrs.get('analysis_description')}"],
+        ["data", str(results.attrs.get("data_file", ""))],
+        ["cases", str(results.attrs.get("n_cases"))],
+        ["spectrum", str(results.attrs.get("spectrum"))],
+        ["duration", f"{float(results.attrs.get('duration', np.nan)):g} s"],
+        ["axes", ", ".join(f"{d} ({results.sizes[d]})" for d in results.operable.dims)],
+        ["criteria", "; ".join(crit) or "none"],
+    ]
+    if study.get("model"):
+        rows.insert(2, ["model", study["model"]])
+    sections = [Section("Study", table_html(["", ""], rows))]
+    if crit:
+        op = operability(results)
+        lim = limiting_hs(results)
+        sections.append(Section("Operability", _operability_body(op) + _limiting_body(lim)))
+    sections.append(Section("Statistics per case", _cases_body(results)))
+    return sections
+
+
+def _operability_body(op: xr.DataArray) -> str:
+    frame = op.to_dataframe().reset_index()
+    keys = [c for c in frame.columns if c != "operability"]
+    rows = [
+        [*(float(r[k]) for k in keys), f"{100 * r['operability']:.1f} %"]
+        for _, r in frame.iterrows()
+    ]
+    header = [f"{k} [deg]" if k == "heading" else k for k in keys] + ["operability"]
+    fig = _plot_operability(op)
+    return (
+        _note(f"Share of the sea states meeting every criterion ({op.attrs['weights']} weights).")
+        + table_html(header, rows)
+        + figure_html(fig, "Operability per heading")
+    )
+
+
+def _limiting_body(lim: xr.DataArray) -> str:
+    if set(lim.dims) == {"heading", "tp"}:
+        grid = lim.transpose("heading", "tp")
+        header = ["heading [deg] \\ Tp [s]"] + [f"{t:g}" for t in grid.tp.values]
+        rows = [
+            [float(h), *(float(v) for v in grid.sel(heading=h).values)] for h in grid.heading.values
+        ]
+    else:
+        frame = lim.to_dataframe().reset_index()
+        header = list(frame.columns)
+        rows = [[float(v) for v in r] for _, r in frame.iterrows()]
+    return (
+        _note("Limiting Hs [m]: the largest Hs meeting every criterion (responses scale with Hs).")
+        + table_html(header, rows)
+        + figure_html(
+            _plot_limiting_hs(lim),
+            "Limiting Hs per peak period and heading (drawn up to twice the largest Hs computed)",
+        )
+    )
+
+
+def _cases_body(results: xr.Dataset, most: int = 40) -> str:
+    dims = list(results.operable.dims)
+    stacked = results.stack(_row=dims) if len(dims) > 1 else results.rename({dims[0]: "_row"})
+    n = stacked.sizes["_row"]
+    has_limits = results.sizes.get("criterion", 0) > 0
+    worst = stacked.limit_ratio.max("criterion").values if has_limits else np.zeros(n)
+    order = np.argsort(-worst, kind="stable")[:most] if n > most else np.arange(n)
+    keys = [k for k in ("heading", "hs", "tp", "gamma", "spreading", "seed") if k in stacked.coords]
+    dofs = [str(d) for d in results.dof.values]
+    header = [*keys, *(f"{d} 2σ [{'deg' if is_rotation(d) else 'm'}]" for d in dofs)]
+    header += ["worst ratio", "operable"] if has_limits else []
+    rows, classes = [], []
+    for k in order:
+        case = stacked.isel(_row=int(k))
+        sig = case.significant_amplitude.values
+        values = [float(case[key].values) for key in keys]
+        values += [
+            float(np.degrees(s) if is_rotation(d) else s) for d, s in zip(dofs, sig, strict=True)
+        ]
+        cls = [""] * len(values)
+        if has_limits:
+            ok = bool(case.operable.values)
+            values += [float(worst[k]), ok]
+            cls += ["", "good" if ok else "bad"]
+        rows.append(values)
+        classes.append(cls)
+    intro = (
+        f"The {len(order)} cases with the largest response/limit ratio of {n}."
+        if n > most
+        else f"All {n} cases."
+    ) + " 2σ: significant single amplitude (2√m0 in the frequency domain)."
+    return _note(intro) + table_html(header, rows, classes=classes)
+
+
+def _plot_operability(op: xr.DataArray):
+    from matplotlib.figure import Figure
+
+    fig = Figure(figsize=(7, 3.2), layout="constrained")
+    ax = fig.subplots()
+    ax.plot(op.heading.values, 100 * op.values, "o-", color="C0")
+    ax.set_xlabel("heading [deg] (180 = head seas)")
+    ax.set_ylabel("operability [%]")
+    ax.set_ylim(-5, 105)
+    ax.grid(alpha=0.3)
+    return fig
+
+
+def _plot_limiting_hs(lim: xr.DataArray):
+    from matplotlib.figure import Figure
+
+    fig = Figure(figsize=(7, 3.6), layout="constrained")
+    ax = fig.subplots()
+    reduced = lim.min([d for d in lim.dims if d not in ("heading", "tp")]) if lim.ndim > 2 else lim
+    for k, h in enumerate(reduced.heading.values):
+        values = reduced.sel(heading=h).values
+        ax.plot(
+            reduced.tp.values,
+            np.where(np.isfinite(values), values, np.nan),
+            "o-",
+            color=f"C{k % 10}",
+            label=f"{h:g}°",
+        )
+    finite = reduced.values[np.isfinite(reduced.values)]
+    if finite.size:
+        top = 2.0 * float(lim.attrs.get("hs_max", finite.max()))
+        ax.set_ylim(0.0, min(float(finite.max()) * 1.05, top))
+    ax.set_xlabel("Tp [s]")
+    ax.set_ylabel("limiting Hs [m]")
+    ax.grid(alpha=0.3)
+    ax.legend(fontsize="small", title="heading")
+    return fig
+
+
+# --------------------------------------------------------------------------- entry point
+
+
+def report_sections(
+    path: str | os.PathLike[str],
+    kind: str | None = None,
+    *,
+    read_options: Mapping[str, object] | None = None,
+) -> tuple[str, list[Section]]:
+    """(kind, sections) of the report of ``path`` (kind detected when None; a kind given
+    must be what the file holds). ``read_options`` (``format``, ``rho``, ``g``, ``ulen``)
+    are passed to :func:`cummins.read` for a data file."""
+    p = Path(path)
+    if kind is None:
+        kind = detect_kind(p)
+    else:
+        _check_kind(p, kind)
+    builders: dict[str, Callable[[], list[Section]]] = {
+        "data": lambda: data_sections(_read_data(p, read_options)),
+        "kernel": lambda: kernel_sections(p),
+        "model": lambda: model_sections(p),
+        "rao": lambda: rao_sections(p),
+        "run": lambda: run_sections(p),
+        "dp": lambda: dp_sections(p),
+        "lf": lambda: lf_sections(p),
+        "batch": lambda: batch_sections(_load_batch(p)),
+    }
+    if kind not in builders:
+        raise ReportError(f"unknown report kind {kind!r}; use one of {', '.join(KINDS)}")
+    return kind, builders[kind]()
+
+
+def _read_data(p: Path, options: Mapping[str, object] | None = None) -> xr.Dataset:
+    from cummins.io import read
+
+    return read(p, **{k: v for k, v in (options or {}).items() if v is not None})
+
+
+def kernel_sections(path: Path) -> list[Section]:
+    """The per-coupling diagnostics and K(t) of a ``cummins kernel`` output file."""
+    from cummins.plots import plot_retardation
+
+    with xr.open_dataset(path, engine="h5netcdf") as f:
+        result = f.load()
+    labels = [str(d) for d in result.influenced_dof.values]
+    pairs = [
+        (int(i), int(j))
+        for i, j in zip(*np.nonzero(np.triu(result.significant.values)), strict=True)
+    ]
+    rows = []
+    for i, j in pairs:
+        row = result.isel(influenced_dof=i, radiating_dof=j)
+        data = float(row.added_mass_inf_data)
+        rows.append(
+            [
+                labels[i] if i == j else f"{labels[i]}-{labels[j]}",
+                float(row.K0),
+                float(row.k_end_ratio),
+                float(row.tail_fraction),
+                float(row.added_mass_inf_estimate),
+                float(row.added_mass_inf_spread),
+                data if np.isfinite(data) else "—",
+                float(row.kramers_kronig_error),
+            ]
+        )
+    notes = _note(
+        f"K(t) to {float(result.attrs.get('t_max', result.time.values[-1])):.4g} s of "
+        f"{result.attrs.get('source_file', 'the data')}; A∞ used: "
+        f"{result.attrs.get('added_mass_inf_method', '?')}."
+    )
+    kernel = result.retardation_function
+    diagonal = [(i, j) for i, j in pairs if i == j]
+    couplings = [(i, j) for i, j in pairs if i != j]
+    sections = [
+        Section(
+            "Diagnostics per significant coupling",
+            notes
+            + table_html(
+                [
+                    "coupling",
+                    "K(0)",
+                    "K(t_max)/max|K|",
+                    "tail share",
+                    "A∞ estimate",
+                    "± spread",
+                    "A∞ data",
+                    "KK error",
+                ],
+                rows,
+            ),
+        )
+    ]
+    if diagonal:
+        sections.append(
+            Section(
+                "K(t), diagonal",
+                figure_html(plot_retardation(kernel, diagonal), "Retardation functions K_ii(t)"),
+            )
+        )
+    if couplings:
+        sections.append(
+            Section(
+                "K(t), couplings",
+                figure_html(plot_retardation(kernel, couplings), "Retardation functions K_ij(t)"),
+            )
+        )
+    return sections
+
+
+def _load_batch(p: Path) -> xr.Dataset:
+    from cummins.studies.batch import load_results
+
+    return load_results(p)
+
+
+def write_report(
+    path: str | os.PathLike[str],
+    output: str | os.PathLike[str],
+    *,
+    force: bool = False,
+    kind: str | None = None,
+    read_options: Mapping[str, object] | None = None,
+) -> Path:
+    """Write the HTML report of ``path`` (module docstring) to ``output``.
+
+    Raises
+    ------
+    OutputExistsError
+        ``output`` exists and ``force`` is false.
+    CumminsError
+        ``path`` cannot be read as anything cummins knows.
+    """
+    output = Path(output)
+    check_writable(output, force)
+    kind, sections = report_sections(path, kind, read_options=read_options)
+    title = f"{Path(path).name}: {KINDS[kind]}"
+    page = render_html(title, f"cummins report of {Path(path).resolve()}", sections)
+    output.parent.mkdir(parents=True, exist_ok=True)
+    tmp = output.with_name(f".{output.name}.tmp")
+    tmp.write_text(page, encoding="utf-8")
+    os.replace(tmp, output)
+    return output

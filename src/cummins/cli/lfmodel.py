@@ -1,0 +1,199 @@
+"""``cummins lf-model``: the constant-coefficient manoeuvring model (Ross, Perez & Fossen, 2006)."""
+
+from __future__ import annotations
+
+import dataclasses
+from pathlib import Path
+
+import click
+import numpy as np
+
+from cummins.cli.common import (
+    Number,
+    console,
+    finite,
+    non_negative,
+    prepare_outputs,
+    read_hydrodb,
+    read_options,
+    reports_errors,
+    select_speed,
+)
+
+
+@click.command(name="lf-model")
+@click.argument("path", metavar="DATA", type=click.Path(exists=True))
+@read_options
+@click.option(
+    "-o",
+    "--output",
+    type=click.Path(dir_okay=False),
+    required=True,
+    help="NetCDF file of the model (M_A, D, G, frequencies, provenance).",
+)
+@click.option(
+    "--route",
+    type=click.Choice(["frequency", "kernel"]),
+    default="frequency",
+    show_default=True,
+    help="frequency: from A(w), B(w) (the solver's w = 0 row when present); "
+    "kernel: from the retardation functions K(t).",
+)
+@click.option(
+    "--surge-damping",
+    type=(non_negative("kg/s"), non_negative("s/rad")),
+    default=None,
+    metavar="BETA ALPHA",
+    help="Viscous surge damping beta exp(-alpha w) (kg/s, s/rad); also "
+    "--sway-damping, --yaw-damping.",
+)
+@click.option(
+    "--sway-damping",
+    type=(non_negative("kg/s"), non_negative("s/rad")),
+    default=None,
+    metavar="BETA ALPHA",
+)
+@click.option(
+    "--yaw-damping",
+    type=(non_negative("kg m^2/s"), non_negative("s/rad")),
+    default=None,
+    metavar="BETA ALPHA",
+)
+@click.option(
+    "--roll-damping",
+    type=Number(0.0, 1.0),
+    default=None,
+    metavar="ZETA",
+    help="Viscous roll damping as a fraction of critical at the roll natural "
+    "frequency (a proxy for Ikeda's estimate).",
+)
+@click.option(
+    "--compare",
+    "compare_dir",
+    type=click.Path(file_okay=False),
+    default=None,
+    help="Also simulate decays (heave, roll, pitch) and steps (surge, sway, yaw) "
+    "of the LF model and of the full Cummins model; write the PNGs here.",
+)
+@click.option(
+    "--plot",
+    "plot_file",
+    type=click.Path(dir_okay=False),
+    default=None,
+    help="PNG of A(w) and B(w) with the chosen values marked (seed Figs. 1-2).",
+)
+@click.option(
+    "--speed", type=finite("m/s"), default=None, metavar="M/S", help="Forward speed of DATA."
+)
+@click.option("--force", is_flag=True, help="Overwrite the output files.")
+@reports_errors
+def lf_model_command(
+    path,
+    format_,
+    rho,
+    g,
+    ulen,
+    output,
+    route,
+    surge_damping,
+    sway_damping,
+    yaw_damping,
+    roll_damping,
+    compare_dir,
+    plot_file,
+    speed,
+    force,
+):
+    """Derive the constant-coefficient low-frequency model (M_RB + M_A) v' + D v + G eta = tau.
+
+    \b
+    Ross, Perez & Fossen (2006): surge, sway and yaw take the zero-frequency limits
+    (the hydrodynamic derivatives: M_A = A(0), D = B(0) + viscous, B(0) = 0 at zero speed),
+    heave, roll and pitch the values at their natural frequency w0, found by iterating
+    w0^2 (M_RB + A(w0)) = C (eq. 24). The model is the one control engineers use for
+    DP and manoeuvring; --compare shows what it loses against the Cummins model.
+
+    \b
+    Examples:
+      cummins lf-model tanker.1 -o lf.nc --plot lf.png
+      cummins lf-model tanker.1 -o lf.nc --route kernel --roll-damping 0.05 --compare lf-cmp
+    """
+    from rich.table import Table
+
+    from cummins.timedomain.lfmodel import (
+        CriticalDampingFraction,
+        ExponentialDamping,
+        lf_model_from_frequency_data,
+        lf_model_from_retardation,
+    )
+
+    outputs = [output, plot_file]
+    if compare_dir:
+        outputs += [Path(compare_dir) / f"{kind}_{d}.png" for kind, d in _COMPARISONS]
+    prepare_outputs(*outputs, force=force, folders=[compare_dir])
+    ds = select_speed(read_hydrodb(path, format_, rho, g, ulen), speed)
+    viscous = {}
+    for dof, spec in (("Surge", surge_damping), ("Sway", sway_damping), ("Yaw", yaw_damping)):
+        if spec is not None:
+            viscous[dof] = ExponentialDamping(*spec)
+    if roll_damping is not None:
+        viscous["Roll"] = CriticalDampingFraction(roll_damping)
+    build = lf_model_from_frequency_data if route == "frequency" else lf_model_from_retardation
+    with console.status("deriving the low-frequency model"):
+        model = build(ds, viscous=viscous or None)
+    table = Table(title=f"low-frequency model of {Path(path).name} ({route} route)")
+    for column in ("DOF", "frequency [rad/s]", "M_RB + M_A", "D", "G", "taken as"):
+        table.add_column(column, justify="right")
+    for k, dof in enumerate(model.dofs):
+        table.add_row(
+            dof,
+            f"{model.frequencies[k]:.4g}",
+            f"{model.mass[k, k]:.4g}",
+            f"{model.damping[k, k]:.4g}",
+            f"{model.stiffness[k, k]:.4g}",
+            model.provenance[k][:60],
+        )
+    console.print(table)
+    from cummins.io.netcdf import save_netcdf
+
+    save_netcdf(model.to_dataset(), output)
+    console.print(f"wrote {output}")
+    if plot_file:
+        from cummins.plots import plot_lf_model, save_figure
+
+        console.print(f"wrote {save_figure(plot_lf_model(ds, model), plot_file, force=force)}")
+    if compare_dir:
+        _compare(ds, model, Path(compare_dir), force)
+
+
+_COMPARISONS = (
+    ("decay", "Heave"),
+    ("decay", "Roll"),
+    ("decay", "Pitch"),
+    ("step", "Surge"),
+    ("step", "Sway"),
+    ("step", "Yaw"),
+)
+
+
+def _compare(ds, model, folder: Path, force: bool) -> None:
+    from cummins.plots import plot_lf_comparison, save_figure
+    from cummins.timedomain.lfmodel import compare_with_cummins
+    from cummins.vessel import vessel_from_hydrodb
+
+    with console.status("fitting the Cummins model for the comparison"):
+        # the same viscous damping in both models (the LF model's holds the data's own)
+        vessel = dataclasses.replace(
+            vessel_from_hydrodb(ds), viscous_damping=np.asarray(model.viscous_damping)
+        )
+    for kind, dof in _COMPARISONS:
+        if dof not in model.dofs:
+            continue
+        result = compare_with_cummins(model, vessel, dof, kind=kind)
+        file = save_figure(
+            plot_lf_comparison(result, dof, kind), folder / f"{kind}_{dof}.png", force=force
+        )
+        console.print(
+            f"{kind} of {dof}: RMS difference {100 * result.attrs['rms_relative']:.1f} %"
+            f" of the Cummins response; wrote {file}"
+        )

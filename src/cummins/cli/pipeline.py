@@ -1,0 +1,266 @@
+"""Pipeline stages composed from the library functions, shared by the CLI and the demo.
+
+Each stage takes a ``HydroDB`` and options, applies the documented steps in order and
+returns plain results; printing and file names are left to the caller.
+"""
+
+from __future__ import annotations
+
+from collections.abc import Callable
+from dataclasses import replace
+from pathlib import Path
+
+import numpy as np
+import xarray as xr
+
+from cummins.hydrodb import dof_matrix
+
+
+def kernel_stage(
+    ds: xr.Dataset,
+    *,
+    t_max: float | None = None,
+    dt: float | None = None,
+    tail: str = "auto",
+    interpolation: str = "linear",
+    omega_max: float | None = None,
+    remove_suspect: bool = False,
+    above_first: bool = False,
+    truncate: str | None = None,
+    say: Callable[[str], object] = lambda message: None,
+) -> tuple[xr.Dataset, xr.Dataset]:
+    """Repair options, K(t) and diagnostics: what ``cummins kernel`` and the demo run.
+
+    Steps: :func:`~cummins.repair.limit_frequency_range` (``omega_max``),
+    :func:`~cummins.repair.remove_suspect_frequencies` (``remove_suspect``, each one
+    reported through ``say``), a time grid of step ``dt`` to ``t_max`` (defaults from
+    :func:`~cummins.radiation.retardation.default_time_grid`),
+    :func:`~cummins.radiation.retardation.retardation_dataset` and, with ``truncate``,
+    :func:`~cummins.radiation.retardation.truncate_retardation` at t_max.
+
+    Returns
+    -------
+    (result, ds)
+        The :func:`cummins.radiation.retardation.retardation_dataset` and the (repaired) data.
+    """
+    from cummins.radiation.retardation import (
+        default_time_grid,
+        retardation_dataset,
+        truncate_retardation,
+    )
+    from cummins.repair import limit_frequency_range, remove_suspect_frequencies
+    from cummins.validation import check_memory, positive, time_steps
+
+    if omega_max is not None:
+        ds = limit_frequency_range(ds, omega_max=omega_max)
+    if remove_suspect:
+        ds, suspects = remove_suspect_frequencies(ds, above_first=above_first)
+        for s in suspects:
+            say(f"  suspect {s.omega:.4g} rad/s: {s.quantity}, {s.reason}")
+    if t_max is not None:
+        positive(t_max, "t_max", "s")
+    if dt is not None:
+        positive(dt, "dt", "s")
+    end = t_max if t_max is not None else float(default_time_grid(ds)[-1])
+    step = dt if dt is not None else end / 1000
+    n_t = time_steps(end, step)
+    n = ds.sizes["influenced_dof"]
+    check_memory(
+        n_t * (ds.sizes["omega"] * 16 + n * n * 32),
+        f"K(t) at {n_t:.4g} times for {n} x {n} couplings",
+        hint="Shorten --t-max or lengthen --dt",
+    )
+    t = np.arange(0.0, end + 0.5 * step, step)
+    result = retardation_dataset(ds, t, tail=tail, interpolation=interpolation)
+    if truncate:
+        k = truncate_retardation(result.retardation_function, float(t[-1]), method=truncate)
+        result["retardation_function"] = k
+        result.attrs["truncation"] = k.attrs["truncation"]
+    return result, ds
+
+
+def write_kernel_plots(
+    result: xr.Dataset, ds: xr.Dataset, folder: Path, *, force: bool = False
+) -> list[Path]:
+    """K(t) (diagonal, couplings), A and B rebuilt from K, and A∞(ω), as PNG files."""
+    from cummins.plots import (
+        plot_added_mass_inf,
+        plot_reconstruction,
+        plot_retardation,
+        save_figure,
+    )
+    from cummins.radiation.retardation import reconstruct_added_mass_damping, significant_couplings
+
+    omega = np.linspace(ds.omega.values[0], ds.omega.values[-1], 400)
+    rebuilt = reconstruct_added_mass_damping(
+        result.retardation_function, result.added_mass_inf.values, omega
+    )
+    off_diagonal = [c for c in significant_couplings(ds) if c[0] != c[1]]
+    figures = [
+        ("retardation.png", plot_retardation(result.retardation_function)),
+        ("reconstruction.png", plot_reconstruction(ds, rebuilt)),
+        (
+            "added_mass_inf.png",
+            plot_added_mass_inf(
+                result.added_mass_inf_per_frequency, result.added_mass_inf_estimate, ds
+            ),
+        ),
+    ]
+    if off_diagonal:
+        figures.append(
+            (
+                "retardation_couplings.png",
+                plot_retardation(result.retardation_function, off_diagonal),
+            )
+        )
+    return [save_figure(fig, folder / name, force=force) for name, fig in figures]
+
+
+def write_fit_plots(model, ds: xr.Dataset, folder: Path, *, force: bool = False) -> list[Path]:
+    """One PNG per fitted coupling (i ≤ j): data against the model (``fit_<coupling>.png``).
+
+    ``ds`` is the data as read (one forward speed); the frequencies the fit left out are
+    drawn as open circles.
+    """
+    from cummins.plots import plot_coupling_fit, save_figure
+
+    excluded = model.attrs.get("excluded_frequencies", [])
+    if "forward_speed" in ds.dims:
+        ds = ds.isel(forward_speed=0)
+    written = []
+    for k in model.modelled:
+        if k.influenced > k.radiating:
+            continue
+        a, b = model.dofs[k.influenced], model.dofs[k.radiating]
+        name = f"fit_{a}.png" if a == b else f"fit_{a}-{b}.png"
+        fig = plot_coupling_fit(ds, model, k.influenced, k.radiating, excluded)
+        written.append(save_figure(fig, folder / name, force=force))
+    return written
+
+
+def write_model_mss_abc(model, ds: xr.Dataset, path: Path, *, force: bool = False) -> Path:
+    """The model as an MSS ``vesselABC`` .mat, in Fossen's axes, with the data's rigid-body
+    inertia and restoring matrices (about the data's reference point)."""
+    from cummins.hydrodb import change_axes
+    from cummins.io.mss_abc import write_mss_abc
+    from cummins.radiation.model import change_model_axes
+
+    fossen = change_axes(ds, "z-down")
+
+    def matrix(name):
+        if name not in fossen:
+            return None
+        return dof_matrix(fossen, name)
+
+    return write_mss_abc(
+        change_model_axes(model, "z-down"),
+        path,
+        inertia_matrix=matrix("inertia_matrix"),
+        hydrostatic_stiffness=matrix("hydrostatic_stiffness"),
+        force=force,
+    )
+
+
+def model_as_data(model, points: int = 200):
+    """The model's own A(ω) − A∞ + A∞, B(ω) and K(t) as :class:`cummins.radiation.fit.FitData`: the
+    reference a reduced or corrected model is measured against when the data are not at
+    hand (log grid over the fitted range, K(t) to five times the slowest time constant)."""
+    from cummins.radiation.fit import FitData
+    from cummins.radiation.passivity import fit_range_grid
+
+    w = fit_range_grid(model, points)
+    k = model.response(w)
+    poles = np.concatenate(
+        [c.poles() for c in model.couplings if c.order]
+        + [b.poles() for b in model.blocks if b.order]
+    )
+    t_end = 5.0 / max(float(np.abs(poles.real).min()), 1e-6)
+    t = np.linspace(0.0, min(t_end, 100 * 2 * np.pi / w[0]), 500)
+    a = model.added_mass_inf[None, :, :] + k.imag / w[:, None, None]
+    return FitData(w, a, k.real, t, model.impulse_response(t).values)
+
+
+def reduce_stage(
+    model,
+    *,
+    order=None,
+    tol: float | None = None,
+    method: str = "lyapunov",
+    data: xr.Dataset | None = None,
+    passive: bool = True,
+):
+    """Reduce a radiation model and, by default, make the result passive as a MIMO model.
+
+    The reduced model is measured against the data of the fit when ``data`` is given,
+    else against the unreduced model (:func:`model_as_data`); the passivity correction
+    minimises the change against the same reference (:func:`cummins.radiation.passivity.
+    enforce_passivity`) and each coupling it changed gets its R² before and after in its
+    note. Returns the reduced model, whether a passivity correction was made (None when
+    ``passive`` is false) and the reference (:class:`cummins.radiation.fit.FitData`).
+    """
+    from cummins.radiation.fit import make_passive, model_fit_data
+    from cummins.radiation.fit.metrics import coupling_metrics
+    from cummins.radiation.passivity import is_passive
+    from cummins.radiation.reduce import reduce_radiation_model
+
+    reduced = reduce_radiation_model(model, order=order, tol=tol, method=method, data=data)
+    reference = model_fit_data(model, data) if data is not None else model_as_data(model)
+    if not passive:
+        return reduced, None, reference
+    # measures of fit against the reference, for the weighting of the correction
+    couplings = []
+    for k in reduced.couplings:
+        i, j = k.influenced, k.radiating
+        metrics = coupling_metrics(
+            k,
+            reference.omega,
+            reference.added_mass[:, i, j],
+            reference.damping[:, i, j],
+            float(reduced.added_mass_inf[i, j]),
+            time=reference.time,
+            kernel=reference.kernel[:, i, j],
+        )
+        couplings.append(replace(k, metrics={**k.metrics, **metrics}))
+    reduced = replace(reduced, couplings=tuple(couplings))
+    if is_passive(reduced):
+        return replace(reduced, attrs={**reduced.attrs, "mimo_passive": True}), None, reference
+    r2 = float(model.attrs.get("r2_target", 0.99))
+    r2_coupling = float(model.attrs.get("r2_coupling_target", 0.97))
+    corrected = make_passive(reduced, reference, r2=r2, r2_coupling=r2_coupling, augment=False)
+    return corrected, True, reference
+
+
+def write_simulation_plots(run, vessel, ds, sea, folder: Path, *, force: bool = False):
+    """``time_series.png``, and for irregular seas ``response_spectra.png``: the
+    simulation (Welch) against the frequency-domain spectrum of the same linear model."""
+    from cummins.plots import plot_response_spectra, plot_time_series, save_figure
+    from cummins.timedomain.simulate import component_motions
+
+    folder.mkdir(parents=True, exist_ok=True)
+    written = [save_figure(plot_time_series(run), folder / "time_series.png", force=force)]
+    if len(sea) > 1:
+        from cummins.seakeeping.excitation import encounter_frequencies
+
+        width = float(getattr(sea, "bin_width", None) or np.median(np.diff(np.sort(sea.omega))))
+        # at a forward speed the run is on the encounter-frequency axis: the density of
+        # each component's variance there is divided by |dω_e/dω| (1 at zero speed)
+        we = encounter_frequencies(ds, sea.omega, sea.direction)
+        step = 1e-6 * sea.omega
+        slope = (
+            encounter_frequencies(ds, sea.omega + step, sea.direction)
+            - encounter_frequencies(ds, sea.omega - step, sea.direction)
+        ) / (2 * step)
+        order = np.argsort(np.abs(we))
+        w = np.abs(we)[order]
+        x = component_motions(vessel, ds, sea)[order]
+        jacobian = np.maximum(np.abs(slope[order]), 1e-3)[:, None]
+        density = 0.5 * np.abs(x) ** 2 / (width * jacobian)
+        references = {"frequency domain (same model)": (w, density)}
+        written.append(
+            save_figure(
+                plot_response_spectra(run, references),
+                folder / "response_spectra.png",
+                force=force,
+            )
+        )
+    return written

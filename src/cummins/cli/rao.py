@@ -1,0 +1,244 @@
+"""``cummins rao``: coupled motion RAOs of a vessel from its hydrodynamic database."""
+
+from __future__ import annotations
+
+from pathlib import Path
+
+import click
+import numpy as np
+from rich.table import Table
+
+from cummins.cli.common import (
+    console,
+    finite,
+    non_negative,
+    positive,
+    prepare_outputs,
+    read_hydrodb,
+    read_options,
+    reports_errors,
+    select_speed,
+    viscous_damping_option,
+    viscous_damping_values,
+)
+from cummins.hydrodb import is_rotation
+
+#: Options that take a list of numbers: ``--headings 0 45 90`` (as well as repeated).
+_LIST_OPTIONS = ("--headings",)
+
+
+def _is_number_list(token: str) -> bool:
+    parts = [p for p in token.split(",") if p.strip()]
+    if not parts:
+        return False
+    try:
+        [float(p) for p in parts]
+    except ValueError:
+        return False
+    return True
+
+
+def expand_list_options(args: list[str]) -> list[str]:
+    """``--headings 0 45 90`` → ``--headings 0 --headings 45 --headings 90``.
+
+    Numbers following a list option are taken as its values until the first token that
+    is not a number (an option, or the data file).
+    """
+    out: list[str] = []
+    i = 0
+    while i < len(args):
+        token = args[i]
+        out.append(token)
+        i += 1
+        if token in _LIST_OPTIONS and i < len(args):
+            out.append(args[i])
+            i += 1
+            while i < len(args) and _is_number_list(args[i]):
+                out.extend([token, args[i]])
+                i += 1
+    return out
+
+
+class ListOptionsCommand(click.Command):
+    """A click command whose list options take several values after one flag."""
+
+    def parse_args(self, ctx: click.Context, args: list[str]) -> list[str]:
+        return super().parse_args(ctx, expand_list_options(list(args)))
+
+
+def parse_headings(values: tuple[str, ...]) -> list[float]:
+    """Headings in degrees from ``--headings`` values (each may be a comma list)."""
+    out: list[float] = []
+    for value in values:
+        for part in str(value).split(","):
+            if not part.strip():
+                continue
+            try:
+                value = float(part)
+            except ValueError:
+                value = float("nan")
+            if not np.isfinite(value):
+                raise click.BadParameter(
+                    f"{part!r} is not a finite number of degrees", param_hint="--headings"
+                )
+            out.append(value)
+    return out
+
+
+@click.command(name="rao", cls=ListOptionsCommand)
+@click.argument("path", type=click.Path(exists=True))
+@read_options
+@click.option(
+    "-o",
+    "--output",
+    type=click.Path(dir_okay=False),
+    required=True,
+    help="NetCDF file for the RAOs (variable rao: complex on a re/im dimension).",
+)
+@click.option(
+    "--headings",
+    multiple=True,
+    metavar="DEG ...",
+    help="Wave directions in degrees, the direction the waves travel (0 = along +x, "
+    "following seas; 180 = head seas): --headings 0 45 90, or comma-separated. "
+    "Default: the data's headings.",
+)
+@click.option(
+    "--omega-min",
+    type=non_negative("rad/s"),
+    default=None,
+    metavar="RAD/S",
+    help="Lowest frequency.",
+)
+@click.option(
+    "--omega-max", type=positive("rad/s"), default=None, metavar="RAD/S", help="Highest frequency."
+)
+@click.option(
+    "--n-omega",
+    type=click.IntRange(1, 100_000),
+    default=None,
+    metavar="N",
+    help="Number of frequencies, equally spaced (default: the data's frequencies, or 200 "
+    "when --omega-min/--omega-max are given).",
+)
+@viscous_damping_option
+@click.option(
+    "--no-additional",
+    is_flag=True,
+    help="Leave out the additional damping, added mass and stiffness of the data "
+    "(WAMIT external damping, MSS viscous damping, VERES roll damping).",
+)
+@click.option(
+    "--plot",
+    "plot_dir",
+    type=click.Path(file_okay=False),
+    default=None,
+    help="Also write rao.png (|RAO| and phase per DOF) in this folder.",
+)
+@click.option(
+    "--speed",
+    type=finite("m/s"),
+    default=None,
+    metavar="M/S",
+    help="Forward speed to use when the data hold several.",
+)
+@click.option("--force", is_flag=True, help="Overwrite the output files.")
+@reports_errors
+def rao_command(
+    path,
+    format_,
+    rho,
+    g,
+    ulen,
+    output,
+    headings,
+    omega_min,
+    omega_max,
+    n_omega,
+    viscous_damping,
+    no_additional,
+    plot_dir,
+    speed,
+    force,
+):
+    """Coupled motion RAOs per metre of wave amplitude (m/m, rad/m).
+
+    \b
+    Solves [-w^2 (M + A(w)) + i w (B(w) + B_add + B_v) + C] X = F(w, beta) at every
+    frequency and heading, with the inertia, restoring and excitation of the data.
+    Between the data frequencies A, B and F are interpolated and the equation is
+    solved there (the RAO itself is never interpolated, so sharp resonances are
+    resolved). Headings missing on one side of a port/starboard symmetric hull are
+    mirrored.
+
+    \b
+    Examples:
+      cummins rao tanker.1 -o rao.nc --plot rao-plots
+      cummins rao tanker.1 -o rao.nc --headings 0 45 90 135 180 --omega-min 0.2
+          --omega-max 1.5 --n-omega 300 --viscous-damping Roll 5e8
+    """
+    from cummins.seakeeping.excitation import heading_coverage
+    from cummins.seakeeping.frequency_domain import motion_rao, save_rao
+
+    plot_file = str(Path(plot_dir) / "rao.png") if plot_dir else None
+    prepare_outputs(output, plot_file, force=force, folders=[plot_dir])
+    ds = select_speed(read_hydrodb(path, format_, rho, g, ulen), speed)
+    omega = None
+    if omega_min is not None or omega_max is not None or n_omega is not None:
+        w = ds.omega.values
+        lo = float(w[0]) if omega_min is None else omega_min
+        hi = float(w[-1]) if omega_max is None else omega_max
+        n = 200 if n_omega is None else n_omega
+        if n < 1 or not hi >= lo:
+            raise click.BadParameter(
+                "need --n-omega >= 1 and --omega-max >= --omega-min", param_hint="--n-omega"
+            )
+        omega = np.linspace(lo, hi, n)
+        from cummins.seakeeping.frequency_domain import _outside_data
+
+        if _outside_data(ds, np.array([lo, hi])).any():
+            raise click.BadParameter(
+                f"{lo:.4g} to {hi:.4g} rad/s reaches outside the data's range, "
+                f"{w[0]:.4g} to {w[-1]:.4g} rad/s (A, B and F are not extrapolated)",
+                param_hint="--omega-min/--omega-max",
+            )
+    beta = np.radians(parse_headings(headings)) if headings else None
+    damping = viscous_damping_values(viscous_damping, [str(d) for d in ds.influenced_dof.values])
+    rao = motion_rao(ds, omega, beta, viscous_damping=damping, additional=not no_additional)
+    if "excitation_force" in ds and "wave_direction" in ds.dims:
+        coverage = heading_coverage(ds)
+        if coverage.mirror_used:
+            console.print(f"headings: {coverage.reason}")
+    console.print(f"terms: {rao.attrs['terms']}")
+    console.print(rao_table(rao))
+    save_rao(rao, output, force=force)
+    console.print(f"wrote {output}")
+    if plot_file:
+        from cummins.plots import plot_rao, save_figure
+
+        save_figure(plot_rao(rao), plot_file, force=force)
+        console.print(f"wrote {plot_file}")
+
+
+def rao_table(rao) -> Table:
+    """Largest |RAO| of each DOF, with the frequency and heading where it occurs."""
+    w = rao.omega.values
+    table = Table(
+        title=f"Motion RAOs: {w.size} frequencies ({w[0]:.4g}–{w[-1]:.4g} rad/s), "
+        f"{rao.sizes['wave_direction']} headings"
+    )
+    for column in ("DOF", "max |RAO|", "unit", "at ω [rad/s]", "period [s]", "heading [deg]"):
+        table.add_column(column, justify="right")
+    for dof in rao.dof.values:
+        amp = np.abs(rao.sel(dof=dof).values)
+        i, j = np.unravel_index(int(np.argmax(amp)), amp.shape)
+        rotation = is_rotation(dof)
+        table.add_row(
+            str(dof),
+            f"{amp[i, j]:.4g}",
+            "rad/m" if rotation else "m/m",
+            f"{w[i]:.4g}",
+            f"{2 * np.pi / w[i]:.4g}",
+            f"{np.degrees(rao.wave_direction.values[j]):.4g}",
+        )
+    return table

@@ -1,0 +1,228 @@
+"""``cummins reduce``: fewer states for a radiation model, passive as a MIMO system."""
+
+from __future__ import annotations
+
+import json
+import sys
+from pathlib import Path
+
+import click
+import numpy as np
+from rich.table import Table
+
+from cummins.cli.common import (
+    Number,
+    console,
+    finite,
+    prepare_outputs,
+    read_hydrodb,
+    read_options,
+    reports_errors,
+    select_speed,
+)
+
+
+@click.command(name="reduce")
+@click.argument("model_path", metavar="MODEL", type=click.Path(exists=True, dir_okay=False))
+@click.option(
+    "-o",
+    "--output",
+    type=click.Path(dir_okay=False),
+    required=True,
+    help="NetCDF file for the reduced model.",
+)
+@click.option(
+    "--order",
+    type=click.IntRange(min=1),
+    default=None,
+    help="Total number of states of the reduced MIMO model (a symmetric pair counts "
+    "twice), allocated over the couplings so that the worst fit is the best possible.",
+)
+@click.option(
+    "--tol",
+    type=Number(0.0, 1.0, min_open=True),
+    default=None,
+    help="Instead of --order: per coupling, the smallest order whose relative H-infinity "
+    "error (Glover's bound for lyapunov) is at most TOL.",
+)
+@click.option(
+    "--method",
+    type=click.Choice(["lyapunov", "mixed", "mixed-rq", "riccati"]),
+    default="lyapunov",
+    show_default=True,
+    help="lyapunov: balanced truncation with an error bound; mixed: mixed-gramian "
+    "(positive-real preserving, cheaper than riccati); riccati: positive-real balancing.",
+)
+@click.option(
+    "--data",
+    "data_path",
+    type=click.Path(exists=True),
+    default=None,
+    help="The hydrodynamic data the model was fitted to: R-squared against them, and the "
+    "passivity correction weighted by them (default: against the unreduced model).",
+)
+@read_options
+@click.option("--speed", type=finite("m/s"), default=None, metavar="M/S", help="Speed of --data.")
+@click.option(
+    "--passive/--no-passive",
+    default=True,
+    show_default=True,
+    help="Make the reduced MIMO model passive (smallest weighted change of the residues).",
+)
+@click.option(
+    "--json",
+    "json_path",
+    type=click.Path(dir_okay=False),
+    default=None,
+    help="Write a summary as JSON.",
+)
+@click.option("--force", is_flag=True, help="Overwrite the output files.")
+@reports_errors
+def reduce_command(
+    model_path,
+    output,
+    order,
+    tol,
+    method,
+    data_path,
+    format_,
+    rho,
+    g,
+    ulen,
+    speed,
+    passive,
+    json_path,
+    force,
+):
+    """Reduce the order of a radiation model by balanced truncation, coupling by coupling.
+
+    \b
+    MODEL is a model file written by `cummins fit`. Each coupling K_ij is truncated in
+    its balanced coordinates (the added mass A = A-inf + Im K/w is weighted at low
+    frequency so it is kept), the zero K(0) = 0 is restored, symmetric pairs stay
+    symmetric, and the MIMO model is then made passive again. The table compares every
+    coupling with the data (--data) or with the unreduced model.
+
+    \b
+    Examples:
+      cummins reduce tanker_era.nc -o tanker_small.nc --order 54
+      cummins reduce tanker_era.nc -o small.nc --tol 0.02 --method mixed --data tanker.1
+    """
+    from cummins.cli.pipeline import reduce_stage
+    from cummins.radiation.model import RadiationModel
+
+    if (order is None) == (tol is None):
+        raise click.UsageError("give exactly one of --order and --tol")
+    prepare_outputs(output, json_path, force=force)
+    model = RadiationModel.load(model_path)
+    data = None
+    if data_path:
+        data = select_speed(read_hydrodb(data_path, format_, rho, g, ulen), speed)
+    with console.status(f"reducing {model.total_order} states ({method})"):
+        reduced, corrected, reference = reduce_stage(
+            model, order=order, tol=tol, method=method, data=data, passive=passive
+        )
+    against = "the data" if data is not None else "the unreduced model"
+    console.print(reduction_table(model, reduced, reference, against))
+    summary = reduction_summary(model, reduced, corrected, reference)
+    console.print(
+        f"{model.total_order} → {reduced.total_order} states, every model stable: "
+        f"{summary['mimo_stable']}, MIMO passive: {summary['mimo_passive']}"
+    )
+    reduced.save(output, force=force)
+    console.print(f"wrote {output}")
+    if json_path:
+        Path(json_path).write_text(json.dumps(summary, indent=2) + "\n", encoding="utf-8")
+        console.print(f"wrote {json_path}")
+    failures = [
+        f for f in reduced.attrs.get("failures", []) if f not in model.attrs.get("failures", [])
+    ]
+    for failure in failures:
+        console.print(f"[bold red]failure:[/bold red] {failure}", highlight=False)
+    if failures:
+        sys.exit(REDUCE_FAILED)
+
+
+#: Exit status of ``cummins reduce`` when the model was written but misses its tolerance
+#: or a coupling's R² went negative (``reduced.attrs["failures"]``).
+REDUCE_FAILED = 3
+
+
+def reduction_summary(model, reduced, corrected, reference) -> dict:
+    """The ``--json`` summary: orders before and after, R² against the reference."""
+    from cummins.radiation.passivity import is_passive
+
+    before = {(k.influenced, k.radiating): k.order for k in model.couplings}
+    couplings = []
+    for k in reduced.couplings:
+        r2a, r2b = _r2(k, reduced, reference)
+        couplings.append(
+            {
+                "i": k.influenced + 1,
+                "j": k.radiating + 1,
+                "order_before": before.get((k.influenced, k.radiating)),
+                "order": k.order,
+                "r2_added_mass": r2a,
+                "r2_damping": r2b,
+                "stable": bool(k.is_stable()),
+            }
+        )
+    return {
+        "couplings": couplings,
+        "order_before": model.total_order,
+        "total_order": reduced.total_order,
+        "mimo_stable": reduced.is_stable(),
+        "mimo_passive": is_passive(reduced),
+        "passivity_corrections": reduced.attrs.get(
+            "passivity_iterations", 0 if corrected is None else None
+        ),
+    }
+
+
+def _r2(k, model, reference) -> tuple[float, float]:
+    """R² of A and of B of coupling k against the reference (data or unreduced model)."""
+    from cummins.radiation.fit.metrics import coupling_metrics
+
+    i, j = k.influenced, k.radiating
+    m = coupling_metrics(
+        k,
+        reference.omega,
+        reference.added_mass[:, i, j],
+        reference.damping[:, i, j],
+        float(model.added_mass_inf[i, j]),
+    )
+    return float(m["r2_added_mass"]), float(m["r2_damping"])
+
+
+def reduction_table(model, reduced, reference, against: str) -> Table:
+    """Per coupling: order before and after, R² of A and B against the reference,
+    Glover's bound relative to the coupling's peak |K| (lyapunov), passivity."""
+    table = Table(
+        title=f"reduced model ({reduced.attrs.get('reduction_method')}; R² against {against})"
+    )
+    for column in ("coupling", "order", "R² A", "R² B", "bound/max|K|", "passive"):
+        table.add_column(column, justify="right")
+    before = {(k.influenced, k.radiating): k.order for k in model.couplings}
+    w = reference.omega
+    for k in reduced.couplings:
+        if k.influenced > k.radiating:
+            continue
+        i, j = k.influenced, k.radiating
+        r2a, r2b = _r2(k, reduced, reference)
+        peak = np.abs(
+            reference.damping[:, i, j]
+            + 1j * w * (reference.added_mass[:, i, j] - reduced.added_mass_inf[i, j])
+        ).max()
+        bound = k.metrics.get("reduction_error_bound")
+        relative = "—" if bound is None or bound != bound or not peak else f"{bound / peak:.3g}"
+        passive = k.metrics.get("passive")
+        a, b = reduced.dofs[i], reduced.dofs[j]
+        table.add_row(
+            a if a == b else f"{a}-{b}",
+            f"{before.get((i, j), k.order)} → {k.order}",
+            f"{r2a:.4f}",
+            f"{r2b:.4f}",
+            relative,
+            "—" if passive is None else ("yes" if passive else "NO"),
+        )
+    return table

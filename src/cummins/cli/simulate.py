@@ -1,0 +1,352 @@
+"""``cummins simulate``: the vessel in waves, in the time domain."""
+
+from __future__ import annotations
+
+from pathlib import Path
+
+import click
+import numpy as np
+
+from cummins.cli.common import (
+    Number,
+    console,
+    finite,
+    model_and_data,
+    non_negative,
+    positive,
+    prepare_outputs,
+    progress_bar,
+    read_hydrodb,
+    read_options,
+    reports_errors,
+    select_speed,
+    viscous_damping_option,
+    viscous_damping_values,
+)
+from cummins.validation import check_simulation_size
+
+
+@click.command(name="simulate")
+@click.argument("path", metavar="DATA|MODEL", type=click.Path(exists=True))
+@read_options
+@click.option(
+    "-o", "--output", type=click.Path(dir_okay=False), required=True, help="NetCDF file of the run."
+)
+@click.option(
+    "--hs", type=positive("m"), default=None, metavar="M", help="Significant wave height."
+)
+@click.option("--tp", type=positive("s"), default=None, metavar="S", help="Peak period.")
+@click.option(
+    "--spectrum",
+    type=click.Choice(["jonswap", "pm", "torsethaugen"]),
+    default="jonswap",
+    show_default=True,
+    help="Wave spectrum (pm: Pierson-Moskowitz / ITTC).",
+)
+@click.option(
+    "--gamma", type=Number(1.0), default=3.3, show_default=True, help="JONSWAP peakedness."
+)
+@click.option(
+    "--heading",
+    type=finite("deg"),
+    default=180.0,
+    show_default=True,
+    metavar="DEG",
+    help="Direction the waves travel, degrees: 0 following seas (along +x), 180 head seas.",
+)
+@click.option(
+    "--spreading",
+    type=non_negative(),
+    default=None,
+    metavar="S",
+    help="Short-crested seas: cos-2s spreading exponent s (with --directions).",
+)
+@click.option(
+    "--directions",
+    type=click.IntRange(min=2),
+    default=9,
+    show_default=True,
+    help="With --spreading.",
+)
+@click.option(
+    "--components",
+    type=click.IntRange(min=1),
+    default=200,
+    show_default=True,
+    help="Wave components.",
+)
+@click.option("--duration", type=positive("s"), default=3 * 3600.0, show_default=True, metavar="S")
+@click.option(
+    "--dt", type=positive("s"), default=0.05, show_default=True, metavar="S", help="Time step."
+)
+@click.option(
+    "--seed",
+    type=click.IntRange(0, 2**63 - 1),
+    default=None,
+    help="Random phases (a run is repeatable); without it a seed is drawn, printed and "
+    "recorded in the run (attribute seed).",
+)
+@click.option(
+    "--regular", is_flag=True, help="Regular waves instead (--wave-period, --wave-amplitude)."
+)
+@click.option("--wave-period", type=positive("s"), default=None, metavar="S")
+@click.option(
+    "--wave-amplitude", type=non_negative("m"), default=1.0, show_default=True, metavar="M"
+)
+@viscous_damping_option
+@click.option(
+    "--quadratic-damping",
+    "quadratic_damping",
+    type=(str, non_negative()),
+    multiple=True,
+    metavar="DOF VALUE",
+    help="Quadratic viscous damping b2 |v| v on a DOF, e.g. --quadratic-damping Roll 2e10 "
+    "(kg m^2/rad for roll, kg/m for translations; repeatable; the run then uses the "
+    "Runge-Kutta path).",
+)
+@click.option(
+    "--start",
+    type=click.Choice(["steady", "rest"]),
+    default="steady",
+    show_default=True,
+    help="steady: start on the stationary solution (no transient); rest: from rest.",
+)
+@click.option(
+    "--accurate",
+    is_flag=True,
+    help="Fit the radiation model for closer agreement with the data's RAOs: within "
+    "0.2 % of each DOF's peak instead of 1 % (a few more states).",
+)
+@click.option(
+    "--speed",
+    type=finite("m/s"),
+    default=None,
+    metavar="M/S",
+    help="Forward speed of DATA. The waves are met at the encounter frequencies; when DATA "
+    "hold zero speed too, the speed terms (U D1, U G1 + U^2 G2, U K1, Hjulstad) are kept "
+    "apart from the fitted memory (cummins.radiation.speed.vessel_at_speed).",
+)
+@click.option(
+    "--dof",
+    "dofs",
+    multiple=True,
+    metavar="NAME",
+    help="Simulate only these DOFs (repeatable), e.g. --dof Heave --dof Pitch: the vertical "
+    "plane of a ship in head or following seas.",
+)
+@click.option(
+    "--soft-springs",
+    type=positive("s"),
+    default=None,
+    metavar="S",
+    help="At speed: springs of this period in surge, sway and yaw (with 0.7 of critical "
+    "damping), cancelling the yaw Munk moment first: what the autopilot does; without them "
+    "a free 6-DOF ship at speed is unstable and refused.",
+)
+@click.option(
+    "--plot",
+    "plot_dir",
+    type=click.Path(file_okay=False),
+    default=None,
+    help="PNGs: time series and response spectra against the frequency domain.",
+)
+@click.option("--force", is_flag=True, help="Overwrite the output files.")
+@reports_errors
+def simulate_command(
+    path,
+    format_,
+    rho,
+    g,
+    ulen,
+    output,
+    hs,
+    tp,
+    spectrum,
+    gamma,
+    heading,
+    spreading,
+    directions,
+    components,
+    duration,
+    dt,
+    seed,
+    regular,
+    wave_period,
+    wave_amplitude,
+    viscous_damping,
+    quadratic_damping,
+    start,
+    accurate,
+    speed,
+    dofs,
+    soft_springs,
+    plot_dir,
+    force,
+):
+    """Simulate the vessel in waves: the Cummins equation with a state-space fluid memory.
+
+    \b
+    DATA is a hydrodynamic database (any format cummins reads; the radiation model is
+    fitted on the fly, passive) or MODEL a model file from `cummins fit` (its data are
+    read from the file it was fitted to). The excitation is the first-order wave force
+    of the database; the run holds motion and velocity (time, dof) about the database's
+    reference point and axes, and the wave elevation at the origin.
+
+    \b
+    Examples:
+      cummins simulate tanker.1 --hs 4 --tp 10 --heading 150 --duration 1800 -o run.nc
+      cummins simulate tanker.1 --regular --wave-period 9 --wave-amplitude 1 -o reg.nc
+      cummins simulate s175.mat --speed 10.29 --dof Heave --dof Pitch --hs 4 --tp 10 -o s.nc
+    """
+    from cummins.seakeeping import waves as wv
+    from cummins.timedomain.simulate import quadratic_damping_force, simulate_waves
+    from cummins.vessel import vessel_from_hydrodb
+
+    if regular:
+        if wave_period is None:
+            raise click.UsageError("--regular needs --wave-period")
+    elif hs is None or tp is None:
+        raise click.UsageError("irregular waves need --hs and --tp (or use --regular)")
+    prepare_outputs(output, force=force, folders=[plot_dir])
+    # the run's size before any work: the states are at least the DOFs' positions and
+    # velocities (the fluid memory adds its own, checked again once it is fitted)
+    check_simulation_size(duration, dt, 12, 6, option="--duration")
+    model, data_path = model_and_data(path)
+    data = read_hydrodb(data_path, format_, rho, g, ulen)
+    if dofs:
+        from cummins.hydrodb import select_dofs
+
+        unknown = [d for d in dofs if d not in [str(x) for x in data.influenced_dof.values]]
+        if unknown:
+            raise click.BadParameter(
+                f"unknown DOF {unknown[0]!r}; the data have "
+                + ", ".join(str(x) for x in data.influenced_dof.values),
+                param_hint="--dof",
+            )
+        data = select_dofs(data, list(dofs))
+    ds = select_speed(data, speed)
+    from cummins.vessel import missing_data_message
+
+    missing_data_message(ds, ("inertia_matrix", "hydrostatic_stiffness"), "a simulation")
+    at_speed = (
+        model is None
+        and speed
+        and "forward_speed" in data.dims
+        and bool(np.any(np.abs(data.forward_speed.values) <= 1e-3))
+    )
+    check_simulation_size(
+        duration, dt, 2 * ds.sizes["influenced_dof"], ds.sizes["influenced_dof"], "--duration"
+    )
+    if soft_springs is not None and not at_speed:
+        raise click.UsageError(
+            "--soft-springs applies to a ship at --speed U > 0 whose data hold zero speed too"
+        )
+    labels = [str(d) for d in ds.influenced_dof.values]
+    b_v = viscous_damping_values(viscous_damping, labels)
+    b_q = viscous_damping_values(quadratic_damping, labels, "--quadratic-damping")
+    direction = np.radians(heading)
+    if regular:
+        sea = wv.regular_wave(wave_amplitude, wave_period, direction)
+        title = f"regular waves, amplitude {wave_amplitude:g} m, period {wave_period:g} s"
+    else:
+        shape = wv.wave_spectrum(spectrum, hs, tp, gamma=gamma if spectrum == "jonswap" else None)
+        lo, hi = wv.energy_range(shape)
+        w_data = ds.omega.values
+        band = (max(lo, float(w_data[0])), min(hi, float(w_data[-1])))
+        if band != (lo, hi):
+            console.print(
+                f"note: wave components limited to the data's frequencies, {band[0]:.4g} to "
+                f"{band[1]:.4g} rad/s (the spectrum's energy lies within {lo:.4g} to "
+                f"{hi:.4g} rad/s)"
+            )
+        sea = wv.irregular_waves(
+            shape,
+            duration=duration,
+            omega_min=band[0],
+            omega_max=band[1],
+            n_components=components,
+            direction=direction,
+            spreading=spreading,
+            n_directions=directions if spreading else 1,
+            seed=seed,
+        )
+        title = f"{spectrum}, Hs {hs:g} m, Tp {tp:g} s, {len(sea)} components"
+        if seed is None:
+            console.print(f"seed {sea.seed} drawn (repeat this sea with --seed {sea.seed})")
+    from cummins.radiation.fit import MOTION_ACCURACY
+
+    fit_options = MOTION_ACCURACY if accurate and model is None else {}
+    with console.status("fitting the radiation model" if model is None else "preparing"):
+        if at_speed:
+            from cummins.radiation.speed import vessel_at_speed
+
+            vessel = vessel_at_speed(
+                data, speed, soft_springs=soft_springs, viscous_damping=b_v, **fit_options
+            )
+        else:
+            vessel = vessel_from_hydrodb(ds, model, viscous_damping=b_v, **fit_options)
+    with progress_bar() as bar:
+        task = bar.add_task(f"simulating {duration:g} s, {title}, heading {heading:g}°", total=1.0)
+        run = simulate_waves(
+            vessel,
+            ds,
+            sea,
+            duration=duration,
+            dt=dt,
+            initial=start,
+            nonlinear_force=quadratic_damping_force(vessel.dofs, b_q) if b_q else None,
+            progress=lambda fraction: bar.update(task, completed=fraction),
+        )
+    if sea.seed is not None:
+        run.attrs["seed"] = int(sea.seed)  # an int64: HDF5 stores it; --seed repeats the run
+    run.attrs.update(
+        {
+            "heading_deg": heading,
+            "sea": title,
+            "source_file": str(ds.attrs.get("source_file", "")),
+            "radiation_model_order": vessel.radiation.total_order,
+            **{f"quadratic_damping_{d}": b for d, b in (b_q or {}).items()},
+        }
+    )
+    _summary(run, regular=regular)
+    from cummins.io.netcdf import save_netcdf
+
+    save_netcdf(run, output)
+    console.print(f"wrote {output}")
+    if plot_dir:
+        from cummins.cli.pipeline import write_simulation_plots
+
+        for file in write_simulation_plots(run, vessel, ds, sea, Path(plot_dir), force=force):
+            console.print(f"wrote {file}")
+
+
+def _summary(run, regular: bool = False) -> None:
+    """Per DOF: the significant amplitude 2σ of an irregular sea, or the amplitude of the
+    steady oscillation in a regular wave (half the range over the last wave period, or
+    over the whole run when it is shorter), the largest |ξ| and the unit."""
+    from rich.table import Table
+
+    table = Table(title=f"{run.attrs.get('sea', '')}: {run.time.values[-1]:g} s")
+    first = "amplitude" if regular else "significant amplitude (2σ)"
+    for column in ("DOF", first, "max |ξ|", "unit"):
+        table.add_column(column, justify="right")
+    units = run.motion.attrs.get("units", "").split(" | ")
+    t = run.time.values
+    period = float(run.attrs.get("tp", np.nan)) if regular else np.nan
+    last = t >= t[-1] - period if np.isfinite(period) and period < t[-1] else np.ones(t.size, bool)
+    for k, dof in enumerate(run.dof.values):
+        xi = run.motion.values[:, k]
+        size = 0.5 * np.ptp(xi[last]) if regular else 2 * xi.std()
+        table.add_row(
+            str(dof),
+            f"{size:.4g}",
+            f"{np.abs(xi).max():.4g}",
+            units[k] if k < len(units) else "",
+        )
+    console.print(table)
+    console.print(
+        f"energy: in {run.attrs['energy_input']:.4g} J, radiated "
+        f"{run.attrs['energy_radiated']:.4g} J, viscous {run.attrs['energy_viscous']:.4g} J, "
+        "balance error "
+        f"{run.attrs['energy_relative_residual']:.2g}"
+    )

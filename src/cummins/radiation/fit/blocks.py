@@ -1,0 +1,159 @@
+"""The common-pole identification of a whole model (``method="vf"``, the default): every
+block of coupled DOFs fitted with common poles and made passive as fitted
+(:mod:`cummins.radiation.fit.vector`), assembled as :class:`~cummins.radiation.model.MemoryBlock`
+models
+with their per-pair metrics and the model's motion error.
+"""
+
+from __future__ import annotations
+
+import time
+from collections.abc import Callable
+from dataclasses import replace
+
+import numpy as np
+
+from cummins.errors import FitError
+from cummins.radiation.fit import vector
+from cummins.radiation.fit.data import FitInput
+from cummins.radiation.fit.metrics import coupling_metrics
+from cummins.radiation.fit.mimo import failure_targets, fit_failures, with_motion_note
+from cummins.radiation.fit.options import MOTION_AIM, FitOptions
+from cummins.radiation.model import MemoryBlock, RadiationModel
+from cummins.radiation.passivity import passivity_test
+
+
+def fit_blocks(
+    inp: FitInput, options: FitOptions, say: Callable[[str], None] = lambda message: None
+) -> RadiationModel:
+    """Every block of coupled DOFs of the prepared data fitted with common poles (module
+    docstring); ``attrs`` hold ``mimo_passive``, the motion error and ``failures``."""
+    labels, w, keep_dof, pairs = inp.labels, inp.data.omega.values, inp.keep_dof, inp.pairs
+    added_mass, damping, measured = inp.added_mass, inp.damping, inp.measured
+    a_inf = None if inp.a_inf_mode == "fit" else inp.a_inf
+    prior = (
+        0.5 * (inp.ogilvie + inp.ogilvie.T),
+        0.5 * (inp.ogilvie_spread + inp.ogilvie_spread.T),
+    )
+    sensitivity, attrs = inp.sensitivity, inp.attrs
+    r2, r2_coupling, max_order = options.r2, options.coupling_target, options.max_order
+    orders, motion_tol, passive = options.orders, options.motion_tol, options.passivity == "mimo"
+    n = len(labels)
+    positive = w > 0
+    omega = w[positive]
+    a_data, b_data = added_mass[positive], damping[positive]
+    keep = keep_dof[positive]
+    # A∞ of what no block models stays the data's row, else Ogilvie's estimate
+    inf = prior[0].copy() if a_inf is None else 0.5 * (a_inf + a_inf.T)
+    k_data = None
+    if sensitivity is not None:
+        rows = sensitivity.compared_frequencies()
+        wk = sensitivity.omega[rows]
+        k_data = measured.damping[rows] + 1j * wk[:, None, None] * measured.added_mass[rows]
+    motion_aim = MOTION_AIM * motion_tol if sensitivity is not None else None
+    blocks, notes = [], []
+    for dofs, elements in vector.block_groups(n, pairs):
+        say("block " + "-".join(labels[d] for d in dofs))
+        used = np.stack([keep[:, i] & keep[:, j] for i, j in elements], axis=1)
+        data = vector.block_data(
+            dofs,
+            elements,
+            omega,
+            a_data,
+            b_data,
+            used,
+            added_mass_inf=None if a_inf is None else inf,
+            motion_weight=None if sensitivity is None else sensitivity.coupling_weight,
+            motion_tol=motion_tol,
+            prior=prior,
+        )
+
+        def motion(block, dofs=dofs):
+            if k_data is None:
+                return 0.0
+            k = k_data.copy()
+            local = block.response(wk)
+            a_block = np.zeros((len(dofs), len(dofs)))
+            for e, (i, j) in enumerate(block.elements):
+                ii, jj = dofs.index(i), dofs.index(j)
+                a_block[ii, jj] = a_block[jj, ii] = block.added_mass_inf[e]
+            k[:, np.asarray(dofs)[:, None], np.asarray(dofs)[None, :]] = (
+                local + 1j * wk[:, None, None] * a_block
+            )
+            return sensitivity.error_of(k, np.zeros((n, n)))[0]
+
+        fixed = [
+            (orders or {}).get((i, j), (orders or {}).get((j, i)))
+            for i, j in elements
+            if (orders or {}).get((i, j), (orders or {}).get((j, i)))
+        ]
+        started = time.perf_counter()
+        name = "-".join(labels[d] for d in dofs)
+        try:
+            fitted, _, block_notes = vector.identify_block(
+                data,
+                r2=r2,
+                r2_coupling=r2_coupling,
+                max_count=max_order,
+                motion=motion if k_data is not None else None,
+                motion_aim=motion_aim,
+                fixed_count=max(fixed) if fixed else None,
+                passive=passive,
+            )
+        except FitError as exc:
+            raise FitError(f"{name}: {exc}") from None
+        plain_block = vector.fit_residues_at(data, fitted.poles) if passive else None
+        a, b, c = fitted.realization()
+        for e, (i, j) in enumerate(elements):
+            inf[i, j] = inf[j, i] = fitted.added_mass_inf[e]
+        note = "; ".join(block_notes)
+        block = MemoryBlock(dofs, a, b, c, "vf", {}, note)
+        metrics = {}
+        before = None
+        if plain_block is not None:
+            before = vector.score_block(plain_block, data, r2=r2, r2_coupling=r2_coupling)
+        for e, (i, j) in enumerate(elements):
+            use = used[:, e]
+            view = block.element(i, j)
+            m = coupling_metrics(
+                view,
+                omega[use],
+                a_data[use, i, j],
+                b_data[use, i, j],
+                inf[i, j],
+                time=measured.time,
+                kernel=measured.kernel[:, i, j],
+            )
+            m["n_excluded_frequencies"] = int((~use).sum())
+            m["common_poles"] = fitted.poles.count
+            if before is not None:
+                m["r2_added_mass_before"], m["r2_damping_before"] = before.r2[(i, j)]
+            metrics[(i, j)] = m
+        elapsed = time.perf_counter() - started
+        for m in metrics.values():
+            m["elapsed_s"] = elapsed
+        blocks.append(replace(block, metrics=metrics))
+        notes += [f"{name}: {x}" for x in block_notes]
+    model = RadiationModel(
+        tuple(labels),
+        (),
+        inf,
+        {**attrs, "data_notes": [*attrs.get("data_notes", []), *notes]},
+        tuple(blocks),
+    )
+    extra: dict = {}
+    if passive:
+        report = passivity_test(model)
+        extra["mimo_passive"] = bool(report.passive)
+    if sensitivity is not None:
+        error, per_dof = sensitivity.model_error(model)
+        extra.update(
+            motion_error=float(error),
+            motion_error_by_dof=[float(x) for x in per_dof],
+            motion_target=float(motion_tol),
+        )
+    model = replace(model, attrs={**model.attrs, **extra})
+    if sensitivity is not None:
+        model = with_motion_note(model, motion_tol)
+    failures = fit_failures(model, **failure_targets(options, sensitivity))
+    return replace(model, attrs={**model.attrs, "failures": failures})

@@ -1,0 +1,439 @@
+"""The data an identification is fitted to: the first stage of
+:func:`cummins.radiation.fit.fit_radiation`, a function a user can call (:func:`prepare_fit`).
+
+* **Frequencies**: the fitting range; a suspect frequency
+  (:func:`cummins.repair.find_suspect_frequencies`, run on each DOF's own curves) costs
+  that point, and only to the couplings of the DOFs whose curves it spoils; the data
+  bridged over each coupling's left-out points for what needs every frequency (Ogilvie's
+  A∞, K(t), the MIMO passivity step, metrics).
+* **A∞**: the solver's ω = ∞ row when present and consistent with the finite
+  frequencies (:func:`inconsistent_added_mass_inf`), else estimated; Ogilvie's estimate
+  and its spread as the prior.
+* **What the fit aims at**: the motion sensitivity (:mod:`cummins.radiation.fit.motion`) when the
+  data hold the inertia and the restoring.
+* **Couplings**: the significant ones; a pair with A_ij ≠ A_ji beyond 10 % is named in
+  a warning (:func:`asymmetric_pairs`).
+"""
+
+from __future__ import annotations
+
+import warnings
+from dataclasses import dataclass, field
+from typing import Any
+
+import numpy as np
+import xarray as xr
+from numpy.typing import NDArray
+
+from cummins.check import copied_dofs
+from cummins.errors import CumminsWarning, FitError, HydroDataError
+from cummins.hydrodb import dof_matrix, single_speed
+from cummins.radiation.fit.motion import MotionSensitivity, motion_sensitivity
+from cummins.radiation.fit.options import FitOptions
+from cummins.radiation.model import RadiationModel
+from cummins.radiation.retardation import added_mass_inf as estimate_added_mass_inf
+from cummins.radiation.retardation import default_retardation_function, significant_couplings
+from cummins.repair import (
+    find_suspect_frequencies,
+    limit_frequency_range,
+    remove_suspect_frequencies,
+)
+from cummins.validation import guard_hydro_data
+
+
+@dataclass(frozen=True)
+class FitInput:
+    """The prepared data of an identification (:func:`prepare_fit`).
+
+    Attributes
+    ----------
+    ds
+        The data as given (one forward speed).
+    raw, data
+        The data at the fitted frequencies, and the same bridged over each coupling's
+        left-out points.
+    keep_dof
+        (omega, n_dofs): which frequencies each DOF keeps.
+    labels
+        DOF labels.
+    measured
+        :class:`FitData` of ``data`` (symmetric parts, K(t)).
+    added_mass, damping
+        Symmetric parts of ``raw`` (omega, n, n).
+    a_inf_mode
+        ``"data"``, ``"fit"`` or ``"ogilvie"``: how A∞ is had.
+    a_inf
+        The data's A∞ (mode ``"data"``) or Ogilvie's estimate.
+    ogilvie, ogilvie_spread
+        Ogilvie's A∞ and its spread over frequency (at least 0.5 %).
+    weighting
+        The weighting resolved (``"motion"``, ``"uniform"``, ``"response"``).
+    sensitivity
+        The motion sensitivity (``weighting="motion"``), else None.
+    pairs, negligible
+        The significant couplings (i ≤ j) and the rest.
+    attrs
+        The provenance the model will carry (source, options, what was left out, notes).
+    """
+
+    ds: xr.Dataset
+    raw: xr.Dataset
+    data: xr.Dataset
+    keep_dof: NDArray[np.bool_]
+    labels: tuple[str, ...]
+    measured: FitData
+    added_mass: NDArray[np.float64]
+    damping: NDArray[np.float64]
+    a_inf_mode: str
+    a_inf: NDArray[np.float64]
+    ogilvie: NDArray[np.float64]
+    ogilvie_spread: NDArray[np.float64]
+    weighting: str
+    sensitivity: MotionSensitivity | None
+    pairs: list[tuple[int, int]]
+    negligible: list[tuple[int, int]]
+    attrs: dict[str, Any] = field(default_factory=dict)
+
+
+def prepare_fit(ds: xr.Dataset, options: FitOptions) -> FitInput:
+    """The first stage of an identification: the data selected and prepared as the fit
+    will use them (module docstring). ``options`` as checked by
+    :meth:`~cummins.radiation.fit.options.FitOptions.checked`."""
+    ds = single_speed(ds)
+    guard_hydro_data(ds)  # non-finite or absurd values: FitError naming the DOF pair
+    method = options.method
+    raw, keep_dof, data_notes = _fit_data(
+        ds, options.omega_min, options.omega_max, options.exclude_suspect
+    )
+    # the data with each coupling's suspect points bridged: for Ogilvie's A∞, K(t), the
+    # MIMO passivity step and the metrics after it
+    # (not extrapolated: frequencies beyond those every DOF keeps are left out there)
+    common = np.flatnonzero(keep_dof.all(axis=1))
+    if common.size < MIN_KEPT_FREQUENCIES:
+        common = np.arange(raw.sizes["omega"])
+    inside = np.arange(common[0], common[-1] + 1)
+    clean = raw.isel(omega=common)
+    raw, keep_dof = raw.isel(omega=inside), keep_dof[inside]
+    data = _bridged_dataset(raw, keep_dof)
+    excluded = [float(x) for x in raw.omega.values[~keep_dof.all(axis=1)]]
+    excluded += [float(x) for x in ds.omega.values if x not in set(raw.omega.values)]
+    excluded = sorted(excluded)
+    joint = method in ("fd", "vf")
+    a_inf_mode = options.added_mass_inf
+    if a_inf_mode == "auto":
+        a_inf_mode = "data" if "added_mass_inf" in data else ("fit" if joint else "ogilvie")
+    if a_inf_mode == "data" and "added_mass_inf" not in data:
+        raise HydroDataError(
+            "the data have no infinite-frequency added mass",
+            path=ds.attrs.get("source_file"),
+            hint="use added_mass_inf='fit' or 'ogilvie'",
+        )
+    if a_inf_mode == "fit" and not joint:
+        raise FitError("the joint A∞ estimate needs method='fd'; use added_mass_inf='ogilvie'")
+    ogilvie_estimate = estimate_added_mass_inf(
+        clean.drop_vars("added_mass_inf", errors="ignore"), method="ogilvie"
+    )
+    ogilvie = ogilvie_estimate.values
+    # uncertainty of Ogilvie's estimate: its spread over frequency, at least 0.5 %
+    ogilvie_spread = np.maximum(ogilvie_estimate.spread.values, 0.005 * np.abs(ogilvie))
+    if options.added_mass_inf == "auto" and a_inf_mode == "data":
+        inconsistent = inconsistent_added_mass_inf(clean, ogilvie, ogilvie_spread)
+        if inconsistent:
+            a_inf_mode = "fit" if joint else "ogilvie"
+            data_notes.append(
+                "the data's infinite-frequency added mass disagrees with its finite "
+                f"frequencies ({'; '.join(inconsistent)}): not used, A∞ estimated "
+                f"({a_inf_mode}); pass added_mass_inf='data' to use it anyway"
+            )
+    a_inf = dof_matrix(data, "added_mass_inf") if a_inf_mode == "data" else ogilvie.copy()
+    labels = tuple(str(d) for d in data.influenced_dof.values)
+    for message in asymmetric_pairs(data):
+        warnings.warn(message, CumminsWarning, stacklevel=3)
+        data_notes.append(message)
+    weighting = options.weighting
+    if weighting == "auto":
+        known = {"inertia_matrix", "hydrostatic_stiffness"} <= set(data)
+        weighting = "motion" if known and joint else "uniform"
+    sensitivity = None
+    if weighting == "motion":
+        sensitivity = motion_sensitivity(data, added_mass_inf=a_inf)
+        if sensitivity is None:
+            raise FitError(
+                "weighting='motion' needs inertia_matrix and hydrostatic_stiffness in the data",
+                hint="use weighting='uniform' or data with the rigid-body inertia and restoring",
+            )
+    pairs = significant_couplings(data, options.threshold)
+    n = len(labels)
+    negligible = [(i, j) for i in range(n) for j in range(i, n) if (i, j) not in pairs]
+    a_raw = dof_matrix(raw, "added_mass")
+    b_raw = dof_matrix(raw, "radiation_damping")
+    w = data.omega.values
+    attrs = {
+        "source_file": str(ds.attrs.get("source_file", "")),
+        "source_format": str(ds.attrs.get("source_format", "")),
+        "history": str(data.attrs.get("history", "")),
+        "axis_convention": str(ds.attrs.get("axis_convention", "z-up")),
+        "reference_point": np.asarray(
+            ds.attrs.get("reference_point", (0.0, 0.0, 0.0)), dtype=float
+        ),
+        "method": method,
+        "r2_target": options.r2,
+        "r2_coupling_target": options.coupling_target,
+        "max_order": options.max_order,
+        "threshold": options.threshold,
+        "added_mass_inf_method": a_inf_mode,
+        "excluded_frequencies": [float(x) for x in excluded],
+        "negligible_couplings": [
+            labels[i] if i == j else f"{labels[i]}-{labels[j]}" for i, j in negligible
+        ],
+        "data_notes": data_notes
+        + [
+            f"{labels[i]}: no radiation damping in the data, not modelled"
+            for i, j in negligible
+            if i == j
+        ],
+        "omega_fit_min": float(w[0]),
+        "omega_fit_max": float(w[-1]),
+    }
+    return FitInput(
+        ds=ds,
+        raw=raw,
+        data=data,
+        keep_dof=keep_dof,
+        labels=labels,
+        measured=fit_data(data),
+        added_mass=0.5 * (a_raw + np.swapaxes(a_raw, 1, 2)),
+        damping=0.5 * (b_raw + np.swapaxes(b_raw, 1, 2)),
+        a_inf_mode=a_inf_mode,
+        a_inf=a_inf,
+        ogilvie=ogilvie,
+        ogilvie_spread=ogilvie_spread,
+        weighting=weighting,
+        sensitivity=sensitivity,
+        pairs=pairs,
+        negligible=negligible,
+        attrs=attrs,
+    )
+
+
+#: A pair whose A_ij and A_ji (or B) differ by more than this fraction of the larger one
+#: (and of the diagonal scale √(X_ii X_jj)) is named: the fit uses their average.
+ASYMMETRY_TOL = 0.1
+
+
+#: The data's A∞_ii is taken as inconsistent with A(ω) when it differs from Ogilvie's
+#: estimate by more than this fraction of the largest |A_ii(ω)| and 5 spreads of the
+#: estimate (AQWA's "100 rad/s" row of the PEND hull: 52.1 kg where A(18.8 rad/s) is
+#: 2.2 kg and Ogilvie's estimate 3.4 kg; the rows of the MSS tanker and of 7 corpus
+#: WAMIT/AQWA runs pass).
+A_INF_INCONSISTENT = 0.25
+
+
+def inconsistent_added_mass_inf(data: xr.Dataset, ogilvie, spread) -> list[str]:
+    """The diagonal terms whose ω = ∞ row contradicts the finite frequencies
+    (:data:`A_INF_INCONSISTENT`), as ``"Surge 52.1 vs 2.04"``."""
+    if "added_mass_inf" not in data:
+        return []
+    labels = [str(d) for d in data.influenced_dof.values]
+    row = np.diag(dof_matrix(data, "added_mass_inf"))
+    a = np.abs(np.diagonal(dof_matrix(data, "added_mass"), axis1=1, axis2=2)).max(axis=0)
+    out = []
+    for i, label in enumerate(labels):
+        gap = abs(row[i] - ogilvie[i, i])
+        if gap > A_INF_INCONSISTENT * a[i] and gap > 5 * spread[i, i]:
+            out.append(f"{label} {row[i]:.4g} vs {ogilvie[i, i]:.4g}")
+    return out
+
+
+def asymmetric_pairs(data: xr.Dataset) -> list[str]:
+    """One message per DOF pair (i < j) whose A_ij ≠ A_ji or B_ij ≠ B_ji at zero speed
+    beyond :data:`ASYMMETRY_TOL`: the worst frequency and both values. The fit uses
+    ½(X_ij + X_ji) (the physics wants them equal); so large a difference usually means a
+    DOF order or sign convention mixed up between the two halves of the matrix."""
+    out = []
+    labels = [str(d) for d in data.influenced_dof.values]
+    w = data.omega.values
+    for name, symbol in (("added_mass", "A"), ("radiation_damping", "B")):
+        x = dof_matrix(data, name)
+        diag = np.abs(np.diagonal(x, axis1=1, axis2=2)).max(axis=0)
+        for i in range(len(labels)):
+            for j in range(i + 1, len(labels)):
+                diff = np.abs(x[:, i, j] - x[:, j, i])
+                scale = np.maximum(np.abs(x[:, i, j]), np.abs(x[:, j, i]))
+                floor = ASYMMETRY_TOL * np.sqrt(diag[i] * diag[j])
+                bad = (diff > ASYMMETRY_TOL * scale) & (diff > floor)
+                if bad.any():
+                    k = int(np.argmax(np.where(bad, diff, -1.0)))
+                    out.append(
+                        f"{symbol}[{labels[i]}, {labels[j]}] = {x[k, i, j]:.5g} but "
+                        f"{symbol}[{labels[j]}, {labels[i]}] = {x[k, j, i]:.5g} at "
+                        f"{w[k]:.4g} rad/s ({int(bad.sum())} frequencies): the fit uses their "
+                        "average; check the DOF order and signs of the data"
+                    )
+    return out
+
+
+@dataclass(frozen=True)
+class FitData:
+    """What the couplings of a model are measured against: the symmetric parts of the data.
+
+    Attributes
+    ----------
+    omega
+        The fitted frequencies, rad/s.
+    added_mass, damping
+        ½(X + Xᵀ) of A(ω) and B(ω), shape (len(omega), n_dofs, n_dofs).
+    time, kernel
+        K(t) of the symmetric damping on the default time grid (≤ 500 points), for the
+        R² of K(t).
+    """
+
+    omega: NDArray[np.float64]
+    added_mass: NDArray[np.float64]
+    damping: NDArray[np.float64]
+    time: NDArray[np.float64]
+    kernel: NDArray[np.float64]
+
+
+def fit_data(data: xr.Dataset) -> FitData:
+    """:class:`FitData` of a ``HydroDB`` already restricted to the fitted frequencies."""
+    b = data.radiation_damping
+    swapped = b.rename(influenced_dof="radiating_dof", radiating_dof="influenced_dof")
+    kernel = default_retardation_function(
+        data.assign(radiation_damping=(0.5 * (b + swapped)).transpose(*b.dims)),
+        max_points=500,
+    ).transpose("time", "influenced_dof", "radiating_dof")
+    a_all, b_all = dof_matrix(data, "added_mass"), dof_matrix(data, "radiation_damping")
+    return FitData(
+        data.omega.values,
+        0.5 * (a_all + np.swapaxes(a_all, 1, 2)),
+        0.5 * (b_all + np.swapaxes(b_all, 1, 2)),
+        kernel.time.values,
+        kernel.values,
+    )
+
+
+def model_fit_data(model: RadiationModel, ds: xr.Dataset) -> FitData:
+    """The data a model was fitted to, as :func:`fit_radiation` used them: its DOFs, the
+    frequencies in ``omega_fit_min`` … ``omega_fit_max`` less its ``excluded_frequencies``
+    (the model's attributes), one forward speed."""
+    if "forward_speed" in ds.dims:
+        ds = ds.isel(forward_speed=0)
+    dofs = list(model.dofs)
+    try:
+        ds = ds.sel(influenced_dof=dofs, radiating_dof=dofs)
+    except KeyError as exc:
+        raise FitError(f"the data do not hold the model's DOFs {dofs}") from exc
+    w = ds.omega.values
+    keep = np.ones(w.size, dtype=bool)
+    lo, hi = model.attrs.get("omega_fit_min"), model.attrs.get("omega_fit_max")
+    if lo is not None and hi is not None:
+        keep &= (w >= float(lo) * (1 - 1e-12)) & (w <= float(hi) * (1 + 1e-12))
+    for excluded in model.attrs.get("excluded_frequencies", []) or []:
+        keep &= ~np.isclose(w, float(excluded), rtol=1e-12, atol=0.0)
+    if not keep.any():
+        raise FitError("the data have no frequency in the model's fitted range")
+    return fit_data(ds.isel(omega=np.flatnonzero(keep)))
+
+
+def response_weights(data: xr.Dataset) -> NDArray[np.float64]:
+    """ω/|Z_ii(ω)| per frequency and DOF (see ``weighting`` of :func:`fit_radiation`)."""
+    for name in ("inertia_matrix", "hydrostatic_stiffness"):
+        if name not in data:
+            raise FitError(
+                f"weighting='response' needs {name} in the data",
+                hint="use weighting='uniform' or data with the rigid-body inertia and restoring",
+            )
+    w = data.omega.values
+    a = np.diagonal(dof_matrix(data, "added_mass"), axis1=1, axis2=2)
+    b = np.diagonal(dof_matrix(data, "radiation_damping"), axis1=1, axis2=2)
+    m = np.diag(dof_matrix(data, "inertia_matrix"))
+    c = np.diag(dof_matrix(data, "hydrostatic_stiffness"))
+    z = np.abs(-(w**2)[:, None] * (m + a) + 1j * w[:, None] * b + c)
+    sensitivity = w[:, None] / np.maximum(z, 1e-300)
+    return sensitivity / np.sqrt(np.mean(sensitivity**2, axis=0))
+
+
+def _fit_data(
+    ds, omega_min, omega_max, exclude_suspect
+) -> tuple[xr.Dataset, NDArray[np.bool_], list[str]]:
+    """The data to fit, which frequencies each DOF keeps (omega, dof) and what the user
+    should know.
+
+    A suspect frequency (:func:`cummins.repair.find_suspect_frequencies`, run on each
+    DOF's own curves) costs that point, and only to the couplings of the DOFs whose curves
+    it spoils: the other DOFs keep it, and no frequency above it is dropped with it.
+    """
+    data = limit_frequency_range(ds, omega_min, omega_max)
+    notes = []
+    outside = ds.sizes["omega"] - data.sizes["omega"]
+    if outside:
+        notes.append(f"{outside} frequencies outside the fitting range left out")
+    labels = [str(d) for d in data.influenced_dof.values]
+    w = data.omega.values
+    keep = np.ones((w.size, len(labels)), dtype=bool)
+    if exclude_suspect == "above_first":  # the rule of the previous default
+        cleaned, suspects = remove_suspect_frequencies(data, above_first=True)
+        for s in suspects:
+            notes.append(f"{s.omega:.4g} rad/s left out: {s.quantity}, {s.reason}")
+        dropped = ~np.isin(w, cleaned.omega.values)
+        keep[dropped, :] = False
+        if dropped.sum() > len(suspects):
+            notes.append(
+                f"{int(dropped.sum()) - len(suspects)} more frequencies above "
+                f"{min(s.omega for s in suspects):.4g} rad/s left out with it"
+            )
+    elif exclude_suspect:
+        for s in find_suspect_frequencies(data):
+            notes.append(f"{s.omega:.4g} rad/s left out: {s.quantity}, {s.reason}")
+        for d, label in enumerate(labels):
+            one = data.sel(influenced_dof=[label], radiating_dof=[label])
+            for s in find_suspect_frequencies(one):
+                keep[np.isclose(w, s.omega, rtol=1e-12, atol=0.0), d] = False
+        for d, label in enumerate(labels):
+            dropped = int((~keep[:, d]).sum())
+            if dropped and keep[:, d].sum() < MIN_KEPT_FREQUENCIES:
+                keep[:, d] = True
+                notes.append(
+                    f"{label}: {dropped} of {w.size} frequencies look suspect; all kept, "
+                    "too few would be left (check the data: cummins check)"
+                )
+            elif dropped:
+                notes.append(
+                    f"{label}: {dropped} suspect frequencies left out of its couplings "
+                    f"({w[~keep[:, d]].min():.4g}–{w[~keep[:, d]].max():.4g} rad/s)"
+                )
+    for finding in copied_dofs(data):
+        notes.append(f"{finding.message}: {finding.advice}")
+    return data, keep, notes
+
+
+#: A DOF keeps all its frequencies when fewer than this many would be left.
+MIN_KEPT_FREQUENCIES = 8
+
+
+def _bridged_dataset(data: xr.Dataset, keep: NDArray) -> xr.Dataset:
+    """``data`` with A(ω) and B(ω) bridged over each coupling's suspect points
+    (:func:`_bridged`)."""
+    if keep.all():
+        return data
+    w = data.omega.values
+    out = data
+    for name in ("added_mass", "radiation_damping"):
+        var = data[name].transpose("omega", "influenced_dof", "radiating_dof")
+        out = out.assign({name: var.copy(data=_bridged(var.values, w, keep))})
+    return out
+
+
+def _bridged(values: NDArray, w: NDArray, keep: NDArray) -> NDArray:
+    """``values`` (omega, n, n) with each coupling's left-out frequencies replaced by the
+    linear interpolation of its kept neighbours (``keep``: omega, n per DOF)."""
+    out = np.array(values, dtype=float, copy=True)
+    n = keep.shape[1]
+    for i in range(n):
+        for j in range(n):
+            mask = keep[:, i] & keep[:, j]
+            if mask.all() or not mask.any():
+                continue
+            out[~mask, i, j] = np.interp(w[~mask], w[mask], values[mask, i, j])
+    return out

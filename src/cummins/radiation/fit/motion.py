@@ -1,0 +1,223 @@
+"""What the motions are sensitive to: the weights that turn an error of the fluid memory
+K_ij(jω) into an error of the motion RAOs.
+
+The frequency-domain equation of motion is Z(ω) X = F with
+Z = −ω²(M_RB + A(ω)) + jω(B(ω) + B_v) + C (Falnes (2002) eq. 5.8; Unneland (2007)
+eq. 2.30). A model K̂ = K + δK of K(jω) = B + jω(A − A∞) changes it by jω δK, and to
+first order
+
+    δX = −H (jω δK) X,     H = Z⁻¹,
+
+so that the error of DOF m's motion in the load case c, relative to that motion's peak
+over frequency (the issue-16 RAO error), is bounded by Σ_ij W_ij(ω) |δK_ij(ω)| with
+
+    W_ij(ω) = max_{m, c} ω |H_mi(ω)| |X_jc(ω)| / max_ω' |X_mc(ω')|.
+
+The load cases c are the wave excitation at up to four headings when the data have it,
+otherwise a unit force on each DOF. A symmetric pair K_ij = K_ji, modelled once, weighs
+W_ij + W_ji. The weights are computed from the data themselves (A, B, inertia,
+restoring, 2 % of critical damping on each DOF with restoring, as the scoreboard of
+:mod:`cummins.radiation.fit.scorecard` uses), so the fit spends its accuracy where the motions
+react: at the resonances, where B is small and the motion large.
+"""
+
+from __future__ import annotations
+
+import warnings
+from dataclasses import dataclass
+
+import numpy as np
+import xarray as xr
+from numpy.typing import NDArray
+
+from cummins.hydrodb import dof_matrix
+
+#: A motion (DOF, load case) whose peak is below this fraction of the largest peak of
+#: the same DOF over the load cases, or of the largest peak of its kind (translations,
+#: rotations, generalized modes) in the same load case, is not weighed: the sway of a
+#: symmetric ship in head seas is rounding noise.
+NEGLIGIBLE_MOTION = 1e-3
+
+
+def dof_kind(label: str) -> str:
+    """``"translation"``, ``"rotation"`` or ``"mode"``: DOFs whose motions share a unit."""
+    from cummins.hydrodb import is_rigid_body_dof, is_rotation
+
+    if not is_rigid_body_dof(label):
+        return "mode"
+    return "rotation" if is_rotation(label) else "translation"
+
+
+def compared_motions(peak: NDArray, labels) -> NDArray[np.bool_]:
+    """Which (DOF, load case) motions are compared, from their peaks (n_dofs, n_cases):
+    see :data:`NEGLIGIBLE_MOTION`."""
+    peak = np.asarray(peak, dtype=float)
+    kinds = np.array([dof_kind(str(lab)) for lab in labels])
+    out = (peak > 0) & (peak >= NEGLIGIBLE_MOTION * peak.max(axis=1, keepdims=True))
+    for kind in set(kinds):
+        rows = kinds == kind
+        out[rows] &= peak[rows] >= NEGLIGIBLE_MOTION * peak[rows].max(axis=0, keepdims=True)
+    return out
+
+
+#: Headings of the wave excitation used as load cases.
+HEADINGS = 4
+#: Full-scale data (ω_max below this, rad/s) are judged from RAO_OMEGA_MIN up, as the
+#: scoreboard does (:mod:`cummins.radiation.fit.scorecard`).
+FULL_SCALE_OMEGA_MAX = 10.0
+#: rad/s, see FULL_SCALE_OMEGA_MAX.
+RAO_OMEGA_MIN = 0.15
+
+
+@dataclass(frozen=True)
+class MotionSensitivity:
+    """W_ij(ω) of the module docstring at the fitted frequencies.
+
+    Attributes
+    ----------
+    omega
+        Frequencies, rad/s.
+    weight
+        W, shape (len(omega), n, n), in 1/(force/velocity): W_ij |δK_ij| is the
+        contribution of δK_ij to the relative motion error.
+    load
+        What the load cases are (``"wave excitation at 4 headings"``, ``"unit forces"``).
+    """
+
+    omega: NDArray[np.float64]
+    weight: NDArray[np.float64]
+    load: str
+    rigid_body_mass: NDArray[np.float64] | None = None
+    stiffness: NDArray[np.float64] | None = None
+    viscous_damping: NDArray[np.float64] | None = None
+    forces: NDArray[np.complex128] | None = None
+    motions: NDArray[np.complex128] | None = None
+    compared: NDArray[np.bool_] | None = None
+
+    def on(self, omega: NDArray) -> NDArray[np.float64]:
+        """W at ``omega`` (the fitted frequencies: W itself; others interpolated)."""
+        omega = np.asarray(omega, dtype=float)
+        if omega.shape == self.omega.shape and np.allclose(omega, self.omega, rtol=1e-12):
+            return self.weight
+        n = self.weight.shape[1]
+        out = np.empty((omega.size, n, n))
+        for i in range(n):
+            for j in range(n):
+                out[:, i, j] = np.interp(omega, self.omega, self.weight[:, i, j])
+        return out
+
+    def model_error(self, model) -> tuple[float, NDArray[np.float64]]:
+        """The relative motion error of a radiation model against the data's motions on
+        the same load cases: max over cases of max_ω |X_model − X_data| / max_ω |X_data|,
+        per DOF (the issue-16 RAO error at the fitted frequencies; on full-scale data,
+        ω_max < 10 rad/s, those ≥ 0.15 rad/s), and its maximum."""
+        rows = self.compared_frequencies()
+        return self.error_of(model.response(self.omega[rows]), model.added_mass_inf)
+
+    def compared_frequencies(self) -> NDArray[np.bool_]:
+        """Which of :attr:`omega` the motion error compares (on full-scale data,
+        ω_max < 10 rad/s, those ≥ 0.15 rad/s)."""
+        w = self.omega
+        return w >= RAO_OMEGA_MIN if w.max() < FULL_SCALE_OMEGA_MAX else np.ones(w.size, bool)
+
+    def error_of(self, k, added_mass_inf) -> tuple[float, NDArray[np.float64]]:
+        """:meth:`model_error` of K(jω) given at the compared frequencies
+        (:meth:`compared_frequencies`), with its A∞."""
+        rows = self.compared_frequencies()
+        w = self.omega[rows]
+        z = (
+            -(w**2)[:, None, None] * (self.rigid_body_mass + np.asarray(added_mass_inf))
+            + 1j * w[:, None, None] * (self.viscous_damping + k)
+            + self.stiffness
+        )
+        x_model = np.linalg.solve(z, self.forces[rows])
+        x_data = self.motions[rows]
+        peak = np.abs(x_data).max(axis=0)
+        ratio = np.abs(x_model - x_data).max(axis=0) / np.where(peak > 0, peak, 1.0)
+        ratio = np.where(self.compared, ratio, 0.0)
+        per_dof = ratio.max(axis=1)
+        return float(per_dof.max()), per_dof
+
+    def coupling_weight(self, i: int, j: int) -> NDArray[np.float64]:
+        """W of the coupling (i, j) modelled once for both K_ij and K_ji."""
+        if i == j:
+            return self.weight[:, i, i]
+        return self.weight[:, i, j] + self.weight[:, j, i]
+
+    def coupling_error(self, i: int, j: int, delta_k: NDArray) -> float:
+        """max_ω W_ij |δK_ij| (the coupling's share of the relative motion error)."""
+        return float(np.max(self.coupling_weight(i, j) * np.abs(delta_k)))
+
+    def motion_error(self, delta_k: NDArray) -> float:
+        """First-order bound of the relative motion error of a whole model:
+        max over m, c of max_ω |H (jω δK) X| / peak, evaluated with W (the triangle
+        inequality over couplings): max_ω max_i Σ_j W_ij |δK_ij|."""
+        return float(np.max(np.sum(self.weight * np.abs(delta_k), axis=2)))
+
+
+def motion_sensitivity(
+    data: xr.Dataset, *, damping_ratio: float = 0.02, added_mass_inf=None
+) -> MotionSensitivity | None:
+    """The motion sensitivity of ``data`` (fitted frequencies, one speed), or None when
+    the data lack the inertia or the restoring."""
+    from cummins.radiation.fit.scorecard import critical_damping
+
+    if "inertia_matrix" not in data or "hydrostatic_stiffness" not in data:
+        return None
+    w = data.omega.values.astype(float)
+    n = data.sizes["influenced_dof"]
+    a = dof_matrix(data, "added_mass")
+    b = dof_matrix(data, "radiation_damping")
+    m = dof_matrix(data, "inertia_matrix")
+    c = dof_matrix(data, "hydrostatic_stiffness")
+    if "additional_stiffness" in data:
+        c = c + dof_matrix(data, "additional_stiffness")
+    b_v = np.diag(critical_damping(data, damping_ratio, added_mass_inf))
+    if "additional_damping" in data and "omega" not in data.additional_damping.dims:
+        b_v = b_v + dof_matrix(data, "additional_damping")
+    z = -(w**2)[:, None, None] * (m + a) + 1j * w[:, None, None] * (b + b_v) + c
+    with warnings.catch_warnings():
+        warnings.simplefilter("ignore")
+        try:
+            h = np.linalg.inv(z)
+        except np.linalg.LinAlgError:
+            h = np.linalg.pinv(z)
+    forces, load = _load_cases(data, n)
+    x = np.einsum("wmk,wkc->wmc", h, forces)  # (omega, dof, case)
+    peak = np.abs(x).max(axis=0)  # (dof, case)
+    compared = compared_motions(peak, data.influenced_dof.values)
+    inv_peak = np.where(compared, 1.0 / np.where(peak > 0, peak, 1.0), 0.0)
+    # W_ij = max_{m,c} ω |H_mi| |X_jc| / P_mc
+    abs_h = np.abs(h)  # (omega, m, i)
+    abs_x = np.abs(x)  # (omega, j, c)
+    weight = np.zeros((w.size, n, n))
+    for mm in range(n):
+        cases = np.flatnonzero(compared[mm])
+        if not cases.size:
+            continue
+        scaled = abs_x[:, :, cases] * inv_peak[mm, cases][None, None, :]  # (omega, j, c)
+        per_j = scaled.max(axis=2)  # (omega, j)
+        weight = np.maximum(weight, abs_h[:, mm, :, None] * per_j[:, None, :])
+    weight *= w[:, None, None]
+    return MotionSensitivity(
+        w, np.nan_to_num(weight), load, m, c, b_v, np.asarray(forces), x, compared
+    )
+
+
+def _load_cases(data: xr.Dataset, n: int) -> tuple[NDArray[np.complex128], str]:
+    """Forces (omega, dof, case): the excitation at up to :data:`HEADINGS` headings, or
+    unit forces."""
+    if "excitation_force" in data and "wave_direction" in data.excitation_force.dims:
+        f = data.excitation_force
+        beta = f.wave_direction.values
+        if beta.size > HEADINGS:
+            index = np.unique(np.round(np.linspace(0, beta.size - 1, HEADINGS)).astype(int))
+            f = f.isel(wave_direction=index)
+        other = [d for d in f.dims if d not in ("omega", "wave_direction")]
+        values = f.transpose("omega", *other, "wave_direction").values
+        if values.shape[:2] == (data.sizes["omega"], n) and np.all(np.isfinite(values)):
+            return values.astype(
+                complex
+            ), f"wave excitation at {f.sizes['wave_direction']} headings"
+    eye = np.broadcast_to(np.eye(n, dtype=complex), (data.sizes["omega"], n, n))
+    return np.array(eye), "unit forces"

@@ -1,0 +1,785 @@
+"""Common-pole identification of the fluid memory: vector fitting of whole DOF blocks.
+
+The DOFs that radiate into each other (the connected components of the significant
+couplings: surge–heave–pitch and sway–roll–yaw of a ship, the twelve DOFs of two
+interacting bodies) are fitted together, every coupling of a block with the **same
+poles** (Gustavsen & Semlyen (1999), vector fitting):
+
+    Ã(s) = A∞ + Σ_k R_k / (s − p_k),     K(s) = s (Ã(s) − A∞) = Σ_k R_k p_k / (s − p_k),
+
+with Ã(jω) = A(ω) − j B(ω)/ω the complex added mass of the data, R_k symmetric residue
+matrices (real for a real pole, complex for a pair) and Σ_k R_k = 0, so that K is
+strictly proper and K(0) = 0 (Unneland (2007) eqs. 3.44–3.48: the properties a
+radiation model must have). A∞ is the constant term of the fit (Perez & Fossen's joint
+estimate), or the data's ω = ∞ row when it is consistent.
+
+1. **Poles**: relaxed vector fitting (Gustavsen (2006)) with the fast QR solution of
+   Deschrijver et al. (2008): every coupling of the block contributes its rows to one
+   small least-squares problem for the common poles, which are reflected into the left
+   half-plane and kept at a relative damping of at least :data:`MIN_DAMPING`.
+2. **Residues and A∞**: one linear least-squares problem per coupling, with Σ R_k = 0.
+   The equations weigh what the R² targets of A and B measure and, when the data hold
+   the inertia and the restoring, what the motions are sensitive to
+   (:mod:`cummins.radiation.fit.motion`). The data are extended beyond the last frequency by a
+   damping tail B ∝ ω⁻² (the rate the model itself has), weakly weighted, so that
+   nothing unphysical is fitted beyond the data.
+3. **Passivity**: K(jω) + K(jω)ᴴ = 2 Re K(jω) ⪰ 0 at all frequencies (Unneland (2007)
+   Prop. 3.4) is enforced on the residues of the whole block by the smallest weighted
+   change of the fit (linearised eigenvalue constraints, accumulated; Gustavsen &
+   Semlyen (2001)'s residue perturbation, solved as a least-distance programme, Lawson &
+   Hanson (1974)); crossings are found exactly from the Hamiltonian pencil
+   (:func:`cummins.radiation.passivity.imaginary_axis_zeros`). The poles do not move, so the
+   model stays stable.
+4. **Order**: the number of common poles grows until every coupling reaches its R²
+   targets and the motion error of the block is within its aim; each trial costs a few
+   milliseconds.
+5. **Realization**: Gilbert's realization of the pole–residue form, one state per rank
+   of each residue matrix (a surge–pitch pair whose damping is rank one, as on a sphere
+   about a point off its centre, costs one state per pole, not two).
+
+The result is one :class:`~cummins.radiation.model.MemoryBlock` per block.
+"""
+
+from __future__ import annotations
+
+import itertools
+from dataclasses import dataclass, field
+
+import numpy as np
+import scipy.linalg
+from numpy.typing import NDArray
+
+from cummins.errors import FitError
+
+#: Iterations of the pole relocation (at most; it stops when the poles move by less
+#: than CONVERGED, relative).
+ITERATIONS = 12
+CONVERGED = 1e-6
+#: The pole relocation uses at most about this many data frequencies (every k-th).
+RELOCATION_POINTS = 300
+#: Smallest relative damping |Re p| / |p| of a complex pole (radiation memory is broadband:
+#: a needle-sharp resonance would be fitted to an irregular-frequency spike).
+MIN_DAMPING = 0.05
+#: Initial relative damping of the starting poles.
+START_DAMPING = 0.01
+#: Tail of synthetic damping points beyond the last frequency: ω_max × these factors.
+TAIL_FACTORS = np.geomspace(1.3, 30.0, 8)
+#: Weight of the tail points against the last data point's damping weight.
+TAIL_WEIGHT = 0.3
+#: Passivity: a violation is λ_min(Re K) < −VIOLATION · max ‖K‖ on the check grid.
+VIOLATION = 1e-8
+#: Passivity: each linearised constraint asks for λ ≥ MARGIN × the largest |λ| there.
+MARGIN = 1e-5
+#: Passivity enforcement iterations.
+PASSIVITY_ITERATIONS = 40
+#: Regularisation of the residue change (× the norm of the misfit Jacobian): directions
+#: the data do not see stay put.
+RIDGE = 1e-3
+#: Frequencies of the passivity check: from CHECK_SPAN⁻¹ ω_min to CHECK_SPAN ω_max.
+CHECK_SPAN = 1e3
+CHECK_POINTS = 1500
+#: At most this many local minima of λ_min per violation band give constraints at once.
+MINIMA = 8
+#: Residue-matrix eigenvalues below RANK_TOL × the largest of the block cost no state.
+RANK_TOL = 0.0
+
+
+# ----------------------------------------------------------------------------- poles
+
+
+@dataclass(frozen=True)
+class Poles:
+    """Common poles in real form: ``real`` (negative) and ``pairs`` (Im > 0)."""
+
+    real: NDArray[np.float64]
+    pairs: NDArray[np.complex128]
+
+    @property
+    def count(self) -> int:
+        """Number of real parameters per coupling (a pair counts two)."""
+        return self.real.size + 2 * self.pairs.size
+
+    def basis(self, s: NDArray) -> NDArray[np.complex128]:
+        """Columns 1/(s − p) for real p; 1/(s − p) + 1/(s − p̄) and j/(s − p) − j/(s − p̄)
+        for a pair (coefficients a, b: residue a + jb at p)."""
+        s = np.asarray(s, dtype=complex)
+        cols = [1.0 / (s[:, None] - self.real[None, :])]
+        if self.pairs.size:
+            one = 1.0 / (s[:, None] - self.pairs[None, :])
+            two = 1.0 / (s[:, None] - np.conj(self.pairs)[None, :])
+            pair = np.empty((s.size, 2 * self.pairs.size), dtype=complex)
+            pair[:, 0::2] = one + two
+            pair[:, 1::2] = 1j * (one - two)
+            cols.append(pair)
+        return np.hstack(cols)
+
+    def state_form(self) -> tuple[NDArray, NDArray]:
+        """(Λ, b) with basis(s) = (sI − Λ)⁻¹ b written in the same real coordinates."""
+        n = self.count
+        lam, b = np.zeros((n, n)), np.zeros(n)
+        nr = self.real.size
+        lam[:nr, :nr] = np.diag(self.real)
+        b[:nr] = 1.0
+        for k, p in enumerate(self.pairs):
+            i = nr + 2 * k
+            lam[i : i + 2, i : i + 2] = [[p.real, p.imag], [-p.imag, p.real]]
+            b[i] = 2.0
+        return lam, b
+
+    def residue_sum(self) -> NDArray[np.float64]:
+        """The linear form of the coefficients giving Σ_k R_k (conjugates included)."""
+        v = np.zeros(self.count)
+        v[: self.real.size] = 1.0
+        v[self.real.size :: 2] = 2.0
+        return v
+
+
+def _poles_from(values: NDArray) -> Poles:
+    """Sorted, stable, damped poles in real form from a set closed under conjugation."""
+    values = np.asarray(values, dtype=complex)
+    scale = np.abs(values) + np.finfo(float).tiny
+    is_real = np.abs(values.imag) <= 1e-9 * scale
+    real = -np.abs(values[is_real].real)
+    pairs = values[~is_real & (values.imag > 0)]
+    decay = np.maximum(np.abs(pairs.real), MIN_DAMPING * np.abs(pairs))
+    pairs = -decay + 1j * np.abs(pairs.imag)
+    real = np.where(real == 0, -np.finfo(float).eps, real)
+    return Poles(np.sort(real)[::-1], pairs[np.argsort(pairs.imag)])
+
+
+def starting_poles(omega: NDArray, count: int) -> Poles:
+    """``count`` real parameters: pairs with imaginary parts log-spaced over the data's
+    frequencies (a real pole more when ``count`` is odd, at the geometric mean)."""
+    lo, hi = float(omega[omega > 0].min()), float(omega.max())
+    beta = np.geomspace(lo, hi, max(count // 2, 1)) if count >= 2 else np.zeros(0)
+    pairs = -START_DAMPING * beta + 1j * beta
+    real = np.array([-np.sqrt(lo * hi)]) if count % 2 else np.zeros(0)
+    return Poles(real, pairs)
+
+
+# ----------------------------------------------------------------------------- data
+
+
+@dataclass(frozen=True)
+class BlockData:
+    """What one block is fitted to.
+
+    Attributes
+    ----------
+    dofs
+        Indices of the block's DOFs in the model.
+    elements
+        (i, j) model indices, i ≤ j, of the fitted couplings.
+    omega
+        Frequencies of the equations (the data's, then the tail), rad/s.
+    values
+        Ã(ω) − A∞ (when A∞ is given) or Ã(ω) per element, (n_elements, n_omega).
+    weight_real, weight_imag
+        Weights of the real and imaginary parts of each equation.
+    fixed_inf
+        A∞ of each element when it is given (then not estimated), else None.
+    n_data
+        The number of data frequencies (the first ``n_data`` of ``omega``).
+    inf_guess, inf_spread
+        When A∞ is estimated: a prior per element (Ogilvie's estimate and its spread);
+        one more equation (A∞ − guess)/spread weighs like all the added-mass equations
+        of the element together, so that the data decide where they are informative
+        and the prior where the model would extrapolate.
+    """
+
+    dofs: tuple[int, ...]
+    elements: tuple[tuple[int, int], ...]
+    omega: NDArray[np.float64]
+    values: NDArray[np.complex128]
+    weight_real: NDArray[np.float64]
+    weight_imag: NDArray[np.float64]
+    fixed_inf: NDArray[np.float64] | None
+    n_data: int
+    added_mass: NDArray[np.float64] = field(repr=False, default=None)
+    damping: NDArray[np.float64] = field(repr=False, default=None)
+    used: NDArray[np.bool_] = field(repr=False, default=None)
+    inf_guess: NDArray[np.float64] | None = field(repr=False, default=None)
+    inf_spread: NDArray[np.float64] | None = field(repr=False, default=None)
+
+
+def block_data(
+    dofs,
+    elements,
+    omega,
+    added_mass,
+    damping,
+    used,
+    *,
+    added_mass_inf=None,
+    motion_weight=None,
+    motion_tol: float = 0.01,
+    prior=None,
+) -> BlockData:
+    """Equations of a block (see :class:`BlockData`).
+
+    ``added_mass``, ``damping``: symmetric parts of the data (omega, n, n); ``used``:
+    (omega, n_elements) which frequencies each coupling keeps; ``motion_weight``:
+    callable (i, j) → W_ij(ω) of :class:`cummins.radiation.fit.motion.MotionSensitivity` or None;
+    ``prior``: (guess, spread) matrices of A∞ when it is estimated.
+    """
+    w = np.asarray(omega, dtype=float)
+    tail = w.max() * TAIL_FACTORS
+    values, wr, wi = [], [], []
+    for e, (i, j) in enumerate(elements):
+        use = used[:, e]
+        n_use = max(int(use.sum()), 1)
+        a_ij, b_ij = added_mass[:, i, j], damping[:, i, j]
+        floor_a = 1e-3 * np.sqrt(np.std(added_mass[:, i, i]) * np.std(added_mass[:, j, j]))
+        floor_b = 1e-3 * np.sqrt(np.std(damping[:, i, i]) * np.std(damping[:, j, j]))
+        spread_a = max(float(np.std(a_ij[use])), floor_a, np.finfo(float).tiny)
+        spread_b = max(float(np.std(b_ij[use])), floor_b, np.finfo(float).tiny)
+        r_a = np.full(w.size, 1.0 / spread_a) / np.sqrt(n_use)
+        r_b = w / spread_b / np.sqrt(n_use)
+        if motion_weight is not None:
+            m = motion_weight(i, j) * w / motion_tol / np.sqrt(n_use)
+            r_a, r_b = np.hypot(r_a, m), np.hypot(r_b, m)
+        r_a, r_b = np.where(use, r_a, 0.0), np.where(use, r_b, 0.0)
+        offset = 0.0 if added_mass_inf is None else added_mass_inf[i, j]
+        last = np.flatnonzero(use)[-5:]
+        rate = float(np.mean(b_ij[last] * w[last] ** 2)) if last.size else 0.0
+        if i == j:
+            rate = max(rate, 0.0)
+        b_tail = rate / tail**2
+        values.append(np.r_[a_ij - offset - 1j * b_ij / w, -1j * b_tail / tail])
+        last_weight = r_b[last[-1]] if last.size else 0.0
+        wr.append(np.r_[r_a, np.zeros(tail.size)])
+        wi.append(np.r_[r_b, TAIL_WEIGHT * last_weight * tail / w.max()])
+    fixed = guess = spread = None
+    if added_mass_inf is not None:
+        fixed = np.array([added_mass_inf[i, j] for i, j in elements])
+    elif prior is not None:
+        guess = np.array([prior[0][i, j] for i, j in elements])
+        spread = np.array([prior[1][i, j] for i, j in elements])
+    return BlockData(
+        tuple(dofs),
+        tuple(elements),
+        np.r_[w, tail],
+        np.array(values),
+        np.array(wr),
+        np.array(wi),
+        fixed,
+        w.size,
+        added_mass,
+        damping,
+        used,
+        guess,
+        spread,
+    )
+
+
+def _stacked(m: NDArray, wr: NDArray, wi: NDArray) -> NDArray:
+    return np.vstack([wr[:, None] * m.real, wi[:, None] * m.imag])
+
+
+# ----------------------------------------------------------------------------- fitting
+
+
+def relocate(data: BlockData, poles: Poles) -> Poles:
+    """One relaxed vector-fitting relocation of the common poles (fast QR)."""
+    s = 1j * data.omega
+    phi = poles.basis(s)
+    n = phi.shape[1]
+    ones = np.ones((s.size, 1))
+    own = phi if data.fixed_inf is not None else np.hstack([phi, ones])
+    sigma = np.hstack([phi, ones])
+    k = own.shape[1]
+    blocks, scale = [], 0.0
+    for f, wr, wi in zip(data.values, data.weight_real, data.weight_imag, strict=True):
+        rows = _stacked(np.hstack([own, -f[:, None] * sigma]), wr, wi)
+        r = np.linalg.qr(rows, mode="r")
+        blocks.append(r[k : k + n + 1, k:])
+        scale += float(np.sum((wr * f.real) ** 2 + (wi * f.imag) ** 2))
+    scale = np.sqrt(scale) / s.size
+    norm = scale * np.real(sigma.sum(axis=0))
+    lhs = np.vstack([*blocks, norm[None, :]])
+    rhs = np.zeros(lhs.shape[0])
+    rhs[-1] = scale * s.size
+    x, *_ = np.linalg.lstsq(lhs, rhs, rcond=None)
+    c, d = x[:n], x[n]
+    if abs(d) < 1e-8 * max(1.0, float(np.abs(c).max())):  # relaxation failed: σ(∞) = 1
+        stack = np.vstack(blocks)
+        c, *_ = np.linalg.lstsq(stack[:, :n], -stack[:, n], rcond=None)
+        d = 1.0
+    lam, b = poles.state_form()
+    return _poles_from(np.linalg.eigvals(lam - np.outer(b, c) / d))
+
+
+def _thinned(data: BlockData) -> BlockData:
+    """The equations of the pole relocation: every k-th data frequency when there are
+    more than RELOCATION_POINTS (the weights scaled by √k, so that the equations keep
+    their total weight), the tail whole. The residues are then fitted to all."""
+    step = int(np.ceil(data.n_data / RELOCATION_POINTS))
+    if step <= 1:
+        return data
+    rows = np.r_[np.arange(0, data.n_data, step), np.arange(data.n_data, data.omega.size)]
+    scale = np.r_[np.full(rows.size - (data.omega.size - data.n_data), np.sqrt(step)),
+                  np.ones(data.omega.size - data.n_data)]  # fmt: skip
+    return BlockData(
+        data.dofs,
+        data.elements,
+        data.omega[rows],
+        data.values[:, rows],
+        data.weight_real[:, rows] * scale,
+        data.weight_imag[:, rows] * scale,
+        data.fixed_inf,
+        int(np.ceil(data.n_data / step)),
+    )
+
+
+def _same_poles(one: Poles, two: Poles) -> bool:
+    """The relocation has converged: the same poles to CONVERGED (relative)."""
+    if one.real.size != two.real.size or one.pairs.size != two.pairs.size:
+        return False
+    x = np.r_[one.real, one.pairs]
+    y = np.r_[two.real, two.pairs]
+    return bool(np.all(np.abs(x - y) <= CONVERGED * np.abs(y)))
+
+
+def residue_null_space(poles: Poles) -> NDArray[np.float64]:
+    """Orthonormal basis of the coefficient vectors with Σ R_k = 0."""
+    v = poles.residue_sum()
+    q, _ = np.linalg.qr(np.c_[v, np.eye(v.size)[:, : v.size - 1]])
+    return q[:, 1:]
+
+
+def fit_residues(data: BlockData, poles: Poles) -> tuple[NDArray, NDArray]:
+    """Coefficients (n_elements, count) with Σ R_k = 0, and A∞ per element."""
+    s = 1j * data.omega
+    phi = poles.basis(s)
+    null = residue_null_space(poles)
+    m = phi @ null
+    if data.fixed_inf is None:
+        m = np.hstack([m, np.ones((s.size, 1))])
+    x = np.zeros((len(data.elements), poles.count))
+    inf = np.zeros(len(data.elements)) if data.fixed_inf is None else data.fixed_inf.copy()
+    for e, (f, wr, wi) in enumerate(
+        zip(data.values, data.weight_real, data.weight_imag, strict=True)
+    ):
+        rows = _stacked(m, wr, wi)
+        rhs = np.concatenate([wr * f.real, wi * f.imag])
+        if data.fixed_inf is None and data.inf_guess is not None and data.inf_spread[e] > 0:
+            # the prior: weighs like all the added-mass equations together (their
+            # weights are 1/spread of A over √n each)
+            weight = 1.0 / data.inf_spread[e]
+            prior_row = np.zeros(m.shape[1])
+            prior_row[-1] = weight
+            rows = np.vstack([rows, prior_row])
+            rhs = np.r_[rhs, weight * data.inf_guess[e]]
+        z, *_ = np.linalg.lstsq(rows, rhs, rcond=None)
+        x[e] = null @ z[: null.shape[1]]
+        if data.fixed_inf is None:
+            inf[e] = z[-1]
+    return x, inf
+
+
+@dataclass(frozen=True)
+class PoleResidueBlock:
+    """A fitted block in pole–residue form: K_ij(jω) = jω basis(jω) · x_e."""
+
+    dofs: tuple[int, ...]
+    elements: tuple[tuple[int, int], ...]
+    poles: Poles
+    coefficients: NDArray[np.float64]
+    added_mass_inf: NDArray[np.float64]
+
+    def element_response(self, omega: NDArray) -> NDArray[np.complex128]:
+        """K of each element, (n_omega, n_elements)."""
+        w = np.asarray(omega, dtype=float)
+        return 1j * w[:, None] * (self.poles.basis(1j * w) @ self.coefficients.T)
+
+    def response(self, omega: NDArray) -> NDArray[np.complex128]:
+        """K(jω) of the block, (n_omega, m, m), local DOF order."""
+        values = self.element_response(omega)
+        where = {d: k for k, d in enumerate(self.dofs)}
+        m = len(self.dofs)
+        out = np.zeros((values.shape[0], m, m), dtype=complex)
+        for e, (i, j) in enumerate(self.elements):
+            out[:, where[i], where[j]] = values[:, e]
+            out[:, where[j], where[i]] = values[:, e]
+        return out
+
+    def residue_matrices(self) -> list[tuple[complex, NDArray]]:
+        """(p_k, M_k) with K(s) = Σ M_k/(s − p_k) over real poles and the upper member
+        of each pair (its conjugate carries M̄_k)."""
+        where = {d: k for k, d in enumerate(self.dofs)}
+        m, nr = len(self.dofs), self.poles.real.size
+        out = []
+        for k, p in enumerate(self.poles.real):
+            r = np.zeros((m, m))
+            for e, (i, j) in enumerate(self.elements):
+                r[where[i], where[j]] = r[where[j], where[i]] = self.coefficients[e, k]
+            out.append((complex(p), r * p))
+        for k, p in enumerate(self.poles.pairs):
+            r = np.zeros((m, m), dtype=complex)
+            for e, (i, j) in enumerate(self.elements):
+                value = self.coefficients[e, nr + 2 * k] + 1j * self.coefficients[e, nr + 2 * k + 1]
+                r[where[i], where[j]] = r[where[j], where[i]] = value
+            out.append((complex(p), r * p))
+        return out
+
+    def realization(self, rank_tol: float = RANK_TOL) -> tuple[NDArray, NDArray, NDArray]:
+        """Gilbert's realization (a, b, c), block DOF order; residue ranks below
+        ``rank_tol`` × the largest residue eigenvalue are dropped."""
+        terms = self.residue_matrices()
+        m = len(self.dofs)
+        top = max((float(np.abs(mk).max()) for _, mk in terms), default=0.0)
+        a_blocks, b_blocks, c_blocks = [], [], []
+        for p, mk in terms:
+            if p.imag == 0:
+                lam, u = np.linalg.eigh(mk.real)
+                keep = np.abs(lam) > rank_tol * top
+                r = int(keep.sum())
+                if r:
+                    a_blocks.append(p.real * np.eye(r))
+                    b_blocks.append(u[:, keep].T)
+                    c_blocks.append(u[:, keep] * lam[keep])
+                continue
+            u, sv, vh = np.linalg.svd(mk)
+            keep = sv > rank_tol * top
+            r = int(keep.sum())
+            if not r:
+                continue
+            c1, b1 = u[:, keep] * sv[keep], vh[keep]
+            eye = np.eye(r)
+            a_blocks.append(np.block([[p.real * eye, -p.imag * eye], [p.imag * eye, p.real * eye]]))
+            b_blocks.append(np.vstack([b1.real, b1.imag]))
+            c_blocks.append(np.hstack([2 * c1.real, -2 * c1.imag]))
+        if not a_blocks:
+            return np.zeros((0, 0)), np.zeros((0, m)), np.zeros((m, 0))
+        return scipy.linalg.block_diag(*a_blocks), np.vstack(b_blocks), np.hstack(c_blocks)
+
+
+def vector_fit(data: BlockData, count: int) -> PoleResidueBlock:
+    """Common poles (``count`` real parameters), residues and A∞ of a block."""
+    poles = starting_poles(data.omega[: data.n_data], count)
+    thinned = _thinned(data)
+    for _ in range(ITERATIONS):
+        moved = relocate(thinned, poles)
+        converged = _same_poles(moved, poles)
+        poles = moved
+        if converged:
+            break
+    coefficients, inf = fit_residues(data, poles)
+    return PoleResidueBlock(data.dofs, data.elements, poles, coefficients, inf)
+
+
+# ----------------------------------------------------------------------------- passivity
+
+
+def passivity_violations(
+    block: PoleResidueBlock, omega_min: float, omega_max: float
+) -> tuple[list[tuple[float, float, NDArray, float]], NDArray]:
+    """(g, λ, w, λ_scale) of the points where S Re K(jω) S (DOF-scaled: s_i =
+    1/√max_ω |K_ii(jω)|, as :func:`cummins.radiation.passivity.dof_scaling`, so that translations
+    and rotations weigh alike) has a negative eigenvalue λ below −:data:`VIOLATION`, at the
+    worst point of each band between exact crossings and a few points across it, and of
+    the limits ω → 0, ∞ (:func:`limit_forms`) below −VIOLATION × their largest
+    eigenvalue: g the linear form giving each element of Re K there from its
+    coefficients, w = S v (v the eigenvector: wᵀ Re K w = λ) and the largest |λ| there;
+    and S."""
+    from cummins.radiation.passivity import imaginary_axis_zeros, midpoint
+
+    grid = np.geomspace(omega_min / CHECK_SPAN, omega_max * CHECK_SPAN, CHECK_POINTS)
+    k_grid = block.response(grid).real
+    peak = np.abs(np.diagonal(k_grid, axis1=1, axis2=2)).max(axis=0)
+    dof_scale = np.where(peak > 0, 1.0 / np.sqrt(np.where(peak > 0, peak, 1.0)), 0.0)
+    a, b, c = block.realization(rank_tol=0.0)
+    b, c = b * dof_scale[None, :], dof_scale[:, None] * c  # S K S: well conditioned
+    crossings = imaginary_axis_zeros(a, b, c) if a.size else np.zeros(0)
+    edges = np.unique(np.r_[0.0, crossings, np.inf])
+    # every point once: the grid, five inside each band between crossings, its midpoint
+    extra = [midpoint(lo, hi, grid) for lo, hi in itertools.pairwise(edges)]
+    extra += [
+        x
+        for lo, hi in itertools.pairwise(edges)
+        if lo > 0 and np.isfinite(hi)
+        for x in np.geomspace(lo, hi, 7)[1:-1]
+    ]
+    extra = np.setdiff1d(np.asarray(extra, dtype=float), grid)
+    points = np.r_[grid, extra]
+    order = np.argsort(points)
+    points = points[order]
+    k_all = np.concatenate([k_grid, block.response(extra).real])[order]
+    lam_all, vec_all = np.linalg.eigh(k_all * np.outer(dof_scale, dof_scale)[None])
+    out = []
+    # between consecutive crossings the sign of λ_min is constant
+    for lo, hi in itertools.pairwise(edges):
+        inside = np.flatnonzero((points > lo) & (points < hi))
+        if not inside.size:
+            continue
+        lam, vec, ws = lam_all[inside], vec_all[inside], points[inside]
+        worst = int(np.argmin(lam[:, 0]))
+        if lam[worst, 0] >= -VIOLATION:  # S K S: the diagonal peaks are 1
+            continue
+        low = lam[:, 0]
+        minima = np.flatnonzero(
+            (low < -VIOLATION) & (low <= np.r_[np.inf, low[:-1]]) & (low <= np.r_[low[1:], np.inf])
+        )
+        spread = np.linspace(0, ws.size - 1, 5).astype(int)
+        for q in np.unique(np.r_[worst, minima[np.argsort(low[minima])][:MINIMA], spread]):
+            local = float(np.abs(lam[q]).max())
+            form = np.real(1j * ws[q] * block.poles.basis(np.array([1j * ws[q]]))[0])
+            for e in np.flatnonzero(lam[q] < 0):
+                out.append((form, float(lam[q, e]), dof_scale * vec[q, :, e], local))
+    # the limits ω → 0 and ω → ∞, where Re K vanishes as ω² L₀ and L_∞/ω²
+    for form in limit_forms(block.poles):
+        matrix = _element_matrix(block, block.coefficients @ form) * np.outer(dof_scale, dof_scale)
+        lam, vec = np.linalg.eigh(matrix)
+        local = float(np.abs(lam).max())
+        for e in np.flatnonzero(lam < -VIOLATION * local):
+            out.append((form, float(lam[e]), dof_scale * vec[:, e], local))
+    return out, dof_scale
+
+
+def limit_forms(poles: Poles) -> tuple[NDArray, NDArray]:
+    """The linear forms g (one per coefficient) of the limits of Re K: L_∞ = lim ω² Re K
+    (= −C A B = −Σ R_k p_k²) and L₀ = lim Re K / ω² (= C A⁻³ B = Σ R_k / p_k²), each
+    element of L being g · x_e."""
+    high, low = np.zeros(poles.count), np.zeros(poles.count)
+    nr = poles.real.size
+    high[:nr], low[:nr] = -(poles.real**2), 1.0 / poles.real**2
+    squared, inverse = poles.pairs**2, 1.0 / poles.pairs**2
+    high[nr::2], high[nr + 1 :: 2] = -2 * squared.real, 2 * squared.imag
+    low[nr::2], low[nr + 1 :: 2] = 2 * inverse.real, -2 * inverse.imag
+    return high, low
+
+
+def _element_matrix(block: PoleResidueBlock, values: NDArray) -> NDArray:
+    """The symmetric m×m matrix of one value per element (block DOF order)."""
+    where = {d: k for k, d in enumerate(block.dofs)}
+    out = np.zeros((len(block.dofs), len(block.dofs)))
+    for e, (i, j) in enumerate(block.elements):
+        out[where[i], where[j]] = out[where[j], where[i]] = values[e]
+    return out
+
+
+def enforce_passivity(
+    block: PoleResidueBlock, data: BlockData
+) -> tuple[PoleResidueBlock, bool, int]:
+    """The block with the smallest weighted residue change that makes Re K(jω) ⪰ 0 at all
+    frequencies (module docstring, step 3): (block, passive, iterations)."""
+    from cummins.radiation.passivity import constrained_least_squares
+
+    w = data.omega[: data.n_data]
+    s = 1j * data.omega
+    null = residue_null_space(block.poles)
+    q = null.shape[1]
+    phi = block.poles.basis(s) @ null
+    misfit = []
+    for wr, wi in zip(data.weight_real, data.weight_imag, strict=True):
+        jac = _stacked(phi, wr, wi)
+        ridge = RIDGE * np.linalg.norm(jac, 2)
+        # ‖J z‖ = ‖R z‖: the small triangular factor stands for the whole misfit
+        r = np.linalg.qr(np.vstack([jac, ridge * np.eye(q)]), mode="r")
+        misfit.append((r, np.zeros(q)))
+    where = {d: k for k, d in enumerate(block.dofs)}
+    rows, rhs = [], []
+    start = block.coefficients
+    delta = np.zeros(len(block.elements) * q)
+    current = block
+    for iteration in range(PASSIVITY_ITERATIONS):
+        found, _ = passivity_violations(current, float(w.min()), float(w.max()))
+        if not found:
+            return current, True, iteration
+        for form, lam, vec, local in found:
+            basis = form @ null
+            row = np.zeros(len(block.elements) * q)
+            for e, (i, j) in enumerate(block.elements):
+                vi, vj = vec[where[i]], vec[where[j]]
+                row[e * q : (e + 1) * q] = (vi * vi if i == j else 2 * vi * vj) * basis
+            rows.append(row)
+            rhs.append(MARGIN * local - lam + row @ delta)
+        try:
+            delta = constrained_least_squares(misfit, np.array(rows), np.array(rhs))
+        except FitError:
+            return current, False, iteration
+        change = (null @ delta.reshape(len(block.elements), q).T).T
+        current = PoleResidueBlock(
+            block.dofs, block.elements, block.poles, start + change, block.added_mass_inf
+        )
+    found, _ = passivity_violations(current, float(w.min()), float(w.max()))
+    return current, not found, PASSIVITY_ITERATIONS
+
+
+# ----------------------------------------------------------------------------- order search
+
+
+def block_groups(n: int, pairs) -> list[tuple[tuple[int, ...], tuple[tuple[int, int], ...]]]:
+    """The blocks: connected components of the significant pairs (DOFs, pairs i ≤ j)."""
+    parent = list(range(n))
+
+    def root(i: int) -> int:
+        while parent[i] != i:
+            parent[i] = parent[parent[i]]
+            i = parent[i]
+        return i
+
+    for i, j in pairs:
+        parent[root(i)] = root(j)
+    modelled = sorted({i for i, j in pairs if i == j})
+    groups: dict[int, list[int]] = {}
+    for i in modelled:
+        groups.setdefault(root(i), []).append(i)
+    out = []
+    for dofs in sorted(groups.values()):
+        members = set(dofs)
+        elements = tuple(sorted((i, j) for i, j in pairs if i in members and j in members))
+        out.append((tuple(dofs), elements))
+    return out
+
+
+@dataclass(frozen=True)
+class BlockScore:
+    """How a fitted block meets its targets."""
+
+    r2: dict[tuple[int, int], tuple[float, float]]
+    shortfall: float  # largest R² shortfall below target (0 when met)
+    motion_error: float | None  # relative motion error with the block modelled
+    passive: bool
+
+    def meets(self, motion_aim: float | None) -> bool:
+        motion_ok = (
+            motion_aim is None or self.motion_error is None or self.motion_error <= motion_aim
+        )
+        return self.shortfall <= 0 and motion_ok
+
+
+def score_block(
+    block: PoleResidueBlock,
+    data: BlockData,
+    *,
+    r2: float,
+    r2_coupling: float,
+    motion=None,
+    passive: bool = False,
+) -> BlockScore:
+    """R² of A and B of each pair (on the frequencies it keeps), the shortfall below the
+    targets and, with ``motion`` (a callable: block → relative motion error), the motion
+    error."""
+    from cummins.radiation.fit.frequency import r_squared
+
+    w = data.omega[: data.n_data]
+    k = block.element_response(w)
+    scores, shortfall = {}, 0.0
+    for e, (i, j) in enumerate(block.elements):
+        use = data.used[:, e]
+        a_model = block.added_mass_inf[e] + k[use, e].imag / w[use]
+        b_model = k[use, e].real
+        pair = (
+            r_squared(data.added_mass[use, i, j], a_model),
+            r_squared(data.damping[use, i, j], b_model),
+        )
+        scores[(i, j)] = pair
+        target = r2 if i == j else r2_coupling
+        shortfall = max(shortfall, target - min(pair))
+    error = None if motion is None else float(motion(block))
+    return BlockScore(scores, shortfall, error, passive)
+
+
+#: Near-ties in the order search are decided by this margin, not by rounding.
+TIE = 1e-6
+
+
+def identify_block(
+    data: BlockData,
+    *,
+    r2: float,
+    r2_coupling: float,
+    max_count: int,
+    motion=None,
+    motion_aim: float | None = None,
+    fixed_count: int | None = None,
+    passive: bool = True,
+) -> tuple[PoleResidueBlock, BlockScore, list[str]]:
+    """The block at the smallest number of common poles that meets the targets and is
+    passive (module docstring, step 4); the best passive one when none does."""
+    counts = [fixed_count] if fixed_count else list(range(2, max_count + 1))
+    fewest = int(data.used.sum(axis=0).min())
+    counts = [c for c in counts if c + 2 <= fewest]
+    if not counts:
+        raise FitError(
+            f"{fewest} frequencies are too few for a model of order {fixed_count or 2}",
+            hint="a fluid-memory model needs the added mass and damping at many "
+            "frequencies (tens) over the range of the motions",
+        )
+    notes: list[str] = []
+    plain_fits: list[tuple[float, int, PoleResidueBlock]] = []
+    tried: dict[int, tuple[tuple[bool, float], PoleResidueBlock, BlockScore]] = {}
+
+    def passivated(count: int, fitted: PoleResidueBlock) -> bool:
+        """The fit made passive and scored; True when it meets every target."""
+        if passive:
+            block, is_passive, _ = enforce_passivity(fitted, data)
+        else:
+            block, is_passive = fitted, True
+        score = score_block(
+            block, data, r2=r2, r2_coupling=r2_coupling, motion=motion, passive=is_passive
+        )
+        badness = round(_badness(score, r2, motion_aim) / TIE) * TIE
+        tried[count] = ((not is_passive, badness), block, score)
+        return is_passive and score.meets(motion_aim)
+
+    stalled, best_plain = 0, np.inf
+    done = False
+    for count in counts:
+        try:
+            fitted = vector_fit(data, count)
+        except np.linalg.LinAlgError:
+            continue
+        plain = score_block(fitted, data, r2=r2, r2_coupling=r2_coupling, motion=motion)
+        bad = _badness(plain, r2, motion_aim)
+        plain_fits.append((bad, count, fitted))
+        if bad < (1 - IMPROVEMENT) * best_plain or bad == 0:
+            best_plain, stalled = min(bad, best_plain), 0
+        else:
+            stalled += 1
+        if plain.meets(motion_aim) and passivated(count, fitted):
+            done = True
+            break
+        if stalled >= PATIENCE:
+            break
+    if not done:  # nothing met every target: the best few fits, made passive
+        for _, count, fitted in sorted(plain_fits, key=lambda x: (x[0], x[1]))[:FINALISTS]:
+            if count not in tried:
+                passivated(count, fitted)
+    best = None
+    if tried:
+        count = min(tried, key=lambda c: (tried[c][0], c))
+        best = (tried[count][0], tried[count][1], tried[count][2], count)
+    if best is None:
+        raise FitError("no stable model could be fitted")
+    _, block, score, count = best
+    if not score.passive:
+        notes.append(f"not passive at {count} common poles")
+    if not score.meets(motion_aim):
+        notes.append(f"targets not met (best at {count} common poles)")
+    return block, score, notes
+
+
+#: The order search stops when PATIENCE more poles in a row have not improved the fit
+#: (before passivity) by IMPROVEMENT of its distance to the targets.
+PATIENCE = 4
+IMPROVEMENT = 0.02
+#: When no fit meets every target, the FINALISTS closest to them (before passivity) are
+#: made passive and the best passive one is kept.
+FINALISTS = 5
+
+
+def _badness(score: BlockScore, r2: float, motion_aim: float | None) -> float:
+    """Distance of a fit to its targets: the R² shortfall in units of the allowed 1 − R²,
+    plus the motion error's excess in units of its aim."""
+    out = max(score.shortfall, 0.0) / (1.0 - r2)
+    if motion_aim and score.motion_error is not None:
+        out += max(score.motion_error - motion_aim, 0.0) / motion_aim
+    return out
+
+
+def fit_residues_at(data: BlockData, poles: Poles) -> PoleResidueBlock:
+    """The unconstrained fit of the block at given poles (before passivity)."""
+    coefficients, inf = fit_residues(data, poles)
+    return PoleResidueBlock(data.dofs, data.elements, poles, coefficients, inf)

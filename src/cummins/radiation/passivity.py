@@ -1,0 +1,817 @@
+"""Passivity of radiation models: the exact test and its enforcement (Unneland (2007) §3.2).
+
+The map from the body velocities ξ̇ to the memory force μ is passive:
+K(jω) + K(jω)ᴴ = 2 B(ω) ⪰ 0 for all ω (Unneland (2007) Prop. 3.4, eq. 3.24; the MIMO criterion
+λ_min[K(jω) + Kᵀ(−jω)] ≥ 0, eq. 3.13). A model that is not can feed energy into a
+simulation. Positive-real diagonal terms do not make the MIMO model passive: the
+couplings must not outweigh them anywhere.
+
+**Test** (:func:`passivity_test`). The DOFs are scaled by D^{-1/2}, D = the peak |K_ii|
+over frequency, so that units do not decide the answer (a congruence: it changes no
+sign). The frequencies where an eigenvalue of Φ(jω) = K(jω) + Kᵀ(−jω) crosses zero are
+the imaginary-axis zeros of the para-Hermitian system Φ(s), realised as
+
+    A_Φ = diag(A, −Aᵀ),  B_Φ = [B; Cᵀ],  C_Φ = [C, −Bᵀ],  D_Φ = D + Dᵀ,
+
+and computed as the finite generalized eigenvalues of the Rosenbrock pencil
+([[A_Φ, B_Φ], [C_Φ, D_Φ]], diag(I, 0)): the zeros of Φ. This is the Hamiltonian test
+in a form that needs no (D + Dᵀ)⁻¹, which does not exist for a radiation model (D = 0).
+Between two consecutive crossings the sign of λ_min is constant, so one evaluation per
+interval decides it; a dense sweep (:func:`default_sweep`) is added as a safeguard, and
+the two limits are checked on their own: Φ(jω) ≈ −(CAB + (CAB)ᵀ)/ω² for ω → ∞ and
+Φ(jω) ≈ ω² (CA⁻³B + (CA⁻³B)ᵀ) for ω → 0 (a radiation model has K(0) = 0).
+
+**Enforcement** (:func:`enforce_passivity`). The output vectors c of the coupling models
+(their residues) are perturbed, poles kept, the zero K(0) = 0 kept, each symmetric pair
+K_ij = K_ji perturbed alike. Where λ_min < 0 the constraint is linearised in δc,
+λ + vᵀ(δΦ)v ≥ margin, and the smallest change in the data-weighted least-squares sense
+— the decrease of the R² of A(ω) and of B(ω) of each coupling, to first order — is found
+by least-distance programming (Lawson & Hanson's LDP through NNLS). The test is run again
+and the step repeated until it passes.
+"""
+
+from __future__ import annotations
+
+import itertools
+from collections.abc import Callable, Sequence
+from dataclasses import dataclass, replace
+
+import numpy as np
+import scipy.linalg
+from numpy.typing import ArrayLike, NDArray
+from scipy.optimize import minimize_scalar, nnls
+
+from cummins.errors import FitError
+from cummins.radiation.model import CouplingModel, RadiationModel
+from cummins.validation import guard_finite, guard_radiation_model
+
+#: A model is called passive when the smallest scaled eigenvalue of K + Kᴴ is above
+#: −PASSIVITY_TOLERANCE times the largest one over frequency.
+PASSIVITY_TOLERANCE = 1e-6
+#: Enforcement asks for λ_min ≥ ENFORCEMENT_MARGIN × (the local largest eigenvalue) at the
+#: frequencies it corrects, so that the result is not passive by a rounding error only.
+ENFORCEMENT_MARGIN = 1e-4
+#: Weight of the R² loss of K(t) against those of A and B in the enforcement objective:
+#: a guard against a change that reshapes K(jω) beyond the data, not a target.
+KERNEL_WEIGHT = 0.05
+#: Constraint points spread over each violation band, besides its worst point.
+POINTS_PER_BAND = 6
+#: A zero of Φ(s) with |Re s| ≤ AXIS_TOLERANCE·|s| is taken as a crossing candidate.
+AXIS_TOLERANCE = 1e-5
+#: Zeros of Φ(s) closer to the origin than ORIGIN_TOLERANCE × the slowest pole are the
+#: double zero at s = 0 that K(0) = 0 puts there (split by rounding), not crossings.
+ORIGIN_TOLERANCE = 1e-4
+#: Crossings closer than SAME_CROSSING (relative) are one: the zeros ±jω of Φ(s) come in
+#: pairs whose |Im s| differ in the last bits, by a rounding path that depends on the BLAS
+#: kernel (Sandybridge gave 1.395465 twice where others gave it once).
+SAME_CROSSING = 1e-8
+
+
+@dataclass(frozen=True)
+class PassivitySweep:
+    """Result of :func:`passivity_sweep`.
+
+    Attributes
+    ----------
+    omega
+        Frequencies of the sweep, rad/s.
+    min_eigenvalue
+        λ_min of the scaled K + Kᴴ at each frequency, relative to the largest
+        eigenvalue over the sweep (dimensionless).
+    passive
+        Whether the minimum stays above −:data:`PASSIVITY_TOLERANCE`.
+    worst_omega
+        Frequency of the smallest eigenvalue, rad/s.
+    """
+
+    omega: np.ndarray
+    min_eigenvalue: np.ndarray
+    passive: bool
+    worst_omega: float
+
+
+@dataclass(frozen=True)
+class ViolationBand:
+    """A frequency interval where the model is not passive.
+
+    Attributes
+    ----------
+    omega_low, omega_high
+        Ends of the interval (crossings of λ_min through zero), rad/s; ``inf`` when it
+        reaches infinity.
+    worst_omega
+        Frequency of the smallest eigenvalue inside, rad/s.
+    min_eigenvalue
+        That eigenvalue of the scaled K + Kᴴ, relative to the largest over frequency.
+    """
+
+    omega_low: float
+    omega_high: float
+    worst_omega: float
+    min_eigenvalue: float
+
+
+@dataclass(frozen=True)
+class PassivityReport:
+    """Result of :func:`passivity_test`.
+
+    Attributes
+    ----------
+    passive
+        True when no band violates by more than :data:`PASSIVITY_TOLERANCE` and both
+        limits ω → 0, ω → ∞ are positive semidefinite.
+    min_eigenvalue
+        Smallest scaled eigenvalue of K + Kᴴ found (relative to the largest), with
+        ``worst_omega`` its frequency (rad/s).
+    crossings
+        Frequencies where an eigenvalue of K + Kᴴ crosses zero (rad/s), from the pencil.
+    bands
+        The intervals of non-passivity.
+    high_frequency, low_frequency
+        λ_min of the limits: of −(CAB + (CAB)ᵀ) and of CA⁻³B + (CA⁻³B)ᵀ, scaled, relative
+        to the largest eigenvalue of the same matrix (NaN when the matrix is zero).
+    dofs
+        The DOFs tested: those with a diagonal model (the others have no memory force;
+        a DOF with couplings but no diagonal term makes the model not passive).
+    """
+
+    passive: bool
+    min_eigenvalue: float
+    worst_omega: float
+    crossings: NDArray[np.float64]
+    bands: tuple[ViolationBand, ...]
+    high_frequency: float
+    low_frequency: float
+    dofs: tuple[str, ...]
+
+
+def default_sweep(model: RadiationModel, points_per_decade: int = 100) -> np.ndarray:
+    """Log grid from 10⁻³ to 10³ times the range of the model's pole magnitudes, refined
+    around each lightly damped resonance."""
+    parts = [k.poles() for k in model.couplings] + [b.poles() for b in model.blocks]
+    poles = np.concatenate(parts) if parts else np.array([1.0])
+    mags = np.abs(poles[np.abs(poles) > 0]) if np.any(np.abs(poles) > 0) else np.array([1.0])
+    lo, hi = mags.min() * 1e-3, mags.max() * 1e3
+    n = int(np.ceil(points_per_decade * np.log10(hi / lo)))
+    resonances = [abs(p.imag) + abs(p.real) * np.linspace(-5, 5, 41) for p in poles if p.imag > 0]
+    grid = np.concatenate([np.geomspace(lo, hi, n), *resonances])
+    return np.unique(grid[grid > 0])
+
+
+def dof_scaling(model: RadiationModel, omega: ArrayLike | None = None) -> NDArray[np.float64]:
+    """s_i = 1/√(max_ω |K_ii(jω)|) (0 for a DOF without a diagonal model): S K S is
+    dimensionless and the DOFs weigh alike."""
+    w = default_sweep(model) if omega is None else np.asarray(omega, dtype=float)
+    scale = np.zeros(len(model.dofs))
+    diagonal = np.abs(np.diagonal(model.response(w), axis1=1, axis2=2)).max(axis=0)
+    for i in range(len(model.dofs)):
+        modelled = model.coupling(i, i)
+        if modelled is not None and modelled.order and diagonal[i] > 0:
+            scale[i] = 1.0 / np.sqrt(diagonal[i])
+    return scale
+
+
+def passivity_sweep(model: RadiationModel, omega: ArrayLike | None = None) -> PassivitySweep:
+    """λ_min(K(jω) + K(jω)ᴴ) of the MIMO model on a dense sweep (Unneland (2007) eq. 3.13).
+
+    The DOFs are scaled by :func:`dof_scaling`, so that translations and rotations weigh
+    alike, and the eigenvalues are relative to the largest one; both scales are taken on
+    :func:`default_sweep`, whatever ``omega`` is, so that the values compare with
+    :func:`passivity_test`'s exactly.
+    """
+    w = default_sweep(model) if omega is None else np.asarray(omega, dtype=float)
+    reference = default_sweep(model)
+    scale = dof_scaling(model, reference)
+    lam = _scaled_eigenvalues(model, w, scale)
+    top = max(
+        float(_scaled_eigenvalues(model, reference, scale)[:, -1].max()), np.finfo(float).tiny
+    )
+    low = lam[:, 0] / top
+    worst = int(np.argmin(low))
+    return PassivitySweep(w, low, bool(low[worst] >= -PASSIVITY_TOLERANCE), float(w[worst]))
+
+
+def imaginary_axis_zeros(
+    a: ArrayLike, b: ArrayLike, c: ArrayLike, d: ArrayLike | None = None
+) -> NDArray[np.float64]:
+    """Frequencies ω > 0 (rad/s) where K(jω) + K(jω)ᴴ is singular, K(s) = C(sI − A)⁻¹B + D.
+
+    The zeros of Φ(s) = K(s) + Kᵀ(−s) on the imaginary axis, as the finite eigenvalues of
+    its Rosenbrock pencil (module docstring): no inverse of D + Dᵀ is needed. Zeros within
+    :data:`AXIS_TOLERANCE` (relative) of the axis are returned, sorted, the pair ±jω
+    once (:data:`SAME_CROSSING`); s = 0 is left
+    out (a radiation model has K(0) = 0).
+    """
+    a, b, c = (np.atleast_2d(np.asarray(x, dtype=float)) for x in (a, b, c))
+    n, m = a.shape[0], b.shape[1]
+    if n == 0:
+        return np.empty(0)
+    d = np.zeros((m, m)) if d is None else np.asarray(d, dtype=float)
+    a_phi = scipy.linalg.block_diag(a, -a.T)
+    b_phi = np.vstack([b, c.T])
+    c_phi = np.hstack([c, -b.T])
+    pencil = np.block([[a_phi, b_phi], [c_phi, d + d.T]])
+    mass = scipy.linalg.block_diag(np.eye(2 * n), np.zeros((m, m)))
+    alpha, beta = scipy.linalg.eig(pencil, mass, right=False, homogeneous_eigvals=True)
+    finite = np.abs(beta) > 1e-9 * np.abs(alpha) + 1e-300
+    s = alpha[finite] / beta[finite]
+    # the zeros at s = 0 (K(0) = 0) come out as a cluster of size ~ε^(1/multiplicity)
+    slowest = np.abs(np.linalg.eigvals(a)).min()
+    s = s[np.isfinite(s) & (np.abs(s) > ORIGIN_TOLERANCE * slowest)]
+    on_axis = np.abs(s.real) <= AXIS_TOLERANCE * np.abs(s)
+    crossings = np.sort(np.abs(s[on_axis].imag))
+    if crossings.size < 2:
+        return crossings
+    new = np.r_[True, np.diff(crossings) > SAME_CROSSING * crossings[1:]]
+    return crossings[new]
+
+
+def passivity_test(model: RadiationModel) -> PassivityReport:
+    """Exact passivity test of the MIMO model: crossings, bands, limits (module docstring).
+
+    Returns
+    -------
+    PassivityReport
+    """
+    guard_radiation_model(model)  # non-finite or absurd matrices: FitError naming the pair
+    labels = tuple(model.dofs)
+    sweep = default_sweep(model)
+    scale = dof_scaling(model, sweep)
+    diagonal = scale > 0
+    touched = np.zeros(len(labels), dtype=bool)
+    for k in model.couplings:
+        if k.order:
+            touched[[k.influenced, k.radiating]] = True
+    for block in model.blocks:
+        if block.order:
+            touched[list(block.dofs)] = True
+    orphan = touched & ~diagonal
+    keep = np.flatnonzero(diagonal)
+    tested = tuple(labels[i] for i in keep)
+    if keep.size == 0:
+        return PassivityReport(True, 0.0, float("nan"), np.empty(0), (), np.nan, np.nan, tested)
+    a, b, c = _scaled_mimo(model, scale, keep)
+    crossings = imaginary_axis_zeros(a, b, c)
+    lam_sweep = _scaled_eigenvalues(model, sweep, scale)
+    top = max(float(np.abs(lam_sweep).max()), np.finfo(float).tiny)
+    low_sweep = lam_sweep[:, 0] / top
+
+    def lam_min(w: float) -> float:
+        return float(_scaled_eigenvalues(model, np.array([w]), scale)[0, 0]) / top
+
+    # between consecutive crossings the sign of λ_min is constant: the sweep points and
+    # one midpoint per interval decide it
+    edges = np.unique(np.concatenate([[0.0], crossings, [np.inf]]))
+    bands = []
+    worst = int(np.argmin(low_sweep))
+    worst_w, worst_v = float(sweep[worst]), float(low_sweep[worst])
+    for lo, hi in itertools.pairwise(edges):
+        inside = (sweep > lo) & (sweep < hi)
+        mid = midpoint(lo, hi, sweep)
+        ws = np.r_[sweep[inside], mid]
+        vs = np.r_[low_sweep[inside], lam_min(mid)]
+        k = int(np.argmin(vs))
+        w_min, v_min = float(ws[k]), float(vs[k])
+        if v_min >= 0:
+            continue
+        w_min, v_min = _refine_minimum(lam_min, lo, hi, w_min, v_min)
+        if v_min < worst_v:
+            worst_w, worst_v = w_min, v_min
+        if v_min < -PASSIVITY_TOLERANCE:
+            bands.append(ViolationBand(float(lo), float(hi), w_min, v_min))
+    high = _limit_eigenvalue(-(c @ a @ b))
+    low = _limit_eigenvalue(c @ np.linalg.matrix_power(np.linalg.inv(a), 3) @ b) if a.size else 0
+    passive = (
+        not bands
+        and not orphan.any()
+        and not (high < -PASSIVITY_TOLERANCE)
+        and not (low < -PASSIVITY_TOLERANCE)
+    )
+    return PassivityReport(
+        bool(passive),
+        float(worst_v),
+        float(worst_w),
+        crossings,
+        tuple(bands),
+        float(high),
+        float(low),
+        tested,
+    )
+
+
+def is_passive(model: RadiationModel) -> bool:
+    """True when the MIMO model passes :func:`passivity_test`."""
+    return passivity_test(model).passive
+
+
+# ----------------------------------------------------------------------- enforcement
+
+
+@dataclass(frozen=True)
+class PassivityEnforcement:
+    """Result of :func:`enforce_passivity`.
+
+    Attributes
+    ----------
+    model
+        The passive model (the input model when it was passive already).
+    before, after
+        :class:`PassivityReport` of the input and of the result.
+    iterations
+        Linearised corrections made.
+    relative_change
+        Per coupling label (``"Heave"``, ``"Sway-Roll"``): ‖δK‖/‖K‖ on the weighting grid.
+    """
+
+    model: RadiationModel
+    before: PassivityReport
+    after: PassivityReport
+    iterations: int
+    relative_change: dict[str, float]
+
+
+def enforce_passivity(
+    model: RadiationModel,
+    *,
+    omega: ArrayLike | None = None,
+    added_mass: ArrayLike | None = None,
+    damping: ArrayLike | None = None,
+    time: ArrayLike | None = None,
+    kernel: ArrayLike | None = None,
+    importance: Callable[[CouplingModel], float] | None = None,
+    motion_weight: Callable[[CouplingModel], NDArray | None] | None = None,
+    max_iterations: int = 30,
+) -> PassivityEnforcement:
+    """Make the MIMO model passive by the smallest data-weighted change of the residues.
+
+    The poles, K(0) = 0 and the symmetry K_ij = K_ji are kept; the output vectors c of
+    the couplings change by δc = N z (N spans the changes that keep K(0)). The total
+    change z from the input model minimises the data misfit
+
+        Σ_couplings Σ_ω (B̂ + δB − B)² / SS_B + (Â + δA − A)² / SS_A,
+
+    (SS: the sum of squares of the data about their mean, so the objective is the sum of
+    the couplings' losses of R² of A and of B, plus :data:`KERNEL_WEIGHT` times that of
+    K(t) when it is given) subject to the passivity constraints
+    linearised at every iteration, λ + vᵀ δΦ v ≥ margin, at the frequencies where the
+    current model violates (the worst point of each band and up to
+    ``points_per_band`` more) and on the limits ω → 0, ∞; all constraints found so far are
+    kept. Each least-squares problem with linear inequality constraints is solved exactly
+    as a least-distance programme (:func:`_least_distance_step`).
+
+    Parameters
+    ----------
+    model
+        A stable :class:`~cummins.radiation.model.RadiationModel`.
+    omega
+        Frequencies (rad/s) of the data: the fitted frequencies. By default a log grid
+        over the model's ``omega_fit_min``…``omega_fit_max`` attributes (else over its
+        pole range), with the model itself as the data.
+    added_mass, damping
+        The data A(ω), B(ω), shape (len(omega), n_dofs, n_dofs), symmetric. Without them
+        the model's own response is the reference: the change itself is minimised.
+    time, kernel
+        K(t) of the data (``kernel``, shape (len(time), n_dofs, n_dofs)): its misfit
+        (δK(t)/√SS_K) joins the objective, so that a change shaping K(jω) outside the
+        data range does not spoil the retardation function.
+    importance
+        Weight of each coupling's loss in the objective (default 1 for all). The fit
+        gives 1/(R² − target) so that couplings close to their R² target are changed
+        least.
+    motion_weight
+        Per coupling, the weight W(ω) on ``omega`` of its complex error |K̂ − K| in the
+        motions (:mod:`cummins.radiation.fit.motion`, already divided by the coupling's error
+        budget), or None: rows W·δK join that coupling's misfit, so that the change
+        avoids the frequencies where the motions are sensitive.
+    max_iterations
+        Linearised corrections allowed before giving up.
+
+    Returns
+    -------
+    PassivityEnforcement
+
+    Raises
+    ------
+    FitError
+        When the model is unstable, or is still not passive after ``max_iterations``
+        corrections (the message names the worst frequency), or when the model or the
+        data hold non-finite or absurdly scaled values (naming the DOF pair).
+    """
+    guard_radiation_model(model)
+    for name, values in (("added_mass", added_mass), ("damping", damping), ("kernel", kernel)):
+        if values is not None:
+            guard_finite(values, name, FitError, model.dofs)
+    if not model.is_stable():
+        raise FitError("passivity enforcement needs a stable model")
+    before = passivity_test(model)
+    if before.passive:
+        return PassivityEnforcement(model, before, before, 0, {})
+    if model.blocks:
+        raise FitError(
+            "the model holds blocks of common-pole models, which this enforcement does not "
+            "change (it moves the residues of single couplings)",
+            hint="a block is made passive when it is fitted (cummins.radiation.fit.vector); refit "
+            "the data with fit_radiation",
+        )
+    w = fit_range_grid(model) if omega is None else np.asarray(omega, dtype=float)
+    groups = _coupling_groups(model)
+    bases = [_perturbation_basis(model.couplings[g[0]]) for g in groups]
+    misfit = []
+    for group, basis in zip(groups, bases, strict=True):
+        jac, y = _misfit(model, group, basis, w, added_mass, damping, time, kernel)
+        extra = None if motion_weight is None else motion_weight(model.couplings[group[0]])
+        if extra is not None:
+            jac_m, y_m = _motion_misfit(model, group, basis, w, added_mass, damping, extra)
+            jac, y = np.vstack([jac, jac_m]), np.concatenate([y, y_m])
+        weight = 1.0 if importance is None else float(importance(model.couplings[group[0]]))
+        misfit.append((np.sqrt(weight) * jac, np.sqrt(weight) * y))
+    scale = dof_scaling(model)
+    size = sum(basis.shape[1] for basis in bases)
+    z = np.zeros(size)
+    rows: list[NDArray] = []
+    rhs: list[float] = []
+    current, report, done = model, before, 0
+    while not report.passive:
+        if done >= max_iterations:
+            raise FitError(
+                f"the model is still not passive after {done} corrections (λ_min "
+                f"{report.min_eigenvalue:.3g} at {report.worst_omega:.4g} rad/s)",
+                hint="refit with a lower order or a narrower frequency range "
+                "(fit_radiation(..., max_order=...)), or check the data for "
+                "non-physical damping (cummins check)",
+            )
+        new_rows, new_rhs = _constraints(current, report, groups, bases, scale)
+        if not new_rows:
+            raise FitError(
+                f"passivity cannot be enforced: the violation ({report.min_eigenvalue:.3g} at "
+                f"{report.worst_omega:.4g} rad/s) does not depend on the residues"
+            )
+        # linearised at the current z: g·(z_new − z) ≥ h  ⇔  g·z_new ≥ h + g·z
+        rows.extend(new_rows)
+        rhs.extend(h + float(g @ z) for g, h in zip(new_rows, new_rhs, strict=True))
+        z = constrained_least_squares(misfit, np.array(rows), np.array(rhs))
+        current = _apply_step(model, groups, bases, z)
+        report = passivity_test(current)
+        done += 1
+    change = {_group_label(model, g): _relative_change(model, current, g[0], w) for g in groups}
+    return PassivityEnforcement(current, before, report, done, change)
+
+
+def augment_for_passivity(
+    model: RadiationModel, report: PassivityReport, *, weight: float = 0.2
+) -> RadiationModel:
+    """The model with one extra real pole, residue zero (the response is unchanged), on
+    each diagonal term that takes part in a violation: at the worst frequency of each
+    band, on the DOFs carrying more than ``weight`` of the offending eigenvector.
+
+    Residue changes alone cannot reshape K outside the data range (beyond ω_max, below
+    ω_min) without spoiling the fit inside it; a pole placed where the model violates
+    gives :func:`enforce_passivity` that freedom for one state per DOF and band.
+    """
+    scale = dof_scaling(model)
+    keep = np.flatnonzero(scale > 0)
+    extra: dict[int, list[float]] = {}
+    for band in _distinct(report.bands):
+        k = model.response(np.array([band.worst_omega]))[0]
+        k = k[np.ix_(keep, keep)] * scale[keep][:, None] * scale[keep][None, :]
+        _, vec = np.linalg.eigh(k + k.conj().T)
+        share = np.abs(vec[:, 0]) ** 2
+        for n in np.flatnonzero(share > weight):
+            extra.setdefault(int(keep[n]), []).append(band.worst_omega)
+    couplings = list(model.couplings)
+    for n, k in enumerate(couplings):
+        if k.influenced != k.radiating or k.influenced not in extra:
+            continue
+        poles = [w for w in extra[k.influenced] if not np.any(np.isclose(-k.poles().real, w))]
+        if not poles:
+            continue
+        m = len(poles)
+        a = scipy.linalg.block_diag(k.a, -np.diag(poles))
+        b = np.r_[k.b, np.ones(m)]
+        c = np.r_[k.c, np.zeros(m)]
+        note = "; ".join(filter(None, [k.note, f"{m} pole(s) added for MIMO passivity"]))
+        couplings[n] = replace(k, a=a, b=b, c=c, note=note)
+    return replace(model, couplings=tuple(couplings))
+
+
+# ----------------------------------------------------------------------- internals
+
+
+def _scaled_eigenvalues(model: RadiationModel, w: NDArray, scale: NDArray) -> NDArray:
+    """Ascending eigenvalues of S (K + Kᴴ) S at each ω, over the DOFs with scale > 0."""
+    keep = np.flatnonzero(scale > 0)
+    k = model.response(w)[:, keep][:, :, keep]
+    s = scale[keep]
+    herm = (k + np.conj(np.swapaxes(k, 1, 2))) * s[None, :, None] * s[None, None, :]
+    return np.linalg.eigvalsh(herm)
+
+
+def _scaled_mimo(model: RadiationModel, scale: NDArray, keep: NDArray):
+    a, b, c = model.A, model.B, model.C
+    return a, b[:, keep] * scale[keep], c[keep] * scale[keep][:, None]
+
+
+def midpoint(lo: float, hi: float, sweep: NDArray) -> float:
+    """A frequency inside (lo, hi) for testing the sign of λ_min there (hi may be ∞)."""
+    if np.isinf(hi):
+        return 10.0 * max(lo, sweep[-1])
+    if lo <= 0:
+        return min(hi, sweep[0]) / 10.0
+    return float(np.sqrt(lo * hi))
+
+
+def _distinct(bands) -> list[ViolationBand]:
+    """The bands less those whose worst point repeats an earlier one's (within 10⁻⁴): a
+    zero of Φ where λ_min touches zero, split in two by rounding, gives two bands with
+    one minimum at their shared edge — on one BLAS thread count and not on another (the
+    cylinder: 62 or 54 states). Augmentation and constraints use each minimum once."""
+    out: list[ViolationBand] = []
+    for band in bands:
+        if any(abs(band.worst_omega - b.worst_omega) <= 1e-4 * b.worst_omega for b in out):
+            continue
+        out.append(band)
+    return out
+
+
+def _refine_minimum(lam_min, lo: float, hi: float, w0: float, v0: float) -> tuple[float, float]:
+    """The minimum of λ_min(ω) in (lo, hi) near w0, searched on log ω: over the band, and
+    polished within ±1 % of the best point (a band-wide bounded search can stop
+    in a local minimum, or 10⁻⁵ short of the sweep's own minimum)."""
+    left = np.log(lo) if lo > 0 else np.log(w0) - 3.0
+    right = np.log(hi) if np.isfinite(hi) else np.log(w0) + 3.0
+    best_w, best_v = w0, v0
+    for a, b, tol in ((left, right, 1e-4), (None, None, 1e-9)):
+        if a is None:  # polish within ±1 % of the best point
+            centre = np.log(best_w)
+            a, b = max(left, centre - 0.01), min(right, centre + 0.01)
+        if not b > a:
+            continue
+        result = minimize_scalar(
+            lambda x: lam_min(float(np.exp(x))),
+            bounds=(a, b),
+            method="bounded",
+            options={"xatol": tol},
+        )
+        if result.fun < best_v:
+            best_w, best_v = float(np.exp(result.x)), float(result.fun)
+    return best_w, best_v
+
+
+def _limit_eigenvalue(matrix: NDArray) -> float:
+    """λ_min / λ_max(abs) of the symmetric part (NaN for a zero matrix)."""
+    sym = matrix + matrix.T
+    lam = np.linalg.eigvalsh(sym)
+    top = np.abs(lam).max()
+    return float(lam[0] / top) if top > 0 else float("nan")
+
+
+def fit_range_grid(model: RadiationModel, points: int = 200) -> NDArray:
+    """Log grid over the model's fitted range (``omega_fit_min`` … ``omega_fit_max``
+    attributes), else over a decade beyond its pole magnitudes."""
+    lo, hi = model.attrs.get("omega_fit_min"), model.attrs.get("omega_fit_max")
+    if lo is None or hi is None:
+        poles = np.concatenate(
+            [k.poles() for k in model.couplings if k.order]
+            + [b.poles() for b in model.blocks if b.order]
+        )
+        lo, hi = np.abs(poles).min() / 10, np.abs(poles).max() * 10
+    return np.geomspace(float(lo), float(hi), points)
+
+
+def _coupling_groups(model: RadiationModel) -> list[list[int]]:
+    """Indices of the couplings perturbed together: a symmetric pair (identical a, b, c)
+    is one group."""
+    groups: list[list[int]] = []
+    used: set[int] = set()
+    for n, k in enumerate(model.couplings):
+        if n in used or not k.order:
+            continue
+        group = [n]
+        for m, other in enumerate(model.couplings):
+            if (
+                m != n
+                and m not in used
+                and other.influenced == k.radiating
+                and other.radiating == k.influenced
+                and k.influenced != k.radiating
+                and other.a.shape == k.a.shape
+                and np.array_equal(other.a, k.a)
+                and np.array_equal(other.b, k.b)
+                and np.array_equal(other.c, k.c)
+            ):
+                group.append(m)
+        used.update(group)
+        groups.append(group)
+    return groups
+
+
+def _group_label(model: RadiationModel, group: Sequence[int]) -> str:
+    k = model.couplings[group[0]]
+    i, j = sorted((k.influenced, k.radiating))
+    return model.dofs[i] if i == j else f"{model.dofs[i]}-{model.dofs[j]}"
+
+
+def _perturbation_basis(coupling) -> NDArray:
+    """Columns N spanning the changes δc = N z that keep K(0) = −c a⁻¹ b unchanged."""
+    g0 = np.linalg.solve(coupling.a, coupling.b)
+    q, _ = np.linalg.qr(np.c_[g0, np.eye(g0.size)])
+    return q[:, 1:]
+
+
+def _transfer_vectors(coupling, w: NDArray) -> NDArray:
+    """g(ω) = (jωI − a)⁻¹ b for each ω, shape (len(w), n): K = c·g."""
+    lam, v = np.linalg.eig(coupling.a)
+    if np.linalg.cond(v) < 1e10:
+        right = np.linalg.solve(v, coupling.b)
+        return ((right[None, :] / (1j * w[:, None] - lam[None, :])) @ v.T).astype(complex)
+    n = coupling.a.shape[0]
+    out = np.empty((w.size, n), dtype=complex)
+    for k, wk in enumerate(w):
+        out[k] = np.linalg.solve(1j * wk * np.eye(n) - coupling.a, coupling.b)
+    return out
+
+
+def _misfit(model, group, basis, w, added_mass, damping, time, kernel):
+    """(J, y) with the data misfit of the coupling = ‖J z + y‖² for δc = N z: rows
+    δB/√SS_B and δA/√SS_A per frequency, δK(t)/√SS_K per time (when K(t) of the data is
+    given); y the current residuals likewise."""
+    k = model.couplings[group[0]]
+    i, j = k.influenced, k.radiating
+    g = _transfer_vectors(k, w) @ basis
+    response = k.frequency_response(w)
+    a_model, b_model = response.imag / w, response.real
+    if added_mass is not None and damping is not None:
+        a_data = np.asarray(added_mass)[:, i, j] - model.added_mass_inf[i, j]
+        b_data = np.asarray(damping)[:, i, j]
+    else:
+        a_data, b_data = a_model, b_model
+    parts = [(g.real, b_model, b_data), (g.imag / w[:, None], a_model, a_data)]
+    if time is not None and kernel is not None:
+        t = np.asarray(time, dtype=float)
+        parts.append((_impulse_vectors(k, t) @ basis, k.impulse_response(t), kernel[:, i, j]))
+    rows, residuals = [], []
+    for n, (jac, fitted, data) in enumerate(parts):
+        ss = max(float(np.sum((data - data.mean()) ** 2)), 1e-300) / (
+            KERNEL_WEIGHT if n == 2 else 1.0
+        )
+        rows.append(jac / np.sqrt(ss))
+        residuals.append((fitted - data) / np.sqrt(ss))
+    return np.vstack(rows), np.concatenate(residuals)
+
+
+def _motion_misfit(model, group, basis, w, added_mass, damping, weight):
+    """(J, y): rows W·Re δK and W·Im δK of the coupling (see ``motion_weight`` of
+    :func:`enforce_passivity`), y the current W·(K̂ − K)."""
+    k = model.couplings[group[0]]
+    i, j = k.influenced, k.radiating
+    g = _transfer_vectors(k, w) @ basis
+    response = k.frequency_response(w)
+    if added_mass is not None and damping is not None:
+        data = np.asarray(damping)[:, i, j] + 1j * w * (
+            np.asarray(added_mass)[:, i, j] - model.added_mass_inf[i, j]
+        )
+    else:
+        data = response
+    weight = np.asarray(weight, dtype=float)
+    rows = np.vstack([weight[:, None] * g.real, weight[:, None] * g.imag])
+    residual = weight * (response - data)
+    return rows, np.concatenate([residual.real, residual.imag])
+
+
+def _impulse_vectors(coupling, t: NDArray) -> NDArray:
+    """e^{a t} b for each t, shape (len(t), n): K(t) = c·(e^{a t} b)."""
+    lam, v = np.linalg.eig(coupling.a)
+    if np.linalg.cond(v) < 1e10:
+        right = np.linalg.solve(v, coupling.b)
+        return np.real((right[None, :] * np.exp(np.outer(t, lam))) @ v.T)
+    return np.array([scipy.linalg.expm(coupling.a * tk) @ coupling.b for tk in t])
+
+
+def _constraints(model, report, groups, bases, scale):
+    """Linearised rows g·δz ≥ h: at the worst point of each violation band and at
+    :data:`POINTS_PER_BAND` points spread over it (where λ < margin), and on the limits."""
+    rows, rhs = [], []
+    keep = np.flatnonzero(scale > 0)
+    points = []
+    for band in _distinct(report.bands):
+        lo = band.omega_low if band.omega_low > 0 else band.worst_omega / 100.0
+        hi = band.omega_high if np.isfinite(band.omega_high) else band.worst_omega * 100.0
+        points.extend([band.worst_omega, *np.geomspace(lo, hi, POINTS_PER_BAND + 2)[1:-1]])
+    points = np.asarray(points, dtype=float)
+    responses = model.response(points) if points.size else np.empty((0, 0, 0))
+    transfer = {
+        n: _transfer_vectors(model.couplings[n], points) @ basis
+        for group, basis in zip(groups, bases, strict=True)
+        for n in group
+    }
+    for p in range(points.size):
+        k = responses[p][np.ix_(keep, keep)] * scale[keep][:, None] * scale[keep][None, :]
+        lam, vec = np.linalg.eigh(k + k.conj().T)
+        local = max(float(np.abs(lam).max()), np.finfo(float).tiny)
+        for e in range(lam.size):
+            if lam[e] >= ENFORCEMENT_MARGIN * local:
+                break
+            v = np.zeros(len(model.dofs), dtype=complex)
+            v[keep] = vec[:, e] * scale[keep]
+            row = []
+            for group in groups:
+                total = 0.0
+                for n in group:
+                    c = model.couplings[n]
+                    weight = np.conj(v[c.influenced]) * v[c.radiating]
+                    total = total + 2.0 * np.real(weight * transfer[n][p])
+                row.append(np.broadcast_to(total, transfer[group[0]][p].shape))
+            rows.append(np.concatenate(row))
+            rhs.append(ENFORCEMENT_MARGIN * local - lam[e])
+    if report.high_frequency < -PASSIVITY_TOLERANCE:
+        _limit_rows(model, groups, bases, scale, keep, rows, rhs, high=True)
+    if report.low_frequency < -PASSIVITY_TOLERANCE:
+        _limit_rows(model, groups, bases, scale, keep, rows, rhs, high=False)
+    return rows, rhs
+
+
+def _limit_vector(coupling, high: bool) -> NDArray:
+    """x with the coupling's limit coefficient = c·x: −a b (ω → ∞), a⁻³ b (ω → 0)."""
+    if high:
+        return -(coupling.a @ coupling.b)
+    return np.linalg.solve(
+        coupling.a, np.linalg.solve(coupling.a, np.linalg.solve(coupling.a, coupling.b))
+    )
+
+
+def _limit_rows(model, groups, bases, scale, keep, rows, rhs, *, high: bool) -> None:
+    """Rows for the limits −(CAB + (CAB)ᵀ) ⪰ 0 (ω → ∞) and CA⁻³B + (CA⁻³B)ᵀ ⪰ 0 (ω → 0)."""
+    n = len(model.dofs)
+    matrix = np.zeros((n, n))
+    for k in model.couplings:
+        if k.order:
+            matrix[k.influenced, k.radiating] += k.c @ _limit_vector(k, high)
+    sub = matrix[np.ix_(keep, keep)] * scale[keep][:, None] * scale[keep][None, :]
+    lam, vec = np.linalg.eigh(sub + sub.T)
+    local = max(float(np.abs(lam).max()), np.finfo(float).tiny)
+    for e in range(lam.size):
+        if lam[e] >= ENFORCEMENT_MARGIN * local:
+            break
+        v = np.zeros(n)
+        v[keep] = vec[:, e] * scale[keep]
+        row = []
+        for group, basis in zip(groups, bases, strict=True):
+            total = np.zeros(basis.shape[1])
+            for m in group:
+                c = model.couplings[m]
+                total += 2.0 * v[c.influenced] * v[c.radiating] * (_limit_vector(c, high) @ basis)
+            row.append(total)
+        rows.append(np.concatenate(row))
+        rhs.append(ENFORCEMENT_MARGIN * local - lam[e])
+
+
+def constrained_least_squares(misfit, g: NDArray, h: NDArray) -> NDArray:
+    """z minimising Σ_k ‖J_k z_k + y_k‖² subject to G z ≥ h (Lawson & Hanson ch. 23).
+
+    With J = QR per block and x = Rz + Qᵀy the problem becomes the least-distance
+    programme min ‖x‖ s.t. (G R⁻¹) x ≥ h + G R⁻¹ Qᵀy, solved through the NNLS problem
+    min ‖E u − f‖, E = [Fᵀ; eᵀ], f = (0, …, 0, 1), u ≥ 0 (F x ≥ e the constraints).
+    """
+    r_blocks, qty = [], []
+    for jac, y in misfit:
+        q, r = np.linalg.qr(jac)
+        ridge = 1e-8 * max(float(np.abs(r).max()), 1e-300)
+        r = r + ridge * np.eye(r.shape[0]) * (np.abs(np.diag(r)) < ridge)
+        r_blocks.append(r)
+        qty.append(q.T @ y)
+    r_all = scipy.linalg.block_diag(*r_blocks)
+    shift = np.concatenate(qty)
+    f = np.linalg.solve(r_all.T, g.T).T  # G R⁻¹
+    e = h + f @ shift
+    norms = np.linalg.norm(f, axis=1)
+    norms[norms == 0] = 1.0
+    f, e = f / norms[:, None], e / norms
+    n = f.shape[1]
+    matrix = np.vstack([f.T, e[None, :]])
+    target = np.zeros(n + 1)
+    target[-1] = 1.0
+    u, _ = nnls(matrix, target, maxiter=50 * matrix.shape[1])
+    residual = matrix @ u - target
+    if abs(residual[-1]) < 1e-12:
+        raise FitError("passivity enforcement: the linearised constraints are infeasible")
+    x = -residual[:n] / residual[-1]
+    return np.linalg.solve(r_all, x - shift)
+
+
+def _apply_step(model, groups, bases, step) -> RadiationModel:
+    """The model with c ← c + N z for each group."""
+    couplings = list(model.couplings)
+    start = 0
+    for group, basis in zip(groups, bases, strict=True):
+        stop = start + basis.shape[1]
+        delta = basis @ step[start:stop]
+        for n in group:
+            couplings[n] = replace(couplings[n], c=couplings[n].c + delta)
+        start = stop
+    return replace(model, couplings=tuple(couplings))
+
+
+def _relative_change(before: RadiationModel, after: RadiationModel, n: int, w: NDArray) -> float:
+    k0 = before.couplings[n].frequency_response(w)
+    k1 = after.couplings[n].frequency_response(w)
+    return float(np.linalg.norm(k1 - k0) / max(np.linalg.norm(k0), 1e-300))

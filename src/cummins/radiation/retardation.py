@@ -1,0 +1,859 @@
+"""Retardation functions K(t), infinite-frequency added mass A∞ and causality diagnostics.
+
+The radiation force of the Cummins equation is −A∞ ξ̈ − ∫₀ᵗ K(t − τ) ξ̇(τ) dτ, with
+(Ogilvie; Hjulstad (2004) eqs. 5.11–5.15, Unneland (2007) eqs. 2.46–2.61)
+
+* K(t) = (2/π) ∫₀^∞ B(ω) cos(ωt) dω                              (Hjulstad (2004) eq. 5.15)
+* K(t) = −(2/π) ∫₀^∞ ω (A(ω) − A∞) sin(ωt) dω                      (Hjulstad (2004) eq. 5.14)
+* B(ω) = ∫₀^∞ K(t) cos(ωt) dt,  A(ω) = A∞ − (1/ω) ∫₀^∞ K(t) sin(ωt) dt  (eqs. 5.11–5.12)
+* A(ω) = A∞ + (2/π) PV ∫₀^∞ B(ν) / (ν² − ω²) dν  (Kramers–Kronig, Hjulstad (2004) eq. 5.23)
+* c(ω) = ω² (A∞ − A(ω)) − ω ∫₀^∞ K(t) sin(ωt) dt = 0 for consistent data (eq. 5.5)
+
+How cummins evaluates them (see :mod:`cummins.radiation.transforms`): the damping is taken as
+piecewise linear between the data points (or a shape-preserving cubic, resampled),
+with B(0) = 0 at zero speed, and integrated *exactly* against cos ωt — no aliasing on
+coarse or non-uniform grids. Beyond the last frequency a fitted high-frequency tail
+(exponential B_N e^{−α(ω−ω_N)}, with its analytic cosine transform, or a power law
+B_N (ω_N/ω)^n, integrated exactly on a fine geometric grid) continues the data; the
+tail's share of ∫B dω is reported because K(0) depends on it. A∞ is the data row
+when the solver computed it; otherwise the Ogilvie relation is evaluated at every
+frequency through the exact principal-value integral of the Kramers–Kronig relation
+(equivalent to (1/ω)∫K(t) sin ωt dt, without truncating K), and the values are
+combined robustly (median), with their spread.
+
+All functions take a ``HydroDB`` at one forward speed and return xarray objects with
+the dataset's DOF labels. Units: K in kg/s², kg·m/s², kg·m²/s² (as B divided by s).
+"""
+
+from __future__ import annotations
+
+from dataclasses import dataclass
+
+import numpy as np
+import xarray as xr
+from numpy.typing import ArrayLike, NDArray
+from scipy.interpolate import PchipInterpolator
+from scipy.special import sici
+
+from cummins.errors import HydroDataError
+from cummins.hydrodb import dof_matrix, is_rotation, single_speed
+from cummins.radiation.transforms import cosine_transform, hilbert_pv, sine_transform
+
+TAIL_KINDS = ("exponential", "power", "auto", "none")
+
+#: Slowest power-law decay of a damping tail. A finite-order (rational, relative degree
+#: one) radiation model has Re K(jω) ~ ω⁻² at high frequency; a slower decay fitted on a
+#: truncated range would put an unbounded share of ∫B dω in the extrapolation.
+MIN_POWER = 2.0
+INTERPOLATIONS = ("linear", "pchip")
+
+_K_UNITS = "kg/s^2 | kg m/s^2 | kg m^2/s^2 (translation | mixed | rotation)"
+
+
+# --------------------------------------------------------------------------- helpers
+
+
+def _coupling_coords(ds: xr.Dataset) -> dict:
+    return {"influenced_dof": ds.influenced_dof.values, "radiating_dof": ds.radiating_dof.values}
+
+
+def default_time_grid(
+    ds: xr.Dataset, *, threshold: float = 0.01, max_points: int = 20_000
+) -> NDArray[np.float64]:
+    """A time grid long and fine enough for the retardation functions of ``ds``.
+
+    The step resolves the highest frequency of the data, dt = π/(4 ω_N) (coarser if
+    ``max_points`` would otherwise be exceeded). The length is found from K itself: K is
+    evaluated up to 2π/ω_min, beyond which the data hold no information (Hjulstad (2004)
+    §12.4), and the grid ends at 1.5 times the last time where some coupling still
+    exceeds ``threshold`` of its peak (at most 2π/ω_min). Bodies with a long memory in
+    one DOF (heave in shallow water) get a long grid, compact ones a short one.
+
+    Returns
+    -------
+    ndarray
+        Times in seconds, uniformly spaced from 0.
+    """
+    return _default_kernel(ds, threshold, max_points)[0]
+
+
+def default_retardation_function(
+    ds: xr.Dataset, *, threshold: float = 0.01, max_points: int = 20_000
+) -> xr.DataArray:
+    """:func:`retardation_function` on :func:`default_time_grid`, computed once."""
+    return _default_kernel(ds, threshold, max_points)[1]
+
+
+def _default_kernel(ds: xr.Dataset, threshold: float, max_points: int):
+    ds = single_speed(ds)
+    w = ds.omega.values
+    t_limit = 2 * np.pi / w[0]
+    dt = max(np.pi / (4 * w[-1]), t_limit / max_points)
+    probe = np.arange(0.0, t_limit + 0.5 * dt, dt)
+    kernel = retardation_function(ds, probe)
+    k = kernel.values.reshape(probe.size, -1)
+    peak = np.abs(k).max(axis=0)
+    keep = peak > 1e-9 * peak.max()
+    if not keep.any():
+        return probe, kernel
+    active = np.abs(k[:, keep]) > threshold * peak[keep]
+    last = probe[np.flatnonzero(active.any(axis=1))[-1]]
+    t_max = min(t_limit, max(1.5 * last, 20 * dt))
+    stop = int(np.searchsorted(probe, t_max + 0.5 * dt))
+    return probe[:stop], kernel.isel(time=slice(0, stop))
+
+
+# --------------------------------------------------------------------------- tail
+
+
+@dataclass(frozen=True)
+class DampingTail:
+    """High-frequency continuation of B(ω) beyond the last frequency, per coupling.
+
+    Attributes
+    ----------
+    kind
+        ``"exponential"`` (B_N e^{−α(ω−ω_N)}), ``"power"`` (B_N (ω_N/ω)^n) or ``"none"``,
+        per coupling (array of str, shape (P,)).
+    omega_start
+        ω_N, rad/s, the last data frequency (where the tail starts, continuously).
+    value
+        B_N per coupling, shape (P,).
+    rate
+        α (s) for exponential tails, n for power tails, NaN where there is none.
+    note
+        Why a coupling has no tail, or why its kind was changed, per coupling.
+    """
+
+    kind: NDArray
+    omega_start: float
+    value: NDArray
+    rate: NDArray
+    note: NDArray
+
+    def _grid(self) -> NDArray:
+        """Geometric grid from ω_N on which every tail is below 1e-8 of B_N at the end."""
+        finite = self.rate[np.isfinite(self.rate)]
+        kinds = set(self.kind.tolist())
+        end = self.omega_start * 2.0
+        if "power" in kinds:
+            n = finite[self.kind[np.isfinite(self.rate)] == "power"].min()
+            end = max(end, self.omega_start * 1e-8 ** (-1.0 / n))
+        if "exponential" in kinds:
+            alpha = finite[self.kind[np.isfinite(self.rate)] == "exponential"].min()
+            end = max(end, self.omega_start + 18.5 / alpha)
+        return self.omega_start * np.geomspace(1.0, end / self.omega_start, 800)
+
+    def sampled(self) -> tuple[NDArray, NDArray]:
+        """(ω, B) of every tail on one fine grid from ω_N, shape (G,), (G, P)."""
+        w = self._grid()
+        b = np.zeros((w.size, self.kind.size))
+        x = w[:, None]
+        with np.errstate(over="ignore", invalid="ignore"):
+            exp = self.value * np.exp(-self.rate * (x - self.omega_start))
+            power = self.value * (self.omega_start / x) ** self.rate
+        b[:, self.kind == "exponential"] = exp[:, self.kind == "exponential"]
+        b[:, self.kind == "power"] = power[:, self.kind == "power"]
+        return w, b
+
+    def cosine(self, t: ArrayLike) -> NDArray:
+        """∫_{ω_N}^∞ B_tail(ω) cos(ωt) dω, shape (len(t), P)."""
+        return self._transform(t, cos=True)
+
+    def sine(self, t: ArrayLike) -> NDArray:
+        """∫_{ω_N}^∞ B_tail(ω) sin(ωt) dω, shape (len(t), P)."""
+        return self._transform(t, cos=False)
+
+    def _transform(self, t: ArrayLike, cos: bool) -> NDArray:
+        t = np.asarray(t, dtype=float).reshape(-1)
+        out = np.zeros((t.size, self.kind.size))
+        exponential = self.kind == "exponential"
+        if exponential.any():  # closed form (de Haan (2022) §2.5.1)
+            a, c = self.rate[exponential], self.value[exponential]
+            w0, tt = self.omega_start, t[:, None]
+            denominator = a**2 + tt**2
+            if cos:
+                out[:, exponential] = c * (a * np.cos(w0 * tt) - tt * np.sin(w0 * tt)) / denominator
+            else:
+                out[:, exponential] = c * (a * np.sin(w0 * tt) + tt * np.cos(w0 * tt)) / denominator
+        square = (self.kind == "power") & (self.rate == 2.0)
+        if square.any():  # closed form with the sine and cosine integrals
+            out[:, square] = self.value[square] * _inverse_square_tail(self.omega_start, t, cos)
+        power = (self.kind == "power") & ~square
+        if power.any():  # exact for the interpolant on a fine geometric grid
+            w, b = self.sampled()
+            transform = cosine_transform if cos else sine_transform
+            out[:, power] = transform(w, b[:, power], t)
+        return out
+
+    def hilbert(self, omega: ArrayLike) -> NDArray:
+        """PV ∫_{ω_N}^∞ B_tail(ν)/(ν² − ω²) dν at ``omega`` (≤ ω_N), shape (len(ω), P)."""
+        omega = np.asarray(omega, dtype=float).reshape(-1)
+        out = np.zeros((omega.size, self.kind.size))
+        some = self.kind != "none"
+        if some.any():
+            w, b = self.sampled()
+            out[:, some] = hilbert_pv(w, b[:, some], omega)
+        return out
+
+    def area(self) -> NDArray:
+        """∫_{ω_N}^∞ B_tail dω per coupling."""
+        out = np.zeros(self.kind.size)
+        for k, kind in enumerate(self.kind):
+            if kind == "exponential":
+                out[k] = self.value[k] / self.rate[k]
+            elif kind == "power":
+                out[k] = self.value[k] * self.omega_start / (self.rate[k] - 1.0)
+        return out
+
+
+def _inverse_square_tail(a: float, t: NDArray, cos: bool) -> NDArray:
+    """∫_a^∞ (a/ω)² cos(ωt) dω (or sin), shape (len(t), 1), by parts:
+
+    a² [cos(at)/a − t (π/2 − Si(at))]  and  a² [sin(at)/a − t Ci(at)]   (t ≥ 0).
+    """
+    tt = np.abs(t)[:, None]
+    si, ci = sici(a * tt)
+    if cos:
+        return a * np.cos(a * tt) - a**2 * tt * (0.5 * np.pi - si)
+    with np.errstate(invalid="ignore"):
+        sine = a * np.sin(a * tt) - a**2 * np.where(tt > 0, tt * ci, 0.0)
+    return np.sign(t)[:, None] * sine
+
+
+def fit_damping_tail(
+    omega: ArrayLike,
+    damping: ArrayLike,
+    kind: str = "auto",
+    *,
+    points: int | None = None,
+    negligible: float = 1e-4,
+) -> DampingTail:
+    """Fit a decaying high-frequency tail to the last points of B(ω), per coupling.
+
+    The tail is anchored at the last data point (continuous) and its decay rate is
+    fitted by least squares to ln|B| over the last ``points`` frequencies: against ω
+    for an exponential, against ln ω for a power law. ``"auto"`` takes the better of
+    the two (smaller log residual). A coupling gets no tail when B has already decayed
+    there (|B_N| below ``negligible`` × its peak), when B changes sign or is zero in the
+    fitting window, or when the fitted curve does not decay (α ≤ 0, n ≤ 1): the reason
+    is recorded in ``note``. Power laws decaying slower than ω⁻² are steepened to
+    :data:`MIN_POWER`; an exponential whose area B_N/α exceeds twice that of the ω⁻²
+    law, B_N ω_N (α ω_N < 1/2: a window that hardly decays, such as a noisy
+    off-diagonal term), is replaced by the ω⁻² law.
+
+    Parameters
+    ----------
+    omega
+        Frequencies, rad/s, increasing, shape (N,).
+    damping
+        B, shape (N, P) (P couplings) or (N,).
+    kind
+        ``"exponential"``, ``"power"``, ``"auto"`` or ``"none"``.
+    points
+        Width of the fitting window (default: a tenth of the data, at least 4).
+    """
+    if kind not in TAIL_KINDS:
+        raise HydroDataError(
+            f"unknown tail kind {kind!r}", hint=f"use one of {', '.join(TAIL_KINDS)}"
+        )
+    w = np.asarray(omega, dtype=float)
+    b = np.asarray(damping, dtype=float).reshape(w.size, -1)
+    p = b.shape[1]
+    kinds = np.full(p, "none", dtype=object)
+    rates = np.full(p, np.nan)
+    notes = np.full(p, "", dtype=object)
+    if kind == "none":
+        notes[:] = "no tail requested"
+        return DampingTail(kinds, float(w[-1]), b[-1].copy(), rates, notes)
+    m = points or max(4, w.size // 10)
+    m = min(m, w.size)
+    ww = w[-m:]
+    for k in range(p):
+        window = b[-m:, k]
+        peak = np.abs(b[:, k]).max()
+        if peak == 0 or abs(b[-1, k]) <= negligible * peak:
+            notes[k] = "damping has decayed at the last frequency"
+            continue
+        if np.any(window == 0) or np.any(np.sign(window) != np.sign(window[-1])):
+            notes[k] = "damping changes sign near the last frequency: no tail fitted"
+            continue
+        y = np.log(np.abs(window))
+        candidates = []
+        if kind in ("exponential", "auto"):
+            slope, intercept = np.polyfit(ww, y, 1)
+            residual = np.sum((y - (slope * ww + intercept)) ** 2)
+            if -slope > 0:
+                candidates.append((residual, "exponential", -slope))
+        if kind in ("power", "auto"):
+            lw = np.log(ww)
+            slope, intercept = np.polyfit(lw, y, 1)
+            residual = np.sum((y - (slope * lw + intercept)) ** 2)
+            if -slope > 1:
+                candidates.append((residual, "power", max(-slope, MIN_POWER)))
+        if not candidates:
+            notes[k] = "damping does not decay near the last frequency: no tail fitted"
+            continue
+        _, kinds[k], rates[k] = min(candidates)
+        if kinds[k] == "exponential" and rates[k] * w[-1] < 0.5 * (MIN_POWER - 1):
+            # area B_N/α over twice that of the slowest admissible power law, B_N ω_N/(n−1)
+            kinds[k], rates[k] = "power", MIN_POWER
+            notes[k] = "exponential decay much slower than the ω⁻² law: ω⁻² used"
+    return DampingTail(kinds, float(w[-1]), b[-1].copy(), rates, notes)
+
+
+# --------------------------------------------------------------------------- K(t)
+
+
+def _damping_grid(
+    ds: xr.Dataset, interpolation: str, zero_frequency: bool
+) -> tuple[NDArray, NDArray]:
+    """Frequencies and B (N, P) of the piecewise-linear representation of the data."""
+    if interpolation not in INTERPOLATIONS:
+        raise HydroDataError(
+            f"unknown interpolation {interpolation!r}",
+            hint=f"use one of {', '.join(INTERPOLATIONS)}",
+        )
+    w = ds.omega.values
+    n = ds.sizes["influenced_dof"]
+    b = dof_matrix(ds, "radiation_damping").reshape(w.size, n * n)
+    if zero_frequency:
+        w = np.r_[0.0, w]
+        b = np.vstack([np.zeros((1, n * n)), b])
+    if interpolation == "pchip" and w.size > 2:
+        fine = np.unique(
+            np.concatenate([np.linspace(w[k], w[k + 1], 5) for k in range(w.size - 1)])
+        )
+        b = PchipInterpolator(w, b, axis=0)(fine)
+        w = fine
+    return w, b
+
+
+def retardation_function(
+    ds: xr.Dataset,
+    t: ArrayLike | None = None,
+    *,
+    tail: str = "auto",
+    interpolation: str = "linear",
+    zero_frequency: bool = True,
+    method: str = "exact",
+) -> xr.DataArray:
+    """Retardation functions K_ij(t) = (2/π) ∫₀^∞ B_ij(ω) cos(ωt) dω of all couplings.
+
+    Hjulstad (2004) eq. 5.15, Unneland (2007) eq. 2.60, Smogeli et al. (2004) eq. 34 (zero speed:
+    B(∞) = 0).
+
+    Parameters
+    ----------
+    ds
+        A ``HydroDB`` at one forward speed.
+    t
+        Times, s (default :func:`default_time_grid`).
+    tail
+        High-frequency tail beyond the data: ``"auto"`` (the better fitting of an
+        exponential and a power law, per coupling), ``"exponential"``, ``"power"`` or
+        ``"none"`` (truncate at the last frequency). See :func:`fit_damping_tail`.
+    interpolation
+        ``"linear"`` (piecewise linear between the data points) or ``"pchip"``
+        (shape-preserving cubic, resampled 4× and integrated exactly).
+    zero_frequency
+        Add the point B(0) = 0 (true at zero speed); otherwise the integral starts at
+        the lowest frequency (truncation).
+    method
+        ``"exact"``: exact integration of the interpolant (Filon-type, see
+        :mod:`cummins.radiation.transforms`); ``"trapezoid"``: the plain trapezoid rule on the
+        data grid, no tail (the textbook approach, kept as a reference).
+
+    Returns
+    -------
+    xarray.DataArray
+        ``retardation_function`` with dims (time, influenced_dof, radiating_dof); the
+        attributes record the options, and ``tail_kind``/``tail_rate`` coordinates the
+        fitted tail of each coupling.
+
+    Examples
+    --------
+    >>> import cummins
+    >>> k = cummins.retardation_function(cummins.demo_dataset(), t=[0.0, 5.0])
+    >>> float(k.sel(time=0.0, influenced_dof="Heave", radiating_dof="Heave")) > 0
+    True
+    """
+    ds = single_speed(ds)
+    t = default_time_grid(ds) if t is None else np.asarray(t, dtype=float).reshape(-1)
+    if np.any(t < 0) or not np.all(np.isfinite(t)):
+        raise HydroDataError("times must be finite and non-negative")
+    n = ds.sizes["influenced_dof"]
+    if method == "trapezoid":
+        w = ds.omega.values
+        b = dof_matrix(ds, "radiation_damping").reshape(w.size, n * n)
+        if zero_frequency:
+            w, b = np.r_[0.0, w], np.vstack([np.zeros((1, n * n)), b])
+        k = np.trapezoid(np.cos(np.outer(w, t))[:, :, None] * b[:, None, :], w, axis=0)
+        tail_fit = fit_damping_tail(w, b, "none")
+    elif method == "exact":
+        w, b = _damping_grid(ds, interpolation, zero_frequency)
+        data = dof_matrix(ds, "radiation_damping").reshape(ds.sizes["omega"], n * n)
+        tail_fit = fit_damping_tail(ds.omega.values, data, tail)
+        k = cosine_transform(w, b, t) + tail_fit.cosine(t)
+    else:
+        raise HydroDataError(f"unknown method {method!r}", hint="use 'exact' or 'trapezoid'")
+    values = (2.0 / np.pi) * k.reshape(t.size, n, n)
+    coords = {"time": ("time", t, {"units": "s"}), **_coupling_coords(ds)}
+    coords["tail_kind"] = (
+        ("influenced_dof", "radiating_dof"),
+        tail_fit.kind.reshape(n, n).astype(str),
+    )
+    coords["tail_rate"] = (("influenced_dof", "radiating_dof"), tail_fit.rate.reshape(n, n))
+    return xr.DataArray(
+        values,
+        dims=("time", "influenced_dof", "radiating_dof"),
+        coords=coords,
+        name="retardation_function",
+        attrs={
+            "units": _K_UNITS,
+            "long_name": "retardation function K(t) = (2/pi) int B(w) cos(wt) dw",
+            "method": method,
+            "tail": tail if method == "exact" else "none",
+            "interpolation": interpolation,
+            "zero_frequency": int(zero_frequency),
+        },
+    )
+
+
+def retardation_function_from_added_mass(
+    ds: xr.Dataset,
+    t: ArrayLike | None = None,
+    *,
+    added_mass_inf: xr.DataArray | None = None,
+) -> xr.DataArray:
+    """K(t) = −(2/π) ∫₀^{ω_N} ω (A(ω) − A∞) sin(ωt) dω, a cross-check of the damping route.
+
+    Hjulstad (2004) eq. 5.14, Unneland (2007) eq. 2.61. It converges more slowly than the damping
+    route (ω(A − A∞) decays like 1/ω) and is truncated at the last frequency: use it to
+    check causality (the two routes agree for t > 0 when A and B are a consistent
+    pair), not as the retardation function. K(0) is 0 by construction.
+    """
+    ds = single_speed(ds)
+    t = default_time_grid(ds) if t is None else np.asarray(t, dtype=float).reshape(-1)
+    a_inf = added_mass_inf if added_mass_inf is not None else _added_mass_inf_matrix(ds)
+    n = ds.sizes["influenced_dof"]
+    w = ds.omega.values
+    f = w[:, None, None] * (dof_matrix(ds, "added_mass") - np.asarray(a_inf))
+    f = np.vstack([np.zeros((1, n, n)), f]).reshape(w.size + 1, n * n)
+    k = -(2.0 / np.pi) * sine_transform(np.r_[0.0, w], f, t)
+    return xr.DataArray(
+        k.reshape(t.size, n, n),
+        dims=("time", "influenced_dof", "radiating_dof"),
+        coords={"time": ("time", t, {"units": "s"}), **_coupling_coords(ds)},
+        name="retardation_function",
+        attrs={"units": _K_UNITS, "long_name": "K(t) from the added mass (sine transform)"},
+    )
+
+
+# --------------------------------------------------------------------------- A∞
+
+
+def _kramers_kronig_integral(ds: xr.Dataset, tail: str) -> NDArray:
+    """(2/π) PV ∫₀^∞ B(ν)/(ν² − ω²) dν at the data frequencies, shape (nω, n, n)."""
+    w = ds.omega.values
+    n = ds.sizes["influenced_dof"]
+    b = dof_matrix(ds, "radiation_damping").reshape(w.size, n * n)
+    x = np.r_[0.0, w]
+    f = np.vstack([np.zeros((1, n * n)), b])
+    total = hilbert_pv(x, f, w) + fit_damping_tail(w, b, tail).hilbert(w)
+    return (2.0 / np.pi) * total.reshape(w.size, n, n)
+
+
+def added_mass_inf_per_frequency(ds: xr.Dataset, *, tail: str = "auto") -> xr.DataArray:
+    """The Ogilvie estimate of A∞ at each frequency: A(ω) − (2/π) PV∫ B(ν)/(ν² − ω²) dν.
+
+    This is A∞ = A(ω) + (1/ω) ∫₀^∞ K(t) sin(ωt) dt (de Haan (2022) eq. 2.16,
+    Unneland (2007) eq. 2.46) evaluated in the frequency domain through the
+    Kramers–Kronig relation (Hjulstad (2004) eq. 5.23), exactly for the piecewise-linear
+    damping with its tail. For consistent data the result is the same at every
+    frequency; its variation measures the data's inconsistency and the effect of the
+    unknown tail (largest near the last frequency).
+    """
+    ds = single_speed(ds)
+    values = dof_matrix(ds, "added_mass") - _kramers_kronig_integral(ds, tail)
+    return xr.DataArray(
+        values,
+        dims=("omega", "influenced_dof", "radiating_dof"),
+        coords={"omega": ds.omega, **_coupling_coords(ds)},
+        name="added_mass_inf",
+        attrs={
+            "units": ds.added_mass.attrs.get("units", ""),
+            "long_name": "A(inf) estimated at each frequency",
+        },
+    )
+
+
+def trusted_frequencies(ds: xr.Dataset) -> NDArray[np.bool_]:
+    """Frequencies used to combine per-frequency estimates (mask over ``ds.omega``).
+
+    Excludes the last frequency (where the estimate depends most on the unknown tail)
+    and every frequency where a diagonal damping term is negative (irregular
+    frequencies of panel methods), unless that would leave fewer than three.
+    """
+    ds = single_speed(ds)
+    b = np.diagonal(dof_matrix(ds, "radiation_damping"), axis1=1, axis2=2)
+    peak = np.abs(b).max(axis=0)
+    negative = np.any(b < -1e-3 * peak, axis=1)
+    keep = ~negative
+    keep[-1] = False
+    if keep.sum() < 3:
+        keep = np.ones(ds.sizes["omega"], dtype=bool)
+    return keep
+
+
+def _added_mass_inf_matrix(ds: xr.Dataset) -> NDArray:
+    if "added_mass_inf" in ds:
+        return dof_matrix(ds, "added_mass_inf")
+    return added_mass_inf(ds, method="ogilvie").values
+
+
+def added_mass_inf(ds: xr.Dataset, method: str = "auto", *, tail: str = "auto") -> xr.DataArray:
+    """Infinite-frequency added mass A∞, from the data or estimated.
+
+    Parameters
+    ----------
+    ds
+        A ``HydroDB`` at one forward speed.
+    method
+        ``"data"``: the solver's ω = ∞ row (error if absent); ``"ogilvie"``: the median
+        over the trusted frequencies (:func:`trusted_frequencies`) of the Ogilvie
+        estimate at each frequency (:func:`added_mass_inf_per_frequency`); ``"auto"``:
+        the data row when present, else the estimate.
+    tail
+        Damping tail used by the estimate (see :func:`fit_damping_tail`).
+
+    Returns
+    -------
+    xarray.DataArray
+        (influenced_dof, radiating_dof), with a coordinate ``spread`` of the same shape:
+        half the inter-quartile range of the per-frequency estimates (same units; zero
+        for the data row), and attribute ``method`` saying which was used.
+
+    Examples
+    --------
+    >>> import cummins
+    >>> ds = cummins.demo_dataset().drop_vars("added_mass_inf")
+    >>> a = cummins.added_mass_inf(ds)
+    >>> a.attrs["method"]
+    'ogilvie'
+    """
+    ds = single_speed(ds)
+    if method not in ("auto", "data", "ogilvie"):
+        raise HydroDataError(f"unknown method {method!r}", hint="use 'auto', 'data' or 'ogilvie'")
+    if method == "data" or (method == "auto" and "added_mass_inf" in ds):
+        if "added_mass_inf" not in ds:
+            raise HydroDataError(
+                "the data have no infinite-frequency added mass",
+                path=ds.attrs.get("source_file"),
+                hint="use method='ogilvie' to estimate it from A(ω) and B(ω)",
+            )
+        values = dof_matrix(ds, "added_mass_inf")
+        spread = np.zeros_like(values)
+        used = "data"
+    else:
+        curve = added_mass_inf_per_frequency(ds, tail=tail).values
+        keep = trusted_frequencies(ds)
+        values = np.median(curve[keep], axis=0)
+        q75, q25 = np.percentile(curve[keep], [75, 25], axis=0)
+        spread = 0.5 * (q75 - q25)
+        used = "ogilvie"
+    return xr.DataArray(
+        values,
+        dims=("influenced_dof", "radiating_dof"),
+        coords={**_coupling_coords(ds), "spread": (("influenced_dof", "radiating_dof"), spread)},
+        name="added_mass_inf",
+        attrs={"method": used, "units": ds.added_mass.attrs.get("units", "")},
+    )
+
+
+# --------------------------------------------------------------------------- consistency
+
+
+def kramers_kronig_added_mass(
+    ds: xr.Dataset, *, added_mass_inf: ArrayLike | None = None, tail: str = "auto"
+) -> xr.DataArray:
+    """A(ω) predicted from B by Kramers–Kronig: A∞ + (2/π) PV ∫ B(ν)/(ν² − ω²) dν (eq. 5.23)."""
+    ds = single_speed(ds)
+    a_inf = _added_mass_inf_matrix(ds) if added_mass_inf is None else np.asarray(added_mass_inf)
+    values = a_inf[None] + _kramers_kronig_integral(ds, tail)
+    return xr.DataArray(
+        values,
+        dims=("omega", "influenced_dof", "radiating_dof"),
+        coords={"omega": ds.omega, **_coupling_coords(ds)},
+        name="added_mass",
+        attrs={"long_name": "added mass predicted from the damping (Kramers-Kronig)"},
+    )
+
+
+def kramers_kronig_error(
+    ds: xr.Dataset, *, added_mass_inf: ArrayLike | None = None, tail: str = "auto"
+) -> xr.DataArray:
+    """Relative disagreement between A(ω) and its Kramers–Kronig prediction from B.
+
+    ‖A − A_KK‖ / ‖A − A∞‖ over the trusted frequencies, per coupling (RMS norms;
+    Hjulstad (2004) eq. 5.23, Unneland (2007) eq. 2.63): 0 for a causal, consistent pair. Couplings
+    whose A − A∞ is negligible compared with the diagonal terms get the error scaled by
+    √(|A_ii − A∞_ii| |A_jj − A∞_jj|) instead.
+    """
+    ds = single_speed(ds)
+    a_inf = _added_mass_inf_matrix(ds) if added_mass_inf is None else np.asarray(added_mass_inf)
+    a = dof_matrix(ds, "added_mass")
+    predicted = kramers_kronig_added_mass(ds, added_mass_inf=a_inf, tail=tail).values
+    keep = trusted_frequencies(ds)
+    dev = np.sqrt(np.mean((a - a_inf[None])[keep] ** 2, axis=0))
+    err = np.sqrt(np.mean((a - predicted)[keep] ** 2, axis=0))
+    diag = np.diag(dev)
+    scale = np.maximum(dev, 1e-3 * np.sqrt(np.outer(diag, diag)))
+    with np.errstate(invalid="ignore", divide="ignore"):
+        rel = np.where(scale > 0, err / scale, 0.0)
+    return xr.DataArray(
+        rel,
+        dims=("influenced_dof", "radiating_dof"),
+        coords=_coupling_coords(ds),
+        name="kramers_kronig_error",
+        attrs={"long_name": "relative Kramers-Kronig error of A(w) predicted from B(w)"},
+    )
+
+
+def reconstruct_added_mass_damping(
+    kernel: xr.DataArray, added_mass_inf: ArrayLike, omega: ArrayLike
+) -> xr.Dataset:
+    """A(ω) and B(ω) from K(t) (Ogilvie; Hjulstad (2004) eqs. 5.11–5.12).
+
+    B(ω) = ∫₀^{t_max} K(t) cos(ωt) dt and A(ω) = A∞ − (1/ω) ∫₀^{t_max} K(t) sin(ωt) dt,
+    integrated exactly for the piecewise-linear K through its samples (truncated at
+    the last time: K should have decayed there).
+
+    Parameters
+    ----------
+    kernel
+        Retardation functions (time, influenced_dof, radiating_dof).
+    added_mass_inf
+        A∞, (n, n).
+    omega
+        Frequencies, rad/s (> 0).
+
+    Returns
+    -------
+    xarray.Dataset
+        ``added_mass`` and ``radiation_damping`` on dims (omega, influenced_dof,
+        radiating_dof).
+    """
+    t = kernel.time.values
+    k = kernel.transpose("time", "influenced_dof", "radiating_dof").values
+    n = k.shape[1]
+    w = np.asarray(omega, dtype=float).reshape(-1)
+    flat = k.reshape(t.size, n * n)
+    b = cosine_transform(t, flat, w).reshape(w.size, n, n)
+    a = np.asarray(added_mass_inf)[None] - (sine_transform(t, flat, w) / w[:, None]).reshape(
+        w.size, n, n
+    )
+    dims = ("omega", "influenced_dof", "radiating_dof")
+    coords = {
+        "omega": ("omega", w, {"units": "rad/s"}),
+        "influenced_dof": kernel.influenced_dof.values,
+        "radiating_dof": kernel.radiating_dof.values,
+    }
+    return xr.Dataset({"added_mass": (dims, a), "radiation_damping": (dims, b)}, coords=coords)
+
+
+def radiation_restoring(
+    kernel: xr.DataArray, ds: xr.Dataset, added_mass_inf: ArrayLike
+) -> xr.DataArray:
+    """Hjulstad's radiation restoring coefficient c(ω) (Hjulstad (2004) eq. 5.5).
+
+    c(ω) = ω² (A∞ − A(ω)) − ω ∫₀^{t_max} K(t) sin(ωt) dt, at the data frequencies:
+    zero for consistent A, B, K and A∞; its size (N/m, N·m/rad) shows where they
+    disagree (low-frequency truncation, irregular frequencies, an unsettled K).
+    """
+    ds = single_speed(ds)
+    t = kernel.time.values
+    k = kernel.transpose("time", "influenced_dof", "radiating_dof").values
+    n = k.shape[1]
+    w = ds.omega.values
+    s = sine_transform(t, k.reshape(t.size, n * n), w).reshape(w.size, n, n)
+    c = (
+        w[:, None, None] ** 2 * (np.asarray(added_mass_inf)[None] - dof_matrix(ds, "added_mass"))
+        - w[:, None, None] * s
+    )
+    return xr.DataArray(
+        c,
+        dims=("omega", "influenced_dof", "radiating_dof"),
+        coords={"omega": ds.omega, **_coupling_coords(ds)},
+        name="radiation_restoring",
+        attrs={"long_name": "radiation restoring coefficient c(w) (0 for consistent data)"},
+    )
+
+
+def truncate_retardation(
+    kernel: xr.DataArray, t_max: float, *, method: str = "subtract", taper_fraction: float = 0.05
+) -> xr.DataArray:
+    """End K(t) at ``t_max`` so that it is exactly zero there (Hjulstad (2004) §10.2).
+
+    ``"subtract"``: K̃(t) = K(t) − K(t_max) for t ≤ t_max (the subtracted constant acts
+    like a small restoring term); ``"taper"``: multiply the last ``taper_fraction`` of
+    [0, t_max] by a linear ramp from 1 to 0. Times beyond t_max are dropped.
+    """
+    t = kernel.time.values
+    if not t[0] < t_max <= t[-1]:
+        raise HydroDataError(
+            f"t_max = {t_max:g} s is outside the kernel's times {t[0]:g}–{t[-1]:g} s"
+        )
+    k = kernel.sel(time=slice(None, t_max))
+    if k.time.values[-1] < t_max:  # put a sample exactly at t_max
+        end = kernel.interp(time=[t_max])
+        k = xr.concat([k, end], dim="time")
+    if method == "subtract":
+        out = k - k.isel(time=-1)
+    elif method == "taper":
+        tt = k.time.values
+        start = t_max * (1 - taper_fraction)
+        ramp = np.clip((t_max - tt) / (t_max - start), 0.0, 1.0)
+        out = k * xr.DataArray(ramp, dims="time", coords={"time": tt})
+    else:
+        raise HydroDataError(
+            f"unknown truncation method {method!r}", hint="use 'subtract' or 'taper'"
+        )
+    out.attrs = {**kernel.attrs, "truncation": f"{method} at {t_max:g} s"}
+    out.name = kernel.name
+    return out
+
+
+# --------------------------------------------------------------------------- diagnostics
+
+
+def significant_couplings(ds: xr.Dataset, threshold: float = 0.01) -> list[tuple[int, int]]:
+    """(i, j) with i ≤ j whose damping or added-mass variation is not negligible.
+
+    A coupling is kept when max|B_ij| or the range of A_ij exceeds ``threshold`` times
+    the geometric mean of the same measure for B_ii and B_jj (or A_ii, A_jj); diagonal
+    terms are kept unless they are negligible against the other DOFs of their kind
+    (e.g. the yaw of an axisymmetric body), and the couplings of such a DOF are left out
+    too (a DOF without damping cannot have coupled damping in passive data).
+    """
+    ds = single_speed(ds)
+    b = np.abs(dof_matrix(ds, "radiation_damping")).max(axis=0)
+    a = np.ptp(dof_matrix(ds, "added_mass"), axis=0)
+    n = b.shape[0]
+    labels = [str(d) for d in ds.influenced_dof.values]
+    rotation = np.array([is_rotation(lab) for lab in labels])
+    out = []
+    modelled = [b[i, i] > 1e-6 * np.diag(b)[rotation == rotation[i]].max() for i in range(n)]
+    for i in range(n):
+        for j in range(i, n):
+            if i == j:
+                if modelled[i]:
+                    out.append((i, j))
+                continue
+            if not (modelled[i] and modelled[j]):
+                continue  # no damping of its own: its couplings are numerical noise
+            measures = []
+            for m in (a, b):
+                scale = np.sqrt(m[i, i] * m[j, j])
+                measures.append(m[i, j] / scale if scale > 0 else 0.0)
+            if max(measures) > threshold:
+                out.append((i, j))
+    return out
+
+
+def retardation_diagnostics(
+    ds: xr.Dataset, t: ArrayLike | None = None, *, tail: str = "auto"
+) -> xr.Dataset:
+    """Per-coupling numbers that say how far K(t) and A∞ can be trusted.
+
+    Returns
+    -------
+    xarray.Dataset
+        On dims (influenced_dof, radiating_dof):
+
+        * ``K0`` — K(0) = (2/π)∫B dω (kg/s² …), ``k_integral`` — ∫₀^{t_max} K dt, which
+          must equal B(0) = 0 at zero speed (kg/s …), ``k_end_ratio`` — |K(t_max)|/max|K|;
+        * ``tail_fraction`` — share of ∫B dω in the extrapolated tail;
+        * ``added_mass_inf_estimate`` and ``added_mass_inf_spread`` — Ogilvie estimate
+          and half the inter-quartile range over frequency; ``added_mass_inf_data`` — the
+          solver's row (NaN when absent);
+        * ``kramers_kronig_error`` — see :func:`kramers_kronig_error`;
+        * ``significant`` — the coupling is not negligible (:func:`significant_couplings`).
+    """
+    ds = single_speed(ds)
+    t = default_time_grid(ds) if t is None else np.asarray(t, dtype=float)
+    kernel = retardation_function(ds, t, tail=tail)
+    k = kernel.values
+    n = k.shape[1]
+    w = ds.omega.values
+    data_b = dof_matrix(ds, "radiation_damping").reshape(w.size, n * n)
+    tail_fit = fit_damping_tail(w, data_b, tail)
+    area_data = np.trapezoid(np.vstack([np.zeros((1, n * n)), data_b]), np.r_[0.0, w], axis=0)
+    area_tail = tail_fit.area()
+    with np.errstate(invalid="ignore", divide="ignore"):
+        tail_fraction = np.where(
+            np.abs(area_data) + np.abs(area_tail) > 0,
+            np.abs(area_tail) / (np.abs(area_data) + np.abs(area_tail)),
+            0.0,
+        ).reshape(n, n)
+        peak = np.abs(k).max(axis=0)
+        end_ratio = np.where(peak > 0, np.abs(k[-1]) / peak, 0.0)
+    estimate = added_mass_inf(ds, method="ogilvie", tail=tail)
+    a_inf = dof_matrix(ds, "added_mass_inf") if "added_mass_inf" in ds else np.full((n, n), np.nan)
+    kk = kramers_kronig_error(
+        ds, added_mass_inf=estimate.values if "added_mass_inf" not in ds else None, tail=tail
+    )
+    significant = np.zeros((n, n), dtype=bool)
+    for i, j in significant_couplings(ds):
+        significant[i, j] = significant[j, i] = True
+    dims = ("influenced_dof", "radiating_dof")
+    out = xr.Dataset(
+        {
+            "K0": (dims, k[0]),
+            "k_integral": (dims, np.trapezoid(k, t, axis=0)),
+            "k_end_ratio": (dims, end_ratio),
+            "tail_fraction": (dims, tail_fraction),
+            "added_mass_inf_estimate": (dims, estimate.values),
+            "added_mass_inf_spread": (dims, estimate.spread.values),
+            "added_mass_inf_data": (dims, a_inf),
+            "kramers_kronig_error": (dims, kk.values),
+            "significant": (dims, significant),
+        },
+        coords={
+            **_coupling_coords(ds),
+            "tail_kind": kernel.tail_kind,
+            "tail_rate": kernel.tail_rate,
+        },
+        attrs={"t_max": float(t[-1]), "tail": tail},
+    )
+    return out
+
+
+def retardation_dataset(
+    ds: xr.Dataset, t: ArrayLike | None = None, *, tail: str = "auto", interpolation: str = "linear"
+) -> xr.Dataset:
+    """Everything ``cummins kernel`` writes: K(t), A∞ and the diagnostics, as one dataset.
+
+    Variables: ``retardation_function`` (time, influenced_dof, radiating_dof);
+    ``added_mass_inf`` (the data row when present, else the Ogilvie estimate; with its
+    ``spread``); ``added_mass_inf_per_frequency`` (omega, influenced_dof, radiating_dof);
+    and those of :func:`retardation_diagnostics`. Attributes carry the source file,
+    its history and the options used.
+    """
+    ds = single_speed(ds)
+    t = default_time_grid(ds) if t is None else np.asarray(t, dtype=float).reshape(-1)
+    kernel = retardation_function(ds, t, tail=tail, interpolation=interpolation)
+    used = added_mass_inf(ds, tail=tail)
+    out = retardation_diagnostics(ds, t, tail=tail)
+    out["retardation_function"] = kernel.drop_vars(["tail_kind", "tail_rate"])
+    out["added_mass_inf"] = used.drop_vars("spread")
+    out["added_mass_inf"].attrs = {"method": used.attrs["method"], "units": used.attrs["units"]}
+    out["added_mass_inf_per_frequency"] = added_mass_inf_per_frequency(ds, tail=tail)
+    out.attrs.update(
+        source_file=str(ds.attrs.get("source_file", "")),
+        source_format=str(ds.attrs.get("source_format", "")),
+        history=str(ds.attrs.get("history", "")),
+        interpolation=interpolation,
+        added_mass_inf_method=used.attrs["method"],
+    )
+    return out

@@ -1,0 +1,604 @@
+"""Batch studies: many sea states, headings and seeds, run on a Dask cluster.
+
+A :class:`Study` is one vessel (a ``HydroDB`` file, optionally a fitted radiation model)
+and a set of :class:`Case`\\ s — the outer product of a ``grid`` of headings, H_s, T_p
+(and optionally γ, cos-2s spreading and seeds), or an explicit list. Each case is one
+of two analyses:
+
+``rao`` (frequency domain, cheap)
+    The coupled motion RAOs (:func:`cummins.seakeeping.frequency_domain.motion_rao`, on
+    ``n_omega`` frequencies over the data's range, once per heading and worker), the
+    response spectrum S_j = Σ_β w_β |X_j|² S(ω) and its moments m₀, m₂. Statistics: the
+    standard deviation σ = √m₀, the significant (single) amplitude 2√m₀
+    (:func:`cummins.seakeeping.frequency_domain.significant_amplitude`: half the crest-to-trough
+    4√m₀, as H_s/2 for the waves), the mean zero-up-crossing period T_z = 2π√(m₀/m₂) and
+    the most probable maximum in ``duration`` (Rayleigh peaks: σ√(2 ln N), N = duration/T_z).
+``simulate`` (time domain)
+    :func:`cummins.timedomain.simulate.simulate_waves` of the vessel (the model file, or one passive
+    fit made before the cases) in a realisation of the sea, ``duration`` s at ``dt``,
+    started on the stationary solution. Statistics of the record: σ, 2σ, T_z from the
+    mean up-crossings and the observed maximum max|ξ(t)|. Each case's random phases come
+    from its ``seed``, or from a seed derived from the case itself (a hash of its
+    parameters): results never depend on which worker ran a case, or in which order.
+
+:func:`run_study` runs the cases with ``dask.distributed`` (``pip install
+cummins[dask]``): a local cluster of single-threaded worker processes (BLAS limited to one
+thread) or any scheduler address; the vessel data are sent to each worker once. Every
+finished case is saved at once as ``<output>.parts/<case id>.json`` (exact floats); a
+rerun after an interruption loads the saved cases and computes only the others. The case
+id is a hash of everything the result depends on (analysis settings, the content of the
+data and model, the case's parameters), so a changed study never mixes old results into
+new ones: cases that changed are computed again, saved cases of other definitions are
+ignored (and counted). At the end the results are gathered into one ``xarray.Dataset``
+(dims of the grid — ``heading`` (deg), ``hs``, ``tp``, … — and ``dof``, or ``case`` for a
+list), limits applied (:mod:`cummins.studies.operability`), written as NetCDF (or Zarr for a
+``.zarr`` output) and the parts removed.
+
+The study itself is defined in :mod:`cummins.studies.study`.
+"""
+
+from __future__ import annotations
+
+import hashlib
+import json
+import math
+import os
+import shutil
+import time
+import uuid
+import warnings
+from collections.abc import Callable, Sequence
+from dataclasses import dataclass, field
+from pathlib import Path
+from typing import Any
+
+import numpy as np
+import xarray as xr
+
+from cummins.errors import CumminsError, check_writable
+from cummins.studies.study import (
+    _BLAS_ENV,
+    _RESULT_KIND,
+    ANALYSES,
+    GRID_AXES,
+    Case,
+    Limit,
+    Study,
+    StudyError,
+    at_key,
+    example_study_text,
+    load_study,
+    parse_limit_value,
+)
+
+__all__ = [
+    "ANALYSES",
+    "GRID_AXES",
+    "BatchRun",
+    "Case",
+    "Limit",
+    "Study",
+    "StudyContext",
+    "StudyError",
+    "case_ids",
+    "case_statistics",
+    "example_study_text",
+    "gather_results",
+    "is_results",
+    "load_results",
+    "load_study",
+    "parse_limit_value",
+    "parts_folder",
+    "prepare_study",
+    "run_study",
+    "write_results",
+]
+
+
+# --------------------------------------------------------------------------- one case
+
+
+@dataclass(frozen=True, eq=False)
+class StudyContext:
+    """What every case needs, sent to each worker once."""
+
+    study: Study
+    ds: xr.Dataset
+    vessel: Any = None
+    omega: Any = None
+    cache: dict = field(default_factory=dict, repr=False)
+
+
+def prepare_study(study: Study) -> tuple[StudyContext, str]:
+    """Read the data (and model), fit once if needed; (context, digest of the inputs)."""
+    from cummins.hydrodb import single_speed
+    from cummins.io import read
+
+    ds = read(study.data)
+    ds = _select_speed(ds, study)
+    labels = [str(d) for d in ds.influenced_dof.values]
+    for lim in study.limits:
+        if lim.dof not in labels:
+            raise StudyError(
+                f"{at_key(study.source, f'limits.{lim.dof}')}: the data have no DOF {lim.dof!r}",
+                hint=f"DOFs: {', '.join(labels)}",
+            )
+    for dof, _ in study.viscous_damping:
+        if dof not in labels:
+            raise StudyError(
+                f"{at_key(study.source, f'viscous_damping.{dof}')}: the data have no DOF {dof!r}",
+                hint=f"DOFs: {', '.join(labels)}",
+            )
+    digest = hashlib.sha256(_dataset_digest(ds).encode())
+    damping = dict(study.viscous_damping) or None
+    if study.analysis == "rao":
+        w = ds.omega.values
+        lo = float(w[0]) if study.omega_min is None else study.omega_min
+        hi = float(w[-1]) if study.omega_max is None else study.omega_max
+        if not hi > lo:
+            raise StudyError(f"{at_key(study.source, 'omega_max')}: must exceed omega_min")
+        return StudyContext(study, ds, omega=np.linspace(lo, hi, study.n_omega)), digest.hexdigest()
+    from cummins.radiation.model import RadiationModel
+    from cummins.vessel import vessel_from_hydrodb
+
+    model = None
+    if study.model is not None:
+        model = RadiationModel.load(study.model)
+        digest.update(Path(study.model).read_bytes())
+    vessel = vessel_from_hydrodb(single_speed(ds), model, viscous_damping=damping)
+    vessel.stability()
+    return StudyContext(study, ds, vessel=vessel), digest.hexdigest()
+
+
+def _select_speed(ds: xr.Dataset, study: Study) -> xr.Dataset:
+    if "forward_speed" not in ds.dims:
+        return ds
+    speeds = ds.forward_speed.values
+    listed = ", ".join(f"{u:g}" for u in speeds)
+    if study.speed is None:
+        if speeds.size > 1:
+            raise StudyError(
+                f"{at_key(study.source, 'speed')}: the data hold several forward speeds "
+                f"({listed} m/s): choose one"
+            )
+        return ds.isel(forward_speed=0)
+    match = np.flatnonzero(np.abs(speeds - study.speed) <= 1e-3)
+    if not match.size:
+        raise StudyError(
+            f"{at_key(study.source, 'speed')}: no data at {study.speed:g} m/s; the data hold "
+            f"{listed} m/s"
+        )
+    return ds.isel(forward_speed=int(match[0]))
+
+
+def _dataset_digest(ds: xr.Dataset) -> str:
+    """SHA-256 of a dataset's variables and values (not of its file: any format)."""
+    h = hashlib.sha256()
+    for name in sorted(map(str, ds.variables)):
+        values = np.asarray(ds[name].values)
+        h.update(name.encode())
+        h.update(str(values.shape).encode())
+        if values.dtype.kind in "OUS":
+            h.update(repr(values.tolist()).encode())
+        else:
+            h.update(np.ascontiguousarray(values).tobytes())
+    return h.hexdigest()
+
+
+def _derived_seed(case: Case) -> int:
+    """A seed from the case's parameters: the same case gets the same sea anywhere."""
+    text = json.dumps(case.parameters(), sort_keys=True)
+    return int(hashlib.sha256(text.encode()).hexdigest()[:8], 16)
+
+
+def case_statistics(context: StudyContext, case: Case) -> dict[str, Any]:
+    """Response statistics of one case (module docstring), per DOF, SI units.
+
+    Returns a dict of lists: ``std``, ``significant_amplitude``, ``maximum``,
+    ``zero_crossing_period`` and the ``seed`` used (simulate).
+    """
+    study = context.study
+    heading = math.radians(case.heading)
+    if study.analysis == "rao":
+        return _rao_statistics(context, case, heading)
+    from cummins.seakeeping.waves import irregular_waves, wave_spectrum
+    from cummins.timedomain.simulate import simulate_waves
+
+    seed = _derived_seed(case) if case.seed is None else case.seed
+    sea = irregular_waves(
+        wave_spectrum(study.spectrum, case.hs, case.tp, _gamma(study, case)),
+        duration=study.duration,
+        n_components=study.components,
+        direction=heading,
+        spreading=case.spreading,
+        n_directions=study.directions if case.spreading is not None else 1,
+        seed=seed,
+    )
+    run = simulate_waves(context.vessel, context.ds, sea, duration=study.duration, dt=study.dt)
+    xi = run.motion.values
+    std = xi.std(axis=0)
+    centred = xi - xi.mean(axis=0)
+    up = ((centred[:-1] < 0) & (centred[1:] >= 0)).sum(axis=0)
+    tz = np.where(up > 0, study.duration / np.maximum(up, 1), np.nan)
+    return {
+        "std": std.tolist(),
+        "significant_amplitude": (2.0 * std).tolist(),
+        "maximum": np.abs(xi).max(axis=0).tolist(),
+        "zero_crossing_period": tz.tolist(),
+        "seed": int(seed),
+    }
+
+
+def _gamma(study: Study, case: Case) -> float | None:
+    if str(study.spectrum).lower() == "jonswap":
+        return case.gamma
+    if case.gamma is not None:
+        raise StudyError(f"{at_key(study.source, 'gamma')}: applies to the JONSWAP spectrum only")
+    return None
+
+
+def _rao_statistics(context: StudyContext, case: Case, heading: float) -> dict[str, Any]:
+    from cummins.seakeeping.frequency_domain import (
+        motion_rao,
+        response_spectrum,
+        significant_amplitude,
+        spectral_moment,
+    )
+    from cummins.seakeeping.waves import spreading_directions, wave_spectrum
+
+    study = context.study
+    if case.spreading is None:
+        directions, weights = np.array([heading]), None
+    else:
+        directions, weights = spreading_directions(heading, case.spreading, study.directions)
+    key = tuple(directions.tolist())
+    rao = context.cache.get(key)
+    if rao is None:
+        rao = motion_rao(
+            context.ds,
+            context.omega,
+            directions,
+            viscous_damping=dict(study.viscous_damping) or None,
+        )
+        context.cache[key] = rao
+    sea = wave_spectrum(study.spectrum, case.hs, case.tp, _gamma(study, case))
+    response = response_spectrum(rao, sea, direction_weights=weights)
+    m0 = spectral_moment(response, 0).values
+    m2 = spectral_moment(response, 2).values
+    sigma = np.sqrt(m0)
+    with np.errstate(divide="ignore", invalid="ignore"):
+        tz = np.where(m2 > 0, 2.0 * np.pi * np.sqrt(m0 / m2), np.nan)
+        n_peaks = np.where(tz > 0, study.duration / tz, 1.0)
+    mpm = sigma * np.sqrt(2.0 * np.log(np.maximum(n_peaks, math.e)))
+    return {
+        "std": sigma.tolist(),
+        "significant_amplitude": significant_amplitude(response).values.tolist(),
+        "maximum": mpm.tolist(),
+        "zero_crossing_period": tz.tolist(),
+        "seed": None,
+    }
+
+
+def _run_case(context: StudyContext, case: Case) -> dict[str, Any]:
+    """The task a worker runs: statistics of one case (errors name the case)."""
+    try:
+        return case_statistics(context, case)
+    except CumminsError as exc:
+        raise StudyError(f"case {case.label}: {exc}") from None
+
+
+# --------------------------------------------------------------------------- running
+
+
+@dataclass(frozen=True)
+class BatchRun:
+    """What :func:`run_study` did: the gathered results and how they were obtained."""
+
+    results: xr.Dataset
+    output: Path
+    computed: int
+    skipped: int
+    ignored: int
+    workers: int
+    elapsed: float
+
+
+def case_ids(study: Study, digest: str) -> list[str]:
+    """The id of each case: a hash of the settings, the inputs' digest and the case."""
+    settings = json.dumps(study.settings(), sort_keys=True)
+    out = []
+    for case in study.all_cases:
+        text = json.dumps([settings, digest, case.parameters()], sort_keys=True)
+        out.append(hashlib.sha256(text.encode()).hexdigest()[:24])
+    return out
+
+
+def parts_folder(output: str | os.PathLike[str]) -> Path:
+    """Where the finished cases of a run into ``output`` are saved: ``<output>.parts``."""
+    output = Path(output)
+    return output.with_name(output.name + ".parts")
+
+
+def _save_part(folder: Path, case_id: str, case: Case, values: dict[str, Any]) -> None:
+    from cummins._version import __version__
+
+    record = {
+        "case_id": case_id,
+        "case": case.parameters(),
+        "values": values,
+        "cummins_version": __version__,
+    }
+    tmp = folder / f".{case_id}.tmp"
+    tmp.write_text(json.dumps(record), encoding="utf-8")
+    os.replace(tmp, folder / f"{case_id}.json")
+
+
+def _load_parts(folder: Path, wanted: dict[str, Case]) -> tuple[dict[str, dict], int]:
+    """Saved results of the wanted cases, and the number of other (ignored) parts."""
+    done: dict[str, dict] = {}
+    ignored = 0
+    if not folder.is_dir():
+        return done, ignored
+    for file in folder.glob("*.json"):
+        try:
+            record = json.loads(file.read_text(encoding="utf-8"))
+        except (OSError, ValueError):
+            continue  # a part cut short by a crash: computed again
+        case_id = record.get("case_id")
+        if case_id in wanted and record.get("case") == wanted[case_id].parameters():
+            done[case_id] = record["values"]
+        else:
+            ignored += 1
+    return done, ignored
+
+
+def _dask():
+    try:
+        import distributed
+    except ImportError:
+        raise CumminsError(
+            "batch studies run on Dask, which is not installed: pip install cummins[dask]"
+        ) from None
+    return distributed
+
+
+def run_study(
+    study: Study,
+    output: str | os.PathLike[str],
+    *,
+    scheduler: str | None = None,
+    workers: int | None = None,
+    force: bool = False,
+    progress: Callable[[int, int], object] | None = None,
+    on_case_saved: Callable[[str, Case], object] | None = None,
+    say: Callable[[str], object] = lambda message: None,
+) -> BatchRun:
+    """Run every case of ``study`` on Dask and write the gathered results to ``output``.
+
+    Parameters
+    ----------
+    study
+        The study (:func:`load_study`, or a :class:`Study`).
+    output
+        The results file: NetCDF (``.nc``) or Zarr (``.zarr``, needs the ``zarr``
+        package). Finished cases are saved in ``<output>.parts`` as they come (a rerun
+        resumes from them) and the folder is removed once the results are written.
+    scheduler
+        Address of a running Dask scheduler (``tcp://host:8786``); None: a local cluster
+        of ``workers`` single-threaded processes (default: one per core).
+    workers
+        Worker processes of the local cluster.
+    force
+        Overwrite ``output`` if it exists (saved parts of the same cases are still used).
+    progress
+        Called with (cases done, total) as cases finish (resumed ones count as done).
+    on_case_saved
+        Called with (case id, case) after each newly computed case is saved.
+    say
+        Called with short messages (cases resumed, parts ignored).
+
+    Returns
+    -------
+    BatchRun
+        The results (:func:`load_results` layout) and counts of computed and resumed cases.
+
+    Raises
+    ------
+    StudyError
+        A bad study, or a case that failed (named); the cases saved before it are kept.
+    """
+    distributed = _dask()
+    output = Path(output)
+    check_writable(output, force)
+    output.parent.mkdir(parents=True, exist_ok=True)
+    start = time.perf_counter()
+    context, digest = prepare_study(study)
+    cases = study.all_cases
+    ids = case_ids(study, digest)
+    folder = parts_folder(output)
+    done, ignored = _load_parts(folder, dict(zip(ids, cases, strict=True)))
+    skipped = len(done)
+    if skipped:
+        say(f"resuming: {skipped} of {len(cases)} cases already saved in {folder}")
+    if ignored:
+        say(f"{ignored} saved cases in {folder} belong to another study definition: ignored")
+    folder.mkdir(parents=True, exist_ok=True)
+    todo = [(i, c) for i, c in zip(ids, cases, strict=True) if i not in done]
+    report = progress or (lambda done, total: None)
+    report(len(done), len(cases))
+    n_workers = 0
+    if todo:
+        cluster = None
+        if scheduler is None:
+            import logging
+
+            cluster = distributed.LocalCluster(
+                n_workers=workers or os.cpu_count() or 1,
+                threads_per_worker=1,
+                processes=True,
+                dashboard_address=":0",  # any free port: never a clash with another cluster
+                silence_logs=logging.ERROR,
+                env=_BLAS_ENV,
+            )
+        try:
+            with distributed.Client(cluster or scheduler) as client:
+                n_workers = len(client.scheduler_info().get("workers", {}))
+                shared = client.scatter(context, broadcast=True)
+                token = uuid.uuid4().hex[:8]  # keys of this run only: a rerun is never confused
+                futures = {
+                    client.submit(_run_case, shared, case, key=f"cummins-{i}-{token}"): (i, case)
+                    for i, case in todo
+                }
+                try:
+                    for future in distributed.as_completed(futures):
+                        case_id, case = futures[future]
+                        values = future.result()
+                        _save_part(folder, case_id, case, values)
+                        done[case_id] = values
+                        report(len(done), len(cases))
+                        if on_case_saved is not None:
+                            on_case_saved(case_id, case)
+                finally:
+                    client.cancel(list(futures))
+        finally:
+            if cluster is not None:
+                cluster.close()
+    labels = [str(d) for d in context.ds.influenced_dof.values]
+    results = gather_results(study, [done[i] for i in ids], ids, labels)
+    write_results(results, output, force=force)
+    shutil.rmtree(folder, ignore_errors=True)
+    return BatchRun(
+        results,
+        output,
+        computed=len(todo),
+        skipped=skipped,
+        ignored=ignored,
+        workers=n_workers,
+        elapsed=time.perf_counter() - start,
+    )
+
+
+# --------------------------------------------------------------------------- results
+
+
+_VARIABLES = {
+    "std": "standard deviation of the response",
+    "significant_amplitude": "significant single amplitude 2 sqrt(m0) (half of 4 sqrt(m0))",
+    "maximum": "maximum amplitude",
+    "zero_crossing_period": "mean zero-up-crossing period",
+}
+
+
+def gather_results(
+    study: Study, values: Sequence[dict], ids: Sequence[str], dofs: Sequence[str]
+) -> xr.Dataset:
+    """One Dataset of the cases' statistics, limits applied (:func:`cummins.studies.operability.
+    exceedance`): ``values`` from :func:`case_statistics` and ``ids`` from :func:`case_ids`
+    in ``study.all_cases`` order; ``dofs`` the data's DOF labels."""
+    from cummins._version import __version__
+    from cummins.studies.operability import exceedance
+
+    cases = study.all_cases
+    n_dof = len(dofs)
+    if study.grid is not None:
+        shape = tuple(len(v) for _, v in study.grid)
+        coords: dict[str, Any] = {
+            name: (name, np.asarray(v), {"units": GRID_AXES[name]}) for name, v in study.grid
+        }
+    else:
+        shape = (len(cases),)
+        coords = {"case": ("case", np.arange(len(cases)))}
+        for name in ("heading", "hs", "tp", "gamma", "spreading", "seed"):
+            column = [getattr(c, name) for c in cases]
+            if any(v is not None for v in column):
+                column = [np.nan if v is None else float(v) for v in column]
+                coords[name] = ("case", np.asarray(column), {"units": GRID_AXES[name]})
+    coords["dof"] = ("dof", dofs)
+    dims = study.dims
+    data: dict[str, Any] = {}
+    max_label = (
+        "most probable maximum sigma sqrt(2 ln(duration/Tz)) (Rayleigh)"
+        if study.analysis == "rao"
+        else "observed maximum |x(t)|"
+    )
+    for name, long_name in _VARIABLES.items():
+        array = np.array([v[name] for v in values], dtype=float).reshape(*shape, n_dof)
+        units = "s" if name == "zero_crossing_period" else "m | rad (translation | rotation)"
+        data[name] = (
+            (*dims, "dof"),
+            array,
+            {"units": units, "long_name": max_label if name == "maximum" else long_name},
+        )
+    data["case_id"] = (dims, np.array(list(ids), dtype=object).reshape(shape))
+    if study.analysis == "simulate":
+        seeds = np.array([v["seed"] for v in values], dtype=np.int64).reshape(shape)
+        data["seed_used"] = (dims, seeds, {"long_name": "seed of the random phases"})
+    if study.grid is not None and study.scatter:
+        axes = dict(study.grid)
+        table = np.zeros((len(axes["hs"]), len(axes["tp"])))
+        for hs, tp, p in study.scatter:
+            table[axes["hs"].index(hs), axes["tp"].index(tp)] = p
+        data["probability"] = (("hs", "tp"), table / table.sum(), {"long_name": "scatter"})
+    elif study.grid is None and any(c.probability is not None for c in cases):
+        weights = np.array([0.0 if c.probability is None else c.probability for c in cases])
+        data["probability"] = (("case",), weights / weights.sum())
+    ds = xr.Dataset(data, coords=coords)
+    ds.attrs = {
+        "cummins_kind": _RESULT_KIND,
+        "title": study.name or f"cummins batch study ({study.analysis})",
+        "analysis": study.analysis,
+        "analysis_description": ANALYSES[study.analysis],
+        "data_file": str(study.data),
+        "model_file": "" if study.model is None else str(study.model),
+        "study_file": "" if study.source is None else str(study.source),
+        "study": json.dumps(study.describe()),
+        "n_cases": len(cases),
+        "duration": study.duration,
+        "spectrum": str(study.spectrum).lower(),
+        "cummins_version": __version__,
+    }
+    return exceedance(ds, study.limits)
+
+
+def write_results(results: xr.Dataset, path: str | os.PathLike[str], *, force: bool = False):
+    """Write gathered results as NetCDF, or Zarr when ``path`` ends in ``.zarr``."""
+    path = Path(path)
+    check_writable(path, force)
+    out = results.copy()
+    for name in ("case_id",):
+        out[name] = out[name].astype(str)
+    if path.suffix.lower() == ".zarr":
+        try:
+            import zarr  # noqa: F401
+        except ImportError:
+            raise CumminsError("writing Zarr needs the zarr package: pip install zarr") from None
+        if path.exists():
+            shutil.rmtree(path)
+        with warnings.catch_warnings():
+            warnings.simplefilter("ignore")  # zarr's notes on its format-3 specification
+            out.to_zarr(path, mode="w", zarr_format=2, consolidated=True)
+        return path
+    from cummins.io.netcdf import save_netcdf
+
+    return save_netcdf(out, path)
+
+
+def load_results(path: str | os.PathLike[str]) -> xr.Dataset:
+    """Read results written by :func:`run_study` (NetCDF or Zarr)."""
+    path = Path(path)
+    try:
+        if path.suffix.lower() == ".zarr":
+            ds = xr.open_zarr(path).load()
+        else:
+            with xr.open_dataset(path, engine="h5netcdf") as f:
+                ds = f.load()
+    except (OSError, ValueError) as exc:
+        raise StudyError(f"{path}: cannot read the results ({exc})") from None
+    if ds.attrs.get("cummins_kind") != _RESULT_KIND:
+        raise StudyError(f"{path}: not the results of a cummins batch study")
+    return ds
+
+
+def is_results(ds: xr.Dataset) -> bool:
+    """True for a Dataset of batch results."""
+    return ds.attrs.get("cummins_kind") == _RESULT_KIND

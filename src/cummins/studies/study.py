@@ -1,0 +1,579 @@
+"""A batch study: one vessel and many cases (headings × sea states × seeds), with limits.
+
+The definition only — what :mod:`cummins.studies.batch` runs. A :class:`Study` is read from YAML
+(:func:`load_study`, keys :data:`STUDY_KEYS`) or built in Python; its cases are the outer
+product of a ``grid`` or an explicit list; :class:`Limit` bounds a statistic of a DOF's
+response (units required). Errors name the study file and the key
+(:class:`StudyError`).
+
+Examples
+--------
+>>> import cummins
+>>> from cummins.studies.study import Study
+>>> study = Study(data=cummins.demo_files() / "tanker.1",
+...               grid={"heading": [90, 180], "hs": [2, 4], "tp": [8, 10]},
+...               limits={"Roll": "3 deg", "Heave": {"max": "2 m"}})
+>>> len(study.all_cases), study.dims
+(8, ('heading', 'hs', 'tp'))
+"""
+
+from __future__ import annotations
+
+import itertools
+import math
+import os
+import re
+from collections.abc import Mapping, Sequence
+from dataclasses import dataclass
+from functools import cached_property
+from pathlib import Path
+from typing import Any
+
+import numpy as np
+
+from cummins.errors import ArgumentError
+from cummins.hydrodb import DOF_NAMES, is_rotation, split_dof
+
+#: The analyses a study can run on each case.
+ANALYSES: dict[str, str] = {
+    "rao": "frequency domain: RAOs, response spectra, significant and most probable maximum",
+    "simulate": "time domain: simulate_waves in a realisation of the sea, observed statistics",
+}
+#: Axes of a grid, in the order of the result's dimensions, and their units.
+GRID_AXES: dict[str, str] = {
+    "heading": "deg",
+    "hs": "m",
+    "tp": "s",
+    "gamma": "1",
+    "spreading": "1",
+    "seed": "1",
+}
+#: Statistics a limit can bound: the name in the YAML file → the result variable.
+STATISTICS: dict[str, str] = {
+    "significant": "significant_amplitude",
+    "max": "maximum",
+}
+#: Units accepted in limits: name → (factor to SI, kind).
+UNITS: dict[str, tuple[float, str]] = {
+    "m": (1.0, "translation"),
+    "cm": (0.01, "translation"),
+    "mm": (0.001, "translation"),
+    "deg": (math.pi / 180.0, "rotation"),
+    "°": (math.pi / 180.0, "rotation"),
+    "rad": (1.0, "rotation"),
+}
+#: Keys of a study file.
+STUDY_KEYS: dict[str, str] = {
+    "name": "a title for the report",
+    "data": "hydrodynamic database (any format cummins reads), relative to the study file",
+    "model": "radiation model from `cummins fit` (simulate; default: fitted once)",
+    "analysis": "rao | simulate",
+    "spectrum": "jonswap | pm | torsethaugen",
+    "grid": "axes of an outer product: heading (deg), hs (m), tp (s), gamma, spreading, seed",
+    "cases": "an explicit list of cases (mappings with the grid's keys, and probability)",
+    "duration": "s: exposure of the most probable maximum (rao) or length of each run",
+    "dt": "s: time step (simulate)",
+    "components": "wave components per direction (simulate)",
+    "directions": "directions of a short-crested sea (with spreading)",
+    "omega_min": "rad/s, lowest RAO frequency (rao; default: the data's)",
+    "omega_max": "rad/s, highest RAO frequency (rao; default: the data's)",
+    "n_omega": "number of RAO frequencies (rao)",
+    "viscous_damping": "{DOF: value}, linear damping added (kg/s, kg m^2/s)",
+    "speed": "m/s: the forward speed to take from data holding several",
+    "limits": "{DOF: '3 deg'} or {DOF: {significant: .., max: ..}}",
+    "scatter": "{hs: [..], tp: [..], probability: [[..] per hs]} weights of the sea states",
+}
+_CASE_KEYS = ("heading", "hs", "tp", "gamma", "spreading", "seed", "probability")
+_BLAS_ENV = {
+    "OMP_NUM_THREADS": "1",
+    "OPENBLAS_NUM_THREADS": "1",
+    "MKL_NUM_THREADS": "1",
+    "VECLIB_MAXIMUM_THREADS": "1",
+    "NUMEXPR_NUM_THREADS": "1",
+}
+_RESULT_KIND = "cummins batch results"
+
+
+class StudyError(ArgumentError):
+    """A study definition that cannot be run: names the file and key at fault (a bad
+    argument of ``cummins batch``: exit status 2)."""
+
+
+def at_key(source: Path | None, key: str) -> str:
+    """Where in a study a key is: "<file>: <key>" (the key alone for a study built in
+    Python)."""
+    return f"{source}: {key}" if source else key
+
+
+# --------------------------------------------------------------------------- definition
+
+
+def _number(value: Any, key: str, source: Path | None = None) -> float:
+    """A finite float from a number or a numeric string (YAML reads ``5e8`` as text)."""
+    try:
+        out = float(value)
+    except (TypeError, ValueError):
+        raise StudyError(f"{at_key(source, key)}: {value!r} is not a number") from None
+    if not math.isfinite(out) or isinstance(value, bool):
+        raise StudyError(f"{at_key(source, key)}: {value!r} is not a finite number")
+    return out
+
+
+def parse_limit_value(text: Any, dof: str, key: str = "limits", source: Path | None = None):
+    """(value in SI, text) of a limit such as ``"5 deg"`` or ``"1.5 m"`` on ``dof``.
+
+    Rotations (Roll, Pitch, Yaw) take ``deg`` or ``rad``, translations ``m``, ``cm`` or
+    ``mm``; a unit is required (no silent degrees-or-radians guess).
+
+    Examples
+    --------
+    >>> round(parse_limit_value("5 deg", "Roll")[0], 6)
+    0.087266
+    >>> parse_limit_value("20 cm", "Heave")[0]
+    0.2
+    """
+    where = at_key(source, key)
+    match = re.fullmatch(r"\s*([-+0-9.eE]+)\s*([A-Za-z°]+)\s*", str(text))
+    if match is None:
+        kind = "deg or rad" if is_rotation(dof) else "m, cm or mm"
+        raise StudyError(
+            f"{where}: {text!r} is not a value with a unit",
+            hint=f"write e.g. '3 {kind.split()[0]}'",
+        )
+    value = _number(match.group(1), key, source)
+    unit = match.group(2).lower()
+    if unit not in UNITS:
+        raise StudyError(f"{where}: unknown unit {unit!r}; use {', '.join(UNITS)}")
+    factor, kind = UNITS[unit]
+    wanted = "rotation" if is_rotation(dof) else "translation"
+    if kind != wanted:
+        raise StudyError(
+            f"{where}: {dof} is a {wanted}: {unit!r} does not apply",
+            hint="rotations take deg or rad, translations m, cm or mm",
+        )
+    if not value > 0:
+        raise StudyError(f"{where}: a limit must be positive, not {text!r}")
+    return value * factor, f"{match.group(1)} {unit}"
+
+
+@dataclass(frozen=True)
+class Limit:
+    """A criterion: ``statistic`` (``"significant"`` or ``"max"``) of ``dof`` ≤ ``value``.
+
+    ``value`` in SI units (m or rad); ``text`` as written (``"5 deg"``).
+    """
+
+    dof: str
+    statistic: str
+    value: float
+    text: str
+
+    @property
+    def label(self) -> str:
+        """``"Roll significant <= 5 deg"``."""
+        return f"{self.dof} {self.statistic} <= {self.text}"
+
+
+def _parse_limits(raw: Any, source: Path | None) -> tuple[Limit, ...]:
+    if raw is None:
+        return ()
+    if isinstance(raw, Sequence) and all(isinstance(x, Limit) for x in raw):
+        return tuple(raw)
+    if not isinstance(raw, Mapping):
+        raise StudyError(f"{at_key(source, 'limits')}: expected a mapping DOF: limit")
+    out = []
+    for dof, spec in raw.items():
+        dof = str(dof)
+        key = f"limits.{dof}"
+        if split_dof(dof)[1] not in DOF_NAMES:
+            raise StudyError(
+                f"{at_key(source, key)}: unknown DOF {dof!r}", hint=f"DOFs: {', '.join(DOF_NAMES)}"
+            )
+        items = spec.items() if isinstance(spec, Mapping) else [("significant", spec)]
+        for statistic, text in items:
+            if statistic not in STATISTICS:
+                raise StudyError(
+                    f"{at_key(source, f'{key}.{statistic}')}: unknown statistic; use "
+                    f"{' or '.join(STATISTICS)}"
+                )
+            value, written = parse_limit_value(text, dof, f"{key}.{statistic}", source)
+            out.append(Limit(dof, str(statistic), value, written))
+    return tuple(out)
+
+
+@dataclass(frozen=True)
+class Case:
+    """One sea state (and realisation) of a study.
+
+    Attributes
+    ----------
+    heading
+        Direction the waves travel, degrees (0 following seas, 180 head seas).
+    hs, tp
+        Significant wave height (m) and peak period (s).
+    gamma
+        JONSWAP peakedness (None: 3.3).
+    spreading
+        cos-2s exponent s of a short-crested sea (None: long-crested).
+    seed
+        Random phases (``simulate``; None: derived from the case).
+    probability
+        Weight of the sea state in operability (list studies; grids use ``scatter``).
+    """
+
+    heading: float
+    hs: float
+    tp: float
+    gamma: float | None = None
+    spreading: float | None = None
+    seed: int | None = None
+    probability: float | None = None
+
+    def parameters(self) -> dict[str, Any]:
+        """What determines the result (not the probability), JSON-ready."""
+        return {
+            "heading": float(self.heading),
+            "hs": float(self.hs),
+            "tp": float(self.tp),
+            "gamma": None if self.gamma is None else float(self.gamma),
+            "spreading": None if self.spreading is None else float(self.spreading),
+            "seed": None if self.seed is None else int(self.seed),
+        }
+
+    @property
+    def label(self) -> str:
+        """``"heading 180 deg, Hs 4 m, Tp 10 s"`` (+ the optional parameters)."""
+        text = f"heading {self.heading:g} deg, Hs {self.hs:g} m, Tp {self.tp:g} s"
+        for name in ("gamma", "spreading", "seed"):
+            value = getattr(self, name)
+            if value is not None:
+                text += f", {name} {value:g}"
+        return text
+
+
+def _case_from_mapping(raw: Any, k: int, source: Path | None) -> Case:
+    key = f"cases[{k}]"
+    if isinstance(raw, Case):
+        return raw
+    if not isinstance(raw, Mapping):
+        raise StudyError(f"{at_key(source, key)}: expected a mapping heading/hs/tp/...")
+    unknown = sorted(set(map(str, raw)) - set(_CASE_KEYS))
+    if unknown:
+        raise StudyError(
+            f"{at_key(source, f'{key}.{unknown[0]}')}: unknown key; a case takes "
+            f"{', '.join(_CASE_KEYS)}"
+        )
+    for needed in ("heading", "hs", "tp"):
+        if needed not in raw:
+            raise StudyError(f"{at_key(source, key)}: missing {needed!r}")
+    values = {n: _number(raw[n], f"{key}.{n}", source) for n in raw}
+    if "seed" in values:
+        values["seed"] = int(values["seed"])
+    return _checked_case(Case(**values), key, source)
+
+
+def _checked_case(case: Case, key: str, source: Path | None) -> Case:
+    if not case.hs > 0 or not case.tp > 0:
+        raise StudyError(f"{at_key(source, key)}: hs and tp must be positive")
+    if case.gamma is not None and not case.gamma >= 1:
+        raise StudyError(f"{at_key(source, key)}: gamma must be >= 1")
+    if case.spreading is not None and not case.spreading >= 0:
+        raise StudyError(f"{at_key(source, key)}: spreading must be >= 0")
+    if case.probability is not None and not case.probability >= 0:
+        raise StudyError(f"{at_key(source, key)}: probability must be >= 0")
+    return case
+
+
+def _normalise_grid(raw: Any, source: Path | None) -> tuple[tuple[str, tuple], ...]:
+    if isinstance(raw, tuple) and all(isinstance(p, tuple) and len(p) == 2 for p in raw):
+        raw = dict(raw)  # already normalised (dataclasses.replace)
+    if not isinstance(raw, Mapping):
+        raise StudyError(f"{at_key(source, 'grid')}: expected a mapping of axes")
+    unknown = sorted(set(map(str, raw)) - set(GRID_AXES))
+    if unknown:
+        raise StudyError(
+            f"{at_key(source, f'grid.{unknown[0]}')}: unknown axis; axes are {', '.join(GRID_AXES)}"
+        )
+    for needed in ("heading", "hs", "tp"):
+        if needed not in raw:
+            raise StudyError(f"{at_key(source, 'grid')}: missing axis {needed!r}")
+    axes = []
+    for name in GRID_AXES:
+        if name not in raw:
+            continue
+        values = raw[name]
+        if isinstance(values, str) or not isinstance(values, Sequence | np.ndarray):
+            values = [values]
+        numbers = [_number(v, f"grid.{name}", source) for v in values]
+        if name == "seed":
+            numbers = [int(v) for v in numbers]
+        if not numbers:
+            raise StudyError(f"{at_key(source, f'grid.{name}')}: no values")
+        if len(set(numbers)) != len(numbers):
+            raise StudyError(f"{at_key(source, f'grid.{name}')}: repeated values")
+        axes.append((name, tuple(numbers)))
+    return tuple(axes)
+
+
+def _normalise_scatter(
+    raw: Any, grid, source: Path | None
+) -> tuple[tuple[float, float, float], ...]:
+    if raw is None:
+        return ()
+    if isinstance(raw, Sequence) and all(isinstance(x, tuple) for x in raw):
+        return tuple(raw)
+    key = "scatter"
+    if grid is None:
+        raise StudyError(
+            f"{at_key(source, key)}: a scatter diagram needs a grid; give each case a "
+            "probability in a list study"
+        )
+    if not isinstance(raw, Mapping) or set(raw) != {"hs", "tp", "probability"}:
+        raise StudyError(f"{at_key(source, key)}: expected hs: [..], tp: [..], probability: [[..]]")
+    hs = [_number(v, "scatter.hs", source) for v in raw["hs"]]
+    tp = [_number(v, "scatter.tp", source) for v in raw["tp"]]
+    table = np.array(
+        [[_number(v, "scatter.probability", source) for v in row] for row in raw["probability"]]
+    )
+    if table.shape != (len(hs), len(tp)) or np.any(table < 0) or not table.sum() > 0:
+        raise StudyError(
+            f"{at_key(source, 'scatter.probability')}: needs {len(hs)} rows (one per hs) of "
+            f"{len(tp)} non-negative numbers (one per tp), not all zero"
+        )
+    axes = dict(grid)
+    if sorted(hs) != sorted(axes["hs"]) or sorted(tp) != sorted(axes["tp"]):
+        raise StudyError(
+            f"{at_key(source, key)}: its hs and tp must be the grid's hs and tp values"
+        )
+    return tuple((h, t, float(table[i, j])) for i, h in enumerate(hs) for j, t in enumerate(tp))
+
+
+@dataclass(frozen=True)
+class Study:
+    """A batch study: a vessel, an analysis, its cases and the limits to check.
+
+    Parameters mirror the keys of a study file (:data:`STUDY_KEYS`, :func:`load_study`);
+    ``grid`` and ``limits`` may be given as mappings, ``cases`` as mappings or
+    :class:`Case`\\ s. Paths are used as given (:func:`load_study` resolves them against
+    the study file's folder).
+
+    Examples
+    --------
+    >>> s = Study(data="tanker.1", analysis="simulate", grid={"heading": 180, "hs": [2, 3],
+    ...           "tp": 9, "seed": [1, 2]}, duration=600)
+    >>> s.dims, [c.seed for c in s.all_cases]
+    (('heading', 'hs', 'tp', 'seed'), [1, 2, 1, 2])
+    """
+
+    data: Path
+    analysis: str = "rao"
+    model: Path | None = None
+    grid: Any = None
+    cases: Any = ()
+    spectrum: str = "jonswap"
+    duration: float = 10800.0
+    dt: float = 0.1
+    components: int = 200
+    directions: int = 9
+    omega_min: float | None = None
+    omega_max: float | None = None
+    n_omega: int = 400
+    viscous_damping: Any = None
+    speed: float | None = None
+    limits: Any = ()
+    scatter: Any = ()
+    name: str = ""
+    source: Path | None = None
+
+    def __post_init__(self) -> None:
+        src = self.source
+        set_ = object.__setattr__
+        set_(self, "data", Path(self.data))
+        if self.model is not None:
+            set_(self, "model", Path(self.model))
+        if self.analysis not in ANALYSES:
+            raise StudyError(
+                f"{at_key(src, 'analysis')}: unknown analysis {self.analysis!r}; use "
+                f"{' or '.join(ANALYSES)}"
+            )
+        from cummins.seakeeping.waves import SPECTRA
+
+        if str(self.spectrum).lower() not in SPECTRA:
+            raise StudyError(
+                f"{at_key(src, 'spectrum')}: unknown spectrum {self.spectrum!r}; use "
+                f"{', '.join(SPECTRA)}"
+            )
+        if (self.grid is None) == (not self.cases):
+            raise StudyError(f"{at_key(src, 'grid')}: give either a grid or a list of cases")
+        if self.grid is not None:
+            set_(self, "grid", _normalise_grid(self.grid, src))
+            set_(self, "cases", ())
+        else:
+            set_(
+                self,
+                "cases",
+                tuple(_case_from_mapping(c, k, src) for k, c in enumerate(self.cases)),
+            )
+        for key in ("duration", "dt"):
+            if not _number(getattr(self, key), key, src) > 0:
+                raise StudyError(f"{at_key(src, key)}: must be positive")
+            set_(self, key, float(getattr(self, key)))
+        for key, least in (("components", 1), ("directions", 2), ("n_omega", 2)):
+            value = _number(getattr(self, key), key, src)
+            if value != int(value) or value < least:
+                raise StudyError(f"{at_key(src, key)}: must be an integer >= {least}")
+            set_(self, key, int(value))
+        for key in ("omega_min", "omega_max", "speed"):
+            if getattr(self, key) is not None:
+                set_(self, key, _number(getattr(self, key), key, src))
+        damping = self.viscous_damping or {}
+        if isinstance(damping, tuple):
+            damping = dict(damping)
+        if not isinstance(damping, Mapping):
+            raise StudyError(f"{at_key(src, 'viscous_damping')}: expected a mapping DOF: value")
+        set_(
+            self,
+            "viscous_damping",
+            tuple((str(d), _number(v, f"viscous_damping.{d}", src)) for d, v in damping.items()),
+        )
+        set_(self, "limits", _parse_limits(self.limits, src))
+        set_(self, "scatter", _normalise_scatter(self.scatter or None, self.grid, src))
+        if self.analysis == "rao":
+            seeds = self.grid and dict(self.grid).get("seed")
+            if seeds or any(c.seed is not None for c in self.cases):
+                raise StudyError(
+                    f"{at_key(src, 'seed')}: seeds apply to analysis: simulate (the frequency "
+                    "domain has no random phases)"
+                )
+
+    @cached_property
+    def all_cases(self) -> tuple[Case, ...]:
+        """Every case: the grid's outer product (last axis fastest) or the list."""
+        if self.grid is None:
+            return self.cases
+        names = [name for name, _ in self.grid]
+        out = []
+        for values in itertools.product(*(v for _, v in self.grid)):
+            out.append(_checked_case(Case(**dict(zip(names, values, strict=True))), "grid", None))
+        return tuple(out)
+
+    @property
+    def dims(self) -> tuple[str, ...]:
+        """Dimensions of the results: the grid's axes, or ``("case",)``."""
+        return tuple(name for name, _ in self.grid) if self.grid is not None else ("case",)
+
+    def settings(self) -> dict[str, Any]:
+        """What every case's result depends on, besides the data and the case (JSON-ready)."""
+        out: dict[str, Any] = {
+            "analysis": self.analysis,
+            "spectrum": str(self.spectrum).lower(),
+            "duration": self.duration,
+            "viscous_damping": [list(p) for p in self.viscous_damping],
+            "speed": self.speed,
+        }
+        if self.analysis == "rao":
+            out.update(omega_min=self.omega_min, omega_max=self.omega_max, n_omega=self.n_omega)
+        else:
+            out.update(dt=self.dt, components=self.components, directions=self.directions)
+        return out
+
+    def describe(self) -> dict[str, Any]:
+        """The whole definition, JSON-ready (stored in the results' attributes)."""
+        return {
+            "name": self.name,
+            "data": str(self.data),
+            "model": None if self.model is None else str(self.model),
+            **self.settings(),
+            "grid": None if self.grid is None else {n: list(v) for n, v in self.grid},
+            "cases": [{**c.parameters(), "probability": c.probability} for c in self.cases],
+            "limits": [
+                {"dof": lim.dof, "statistic": lim.statistic, "limit": lim.text}
+                for lim in self.limits
+            ],
+            "scatter": [list(s) for s in self.scatter],
+        }
+
+
+def load_study(path: str | os.PathLike[str]) -> Study:
+    """Read a study file (YAML, :func:`example_study_text` shows every key).
+
+    Paths in the file (``data``, ``model``) are relative to the file's folder.
+
+    Raises
+    ------
+    StudyError
+        Unreadable YAML (with its line), an unknown key, a missing data file, a limit
+        without a unit or on an unknown DOF, … — naming the file and the key.
+    """
+    import yaml
+
+    path = Path(path)
+    try:
+        text = path.read_text(encoding="utf-8")
+    except OSError as exc:
+        raise StudyError(f"{path}: cannot read the study file ({exc.strerror})") from None
+    except UnicodeDecodeError as exc:
+        line = path.read_bytes()[: exc.start].count(b"\n") + 1
+        raise StudyError(
+            f"{path}, line {line}: not a text file (byte {exc.start + 1} is not UTF-8)",
+            hint="A study is a YAML text file: `cummins batch --example study.yaml` writes one",
+        ) from None
+    try:
+        raw = yaml.safe_load(text)
+    except yaml.YAMLError as exc:
+        mark = getattr(exc, "problem_mark", None)
+        line = f", line {mark.line + 1}" if mark is not None else ""
+        problem = getattr(exc, "problem", None) or str(exc)
+        raise StudyError(f"{path}{line}: not valid YAML ({problem})") from None
+    if not isinstance(raw, Mapping):
+        raise StudyError(f"{path}: expected a mapping of keys ({', '.join(STUDY_KEYS)})")
+    unknown = sorted(set(map(str, raw)) - set(STUDY_KEYS))
+    if unknown:
+        raise StudyError(
+            f"{path}: unknown key {unknown[0]!r}", hint=f"the keys are {', '.join(STUDY_KEYS)}"
+        )
+    if "data" not in raw:
+        raise StudyError(f"{path}: missing key 'data' (the hydrodynamic database)")
+    values = dict(raw)
+    for key in ("data", "model"):
+        if values.get(key) is not None:
+            file = path.parent / str(values[key])
+            if not file.exists():
+                raise StudyError(f"{path}: {key}: {file} does not exist")
+            values[key] = file
+    values.setdefault("cases", ())
+    return Study(**values, source=path)
+
+
+def example_study_text(data: str = "tanker.1") -> str:
+    """A commented example study (the bundled tanker's operability), as YAML text."""
+    return f"""\
+# cummins batch study: run with `cummins batch study.yaml -o results.nc`
+name: tanker operability, frequency domain
+data: {data}          # any file cummins reads (relative to this file)
+# model: tanker_model.nc   # analysis: simulate only; default: one passive fit
+analysis: rao             # rao (frequency domain) | simulate (time domain)
+spectrum: jonswap         # jonswap | pm | torsethaugen
+duration: 10800           # s: exposure of the most probable maximum (rao), or run length
+n_omega: 300              # RAO frequencies over the data's range (rao)
+# dt: 0.1                 # s, time step (simulate)
+# components: 200         # wave components (simulate)
+grid:                     # outer product of the axes; or `cases:` a list of mappings
+  heading: [90, 135, 180] # deg, direction the waves travel: 180 head seas
+  hs: [1, 2, 3, 4]        # m
+  tp: [6, 8, 10, 12, 14]  # s
+  # gamma: [1, 3.3]       # JONSWAP peakedness
+  # spreading: [4]        # cos-2s exponent: short-crested seas
+  # seed: [1, 2, 3]       # simulate: realisations (default: one per case)
+viscous_damping:
+  Roll: 5.0e+8            # kg m^2/s
+limits:                   # significant single amplitude 2 sqrt(m0) unless `max:`
+  Roll: 4 deg
+  Pitch: 2 deg
+  Heave: {{max: 2.5 m}}     # most probable maximum (rao) / observed maximum (simulate)
+# scatter:                # probabilities of the sea states (rows: hs, columns: tp)
+#   hs: [1, 2, 3, 4]
+#   tp: [6, 8, 10, 12, 14]
+#   probability: [[.05, .1, .1, .05, .02], [.03, .1, .1, .06, .02],
+#                 [.01, .05, .08, .05, .02], [0, .02, .05, .04, .05]]
+"""
