@@ -25,6 +25,10 @@ from cummins.radiation.model import (
     siso_frequency_response,
     symmetric_couplings,
 )
+from cummins.radiation.model_file import (  # also registers the format of save/load
+    read_radiation_model,
+    write_radiation_model,
+)
 
 __all__ = [
     "CouplingModel",
@@ -32,6 +36,8 @@ __all__ = [
     "RadiationModel",
     "SisoStateSpace",
     "change_model_axes",
+    "read_radiation_model",
     "siso_frequency_response",
     "symmetric_couplings",
+    "write_radiation_model",
 ]

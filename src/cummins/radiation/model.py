@@ -27,7 +27,7 @@ from __future__ import annotations
 
 import functools
 import os
-from collections.abc import Mapping, Sequence
+from collections.abc import Callable, Mapping, Sequence
 from dataclasses import dataclass, field, replace
 from pathlib import Path
 from typing import TYPE_CHECKING, Any
@@ -582,20 +582,42 @@ class RadiationModel:
     # ------------------------------------------------------------------ files
 
     def save(self, path: str | os.PathLike[str], *, force: bool = False) -> Path:
-        """Write the model as NetCDF (see :func:`cummins.radiation.model_file`)."""
-        from cummins.radiation.model_file import write_radiation_model
+        """Write the model as NetCDF (the layout of :mod:`cummins.radiation.model_file`).
 
+        An existing file is replaced only with ``force=True``.
+        """
         p = Path(path)
         check_writable(p, force)
-        write_radiation_model(self, p)
+        _file_format("write")(self, p)
         return p
 
     @classmethod
     def load(cls, path: str | os.PathLike[str]) -> RadiationModel:
         """Read a model written by :meth:`save`."""
-        from cummins.radiation.model_file import read_radiation_model
+        return _file_format("read")(path)
 
-        return read_radiation_model(path)
+
+# The model's file format (cummins.radiation.model_file) imports this module and registers
+# its reader and writer here when cummins.radiation is imported: the dependency runs one
+# way, from the format to the model, and save/load need no import of the format.
+_FILE_FORMAT: dict[str, Callable[..., Any]] = {}
+
+
+def register_file_format(
+    read: Callable[[str | os.PathLike[str]], RadiationModel],
+    write: Callable[[RadiationModel, Path], Any],
+) -> None:
+    """Set the functions :meth:`RadiationModel.load` and :meth:`RadiationModel.save` use."""
+    _FILE_FORMAT.update(read=read, write=write)
+
+
+def _file_format(which: str) -> Callable[..., Any]:
+    if which not in _FILE_FORMAT:  # only when cummins.radiation.model_file failed to load
+        raise CumminsError(
+            "no file format is registered for radiation models",
+            hint="import cummins.radiation (it registers cummins.radiation.model_file)",
+        )
+    return _FILE_FORMAT[which]
 
 
 #: Model attributes holding a position (x, y, z) per body, flipped with the axes.

@@ -132,7 +132,12 @@ from cummins.io.netcdf import (
     load_netcdf,
     save_netcdf,
 )
-from cummins.radiation.model import CouplingModel, MemoryBlock, RadiationModel
+from cummins.radiation.model import (
+    CouplingModel,
+    MemoryBlock,
+    RadiationModel,
+    register_file_format,
+)
 
 __all__ = ["FORMAT_NAME", "FORMAT_VERSION", "read_radiation_model", "write_radiation_model"]
 
@@ -679,3 +684,6 @@ def _check_assembly(model: RadiationModel, a, b, c, path) -> None:
                 hint="A must be block-diagonal, B and C nonzero only in each coupling's "
                 "column j and row i",
             )
+
+
+register_file_format(read_radiation_model, write_radiation_model)
