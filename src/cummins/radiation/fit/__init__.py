@@ -183,8 +183,8 @@ def fit_radiation(
     >>> model = cummins.fit_radiation(cummins.demo_dataset())
     >>> model.is_stable()
     True
-    >>> accurate = cummins.fit_radiation(cummins.demo_dataset(),
-    cummins.radiation.fit.MOTION_ACCURACY)
+    >>> from cummins.radiation.fit import MOTION_ACCURACY
+    >>> accurate = cummins.fit_radiation(cummins.demo_dataset(), MOTION_ACCURACY)
     >>> accurate.total_order > model.total_order
     True
     """
