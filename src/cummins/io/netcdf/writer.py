@@ -1,0 +1,122 @@
+"""Writing NetCDF: a ``HydroDB`` in Capytaine's layout and conventions, any dataset safely.
+
+:func:`to_capytaine_layout` gives the dataset as it is written (complex values conjugated
+to Capytaine's e^{-iωt} and split into ``re``/``im``; ρ, g, depth and the rotation centre
+as coordinates; attributes encoded, :mod:`cummins.io.netcdf.attributes`);
+:func:`save_netcdf` writes any dataset to NetCDF-4 through a temporary file, with HDF5's
+Fletcher-32 checksum on every numeric array.
+"""
+
+from __future__ import annotations
+
+import os
+import warnings
+from pathlib import Path
+from typing import Any
+
+import numpy as np
+import xarray as xr
+
+from cummins._version import __version__
+from cummins.errors import HydroDataError
+from cummins.hydrodb import bodies, validate
+from cummins.io.netcdf.attributes import FILE_TIME_CONVENTION, VERSION_ATTR, encode_attributes
+
+
+def to_capytaine_layout(ds: xr.Dataset) -> xr.Dataset:
+    """The dataset as it is written to NetCDF: Capytaine's layout and conventions.
+
+    Complex arrays are conjugated (e^{+iωt} → e^{-iωt}) and split along a leading
+    ``complex`` dimension (``re``, ``im``); ``rho``, ``g``, ``water_depth`` become scalar
+    coordinates; the reference point is also stored as Capytaine's ``rotation_center``.
+    """
+    validate(ds)
+    out = xr.Dataset()
+    has_complex = False
+    for name, var in ds.data_vars.items():
+        attrs = encode_attributes(var.attrs)
+        if np.iscomplexobj(var.values):
+            has_complex = True
+            value = np.conj(var.values)
+            out[name] = xr.DataArray(
+                np.stack([value.real, value.imag]), dims=("complex", *var.dims), attrs=attrs
+            )
+        else:
+            out[name] = xr.DataArray(var.values, dims=var.dims, attrs=attrs)
+    for name, coord in ds.coords.items():
+        out.coords[name] = xr.Variable(coord.dims, coord.values, encode_attributes(coord.attrs))
+    if has_complex:
+        out.coords["complex"] = ("complex", ["re", "im"])
+    for key in ("rho", "g", "water_depth"):
+        out.coords[key] = float(ds.attrs[key])
+    point = np.asarray(ds.attrs.get("reference_point", (0.0, 0.0, 0.0)), dtype=float)
+    names = bodies(ds)
+    if point.size == 3:
+        out.coords["rotation_center"] = ("space_coordinate", point.reshape(3))
+    elif point.size == 3 * len(names):
+        out.coords["rotation_center"] = (("body", "space_coordinate"), point.reshape(-1, 3))
+        out.coords["body"] = ("body", [str(b) for b in names])
+    out.coords["space_coordinate"] = ("space_coordinate", ["x", "y", "z"])
+    attrs = {k: v for k, v in ds.attrs.items() if k not in ("rho", "g", "water_depth")}
+    attrs["time_convention"] = FILE_TIME_CONVENTION
+    attrs[VERSION_ATTR] = __version__
+    out.attrs = encode_attributes(attrs)
+    return out
+
+
+def write_netcdf(ds: xr.Dataset, path: str | os.PathLike[str]) -> Path:
+    """Write a ``HydroDB`` to NetCDF-4 in Capytaine's layout (see the module docstring).
+
+    The data are written in the dataset's axes (attribute ``axis_convention``);
+    Capytaine's are z-up, so convert a z-down (MSS) dataset with
+    :func:`cummins.change_axes` first if the file is meant for Capytaine users.
+
+    The file is written to a temporary name first and then renamed, so a failure
+    leaves no half-written file. An existing file is replaced: use
+    :func:`cummins.write` (``force=``) for the overwrite check.
+
+    Parameters
+    ----------
+    ds
+        A valid ``HydroDB``.
+    path
+        Output file (``.nc``).
+
+    Returns
+    -------
+    Path
+        ``path``.
+    """
+    return save_netcdf(to_capytaine_layout(ds), path)
+
+
+def save_netcdf(ds: xr.Dataset, path: str | os.PathLike[str], *, checksum: bool = True) -> Path:
+    """Write ``ds`` (h5netcdf) to a temporary name, then rename it to ``path``: a failure
+    leaves no half-written file. No overwrite check (the callers do it).
+
+    With ``checksum`` every numeric array carries HDF5's Fletcher-32 checksum filter
+    (a standard HDF5 filter that netCDF-C, h5py and MATLAB read transparently), so a
+    damaged copy is refused on reading instead of giving different numbers."""
+    path = Path(path)
+    tmp = path.with_name(f".{path.name}.tmp")
+    encoding = _checksum_encoding(ds) if checksum else None
+    try:
+        with warnings.catch_warnings():
+            warnings.simplefilter("ignore", category=FutureWarning)
+            ds.to_netcdf(tmp, engine="h5netcdf", encoding=encoding)
+        os.replace(tmp, path)
+    except OSError as exc:
+        raise HydroDataError(f"cannot write the file ({exc})", path=path) from None
+    finally:
+        if tmp.exists():
+            tmp.unlink()
+    return path
+
+
+def _checksum_encoding(ds: xr.Dataset) -> dict[str, dict[str, Any]]:
+    """Fletcher-32 for every non-scalar numeric variable (HDF5 filters need chunks)."""
+    encoding: dict[str, dict[str, Any]] = {}
+    for name, var in ds.variables.items():
+        if var.ndim >= 1 and var.size > 0 and var.dtype.kind in "biufc":
+            encoding[str(name)] = {"fletcher32": True}
+    return encoding
