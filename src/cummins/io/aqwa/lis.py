@@ -1,0 +1,519 @@
+"""The AQWA-LINE ``.LIS`` listing (one structure; use the ``.AH1`` for several).
+
+* "GLOBAL PARAMETERS": water depth, density, gravity; "WAVE FREQUENCIES/PERIODS AND
+  DIRECTIONS": the frequencies (rad/s, 5 decimals), wave numbers and directions.
+* One "HYDRODYNAMIC PARAMETERS" block per frequency ("WAVE PERIOD = … WAVE FREQUENCY
+  = …") with the 6×6 ADDED MASS and DAMPING matrices (5 significant digits), rows the
+  influenced DOF (X … RZ), columns the radiating DOF; the first block holds the
+  hydrostatic STIFFNESS MATRIX.
+* Tables "…-VARIATION WITH WAVE PERIOD/FREQUENCY", one per direction: "FROUDE KRYLOV
+  + DIFFRACTION FORCES" (excitation), "DIFFRACTION FORCES", "FROUDE KRYLOV FORCES"
+  (amplitude with 3 significant digits, phase in degrees) and "R.A.O.S" (motion RAOs,
+  rotations in degrees per metre, converted to rad/m).
+* "MASS AND INERTIA PROPERTIES": mass, centre of gravity and inertia matrix.
+* With the LHFR option, "HYDRODYNAMIC PARAMETERS AT LOW & HIGH FREQUENCIES".
+
+The listing must be in the "Metric: kg, m [N]" unit system that its header states.
+"""
+
+from __future__ import annotations
+
+import re
+from dataclasses import dataclass, field
+from pathlib import Path
+
+import numpy as np
+import xarray as xr
+
+from cummins.hydrodb import dof_labels, make_hydrodb
+from cummins.io._common import resolve_rho_g, warn_damage
+from cummins.io._text import TextFile, parse_numbers
+from cummins.io.aqwa.conventions import (
+    _NUMBER,
+    HIGH_FREQUENCY_LIMIT,
+    _complex,
+    _depth,
+    _limits_history,
+)
+from cummins.io.aqwa.detection import _is_lis
+
+_ROW_LABELS = ("X", "Y", "Z", "RX", "RY", "RZ")
+
+
+def _despace(line: str) -> str:
+    """``* * * * H Y D R O   P A R`` → ``****HYDRO PAR`` (AQWA's letter-spaced titles)."""
+    return re.sub(r"\s+", " ", re.sub(r"(?<=\S) (?=\S)", "", line.strip()))
+
+
+def _normal(line: str) -> str:
+    return re.sub(r"\s+", " ", line.strip())
+
+
+def _value_after(text: TextFile, pattern: str, start: int = 0, stop: int | None = None):
+    """(value, line index) of the first ``pattern = number`` in the lines, or (None, -1)."""
+    rx = re.compile(pattern + r"[\s.]*=\s*(" + _NUMBER + ")")
+    end = len(text.lines) if stop is None else stop
+    for i in range(start, end):
+        m = rx.search(text.lines[i])
+        if m:
+            return float(m.group(1)), i
+    return None, -1
+
+
+def _matrix_after(text: TextFile, i: int, stop: int, what: str) -> tuple[np.ndarray, int]:
+    """The 6×6 matrix printed as rows ``X …`` … ``RZ …`` after line ``i``."""
+    rows = []
+    k = i
+    while k < stop and len(rows) < 6:
+        tokens = text.lines[k].split()
+        if tokens and set(tokens) <= set(_ROW_LABELS) and len(tokens) > 1:  # column titles
+            k += 1
+            continue
+        if tokens and tokens[0] == _ROW_LABELS[len(rows)]:
+            values = parse_numbers(" ".join(tokens[1:]))
+            if values is None or values.size != 6:
+                raise text.error(f"expected 6 numbers in row {tokens[0]} of the {what}", k)
+            if not np.all(np.isfinite(values)):
+                raise text.error(f"non-finite value in the {what}", k)
+            rows.append(values)
+        elif tokens and rows and tokens[0] in _ROW_LABELS:
+            raise text.error(f"row {tokens[0]} out of order in the {what}", k)
+        elif tokens and rows and not set(tokens[0]) <= set("-"):
+            raise text.error(f"the {what} is incomplete (row {_ROW_LABELS[len(rows)]} missing)", k)
+        k += 1
+    if len(rows) < 6:
+        raise text.error(f"the {what} is incomplete (truncated?)", min(k, len(text.lines) - 1))
+    return np.vstack(rows), k
+
+
+def _label_line(text: TextFile, label: str, start: int, stop: int) -> int:
+    for k in range(start, min(stop, len(text.lines))):
+        if _normal(text.lines[k]) == label:
+            return k
+    return -1
+
+
+@dataclass
+class _Lis:
+    text: TextFile
+    titles: list[tuple[int, str]] = field(default_factory=list)
+
+
+_TABLES = {
+    "FROUDE KRYLOV + DIFFRACTION FORCES-VARIATION WITH WAVE PERIOD/FREQUENCY": "excitation",
+    "DIFFRACTION FORCES-VARIATION WITH WAVE PERIOD/FREQUENCY": "diffraction",
+    "FROUDE KRYLOV FORCES-VARIATION WITH WAVE PERIOD/FREQUENCY": "froude_krylov",
+    "R.A.O.S-VARIATION WITH WAVE PERIOD/FREQUENCY": "rao",
+}
+
+
+def _lis_constants(text: TextFile) -> dict[str, float]:
+    out = {}
+    for key, pattern in (
+        ("depth", r"WATER\s+DEPTH"),
+        ("rho", r"DENSITY\s+OF\s+WATER"),
+        ("g", r"ACCELERATION\s+DUE\s+TO\s+GRAVITY"),
+    ):
+        value, i = _value_after(text, pattern)
+        if value is None:
+            raise text.error(
+                f"no {pattern.replace(chr(92) + 's+', ' ')} in the GLOBAL PARAMETERS",
+                hint="is the listing complete (truncated?)",
+            )
+        if not np.isfinite(value) or value < 0 or (key != "depth" and value == 0):
+            raise text.error(f"invalid {key} {value:g}", i)
+        out[key] = value
+    return out
+
+
+def _leading_numbers(line: str) -> list[float]:
+    values = []
+    for token in line.split():
+        try:
+            values.append(float(token))
+        except ValueError:
+            break
+    return values
+
+
+def _lis_frequencies(text: TextFile, titles) -> tuple[np.ndarray, np.ndarray, np.ndarray, int]:
+    """Frequencies (rad/s), wave numbers (rad/m) and directions (deg) of the listing."""
+    starts = [i for i, t in titles if t.startswith("****WAVE FREQUENCIES/PERIODS AND DIRECTIONS")]
+    if not starts:
+        raise text.error("no WAVE FREQUENCIES/PERIODS AND DIRECTIONS table (truncated?)")
+    omega, k_table, directions = [], [], []
+    first_row = -1
+    for start in starts:
+        header = _label_line_prefix(text, "STRUCTURE", start, start + 12)
+        if header < 0:
+            continue
+        is_direction = "DIRECTIONS" in text.lines[header]
+        k = next(
+            (
+                j
+                for j in range(header + 1, min(header + 6, len(text.lines)))
+                if _is_rule(text.lines[j])
+            ),
+            -1,
+        )
+        if k < 0:
+            raise text.error("table header without its dashed rule", header)
+        k += 1
+        while k < len(text.lines) and not _is_rule(text.lines[k]):
+            line = text.lines[k]
+            if line.strip() == "1":  # Fortran carriage control: the table goes on overleaf
+                break
+            values = _leading_numbers(line)
+            if not values:
+                if line.strip():
+                    raise text.error(f"expected a row of numbers, found {line.strip()[:60]!r}", k)
+                k += 1
+                continue
+            if is_direction:
+                directions.extend(values[1:] if not directions else values)
+            else:
+                if len(values) == 10:
+                    values = values[1:]
+                if len(values) != 9:
+                    raise text.error(
+                        f"expected 9 numbers in the frequency table, found {len(values)}", k
+                    )
+                if first_row < 0:
+                    first_row = k
+                omega.append(values[1])
+                k_table.append(values[4])
+            k += 1
+    if not omega:
+        raise text.error("the wave frequency table is empty", starts[0])
+    if not directions:
+        raise text.error("no wave directions in the listing", starts[0])
+    return np.asarray(omega), np.asarray(k_table), np.asarray(directions), first_row
+
+
+def _is_rule(line: str) -> bool:
+    stripped = line.strip()
+    return bool(stripped) and set(stripped) <= set("-")
+
+
+def _label_line_prefix(text: TextFile, prefix: str, start: int, stop: int) -> int:
+    for k in range(start, min(stop, len(text.lines))):
+        if text.lines[k].strip().startswith(prefix):
+            return k
+    return -1
+
+
+def _lis_radiation(text: TextFile, omega: np.ndarray):
+    """A and B (nω, 6, 6) from the per-frequency blocks, and the stiffness matrix."""
+    rx = re.compile(
+        r"WAVE PERIOD\s*=\s*(" + _NUMBER + r")\s+WAVE FREQUENCY\s*=\s*(" + _NUMBER + ")"
+    )
+    blocks = [(i, float(m.group(2))) for i, line in enumerate(text.lines) if (m := rx.search(line))]
+    if not blocks:
+        raise text.error("no added mass and damping blocks (WAVE PERIOD = … WAVE FREQUENCY = …)")
+    if len(blocks) != omega.size:
+        raise text.error(
+            f"{len(blocks)} added-mass blocks for {omega.size} frequencies (truncated?)",
+            blocks[-1][0],
+        )
+    a = np.zeros((omega.size, 6, 6))
+    b = np.zeros((omega.size, 6, 6))
+    starts = [i for i, _ in blocks] + [len(text.lines)]
+    for n, (i, w) in enumerate(blocks):
+        if abs(w - omega[n]) > 6e-5 + 1e-6 * omega[n]:
+            raise text.error(
+                f"block for {w:g} rad/s where the frequency table has {omega[n]:g} rad/s", i
+            )
+        stop = min(starts[n + 1], i + 80)
+        label = _label_line(text, "ADDED MASS", i, stop)
+        if label < 0:
+            raise text.error("no ADDED MASS matrix after this line", i)
+        a[n], end = _matrix_after(text, label + 1, stop, f"added mass at {w:g} rad/s")
+        label = _label_line(text, "DAMPING", end, stop)
+        if label < 0:
+            raise text.error("no DAMPING matrix after the added mass", end)
+        b[n], _ = _matrix_after(text, label + 1, stop, f"damping at {w:g} rad/s")
+    label = _label_line(text, "STIFFNESS MATRIX", 0, blocks[0][0])
+    stiffness = None
+    if label >= 0:
+        stiffness, _ = _matrix_after(text, label + 1, blocks[0][0], "stiffness matrix")
+    return a, b, stiffness
+
+
+def _lis_limits(text: TextFile, titles) -> tuple[np.ndarray | None, float | None, float | None]:
+    """(A at the high LHFR frequency, that frequency, the low LHFR frequency)."""
+    starts = [i for i, t in titles if "HYDRODYNAMIC PARAMETERS AT LOW & HIGH FREQUENCIES" in t]
+    if not starts:
+        return None, None, None
+    start = starts[0]
+    stop = next((i for i, _ in titles if i > start and i not in starts), len(text.lines))
+    rx = re.compile(r"WAVE FREQUENCY\s*=\s*(" + _NUMBER + r")\s*\(RAD/S\)")
+    found = [(i, float(m.group(1))) for i in range(start, stop) if (m := rx.search(text.lines[i]))]
+    high = low = None
+    a_high = None
+    for i, w in found:
+        if w >= HIGH_FREQUENCY_LIMIT:
+            label = _label_line(text, "ADDED MASS", i, min(stop, i + 20))
+            if label < 0:
+                raise text.error("no ADDED MASS matrix after this line", i)
+            a_high, _ = _matrix_after(text, label + 1, stop, f"added mass at {w:g} rad/s")
+            high = w
+        else:
+            low = w
+    return a_high, high, low
+
+
+def _lis_tables(text: TextFile, titles, n_omega: int):
+    """The per-direction tables: {kind: [(direction, freq, 12 values, line)]}."""
+    out: dict[str, list] = {}
+    for i, title in (
+        (i, _normal(text.lines[i]))
+        for i in range(len(text.lines))
+        if "VARIATION WITH WAVE PERIOD/FREQUENCY" in text.lines[i]
+    ):
+        kind = _TABLES.get(title)
+        if kind is None:
+            continue
+        rows = out.setdefault(kind, [])
+        direction = rows[-1][0] if rows else None
+        k = _label_line_prefix(text, "(SECS)", i, i + 8)
+        if k < 0:
+            raise text.error("table header '(SECS) (RAD/S) (DEGREES) …' not found", i)
+        k += 1
+        while k < len(text.lines) and (
+            not text.lines[k].strip() or set(text.lines[k].strip()) <= set("-")
+        ):
+            k += 1
+        while k < len(text.lines):
+            values = parse_numbers(text.lines[k])
+            if values is None or values.size not in (14, 15):
+                if text.lines[k].strip():
+                    break
+                k += 1
+                continue
+            if not np.all(np.isfinite(values)):
+                raise text.error("non-finite value in the table", k)
+            if values.size == 15:
+                direction = float(values[2])
+                values = np.delete(values, 2)
+            elif direction is None:
+                raise text.error("table row without a wave direction", k)
+            rows.append((direction, float(values[1]), values[2:], k))
+            k += 1
+    return out
+
+
+def _assemble(text: TextFile, rows, omega, directions, what: str):
+    """(amplitude, phase) arrays (nω, nβ, 6) from table rows, checked complete."""
+    amplitude = np.full((omega.size, directions.size, 6), np.nan)
+    phase = np.full_like(amplitude, np.nan)
+    for direction, w, values, line in rows:
+        h = np.flatnonzero(np.isclose(directions, direction, atol=0.006))
+        n = np.flatnonzero(np.abs(omega - w) <= 6e-4)
+        if h.size != 1 or n.size != 1:
+            raise text.error(
+                f"{what}: row for {w:g} rad/s, {direction:g} deg does not match "
+                "the frequency and direction tables",
+                line,
+            )
+        if not np.isnan(amplitude[n[0], h[0], 0]):
+            raise text.error(f"{what}: a second row for {w:g} rad/s, {direction:g} deg", line)
+        amplitude[n[0], h[0]] = values[0::2]
+        phase[n[0], h[0]] = values[1::2]
+    if np.isnan(amplitude).any():
+        n, h, _ = np.argwhere(np.isnan(amplitude))[0]
+        raise text.error(
+            f"{what}: no row for {omega[n]:g} rad/s, {directions[h]:g} deg (truncated?)",
+            rows[-1][3] if rows else None,
+        )
+    return amplitude, phase
+
+
+def _lis_mass(text: TextFile, titles):
+    """Mass, inertia matrix about the CG (3×3) and CG from MASS AND INERTIA PROPERTIES."""
+    starts = [i for i, t in titles if "MASS AND INERTIA PROPERTIES" in t]
+    if not starts:
+        return None, None
+    start = starts[0]
+    stop = min(len(text.lines), start + 80)
+    mass = None
+    inertia = None
+    for k in range(start, stop):
+        compact = _despace(text.lines[k])
+        if compact.startswith("TOTAL"):
+            values = parse_numbers(compact[5:])
+            if values is None or values.size < 2:
+                raise text.error("expected the element count and the total mass", k)
+            mass = float(values[1])
+        if "INERTIA MATRIX" in text.lines[k]:
+            first = parse_numbers(text.lines[k].split("INERTIA MATRIX", 1)[1])
+            rows = [first]
+            j = k + 1
+            while len(rows) < 3 and j < stop:
+                if text.lines[j].strip():
+                    rows.append(parse_numbers(text.lines[j]))
+                j += 1
+            if any(r is None or r.size != 3 for r in rows) or len(rows) < 3:
+                raise text.error("expected a 3×3 inertia matrix", k)
+            inertia = np.vstack(rows)
+            break
+    return mass, inertia
+
+
+def _read_lis(path: Path, rho, g) -> xr.Dataset:
+    text = TextFile.read(path)
+    if not _is_lis("\n".join(text.lines[:200])):
+        raise text.error("not an AQWA listing (no AQWA banner)")
+    units = _label_line_prefix(text, "* Hydrodynamic Solver Unit System", 0, 60)
+    if units >= 0 and "kg, m" not in text.lines[units]:
+        raise text.error(
+            f"unit system {text.lines[units].split(':', 1)[-1].strip()!r}",
+            units,
+            hint="rerun AQWA in the Metric: kg, m [N] system",
+        )
+    titles = [(i, _despace(line)) for i, line in enumerate(text.lines) if "* * * *" in line]
+    structures = {int(m.group(1)) for _, t in titles if (m := re.search(r"FOR STRUCTURE (\d+)", t))}
+    if len(structures) > 1:
+        raise text.error(
+            f"the listing describes {len(structures)} structures",
+            hint="read the .AH1 file of the run, which cummins reads for several structures",
+        )
+    history = [f"read AQWA listing {path.name}"]
+    constants = _lis_constants(text)
+    rho_v, g_v = resolve_rho_g(
+        rho,
+        g,
+        constants["rho"],
+        constants["g"],
+        path=path,
+        history=history,
+        dimensional=True,
+    )
+    depth = _depth(constants["depth"])
+    omega, _, directions, _ = _lis_frequencies(text, titles)
+    a, b, stiffness = _lis_radiation(text, omega)
+    cg = _lis_cg(text)
+    history.append(
+        f"matrices and forces about the centre of gravity {cg.tolist()} m "
+        "(AQWA: WITH RESPECT TO STRUCTURE COG)"
+    )
+
+    extra: dict = {}
+    if stiffness is not None:
+        extra["hydrostatic_stiffness"] = stiffness
+    a_inf, high, low = _lis_limits(text, titles)
+    _limits_history(history, a_inf, high, low, g_v)
+    if a_inf is not None:
+        extra["added_mass_inf"] = a_inf
+    tables = _lis_tables(text, titles, omega.size)
+    names = {
+        "excitation": "excitation_force",
+        "diffraction": "diffraction_force",
+        "froude_krylov": "froude_krylov_force",
+        "rao": "rao",
+    }
+    for kind, rows in tables.items():
+        amplitude, phase = _assemble(text, rows, omega, directions, kind)
+        if kind == "rao":
+            amplitude[..., 3:] = np.radians(amplitude[..., 3:])
+            history.append("RAO rotations converted from deg/m to rad/m")
+        extra[names[kind]] = _complex(amplitude, phase, omega, directions, cg, depth, g_v)
+    if tables:
+        extra["wave_direction"] = np.radians(directions)
+        history.append(
+            "AQWA phase lags converted: X = |X| exp(-i(phase + k(xG cos b + yG sin b))), "
+            "phases referred from the centre of gravity to the origin"
+        )
+        history.append("excitation amplitudes printed with 3 significant digits in the listing")
+    mass, inertia = _lis_mass(text, titles)
+    if mass is not None and inertia is not None:
+        m = np.zeros((6, 6))
+        m[:3, :3] = mass * np.eye(3)
+        m[3:, 3:] = inertia
+        extra["inertia_matrix"] = m
+        history.append(
+            f"inertia matrix from MASS AND INERTIA PROPERTIES (mass {mass:.6g} kg, inertia "
+            "matrix about the centre of gravity)"
+        )
+    else:
+        history.append("no MASS AND INERTIA PROPERTIES in the listing: no inertia_matrix")
+    notes: list[str] = []
+    _lis_completeness(text, tables, a_inf is not None or high is not None, notes)
+    cb = np.array([_value_after(text, key)[0] for key in ("BX", "BY", "BZ")])
+    volume, _ = _value_after(text, "MESH BASED DISPLACEMENT")
+    return make_hydrodb(
+        omega,
+        a,
+        b,
+        rho=rho_v,
+        g=g_v,
+        water_depth=depth,
+        source_format="aqwa",
+        source_file=str(path),
+        dofs=dof_labels(),
+        reference_point=cg,
+        history=history,
+        center_of_gravity=cg,
+        center_of_buoyancy=cb if not any(v is None for v in cb) else None,
+        displaced_volume=volume,
+        read_warnings=notes,
+        **extra,
+    )
+
+
+def _lis_completeness(text: TextFile, tables: dict, has_lhfr: bool, notes: list[str]) -> None:
+    """Warn when the listing ends before the sections it announces.
+
+    AQWA closes every listing with a ``FINISH DATE`` line; the ``OPTIONS`` cards of the
+    input echo announce the LHFR block (low and high frequency limits).
+    """
+    options = {
+        word
+        for line in text.lines[:400]
+        if line.strip().startswith("OPTIONS")
+        for word in line.split()[1:]
+    }
+    if "LHFR" in options and not has_lhfr:
+        warn_damage(
+            "OPTIONS LHFR announces the HYDRODYNAMIC PARAMETERS AT LOW & HIGH FREQUENCIES, "
+            "but the listing has none (truncated?): read without added_mass_inf",
+            path=text.path,
+            line=len(text.lines),
+            notes=notes,
+        )
+    if not any(line.strip().startswith("FINISH DATE") for line in text.lines[-40:]):
+        lost = [name for kind, name in _TABLE_NAMES.items() if kind not in tables]
+        warn_damage(
+            "the listing ends without AQWA's closing 'FINISH DATE' line (truncated, or the "
+            "run stopped)"
+            + (f": read without {', '.join(lost)} (their tables are missing)" if lost else ""),
+            path=text.path,
+            line=len(text.lines),
+            notes=notes,
+        )
+
+
+_TABLE_NAMES = {
+    "excitation": "the excitation force",
+    "diffraction": "the diffraction force",
+    "froude_krylov": "the Froude-Krylov force",
+    "rao": "the RAOs",
+}
+
+
+def _lis_cg(text: TextFile) -> np.ndarray:
+    values = [_value_after(text, key) for key in ("GX", "GY", "GZ")]
+    if all(v is not None for v, _ in values):
+        return np.array([v for v, _ in values])
+    k = -1
+    for i in range(len(text.lines)):
+        if _normal(text.lines[i]).startswith("CENTRE OF GRAVITY"):
+            k = i
+            break
+    if k >= 0:
+        numbers = parse_numbers(_normal(text.lines[k])[len("CENTRE OF GRAVITY") :])
+        if numbers is not None and numbers.size == 3:
+            return numbers
+    raise text.error(
+        "no centre of gravity (GX, GY, GZ) in the listing",
+        hint="AQWA refers all results to it; is the listing complete?",
+    )
