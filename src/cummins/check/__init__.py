@@ -1,0 +1,140 @@
+"""Diagnostics of a hydrodynamic database: is it physically usable, and where not?
+
+:func:`check` runs every test below and returns a :class:`CheckReport`; nothing is
+changed in the data. Each finding says what was measured, where, and what to do.
+
+* ``frequency_grid`` — range and spacing of the finite frequencies; whether ω = 0 and
+  ω = ∞ limits are present.
+* ``symmetry`` — A(ω) and B(ω) symmetric (zero speed): worst relative asymmetry per DOF
+  pair, |X_ij − X_ji| / √(max|X_ii| · max|X_jj|).
+* ``damping_positive`` — B(ω) positive semidefinite at each frequency: eigenvalues of
+  the symmetric part of the diagonally scaled matrix D^{-1/2} B D^{-1/2}
+  (D = peak |B_ii|), not determinants; negative diagonal entries are named, and a
+  diagonal term negative at most frequencies, its largest magnitude included (the sign
+  flipped, not irregular frequencies), is an error.
+* ``added_mass_inf`` — A∞ symmetric positive definite (eigenvalues, scaled likewise).
+* ``damping_decay`` — |B_ii(ω_max)| / max_ω |B_ii|: the retardation function needs
+  B to have decayed at the end of the data; and |B_ii(ω_min)| / max|B_ii|, since it
+  assumes B(0) = 0 below the first frequency.
+* ``physical`` — what no floating body has (errors): non-finite coordinates or positions,
+  a negative mass, masses, inertias, added masses or dampings beyond any floating body
+  (10¹² kg, 10¹⁸ kg·m², :func:`cummins.validation.coefficient_limit`); the numerical
+  checks below are skipped then.
+* ``inertia``, ``hydrostatics`` — M_RB symmetric positive definite; C33, C44, C55 > 0.
+* ``copied_dof`` — a DOF that is an exact scaled copy of another (strip-theory codes
+  approximate surge by scaling sway).
+* ``finite`` — NaN/Inf anywhere (validation of the dataset already refuses them).
+* ``suspect_frequencies`` — spikes and clearly negative damping
+  (:func:`cummins.repair.find_suspect_frequencies`).
+* ``retardation`` — per significant coupling: K(0), ∫K dt against B(0) = 0,
+  K(t_max)/max|K|, the tail's share of ∫B dω, the Ogilvie estimate of A∞ and its spread
+  over frequency (and its distance from the solver's ω = ∞ row), and the
+  Kramers–Kronig error (:func:`cummins.radiation.retardation.retardation_diagnostics`).
+
+The checks live in modules by subject: :mod:`~cummins.check.coefficients` (frequency
+grid, symmetry, damping, A∞, decay), :mod:`~cummins.check.physical`,
+:mod:`~cummins.check.rigid_body` (inertia, hydrostatics), :mod:`~cummins.check.artefacts`
+(read damage, copied DOFs, suspect frequencies), :mod:`~cummins.check.retardation` and
+:mod:`~cummins.check.waves` (wave parity); the report in :mod:`~cummins.check.report`,
+the tolerances in :mod:`~cummins.check.common`.
+"""
+
+from __future__ import annotations
+
+import xarray as xr
+
+from cummins.check.artefacts import _check_read_warnings, _check_suspect_frequencies, copied_dofs
+from cummins.check.coefficients import (
+    SIGNIFICANT_DOF,
+    _check_added_mass_inf,
+    _check_damping,
+    _check_decay,
+    _check_grid,
+    _check_symmetry,
+)
+from cummins.check.common import (
+    A_INF_TOL,
+    DECAY_TOL,
+    K_END_TOL,
+    K_INTEGRAL_TOL,
+    KK_TOL,
+    LOW_FREQUENCY_TOL,
+    NEGATIVE_DAMPING_TOL,
+    PARITY_TOL,
+    SYMMETRY_TOL,
+    TAIL_TOL,
+)
+from cummins.check.physical import _check_physical
+from cummins.check.report import SEVERITIES, CheckReport, Finding
+from cummins.check.retardation import _check_retardation
+from cummins.check.rigid_body import _check_rigid_body
+from cummins.check.waves import _check_wave_parity
+from cummins.hydrodb import validate
+
+__all__ = [
+    "A_INF_TOL",
+    "DECAY_TOL",
+    "KK_TOL",
+    "K_END_TOL",
+    "K_INTEGRAL_TOL",
+    "LOW_FREQUENCY_TOL",
+    "NEGATIVE_DAMPING_TOL",
+    "PARITY_TOL",
+    "SEVERITIES",
+    "SIGNIFICANT_DOF",
+    "SYMMETRY_TOL",
+    "TAIL_TOL",
+    "CheckReport",
+    "Finding",
+    "check",
+    "copied_dofs",
+]
+
+
+def check(ds: xr.Dataset) -> CheckReport:
+    """Run all diagnostics on a ``HydroDB``.
+
+    Parameters
+    ----------
+    ds
+        A canonical dataset (as returned by :func:`cummins.read`).
+
+    Returns
+    -------
+    CheckReport
+        Findings with severities ``ok``/``info``/``warning``/``error``; ``report.ok`` is
+        False when the data cannot be used as they are. ``report.to_text()`` and
+        ``report.to_json()`` format it.
+
+    Examples
+    --------
+    >>> import cummins
+    >>> report = cummins.check(cummins.demo_dataset())
+    >>> [f.where for f in report.by_check("damping_positive") if f.severity == "warning"][:2]
+    ['Surge', 'Sway']
+    """
+    validate(ds)
+    source = ds.attrs.get("source_file") or ds.attrs.get("source_format", "dataset")
+    findings: list[Finding] = [Finding("finite", "ok", "no NaN or Inf values")]
+    physical = _check_physical(ds)
+    findings.extend(physical)
+    if any(f.severity == "error" for f in physical):
+        # values no floating body has: the numerical checks would only repeat them in
+        # overflows and failed eigenvalue problems
+        findings.extend(_check_read_warnings(ds))
+        return CheckReport(source=str(source), findings=tuple(findings))
+    for part in (
+        _check_read_warnings,
+        _check_grid,
+        _check_symmetry,
+        _check_damping,
+        _check_added_mass_inf,
+        _check_decay,
+        _check_rigid_body,
+        copied_dofs,
+        _check_suspect_frequencies,
+        _check_retardation,
+        _check_wave_parity,
+    ):
+        findings.extend(part(ds))
+    return CheckReport(source=str(source), findings=tuple(findings))

@@ -1,0 +1,112 @@
+"""What the source left in the data: ``read_damage`` (damage the reader worked around),
+``copied_dof`` (a DOF that is an exact scaled copy of another: strip-theory codes
+approximate surge by scaling sway) and ``suspect_frequencies`` (spikes and clearly
+negative damping, :func:`cummins.repair.find_suspect_frequencies`).
+"""
+
+from __future__ import annotations
+
+import numpy as np
+import xarray as xr
+
+from cummins.check.common import _labels, _speed_suffix, _speeds
+from cummins.check.report import Finding
+from cummins.repair import find_suspect_frequencies
+
+
+def _check_read_warnings(ds: xr.Dataset) -> list[Finding]:
+    """Damage the reader worked around (``read_warnings``), repeated as warnings."""
+    lines = [w for w in str(ds.attrs.get("read_warnings", "")).splitlines() if w.strip()]
+    return [
+        Finding(
+            "read_damage",
+            "warning",
+            line,
+            advice="the data were read without the damaged part: check the file, or "
+            "re-run the solver",
+        )
+        for line in lines
+    ]
+
+
+def copied_dofs(ds: xr.Dataset) -> list[Finding]:
+    """DOFs whose diagonal A and B are an exact constant multiple of another's (strip
+    theory's surge from sway), one ``copied_dof`` finding per pair (also used by the fit)."""
+    out = []
+    labels = _labels(ds)
+    sub = _speeds(ds)[0]
+    a = np.diagonal(
+        sub.added_mass.transpose("omega", "influenced_dof", "radiating_dof").values,
+        axis1=1,
+        axis2=2,
+    )
+    b = np.diagonal(
+        sub.radiation_damping.transpose("omega", "influenced_dof", "radiating_dof").values,
+        axis1=1,
+        axis2=2,
+    )
+    n = len(labels)
+    for i in range(n):
+        for j in range(i + 1, n):
+            ra = _constant_ratio(a[:, i], a[:, j])
+            rb = _constant_ratio(b[:, i], b[:, j])
+            if ra is None or rb is None:
+                continue
+            out.append(
+                Finding(
+                    "copied_dof",
+                    "info",
+                    f"{labels[i]} and {labels[j]} are exact scaled copies of each other "
+                    f"(A ratio {ra:.4g}, B ratio {rb:.4g})",
+                    where=f"{labels[i]}-{labels[j]}",
+                    advice="strip-theory codes approximate surge by scaling sway; the "
+                    "fluid memory of the copied DOF is then no more than a guess",
+                )
+            )
+    return out
+
+
+def _check_suspect_frequencies(ds: xr.Dataset) -> list[Finding]:
+    out = []
+    for sub in _speeds(ds):
+        suffix = _speed_suffix(sub)
+        suspects = find_suspect_frequencies(sub)
+        if not suspects:
+            out.append(
+                Finding(
+                    "suspect_frequencies", "ok", f"no spikes or clearly negative damping{suffix}"
+                )
+            )
+            continue
+        listed = ", ".join(f"{s.omega:.4g}" for s in suspects)
+        worst = max(suspects, key=lambda s: s.score)
+        out.append(
+            Finding(
+                "suspect_frequencies",
+                "warning",
+                f"{len(suspects)} suspect frequencies{suffix} ({listed} rad/s); worst at "
+                f"{worst.omega:.4g} rad/s: {worst.quantity}, {worst.reason}",
+                where=f"{worst.omega:.4g} rad/s",
+                value=worst.score,
+                advice="spikes and negative damping are irregular frequencies of panel methods or "
+                "solver failures; remove them before fitting (cummins kernel --remove-suspect, "
+                "cummins.repair.remove_suspect_frequencies)",
+                details={
+                    "omega": [s.omega for s in suspects],
+                    "quantity": [s.quantity for s in suspects],
+                    "reason": [s.reason for s in suspects],
+                },
+            )
+        )
+    return out
+
+
+def _constant_ratio(x: np.ndarray, y: np.ndarray) -> float | None:
+    """x / y if it is the same number (to 1e-6) at 3 or more points where both are non-zero."""
+    both = (x != 0) & (y != 0)
+    if both.sum() < 3 or np.any((x == 0) != (y == 0)):
+        return None
+    ratio = x[both] / y[both]
+    if np.ptp(ratio) <= 1e-6 * abs(np.mean(ratio)):
+        return float(np.mean(ratio))
+    return None

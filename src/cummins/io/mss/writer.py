@@ -1,0 +1,217 @@
+""":func:`write_mss`: any ``HydroDB`` as an MSS ``vessel`` struct (MATLAB v5 ``.mat``).
+
+About the dataset's reference point, in Fossen's axes, recorded in
+``vessel.cummins.reference_point`` (read back first by :func:`cummins.io.mss.read_mss`)
+besides ``hydrodynamic_reference`` (``'CO'``/``'CG'``).
+"""
+
+from __future__ import annotations
+
+import os
+from collections.abc import Sequence
+from pathlib import Path
+from typing import Any
+
+import numpy as np
+import scipy.io
+import xarray as xr
+from numpy.typing import NDArray
+
+from cummins.errors import HydroDataError
+from cummins.hydrodb import DOF_NAMES, change_axes
+from cummins.io.mss.matfile import DRIFT_DOFS, MSS_INFINITE_FREQUENCY
+from cummins.io.mss.points import _rigid_body_cg
+
+
+def _speed_slices(ds: xr.Dataset) -> tuple[list[xr.Dataset], NDArray]:
+    if "forward_speed" in ds.dims:
+        speeds = np.asarray(ds.forward_speed.values, dtype=float)
+        return [ds.isel(forward_speed=k) for k in range(speeds.size)], speeds
+    speed = float(ds.forward_speed) if "forward_speed" in ds.coords else 0.0
+    return [ds], np.array([speed])
+
+
+def _matrix_stack(datasets: Sequence[xr.Dataset], name: str, with_limits: bool) -> NDArray:
+    """6×6×N×S array of a (omega, i, j) variable, with the ω = 0 / ∞ entries if asked."""
+    out = []
+    for d in datasets:
+        v = d[name].transpose("omega", "influenced_dof", "radiating_dof").values
+        if with_limits:
+            if name == "added_mass":
+                first, last = d["added_mass_zero"].values, d["added_mass_inf"].values
+            elif name == "radiation_damping":
+                first = last = np.zeros((6, 6))
+            else:  # hold the edge values (viscous damping estimates)
+                first, last = v[0], v[-1]
+            v = np.concatenate([first[None], v, last[None]])
+        out.append(np.moveaxis(v, 0, 2))
+    return np.stack(out, axis=3)
+
+
+def _rao_struct(datasets: Sequence[xr.Dataset], name: str, omega: NDArray) -> dict:
+    values = np.stack(
+        [d[name].transpose("omega", "wave_direction", ...).values for d in datasets], axis=3
+    )  # (nω, nβ, 6, nspeed)
+    amp = np.empty((1, 6), dtype=object)
+    phase = np.empty((1, 6), dtype=object)
+    for k in range(6):
+        amp[0, k] = np.abs(values[:, :, k, :])
+        phase[0, k] = np.angle(values[:, :, k, :])
+    return {"w": omega[None, :], "amp": amp, "phase": phase}
+
+
+def _drift_struct(datasets: Sequence[xr.Dataset], omega: NDArray) -> dict:
+    values = np.stack(
+        [d["drift_force"].transpose("omega", "wave_direction", ...).values for d in datasets],
+        axis=3,
+    )
+    amp = np.empty((1, 3), dtype=object)
+    for k, dof in enumerate(DRIFT_DOFS):
+        amp[0, k] = values[:, :, dof, :]
+    return {"w": omega[None, :], "amp": amp}
+
+
+def _main_struct(ds: xr.Dataset, mrb: NDArray | None, point: NDArray, name: str) -> dict:
+    """``vessel.main``; ``CG`` and ``CB`` as FSD vectors from CO (current MSS convention)."""
+    main: dict[str, Any] = {"name": name, "rho": float(ds.attrs["rho"]), "g": float(ds.attrs["g"])}
+    r_g = _rigid_body_cg(mrb) if mrb is not None else None
+    if r_g is not None:
+        m = float(mrb[0, 0])
+        main["m"] = m
+        main["nabla"] = float(ds.attrs.get("displaced_volume", m / ds.attrs["rho"]))
+        main["k44"], main["k55"], main["k66"] = (
+            float(np.sqrt(max(mrb[k, k], 0.0) / m)) for k in (3, 4, 5)
+        )
+    if "center_of_gravity" in ds.attrs:
+        main["CG"] = np.asarray(ds.attrs["center_of_gravity"], dtype=float).reshape(1, 3)
+    elif r_g is not None:
+        main["CG"] = (point + r_g)[None, :]
+    if "center_of_buoyancy" in ds.attrs:
+        main["CB"] = np.asarray(ds.attrs["center_of_buoyancy"], dtype=float).reshape(1, 3)
+    for key, attr in (("Lpp", "ship_length"), ("B", "ship_breadth"), ("T", "ship_draught")):
+        if attr in ds.attrs:
+            main[key] = float(ds.attrs[attr])
+    return main
+
+
+def write_mss(ds: xr.Dataset, path: str | os.PathLike[str]) -> Path:
+    """Write a ``HydroDB`` as an MSS ``vessel`` struct (MATLAB v5 ``.mat``).
+
+    The data are converted to Fossen's axes (``change_axes(ds, "z-down")``) and written
+    about the dataset's reference point. MSS takes the matrices about CO (for ships:
+    Lpp/2, centre line, waterline, the origin of cummins' positions): move the data
+    there first (``move_reference_point(ds, [0, 0, 0])``, ``cummins convert
+    --reference-point 0 0 0``) for use in MSS. ``hydrodynamic_reference`` is written as
+    ``'CO'`` or ``'CG'`` when the point is one of these, and the point itself in
+    ``vessel.cummins.reference_point``. With both ``added_mass_zero`` and ``added_mass_inf`` and all
+    frequencies below 10 rad/s, ``freqs`` is written as MSS's WAMIT layout
+    ``[0, ω…, 10]`` with A(0), A(∞) and zero damping at the ends; otherwise ``freqs``
+    holds the finite grid only (the VERES layout) and the limits go to
+    ``vessel.cummins``. Also written: ``MRB`` (zeros if unknown), ``C`` repeated per
+    frequency, ``Bv`` (``additional_damping``, else zeros), ``headings`` (rad, as in the
+    data, not completed by symmetry), ``velocities``, ``forceRAO``, ``motionRAO`` and
+    ``driftfrc`` (surge, sway and yaw only: heave, roll and pitch drift are lost) when
+    present, ``main`` (``name``, ``rho``, ``g``, ``m``, ``nabla``, ``CG`` and ``CB`` as
+    FSD vectors from CO, ``k44`` …, ``Lpp``, ``B``, ``T`` when known) and
+    ``hydrodynamic_axes = 'FSD'``, as current MSS does. ``vessel.cummins`` keeps the
+    history, the reference point and what MSS has no field for; MSS ignores it.
+
+    Parameters
+    ----------
+    ds
+        A single-body ``HydroDB`` with all six DOFs.
+    path
+        Output ``.mat`` file (overwritten).
+
+    Returns
+    -------
+    pathlib.Path
+        ``path``.
+    """
+    path = Path(path)
+    labels = [str(d) for d in ds.influenced_dof.values]
+    if labels != list(DOF_NAMES):
+        raise HydroDataError(
+            "an MSS vessel struct holds one body with six DOFs (Surge … Yaw)",
+            path=path,
+            hint="select one body's six DOFs first",
+        )
+    if "wave_direction" in ds.dims:
+        ds = ds.assign_coords(wave_direction=np.mod(ds.wave_direction.values, 2 * np.pi))
+    out = change_axes(ds, "z-down")
+    point = np.asarray(out.attrs.get("reference_point", np.zeros(3)), dtype=float).reshape(-1)
+    if point.size != 3:
+        raise HydroDataError("expected one reference point (3 coordinates)", path=path)
+    datasets, speeds = _speed_slices(out)
+    omega = np.asarray(out.omega.values, dtype=float)
+    with_limits = (
+        "added_mass_zero" in out and "added_mass_inf" in out and omega[-1] < MSS_INFINITE_FREQUENCY
+    )
+    freqs = np.concatenate([[0.0], omega, [MSS_INFINITE_FREQUENCY]]) if with_limits else omega
+    nf = freqs.size
+    first = datasets[0]
+    mrb = first["inertia_matrix"].values if "inertia_matrix" in first else None
+    main = _main_struct(out, mrb, point, str(out.attrs.get("body_name") or path.stem))
+    vessel: dict[str, Any] = {
+        "main": main,
+        "velocities": speeds[None, :],
+        "freqs": freqs[None, :],
+        "A": _matrix_stack(datasets, "added_mass", with_limits),
+        "B": _matrix_stack(datasets, "radiation_damping", with_limits),
+        "MRB": mrb if mrb is not None else np.zeros((6, 6)),
+        "hydrodynamic_axes": "FSD",
+    }
+    if not np.any(point):
+        vessel["hydrodynamic_reference"] = "CO"
+    elif "CG" in main and np.allclose(main["CG"].ravel(), point, atol=1e-9):
+        vessel["hydrodynamic_reference"] = "CG"
+    c = np.stack(
+        [
+            np.repeat(
+                (
+                    d["hydrostatic_stiffness"].values
+                    if "hydrostatic_stiffness" in d
+                    else np.zeros((6, 6))
+                )[:, :, None],
+                nf,
+                axis=2,
+            )
+            for d in datasets
+        ],
+        axis=3,
+    )
+    vessel["C"] = c
+    if "additional_damping" in first:
+        vessel["Bv"] = _matrix_stack(datasets, "additional_damping", with_limits)
+    else:
+        vessel["Bv"] = np.zeros((6, 6, nf, speeds.size))
+    if speeds.size == 1:
+        for key in ("A", "B", "C", "Bv"):
+            vessel[key] = vessel[key][:, :, :, 0]
+    if "wave_direction" in out.dims:
+        vessel["headings"] = np.asarray(out.wave_direction.values, dtype=float)[None, :]
+        if "excitation_force" in out:
+            vessel["forceRAO"] = _rao_struct(datasets, "excitation_force", omega)
+        if "rao" in out:
+            vessel["motionRAO"] = _rao_struct(datasets, "rao", omega)
+        if "drift_force" in out:
+            vessel["driftfrc"] = _drift_struct(datasets, omega)
+    extras: dict[str, Any] = {
+        "history": str(out.attrs.get("history", "")),
+        "source_format": str(out.attrs.get("source_format", "")),
+        "source_file": str(out.attrs.get("source_file", "")),
+        "water_depth": float(out.attrs.get("water_depth", np.inf)),
+        "reference_point": point[None, :],
+    }
+    if not with_limits:
+        for name in ("added_mass_inf", "added_mass_zero"):
+            if name in first:
+                extras[name] = first[name].values
+    if "additional_stiffness" in first:
+        extras["additional_stiffness"] = first["additional_stiffness"].values
+    vessel["cummins"] = extras
+    try:
+        scipy.io.savemat(str(path), {"vessel": vessel}, do_compression=True, oned_as="row")
+    except OSError as exc:
+        raise HydroDataError(f"cannot write the file ({exc.strerror or exc})", path=path) from None
+    return path
