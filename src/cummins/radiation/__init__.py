@@ -6,6 +6,7 @@ From the frequency-domain coefficients to a state-space model of the radiation f
   piecewise-linear functions;
 * :mod:`~cummins.radiation.retardation`: retardation functions K(t), A∞ (Ogilvie, 1964),
   causality diagnostics;
+* :mod:`~cummins.radiation.damping_tail`: the high-frequency tails of B(ω) beyond the data;
 * :mod:`~cummins.radiation.fit`: identification of stable, passive state-space models;
 * :mod:`~cummins.radiation.passivity`: the passivity test and its enforcement;
 * :mod:`~cummins.radiation.reduce`: balanced truncation;

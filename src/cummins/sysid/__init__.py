@@ -9,6 +9,8 @@ records cannot support the estimate, and re-predicts the motions with it:
 * :mod:`~cummins.sysid.identify` — residual force of the Cummins model and least squares
   of linear, quadratic, cubic damping (and coupling terms) with collinearity diagnostics
   and confidence intervals;
+* :mod:`~cummins.sysid.signals` — the low-pass filter and the frequency-domain
+  derivatives of the records that the identification works on;
 * :mod:`~cummins.sysid.decay` — classic roll-decay analysis (decrement and ODE fit);
 * :mod:`~cummins.sysid.validate` — re-prediction and its correlation scores, in sample
   and on the next segment.
