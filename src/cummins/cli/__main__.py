@@ -1,0 +1,5 @@
+"""``python -m cummins.cli``: the ``cummins`` command."""
+
+from cummins.cli.app import main
+
+main()
