@@ -11,6 +11,7 @@ from rich.table import Table
 
 from cummins.cli.common import (
     console,
+    force_option,
     prepare_outputs,
     progress_bar,
     reports_errors,
@@ -47,7 +48,7 @@ from cummins.cli.common import (
     is_flag=True,
     help="First write an example study (the bundled tanker) to STUDY; with -o, then run it.",
 )
-@click.option("--force", is_flag=True, help="Overwrite OUTPUT (and STUDY with --example).")
+@force_option("Overwrite OUTPUT (and STUDY with --example).")
 @reports_errors
 def batch_command(study_file, output, scheduler, workers, example, force):
     """Run a study of many cases (headings x sea states x seeds) on a Dask cluster.

@@ -9,7 +9,14 @@ from pathlib import Path
 import click
 import numpy as np
 
-from cummins.cli.common import Number, finite, positive, prepare_outputs, reports_errors
+from cummins.cli.common import (
+    Number,
+    finite,
+    force_option,
+    positive,
+    prepare_outputs,
+    reports_errors,
+)
 from cummins.io._common import DEFAULT_G, DEFAULT_RHO
 
 
@@ -104,7 +111,7 @@ def _headings(values: tuple[str, ...]) -> list[float]:
     required=True,
     help="Output NetCDF file (.nc).",
 )
-@click.option("--force", is_flag=True, help="Overwrite the output file if it exists.")
+@force_option("Overwrite the output file if it exists.")
 @reports_errors
 def bem_command(
     mesh,

@@ -8,7 +8,14 @@ from pathlib import Path
 import click
 from rich.markup import escape
 
-from cummins.cli.common import console, prepare_outputs, read_hydrodb, read_options, reports_errors
+from cummins.cli.common import (
+    console,
+    force_option,
+    prepare_outputs,
+    read_hydrodb,
+    read_options,
+    reports_errors,
+)
 
 
 @click.command(name="check")
@@ -23,7 +30,7 @@ from cummins.cli.common import console, prepare_outputs, read_hydrodb, read_opti
     help="Also write the report as JSON to FILE ('-' for standard output only).",
 )
 @click.option("--strict", is_flag=True, help="Exit with status 1 on warnings too, not only errors.")
-@click.option("--force", is_flag=True, help="Overwrite the --json FILE if it exists.")
+@force_option("Overwrite the --json FILE if it exists.")
 @reports_errors
 def check_command(path, format_, rho, g, ulen, json_path, strict, force):
     """Check that the data in PATH are physically usable, and say where not.

@@ -167,6 +167,16 @@ def finite(unit: str = "") -> Number:
     return Number(unit=unit)
 
 
+def speed_option(help: str = "Forward speed to use when the data hold several."):
+    """--speed M/S (a finite number of m/s), passed as ``speed``."""
+    return click.option("--speed", type=finite("m/s"), default=None, metavar="M/S", help=help)
+
+
+def force_option(help: str = "Overwrite the output files."):
+    """--force: overwrite outputs that exist (without it a command refuses to)."""
+    return click.option("--force", is_flag=True, help=help)
+
+
 def viscous_damping_option(func):
     """--viscous-damping DOF VALUE (repeatable), passed as ``viscous_damping``."""
     return click.option(

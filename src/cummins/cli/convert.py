@@ -10,6 +10,7 @@ import click
 from cummins.cli.common import (
     console,
     finite,
+    force_option,
     prepare_outputs,
     read_hydrodb,
     read_options,
@@ -45,7 +46,7 @@ from cummins.errors import CumminsWarning
     help="Of several bodies, write only this one (1-based number or name): its six DOFs "
     "as Surge … Yaw, e.g. for an MSS .mat, which holds one body.",
 )
-@click.option("--force", is_flag=True, help="Overwrite DESTINATION if it exists.")
+@force_option("Overwrite DESTINATION if it exists.")
 @reports_errors
 def convert_command(source, destination, format_, rho, g, ulen, axes, reference_point, body, force):
     """Convert SOURCE to canonical NetCDF (.nc), a BEMIO .h5 for WEC-Sim, or an MSS

@@ -17,7 +17,7 @@ import click
 import numpy as np
 
 from cummins.check import check
-from cummins.cli.common import console, prepare_outputs, reports_errors
+from cummins.cli.common import console, force_option, prepare_outputs, reports_errors
 from cummins.cli.pipeline import kernel_stage, write_kernel_plots
 from cummins.errors import check_writable
 from cummins.hydrodb import change_axes, describe, move_reference_point
@@ -349,7 +349,7 @@ def _dp_step(out: Path, force: bool) -> DemoStep:
     show_default=True,
     help="Folder to write the results to.",
 )
-@click.option("--force", is_flag=True, help="Overwrite the files of an earlier demo run.")
+@force_option("Overwrite the files of an earlier demo run.")
 @reports_errors
 def demo_command(outdir, force):
     """Run the pipeline on a bundled real vessel (the MSS tanker, WAMIT output).

@@ -9,6 +9,7 @@ import click
 from cummins.cli.common import (
     console,
     finite,
+    force_option,
     non_negative,
     positive,
     prepare_outputs,
@@ -70,7 +71,7 @@ from cummins.validation import check_simulation_size
     default=None,
     help="Another copy of MSS's s175.mat (default: the one bundled with cummins).",
 )
-@click.option("--force", is_flag=True, help="Overwrite the files of an earlier run.")
+@force_option("Overwrite the files of an earlier run.")
 @reports_errors
 def dp_demo_command(
     folder,

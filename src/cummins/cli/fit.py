@@ -14,7 +14,7 @@ from rich.table import Table
 from cummins.cli.common import (
     Number,
     console,
-    finite,
+    force_option,
     non_negative,
     positive,
     prepare_outputs,
@@ -23,6 +23,7 @@ from cummins.cli.common import (
     reports_errors,
     select_body,
     select_speed,
+    speed_option,
 )
 
 
@@ -128,13 +129,7 @@ from cummins.cli.common import (
     default=None,
     help="Also write an MSS vesselABC .mat (Fossen axes).",
 )
-@click.option(
-    "--speed",
-    type=finite("m/s"),
-    default=None,
-    metavar="M/S",
-    help="Forward speed to use when the data hold several.",
-)
+@speed_option()
 @click.option(
     "--passive/--no-passive",
     default=True,
@@ -148,7 +143,7 @@ from cummins.cli.common import (
     default=None,
     help="Of several bodies, fit only this one (1-based number or name), e.g. for --mss.",
 )
-@click.option("--force", is_flag=True, help="Overwrite the output files.")
+@force_option()
 @reports_errors
 def fit_command(
     path,

@@ -10,13 +10,14 @@ from rich.table import Table
 
 from cummins.cli.common import (
     console,
-    finite,
+    force_option,
     positive,
     prepare_outputs,
     read_hydrodb,
     read_options,
     reports_errors,
     select_speed,
+    speed_option,
 )
 
 
@@ -89,14 +90,8 @@ from cummins.cli.common import (
     default=None,
     help="Make K exactly zero at t_max: subtract K(t_max), or taper the last 5 %.",
 )
-@click.option(
-    "--speed",
-    type=finite("m/s"),
-    default=None,
-    metavar="M/S",
-    help="Forward speed to use when the data hold several.",
-)
-@click.option("--force", is_flag=True, help="Overwrite the output files.")
+@speed_option()
+@force_option()
 @reports_errors
 def kernel_command(
     path,

@@ -11,13 +11,14 @@ import numpy as np
 from cummins.cli.common import (
     Number,
     console,
-    finite,
+    force_option,
     non_negative,
     prepare_outputs,
     read_hydrodb,
     read_options,
     reports_errors,
     select_speed,
+    speed_option,
 )
 
 
@@ -82,10 +83,8 @@ from cummins.cli.common import (
     default=None,
     help="PNG of A(w) and B(w) with the chosen values marked (seed Figs. 1-2).",
 )
-@click.option(
-    "--speed", type=finite("m/s"), default=None, metavar="M/S", help="Forward speed of DATA."
-)
-@click.option("--force", is_flag=True, help="Overwrite the output files.")
+@speed_option("Forward speed of DATA.")
+@force_option()
 @reports_errors
 def lf_model_command(
     path,

@@ -10,7 +10,7 @@ from rich.table import Table
 
 from cummins.cli.common import (
     console,
-    finite,
+    force_option,
     non_negative,
     positive,
     prepare_outputs,
@@ -18,6 +18,7 @@ from cummins.cli.common import (
     read_options,
     reports_errors,
     select_speed,
+    speed_option,
     viscous_damping_option,
     viscous_damping_values,
 )
@@ -135,14 +136,8 @@ def parse_headings(values: tuple[str, ...]) -> list[float]:
     default=None,
     help="Also write rao.png (|RAO| and phase per DOF) in this folder.",
 )
-@click.option(
-    "--speed",
-    type=finite("m/s"),
-    default=None,
-    metavar="M/S",
-    help="Forward speed to use when the data hold several.",
-)
-@click.option("--force", is_flag=True, help="Overwrite the output files.")
+@speed_option()
+@force_option()
 @reports_errors
 def rao_command(
     path,

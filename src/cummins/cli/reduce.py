@@ -13,12 +13,13 @@ from rich.table import Table
 from cummins.cli.common import (
     Number,
     console,
-    finite,
+    force_option,
     prepare_outputs,
     read_hydrodb,
     read_options,
     reports_errors,
     select_speed,
+    speed_option,
 )
 
 
@@ -62,7 +63,7 @@ from cummins.cli.common import (
     "passivity correction weighted by them (default: against the unreduced model).",
 )
 @read_options
-@click.option("--speed", type=finite("m/s"), default=None, metavar="M/S", help="Speed of --data.")
+@speed_option("Speed of --data.")
 @click.option(
     "--passive/--no-passive",
     default=True,
@@ -76,7 +77,7 @@ from cummins.cli.common import (
     default=None,
     help="Write a summary as JSON.",
 )
-@click.option("--force", is_flag=True, help="Overwrite the output files.")
+@force_option()
 @reports_errors
 def reduce_command(
     model_path,

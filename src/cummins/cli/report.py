@@ -6,6 +6,7 @@ import click
 
 from cummins.cli.common import (
     console,
+    force_option,
     prepare_outputs,
     read_options,
     reports_errors,
@@ -25,7 +26,7 @@ from cummins.cli.common import (
     "the file holds.",
 )
 @read_options
-@click.option("--force", is_flag=True, help="Overwrite OUTPUT.")
+@force_option("Overwrite OUTPUT.")
 @reports_errors
 def report_command(path, output, kind, format_, rho, g, ulen, force):
     """Write a self-contained HTML report of a file: figures and tables, no links out.

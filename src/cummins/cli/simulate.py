@@ -11,6 +11,7 @@ from cummins.cli.common import (
     Number,
     console,
     finite,
+    force_option,
     model_and_data,
     non_negative,
     positive,
@@ -20,6 +21,7 @@ from cummins.cli.common import (
     read_options,
     reports_errors,
     select_speed,
+    speed_option,
     viscous_damping_option,
     viscous_damping_values,
 )
@@ -117,14 +119,10 @@ from cummins.validation import check_simulation_size
     help="Fit the radiation model for closer agreement with the data's RAOs: within "
     "0.2 % of each DOF's peak instead of 1 % (a few more states).",
 )
-@click.option(
-    "--speed",
-    type=finite("m/s"),
-    default=None,
-    metavar="M/S",
-    help="Forward speed of DATA. The waves are met at the encounter frequencies; when DATA "
+@speed_option(
+    "Forward speed of DATA. The waves are met at the encounter frequencies; when DATA "
     "hold zero speed too, the speed terms (U D1, U G1 + U^2 G2, U K1, Hjulstad) are kept "
-    "apart from the fitted memory (cummins.radiation.speed.vessel_at_speed).",
+    "apart from the fitted memory (cummins.radiation.speed.vessel_at_speed)."
 )
 @click.option(
     "--dof",
@@ -150,7 +148,7 @@ from cummins.validation import check_simulation_size
     default=None,
     help="PNGs: time series and response spectra against the frequency domain.",
 )
-@click.option("--force", is_flag=True, help="Overwrite the output files.")
+@force_option()
 @reports_errors
 def simulate_command(
     path,

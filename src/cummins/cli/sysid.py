@@ -13,6 +13,7 @@ from cummins.cli.common import (
     console,
     err_console,
     finite,
+    force_option,
     model_and_data,
     non_negative,
     positive,
@@ -21,6 +22,7 @@ from cummins.cli.common import (
     read_options,
     reports_errors,
     select_speed,
+    speed_option,
     viscous_damping_option,
     viscous_damping_values,
 )
@@ -133,9 +135,7 @@ from cummins.cli.common import (
     metavar="N M/RAD",
     help="--decay: C44 (the inertia is then C44/omega0^2).",
 )
-@click.option(
-    "--speed", type=finite("m/s"), default=None, metavar="M/S", help="Forward speed of DATA."
-)
+@speed_option("Forward speed of DATA.")
 @click.option(
     "--report",
     "report_dir",
@@ -143,7 +143,7 @@ from cummins.cli.common import (
     required=True,
     help="Folder for damping.json and the PNG figures.",
 )
-@click.option("--force", is_flag=True, help="Overwrite the report's files.")
+@force_option("Overwrite the report's files.")
 @reports_errors
 def identify_damping_command(
     records,
