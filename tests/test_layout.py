@@ -160,3 +160,35 @@ def test_the_pipeline_stages_are_found_by_their_names():
         "cummins.studies.batch",
     ):
         assert stage in MODULES, stage
+
+
+#: the imports of the README's Python blocks before the regrouping, verbatim
+EARLIER_README_IMPORTS = """\
+import cummins
+from cummins import loads
+from cummins.dp import DPController, DPGains, Thrusters
+from cummins.frequency_domain import motion_rao, response_spectrum, significant_amplitude
+from cummins.lfmodel import lf_model_from_frequency_data
+from cummins.simulate import simulate_waves
+from cummins.speed import encounter_frequency
+from cummins.sysid import identify_damping, make_record, roll_decay
+from cummins.unified import simulate_unified, unified_vessel
+from cummins.vessel import vessel_from_hydrodb
+from cummins.waves import irregular_waves, regular_wave, wave_spectrum
+from cummins.fit import MOTION_ACCURACY, fit_radiation
+from cummins.retardation import added_mass_inf, retardation_function
+from cummins.reduce import reduce_radiation_model
+from cummins.passivity import enforce_passivity, passivity_test
+from cummins.io.model_netcdf import read_radiation_model, write_radiation_model
+from cummins.cli import main
+assert loads.WindLoad is cummins.timedomain.loads.WindLoad
+assert fit_radiation is cummins.fit_radiation
+"""
+
+
+def test_the_earlier_readme_imports_still_work():
+    """In a fresh interpreter, so that nothing imported earlier in the session helps."""
+    run = subprocess.run(
+        [sys.executable, "-c", EARLIER_README_IMPORTS], capture_output=True, text=True
+    )
+    assert run.returncode == 0, run.stderr
