@@ -27,7 +27,8 @@ Only ``added_mass`` and ``radiation_damping`` are required. Coordinates: ``omega
 ``added_mass_zero`` and ``added_mass_inf``), ``wave_direction`` (rad, direction in
 which the waves travel, measured from +x towards +y: 0 = following seas, π = head seas),
 ``influenced_dof`` / ``radiating_dof`` (labels ``Surge`` … ``Yaw``; ``body__Heave`` for
-several bodies), and optionally ``forward_speed`` (m/s, scalar or a dimension).
+several bodies; made and read by :mod:`cummins.dofs`), and optionally ``forward_speed``
+(m/s, scalar or a dimension).
 
 Conventions: time dependence x(t) = Re{X e^{iωt}}; ``added_mass[ω, i, j]`` is the force
 in DOF i due to a unit acceleration in DOF j; attributes ``rho`` (kg/m³), ``g`` (m/s²),
@@ -50,10 +51,18 @@ import scipy.linalg
 import xarray as xr
 from numpy.typing import ArrayLike, NDArray
 
+from cummins.dofs import (
+    DOF_NAMES,
+    bodies,
+    body_names,
+    is_rigid_body_dof,
+    split_dof,
+)
+from cummins.dofs import dof_index as dof_index
+from cummins.dofs import dof_labels as dof_labels
+from cummins.dofs import is_rotation as is_rotation
 from cummins.errors import HydroDataError
 from cummins.kinematics import Z_UP_TO_Z_DOWN, screw_transform
-
-DOF_NAMES: tuple[str, ...] = ("Surge", "Sway", "Heave", "Roll", "Pitch", "Yaw")
 
 AXIS_CONVENTIONS: dict[str, str] = {
     "z-up": "x forward, y to port, z up (WAMIT, NEMOH, AQWA, Capytaine)",
@@ -120,69 +129,7 @@ _LONG_NAMES = {
 }
 
 
-# --------------------------------------------------------------------------- DOF labels
-
-
-def dof_labels(
-    bodies: Sequence[str] | int | None = None, modes: int | Sequence[int] = 6
-) -> list[str]:
-    """DOF labels for one body (``Surge`` … ``Yaw``) or several (``body1__Surge`` …).
-
-    Every reader labels the DOFs this way, whatever names the solver gives its bodies,
-    so that the same body reads with the same labels from every format: several bodies
-    are ``body1``, ``body2`` … in the order of the file, and the names the file gives
-    them are kept in the dataset's ``body_names`` attribute (see :func:`body_names`;
-    :func:`rename_bodies` relabels).
-
-    Parameters
-    ----------
-    bodies
-        The number of bodies (labels ``body1`` …), or their names; ``None`` or one body:
-        labels without a prefix.
-    modes
-        Modes per body (one int for all, or one per body): the six rigid-body modes,
-        then generalized modes (flexible, piston …) labelled ``Mode7``, ``Mode8`` … by
-        their mode number within the body, as WAMIT numbers them.
-
-    Examples
-    --------
-    >>> dof_labels()[:3]
-    ['Surge', 'Sway', 'Heave']
-    >>> dof_labels(2)[6]
-    'body2__Surge'
-    >>> dof_labels(["buoy", "float"])[6]
-    'float__Surge'
-    >>> dof_labels(modes=8)[6:]
-    ['Mode7', 'Mode8']
-    """
-    if isinstance(bodies, int | np.integer):
-        names: list[str] = [f"body{k + 1}" for k in range(int(bodies))]
-    else:
-        names = list(bodies or [])
-    count = max(len(names), 1)
-    per_body = [int(modes)] * count if isinstance(modes, int | np.integer) else list(modes)
-    if len(per_body) != count:
-        raise HydroDataError(f"{len(per_body)} mode counts given for {count} bodies")
-    if any(m < 1 for m in per_body):
-        raise HydroDataError(f"a body needs at least one mode, got {per_body}")
-    labels: list[str] = []
-    for k in range(count):
-        body_modes = list(DOF_NAMES[: per_body[k]]) + [
-            f"Mode{j + 1}" for j in range(len(DOF_NAMES), per_body[k])
-        ]
-        prefix = f"{names[k]}__" if len(names) > 1 else ""
-        labels.extend(prefix + m for m in body_modes)
-    return labels
-
-
-def body_names(ds: xr.Dataset) -> list[str]:
-    """The names the solver file gave its bodies (``body_names`` attribute, one line per
-    body), or the labels' body prefixes (``body1`` …) when it gave none."""
-    stored = [b for b in str(ds.attrs.get("body_names", "")).splitlines() if b]
-    found = [b for b in bodies(ds) if b is not None]
-    if stored and len(stored) == max(len(found), 1):
-        return stored
-    return found
+# ----------------------------------------------------------------- bodies, speeds, matrices
 
 
 def rename_bodies(ds: xr.Dataset, names: Sequence[str] | None = None) -> xr.Dataset:
@@ -215,12 +162,6 @@ def rename_bodies(ds: xr.Dataset, names: Sequence[str] | None = None) -> xr.Data
     return out
 
 
-def split_dof(label: str) -> tuple[str | None, str]:
-    """Split ``"body__Heave"`` into ``("body", "Heave")``; ``"Heave"`` into ``(None, "Heave")``."""
-    body, sep, name = str(label).rpartition("__")
-    return (body if sep else None), name
-
-
 def single_speed(ds: xr.Dataset) -> xr.Dataset:
     """The dataset at its one forward speed (the ``forward_speed`` dimension dropped);
     HydroDataError when it holds several: the caller must choose."""
@@ -239,41 +180,6 @@ def dof_matrix(ds: xr.Dataset, name: str) -> NDArray[np.float64]:
     """``ds[name]`` as a float array (…, influenced_dof, radiating_dof): (n, n), or
     (nω, n, n) for frequency-dependent variables. Always a copy."""
     return np.array(ds[name].transpose(..., "influenced_dof", "radiating_dof").values, dtype=float)
-
-
-def is_rotation(label: str) -> bool:
-    """True for a rotational DOF (``Roll``, ``Pitch``, ``Yaw``, of any body): its
-    displacement is in rad, its moments in N·m."""
-    return split_dof(label)[1] in DOF_NAMES[3:]
-
-
-def dof_index(label: str) -> int:
-    """Index of a DOF label within its body: 0…5 for ``Surge`` … ``Yaw`` (``"Pitch"`` → 4),
-    6, 7 … for the generalized modes ``Mode7``, ``Mode8`` …"""
-    _, name = split_dof(label)
-    if name in DOF_NAMES:
-        return DOF_NAMES.index(name)
-    if name.startswith("Mode") and name[4:].isdigit() and int(name[4:]) > len(DOF_NAMES):
-        return int(name[4:]) - 1
-    raise HydroDataError(
-        f"unknown DOF label {label!r}",
-        hint=f"DOF labels are {', '.join(DOF_NAMES)}, then Mode7, Mode8 … for generalized modes",
-    )
-
-
-def is_rigid_body_dof(label: str) -> bool:
-    """True for the six rigid-body modes (``Surge`` … ``Yaw``, of any body)."""
-    return split_dof(label)[1] in DOF_NAMES
-
-
-def bodies(ds: xr.Dataset) -> list[str | None]:
-    """The bodies of a dataset, in DOF order (``[None]`` for a single unnamed body)."""
-    seen: list[str | None] = []
-    for label in ds["influenced_dof"].values:
-        body, _ = split_dof(label)
-        if body not in seen:
-            seen.append(body)
-    return seen
 
 
 # --------------------------------------------------------------------------- construction

@@ -1,0 +1,122 @@
+"""DOF labels of a ``HydroDB``: ``Surge`` … ``Yaw``, body prefixes, generalized modes.
+
+The ``influenced_dof`` and ``radiating_dof`` coordinates of a ``HydroDB`` (see
+:mod:`cummins.hydrodb`) are labelled ``Surge``, ``Sway``, ``Heave``, ``Roll``, ``Pitch``,
+``Yaw`` for one body, ``body1__Surge`` … for several (the prefix before ``__`` names the
+body), and ``Mode7``, ``Mode8`` … for a body's generalized modes. This module makes the
+labels and reads them back: which body, which mode, rotation or translation.
+"""
+
+from __future__ import annotations
+
+from collections.abc import Sequence
+
+import numpy as np
+import xarray as xr
+
+from cummins.errors import HydroDataError
+
+DOF_NAMES: tuple[str, ...] = ("Surge", "Sway", "Heave", "Roll", "Pitch", "Yaw")
+
+
+def dof_labels(
+    bodies: Sequence[str] | int | None = None, modes: int | Sequence[int] = 6
+) -> list[str]:
+    """DOF labels for one body (``Surge`` … ``Yaw``) or several (``body1__Surge`` …).
+
+    Every reader labels the DOFs this way, whatever names the solver gives its bodies,
+    so that the same body reads with the same labels from every format: several bodies
+    are ``body1``, ``body2`` … in the order of the file, and the names the file gives
+    them are kept in the dataset's ``body_names`` attribute (see :func:`body_names`;
+    :func:`~cummins.hydrodb.rename_bodies` relabels).
+
+    Parameters
+    ----------
+    bodies
+        The number of bodies (labels ``body1`` …), or their names; ``None`` or one body:
+        labels without a prefix.
+    modes
+        Modes per body (one int for all, or one per body): the six rigid-body modes,
+        then generalized modes (flexible, piston …) labelled ``Mode7``, ``Mode8`` … by
+        their mode number within the body, as WAMIT numbers them.
+
+    Examples
+    --------
+    >>> dof_labels()[:3]
+    ['Surge', 'Sway', 'Heave']
+    >>> dof_labels(2)[6]
+    'body2__Surge'
+    >>> dof_labels(["buoy", "float"])[6]
+    'float__Surge'
+    >>> dof_labels(modes=8)[6:]
+    ['Mode7', 'Mode8']
+    """
+    if isinstance(bodies, int | np.integer):
+        names: list[str] = [f"body{k + 1}" for k in range(int(bodies))]
+    else:
+        names = list(bodies or [])
+    count = max(len(names), 1)
+    per_body = [int(modes)] * count if isinstance(modes, int | np.integer) else list(modes)
+    if len(per_body) != count:
+        raise HydroDataError(f"{len(per_body)} mode counts given for {count} bodies")
+    if any(m < 1 for m in per_body):
+        raise HydroDataError(f"a body needs at least one mode, got {per_body}")
+    labels: list[str] = []
+    for k in range(count):
+        body_modes = list(DOF_NAMES[: per_body[k]]) + [
+            f"Mode{j + 1}" for j in range(len(DOF_NAMES), per_body[k])
+        ]
+        prefix = f"{names[k]}__" if len(names) > 1 else ""
+        labels.extend(prefix + m for m in body_modes)
+    return labels
+
+
+def body_names(ds: xr.Dataset) -> list[str]:
+    """The names the solver file gave its bodies (``body_names`` attribute, one line per
+    body), or the labels' body prefixes (``body1`` …) when it gave none."""
+    stored = [b for b in str(ds.attrs.get("body_names", "")).splitlines() if b]
+    found = [b for b in bodies(ds) if b is not None]
+    if stored and len(stored) == max(len(found), 1):
+        return stored
+    return found
+
+
+def split_dof(label: str) -> tuple[str | None, str]:
+    """Split ``"body__Heave"`` into ``("body", "Heave")``; ``"Heave"`` into ``(None, "Heave")``."""
+    body, sep, name = str(label).rpartition("__")
+    return (body if sep else None), name
+
+
+def is_rotation(label: str) -> bool:
+    """True for a rotational DOF (``Roll``, ``Pitch``, ``Yaw``, of any body): its
+    displacement is in rad, its moments in N·m."""
+    return split_dof(label)[1] in DOF_NAMES[3:]
+
+
+def dof_index(label: str) -> int:
+    """Index of a DOF label within its body: 0…5 for ``Surge`` … ``Yaw`` (``"Pitch"`` → 4),
+    6, 7 … for the generalized modes ``Mode7``, ``Mode8`` …"""
+    _, name = split_dof(label)
+    if name in DOF_NAMES:
+        return DOF_NAMES.index(name)
+    if name.startswith("Mode") and name[4:].isdigit() and int(name[4:]) > len(DOF_NAMES):
+        return int(name[4:]) - 1
+    raise HydroDataError(
+        f"unknown DOF label {label!r}",
+        hint=f"DOF labels are {', '.join(DOF_NAMES)}, then Mode7, Mode8 … for generalized modes",
+    )
+
+
+def is_rigid_body_dof(label: str) -> bool:
+    """True for the six rigid-body modes (``Surge`` … ``Yaw``, of any body)."""
+    return split_dof(label)[1] in DOF_NAMES
+
+
+def bodies(ds: xr.Dataset) -> list[str | None]:
+    """The bodies of a dataset, in DOF order (``[None]`` for a single unnamed body)."""
+    seen: list[str | None] = []
+    for label in ds["influenced_dof"].values:
+        body, _ = split_dof(label)
+        if body not in seen:
+            seen.append(body)
+    return seen
