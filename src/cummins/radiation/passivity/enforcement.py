@@ -95,7 +95,7 @@ def enforce_passivity(
     current model violates (the worst point of each band and up to
     ``points_per_band`` more) and on the limits ω → 0, ∞; all constraints found so far are
     kept. Each least-squares problem with linear inequality constraints is solved exactly
-    as a least-distance programme (:func:`_least_distance_step`).
+    as a least-distance programme (:func:`constrained_least_squares`).
 
     Parameters
     ----------
