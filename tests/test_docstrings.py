@@ -15,6 +15,7 @@ PACKAGE = Path(cummins.__file__).parent
 MODULES = sorted(
     ".".join(("cummins", *p.relative_to(PACKAGE).with_suffix("").parts)).removesuffix(".__init__")
     for p in PACKAGE.rglob("*.py")
+    if p.name != "__main__.py"  # runs the command line when imported
 )
 
 
