@@ -19,7 +19,6 @@ The listing must be in the "Metric: kg, m [N]" unit system that its header state
 from __future__ import annotations
 
 import re
-from dataclasses import dataclass, field
 from pathlib import Path
 
 import numpy as np
@@ -91,12 +90,6 @@ def _label_line(text: TextFile, label: str, start: int, stop: int) -> int:
         if _normal(text.lines[k]) == label:
             return k
     return -1
-
-
-@dataclass
-class _Lis:
-    text: TextFile
-    titles: list[tuple[int, str]] = field(default_factory=list)
 
 
 _TABLES = {

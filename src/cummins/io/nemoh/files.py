@@ -22,7 +22,6 @@ _FORCE_FILES = {
     "froude_krylov": "FKForce.tec",
 }
 _IRF_FILE = "IRF.tec"
-_TEC_FILES = (RADIATION_FILE, *_FORCE_FILES.values(), _IRF_FILE)
 
 _NUMBER = r"[-+]?(?:\d+\.?\d*|\.\d+)(?:[EeDd][-+]?\d+)?"
 

@@ -46,17 +46,6 @@ from cummins.io.netcdf.layout import (
 )
 from cummins.io.netcdf.legacy import LegacyExport, _legacy_exporter_files
 
-#: Coordinates derived from omega (or forward speed) that the canonical dataset drops.
-_DERIVED_COORDS = (
-    "freq",
-    "period",
-    "wavenumber",
-    "wavelength",
-    "encounter_omega",
-    "encounter_wave_direction",
-)
-
-
 _FREQUENCY_DIMS = ("omega", "freq", "period", "wavenumber", "wavelength")
 
 #: variable name → (make_hydrodb keyword, canonical dims, complex?)

@@ -166,10 +166,6 @@ class SpeedDependentModel:
         return self.k0.is_stable() and self.k1.is_stable() and self.k2.is_stable()
 
 
-def _same(p: CouplingModel, q: CouplingModel) -> bool:
-    return all(np.array_equal(x, y) for x, y in ((p.a, q.a), (p.b, q.b), (p.c, q.c)))
-
-
 def _distinct_sources(model: RadiationModel, e: NDArray, power: int):
     """{(i, j): {source coupling: σ}} for the U^power term of Z_U
     (:mod:`~cummins.radiation.speed.stf`)."""
