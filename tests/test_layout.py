@@ -102,7 +102,12 @@ def test_no_import_cycle_between_modules():
 
 
 def test_the_library_never_imports_the_command_line():
-    library = {m: p for m, p in MODULES.items() if not m.startswith("cummins.cli")}
+    # ``python -m cummins`` (cummins/__main__.py) is the command line's entry, not library
+    library = {
+        m: p
+        for m, p in MODULES.items()
+        if not m.startswith("cummins.cli") and m != "cummins.__main__"
+    }
     offenders = {
         m: sorted(i for i in _imports(m, p, deferred=True) if i.startswith("cummins.cli"))
         for m, p in library.items()
@@ -192,3 +197,12 @@ def test_the_earlier_readme_imports_still_work():
         [sys.executable, "-c", EARLIER_README_IMPORTS], capture_output=True, text=True
     )
     assert run.returncode == 0, run.stderr
+
+
+@pytest.mark.parametrize("module", ["cummins", "cummins.cli"])
+def test_python_dash_m_runs_the_command(module):
+    run = subprocess.run(
+        [sys.executable, "-m", module, "--version"], capture_output=True, text=True
+    )
+    assert run.returncode == 0, run.stderr
+    assert run.stdout.strip() == f"cummins, version {cummins.__version__}"
