@@ -24,9 +24,9 @@ It also compares with the reference models shipped with the cases — MSS's ``*A
 K(jω) error (max over the diagonal of max_ω |K̂ − K| / max_ω |K|) and RAO error against
 ours, and the tanker's fit time against MSS's FDI (6.2 s on this machine, issue 4).
 
-Corpus cases without the inertia in their files are skipped, unless they come with an
-OpenFAST ``.ss`` model: then the default alone is fitted and compared with it (order, K
-error; no RAOs without inertia).
+Corpus cases without the inertia in their files get the default alone (order, R²,
+passivity, A∞, time; no RAOs without inertia), compared with an OpenFAST ``.ss`` model
+where the case ships one. A case that does not read, or a fit that fails, is listed.
 
 Run: ``python benchmarks/bench_identification.py [filter]`` (a substring of the case
 path selects cases).
@@ -176,6 +176,7 @@ def main(selection: str | None = None) -> None:
         cases += corpus_cases(corpus)
     results = []
     skipped = []
+    failed = []
     print(HEADER)
     for path in cases:
         name = str(path.relative_to(SHARED_DATA))
@@ -188,16 +189,16 @@ def main(selection: str | None = None) -> None:
             continue
         missing = [v for v in ("inertia_matrix", "hydrostatic_stiffness") if v not in ds]
         ss = sorted(path.parent.glob("*.ss")) if path.is_file() else []
-        if missing and not ss:
-            skipped.append(f"{name}: no {', '.join(missing)}")
-            continue
         n_dof = ds.sizes["influenced_dof"]
-        variants = VARIANTS if not missing else VARIANTS[:1]  # no motions: the .ss only
+        # no inertia or restoring: no motions, the default alone (order, R², passivity,
+        # A∞, time), and the comparison with a shipped .ss model
+        variants = VARIANTS if not missing else VARIANTS[:1]
         for label, options in variants:
             try:
                 seconds, model = timed_fit(ds, options)
             except Exception as exc:
                 print(f"{name:34.34s} {label}: FAILED {type(exc).__name__}: {exc}")
+                failed.append(f"{name} ({label}): {type(exc).__name__}: {exc}")
                 continue
             card = scorecard(ds, model)
             a_inf = a_inf_error(ds, options) if label == "default" else None
@@ -267,6 +268,8 @@ def main(selection: str | None = None) -> None:
         )
     for line in skipped:
         print(f"skipped: {line}")
+    for line in failed:
+        print(f"failed: {line}")
 
 
 if __name__ == "__main__":

@@ -164,6 +164,10 @@ def test_rao_and_simulate_run_on_the_case(corpus, name, tmp_path):
         # those, but no fluid-memory model can be identified from them
         assert run.exit_code != 0, run.output
         assert "frequencies" in run.output
+        fit = CliRunner().invoke(main, ["fit", str(corpus / name), "-o", str(tmp_path / "m.nc")])
+        assert fit.exit_code == 1 and "Traceback" not in fit.output
+        n = ds.sizes["omega"]  # the message says how many there are
+        assert f"the data hold {n} (" in fit.output or f"{n} frequencies are too few" in fit.output
         return
     labels = [str(d) for d in ds.influenced_dof.values]
     c = np.diag(ds.hydrostatic_stiffness.values).copy()

@@ -204,8 +204,17 @@ def limit_frequency_range(
     hi = np.inf if omega_max is None else omega_max
     keep = (w >= lo) & (w <= hi)
     if keep.sum() < 3:
+        if omega_min is None and omega_max is None:
+            raise HydroDataError(
+                f"fewer than three frequencies: the data hold {w.size} "
+                f"({', '.join(f'{x:.4g}' for x in w)} rad/s)",
+                path=ds.attrs.get("source_file"),
+                hint="fitting, K(t) and A∞ need the solver run at many frequencies "
+                "(typically 50–200 from well below the first resonance to where B has decayed)",
+            )
         raise HydroDataError(
             f"fewer than three frequencies between {lo:g} and {hi:g} rad/s",
+            path=ds.attrs.get("source_file"),
             hint=f"the data cover {w[0]:.4g}–{w[-1]:.4g} rad/s",
         )
     if keep.all():
