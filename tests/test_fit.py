@@ -402,8 +402,14 @@ def test_bad_options_are_refused_before_any_work(tanker_wamit):
 def test_the_known_faults_of_the_real_data_are_noticed_and_reported(shared_data, tanker_wamit):
     """Issue 4's three facts: the tanker's negative damping at irregular frequencies, the
     supply vessel's inconsistent lowest frequency, ShipX's surge copied from sway."""
-    notes = " | ".join(fit_radiation(tanker_wamit).attrs["data_notes"])
+    tanker = fit_radiation(tanker_wamit)
+    notes = " | ".join(tanker.attrs["data_notes"])
     assert "3.927 rad/s left out: radiation_damping[Heave, Heave], negative damping" in notes
+    # the range ends where every DOF keeps its points: what that costs the others is said
+    top = tanker.attrs["omega_fit_max"]
+    w = tanker_wamit.omega.values
+    assert top < w.max() and f"fitting range {w.min():.4g}–{top:.4g} rad/s" in notes
+    assert "Surge (6), Sway (7)" in notes  # the tanker's own surge/sway curves above it
     supply = fit_radiation(cummins.read(shared_data / "mss" / "supply" / "supply.mat"))
     notes = " | ".join(supply.attrs["data_notes"])
     assert "0.1047 rad/s left out" in notes

@@ -113,6 +113,7 @@ def prepare_fit(ds: xr.Dataset, options: FitOptions) -> FitInput:
         common = np.arange(raw.sizes["omega"])
     inside = np.arange(common[0], common[-1] + 1)
     clean = raw.isel(omega=common)
+    data_notes += _range_cut_notes(raw, keep_dof, inside)
     raw, keep_dof = raw.isel(omega=inside), keep_dof[inside]
     data = _bridged_dataset(raw, keep_dof)
     excluded = [float(x) for x in raw.omega.values[~keep_dof.all(axis=1)]]
@@ -406,6 +407,26 @@ def _fit_data(
     for finding in copied_dofs(data):
         notes.append(f"{finding.message}: {finding.advice}")
     return data, keep, notes
+
+
+def _range_cut_notes(raw: xr.Dataset, keep_dof: NDArray, inside: NDArray) -> list[str]:
+    """What the fitting range, cut where every DOF keeps its points, takes from DOFs
+    whose own curves are fine there (they are not fitted there: say so, in one note)."""
+    w = raw.omega.values
+    cut = np.ones(w.size, dtype=bool)
+    cut[inside] = False
+    lost = {
+        str(label): int((cut & keep_dof[:, d]).sum())
+        for d, label in enumerate(raw.influenced_dof.values)
+    }
+    lost = {label: n for label, n in lost.items() if n}
+    if not lost:
+        return []
+    return [
+        f"fitting range {w[inside[0]]:.4g}–{w[inside[-1]]:.4g} rad/s, the frequencies every "
+        "DOF keeps: outside it the model is not fitted, though these DOFs' own curves look "
+        "sound there: " + ", ".join(f"{label} ({n})" for label, n in lost.items())
+    ]
 
 
 #: A DOF keeps all its frequencies when fewer than this many would be left.
