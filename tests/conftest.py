@@ -28,6 +28,19 @@ ROOT = Path(__file__).resolve().parents[1]
 SHARED_DATA = Path(os.environ.get("CUMMINS_SHARED_DATA", ROOT.parent / "shared" / "data"))
 
 
+def package_modules() -> dict[str, Path]:
+    """Every module of the installed ``cummins`` package: dotted name → source file
+    (a package by its ``__init__.py``)."""
+    import cummins
+
+    package = Path(cummins.__file__).parent
+    modules = {}
+    for path in sorted(package.rglob("*.py")):
+        parts = ("cummins", *path.relative_to(package).with_suffix("").parts)
+        modules[".".join(parts[:-1] if parts[-1] == "__init__" else parts)] = path
+    return modules
+
+
 def _under_ci() -> bool:
     return os.environ.get("CI", "").lower() == "true"
 

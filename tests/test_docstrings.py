@@ -5,17 +5,15 @@ from __future__ import annotations
 
 import doctest
 import importlib
-from pathlib import Path
 
 import pytest
 
-import cummins
+from conftest import package_modules
 
-PACKAGE = Path(cummins.__file__).parent
 MODULES = sorted(
-    ".".join(("cummins", *p.relative_to(PACKAGE).with_suffix("").parts)).removesuffix(".__init__")
-    for p in PACKAGE.rglob("*.py")
-    if p.name != "__main__.py"  # runs the command line when imported
+    name
+    for name, path in package_modules().items()
+    if path.name != "__main__.py"  # runs the command line when imported
 )
 
 

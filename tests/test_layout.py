@@ -18,19 +18,12 @@ from pathlib import Path
 import pytest
 
 import cummins
+from conftest import package_modules
 from cummins import _compat
 
-PACKAGE = Path(cummins.__file__).parent
 #: the most lines a module may have (the earlier layout had modules of 1.2k–1.9k lines)
 MAX_LINES = 800
-
-
-def _module_name(path: Path) -> str:
-    parts = ("cummins", *path.relative_to(PACKAGE).with_suffix("").parts)
-    return ".".join(parts[:-1] if parts[-1] == "__init__" else parts)
-
-
-MODULES = {_module_name(p): p for p in sorted(PACKAGE.rglob("*.py"))}
+MODULES = package_modules()
 
 
 def _is_type_checking(node: ast.If) -> bool:

@@ -99,10 +99,7 @@ class _MovedModuleFinder(importlib.abc.MetaPathFinder, importlib.abc.Loader):
 
     def exec_module(self, module: ModuleType) -> None:
         # the import system put the alias spec on the module: give it its own back
-        for alias, own in list(self._specs.items()):
-            if module.__spec__ is not None and module.__spec__.name == alias:
-                module.__spec__ = own
-                del self._specs[alias]
+        module.__spec__ = self._specs.pop(module.__spec__.name)
 
 
 def install() -> None:
