@@ -20,7 +20,7 @@ WEC-Sim cylinder (NEMOH)    24     0.9919   0.9916   0.26 %    6, 4, 4
 WEC-Sim sphere (Capytaine)  22     0.9958   0.9931   0.61 %    4, 4, 6
 AQWA floating OWC (12 DOF)  28     0.9887   0.9940   0.36 %    4, 4, 6
 NEMOH OC3 Hywind spar       23     0.9916   0.9910   0.12 %    5, 4, 5
-WAMIT barge, 4 beam modes   72     0.9931   0.9942   0.80 %    9, 4, 8, 4
+WAMIT barge, 4 beam modes   90     0.9953   0.9942   0.55 %    9, 4, 14, 4
 WAMIT sphere (mean drift)   46     0.9877   0.9928   0.77 %    8, 7, 5, 11
 Capytaine COER (tank)       70     0.9952   0.9769   0.76 %    20, 10, 6, 4
 AQWA PEND hull (tank)       55     0.9946   0.9905   1.69 %    14, 12, 3

@@ -72,6 +72,26 @@ def _leave_one_out_residual(w: NDArray, x: NDArray) -> NDArray:
     return r
 
 
+#: A point is tested for a spike only when the neighbours its line runs through lie
+#: within this fraction of its frequency: on coarser sampling (the WAMIT OSWEC's periods
+#: 8, 7, 6, 5, 4, 3, 2, 1 s) a sound peak looks like a spike, and each point taken out
+#: would make its neighbours look like the next one. The lowest frequency is always
+#: tested (as an end point: four times the threshold), where A and B flatten out and a
+#: strip-theory or low-frequency panel result is often wrong (ShipX's 0.105 rad/s).
+SPIKE_SPAN = 0.25
+
+
+def _judged_points(w: NDArray) -> NDArray[np.bool_]:
+    """Which points of ``w`` are sampled finely enough around them (:data:`SPIKE_SPAN`)
+    for the straight line of :func:`_leave_one_out_residual` to judge them."""
+    span = np.empty_like(w)
+    if w.size < 3:
+        return np.zeros(w.size, dtype=bool)
+    span[1:-1] = w[2:] - w[:-2]
+    span[0], span[-1] = 0.0, w[-1] - w[-3]
+    return span <= SPIKE_SPAN * np.abs(w)
+
+
 def _diagonal_curves(ds: xr.Dataset) -> list[tuple[str, NDArray]]:
     curves = []
     labels = [str(d) for d in ds.influenced_dof.values]
@@ -129,6 +149,7 @@ def find_suspect_frequencies(
         if idx.size < 4:
             break
         worst: tuple[float, int, str, float] | None = None
+        judged = _judged_points(w[idx])
         for quantity, x in curves:
             r = _leave_one_out_residual(w[idx], x[idx])
             spread = np.ptp(x[idx])
@@ -143,6 +164,7 @@ def find_suspect_frequencies(
             )
             rel[~isolated] = 0.0
             rel[[0, -1]] = np.where(rel[[0, -1]] > 4 * spike_threshold, rel[[0, -1]], 0.0)
+            rel[~judged] = 0.0
             j = int(np.argmax(rel))
             if rel[j] > spike_threshold and (worst is None or rel[j] > worst[0]):
                 worst = (float(rel[j]), int(idx[j]), quantity, float(r[j] / spread))

@@ -73,6 +73,7 @@ from cummins.radiation.fit.data import (
     inconsistent_added_mass_inf,
     model_fit_data,
     prepare_fit,
+    range_cut_failures,
 )
 from cummins.radiation.fit.frequency import FrequencyFit, fit_frequency_domain
 from cummins.radiation.fit.mimo import (
@@ -132,6 +133,7 @@ __all__ = [
     "make_passive",
     "model_fit_data",
     "prepare_fit",
+    "range_cut_failures",
     "refreshed_coupling",
     "with_motion_note",
 ]
@@ -196,4 +198,6 @@ def fit_radiation(
         model = fit_blocks(inp, options, say)
     else:
         model = fit_per_coupling(inp, options, say)
-    return replace(model, attrs={**model.attrs, "elapsed_s": time.perf_counter() - start})
+    failures = [*model.attrs.get("failures", []), *range_cut_failures(model, inp, options.r2)]
+    elapsed = time.perf_counter() - start
+    return replace(model, attrs={**model.attrs, "failures": failures, "elapsed_s": elapsed})

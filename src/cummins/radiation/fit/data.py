@@ -28,6 +28,7 @@ from numpy.typing import NDArray
 from cummins.check import copied_dofs
 from cummins.errors import CumminsWarning, FitError, HydroDataError
 from cummins.hydrodb import dof_matrix, single_speed
+from cummins.radiation.fit.frequency import r_squared
 from cummins.radiation.fit.motion import MotionSensitivity, motion_sensitivity
 from cummins.radiation.fit.options import FitOptions
 from cummins.radiation.model import RadiationModel
@@ -74,6 +75,10 @@ class FitInput:
         The significant couplings (i ≤ j) and the rest.
     attrs
         The provenance the model will carry (source, options, what was left out, notes).
+    beyond_range
+        For each DOF that keeps frequencies outside the fitting range (cut where every
+        modelled DOF keeps its points): ``{label: (omega, A_ii, B_ii)}`` at all the
+        frequencies it keeps, in and out of the range (:func:`range_cut_failures`).
     """
 
     ds: xr.Dataset
@@ -93,6 +98,7 @@ class FitInput:
     pairs: list[tuple[int, int]]
     negligible: list[tuple[int, int]]
     attrs: dict[str, Any] = field(default_factory=dict)
+    beyond_range: dict[str, tuple[NDArray, NDArray, NDArray]] = field(default_factory=dict)
 
 
 def prepare_fit(ds: xr.Dataset, options: FitOptions) -> FitInput:
@@ -106,14 +112,18 @@ def prepare_fit(ds: xr.Dataset, options: FitOptions) -> FitInput:
         ds, options.omega_min, options.omega_max, options.exclude_suspect
     )
     # the data with each coupling's suspect points bridged: for Ogilvie's A∞, K(t), the
-    # MIMO passivity step and the metrics after it
-    # (not extrapolated: frequencies beyond those every DOF keeps are left out there)
-    common = np.flatnonzero(keep_dof.all(axis=1))
-    if common.size < MIN_KEPT_FREQUENCIES:
-        common = np.arange(raw.sizes["omega"])
-    inside = np.arange(common[0], common[-1] + 1)
-    clean = raw.isel(omega=common)
+    # MIMO passivity step and the metrics after it (not extrapolated: the range ends
+    # where the modelled DOFs stop keeping their points; a DOF without damping of its
+    # own, not modelled, does not cut the others' range)
+    modelled = sorted(
+        {i for i, j in significant_couplings(_bridged_dataset(raw, keep_dof)) if i == j}
+    )
+    clean_rows = _common_frequencies(keep_dof)
+    span = _common_frequencies(keep_dof[:, modelled]) if modelled else clean_rows
+    inside = np.arange(span[0], span[-1] + 1)
+    clean = raw.isel(omega=clean_rows)  # Ogilvie's A∞: where every DOF is sound
     data_notes += _range_cut_notes(raw, keep_dof, inside)
+    beyond_range = _beyond_range(raw, keep_dof, inside)
     raw, keep_dof = raw.isel(omega=inside), keep_dof[inside]
     data = _bridged_dataset(raw, keep_dof)
     excluded = [float(x) for x in raw.omega.values[~keep_dof.all(axis=1)]]
@@ -214,6 +224,7 @@ def prepare_fit(ds: xr.Dataset, options: FitOptions) -> FitInput:
         pairs=pairs,
         negligible=negligible,
         attrs=attrs,
+        beyond_range=beyond_range,
     )
 
 
@@ -427,6 +438,72 @@ def _range_cut_notes(raw: xr.Dataset, keep_dof: NDArray, inside: NDArray) -> lis
         "DOF keeps: outside it the model is not fitted, though these DOFs' own curves look "
         "sound there: " + ", ".join(f"{label} ({n})" for label, n in lost.items())
     ]
+
+
+def _beyond_range(raw: xr.Dataset, keep_dof: NDArray, inside: NDArray) -> dict:
+    """:attr:`FitInput.beyond_range`: the diagonal curves of the DOFs that keep points
+    outside the fitting range, at the positive frequencies that no DOF's curves make
+    suspect (the frequencies the scoreboard judges a model on:
+    :func:`cummins.radiation.fit.scorecard.data_frequencies`)."""
+    w = raw.omega.values
+    cut = np.ones(w.size, dtype=bool)
+    cut[inside] = False
+    lost = [d for d in range(keep_dof.shape[1]) if (cut & keep_dof[:, d]).any()]
+    if not lost:
+        return {}
+    judged = (w > 0) & np.isfinite(w)
+    for s in find_suspect_frequencies(raw.isel(omega=np.flatnonzero(judged))):
+        judged &= ~np.isclose(w, s.omega, rtol=1e-12, atol=0.0)
+    a, b = dof_matrix(raw, "added_mass"), dof_matrix(raw, "radiation_damping")
+    labels = raw.influenced_dof.values
+    return {str(labels[d]): (w[judged], a[judged, d, d], b[judged, d, d]) for d in lost}
+
+
+#: A DOF's R² over the frequencies beyond the fitting range may fall this far below the
+#: target before the fit reports it as a failure (a target missed inside the range is a
+#: note: the data decide it; a model gone astray outside it is a failure).
+RANGE_CUT_SLACK = 0.05
+
+
+def range_cut_failures(model: RadiationModel, inp: FitInput, r2: float) -> list[str]:
+    """The DOFs whose own sound curves reach beyond the fitting range (cut by other DOFs'
+    suspect points) and that the model, not fitted there, misses: R² of A or B below
+    ``r2`` − :data:`RANGE_CUT_SLACK` over the frequencies no DOF's curves make suspect,
+    in and out of the range (the scoreboard's measure). One message
+    naming them all, for ``attrs["failures"]`` (a model extrapolated where the data are
+    sound is not a success), or none."""
+    missed = []
+    for label, (w, a, b) in inp.beyond_range.items():
+        if label not in model.dofs:
+            continue
+        i = model.dofs.index(label)
+        k = model.response(w)[:, i, i]
+        if not np.any(k):
+            continue
+        scores = {
+            "A": r_squared(a, float(np.asarray(model.added_mass_inf)[i, i]) + k.imag / w),
+            "B": r_squared(b, k.real),
+        }
+        worst = min(scores, key=lambda x: scores[x])
+        if scores[worst] < r2 - RANGE_CUT_SLACK:
+            missed.append(f"{label} {worst} {scores[worst]:.3g}")
+    if not missed:
+        return []
+    top = model.attrs.get("omega_fit_max", float("nan"))
+    return [
+        f"fitted to {top:.4g} rad/s only (other DOFs' suspect points cut the range), the "
+        f"model misses these DOFs' curves above it (R² over the data's frequencies "
+        f"up to {max(w.max() for w, _, _ in inp.beyond_range.values()):.4g} rad/s less the "
+        f"suspect ones, target {r2}): {', '.join(missed)}; choose omega_max, or check "
+        "the data (cummins check)"
+    ]
+
+
+def _common_frequencies(keep: NDArray) -> NDArray[np.intp]:
+    """The frequencies (indices) every column of ``keep`` keeps; all of them when fewer
+    than :data:`MIN_KEPT_FREQUENCIES` would be left."""
+    common = np.flatnonzero(keep.all(axis=1))
+    return common if common.size >= MIN_KEPT_FREQUENCIES else np.arange(keep.shape[0])
 
 
 #: A DOF keeps all its frequencies when fewer than this many would be left.

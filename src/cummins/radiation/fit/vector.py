@@ -71,7 +71,11 @@ VIOLATION = 1e-8
 #: Passivity: each linearised constraint asks for λ ≥ MARGIN × the largest |λ| there.
 MARGIN = 1e-5
 #: Passivity enforcement iterations.
-PASSIVITY_ITERATIONS = 40
+PASSIVITY_ITERATIONS = 120
+#: The passivity programme keeps every constraint until it has PRUNE_ROWS times as many
+#: as unknowns; then those that have never bound are left out (the WAMIT OSWEC 2015's
+#: non-passive data built 9 000 constraints on 275 unknowns: 300 s for the fit, now 43 s).
+PRUNE_ROWS = 1
 #: Regularisation of the residue change (× the norm of the misfit Jacobian): directions
 #: the data do not see stay put.
 RIDGE = 1e-3
@@ -563,7 +567,7 @@ def enforce_passivity(
 ) -> tuple[PoleResidueBlock, bool, int]:
     """The block with the smallest weighted residue change that makes Re K(jω) ⪰ 0 at all
     frequencies (module docstring, step 3): (block, passive, iterations)."""
-    from cummins.radiation.passivity import constrained_least_squares
+    from cummins.radiation.passivity import least_distance
 
     w = data.omega[: data.n_data]
     s = 1j * data.omega
@@ -579,6 +583,7 @@ def enforce_passivity(
         misfit.append((r, np.zeros(q)))
     where = {d: k for k, d in enumerate(block.dofs)}
     rows, rhs = [], []
+    bound = np.zeros(0, dtype=bool)
     start = block.coefficients
     delta = np.zeros(len(block.elements) * q)
     current = block
@@ -595,9 +600,17 @@ def enforce_passivity(
             rows.append(row)
             rhs.append(MARGIN * local - lam + row @ delta)
         try:
-            delta = constrained_least_squares(misfit, np.array(rows), np.array(rhs))
+            delta, active = least_distance(misfit, np.array(rows), np.array(rhs))
         except FitError:
             return current, False, iteration
+        # once the programme is large, a constraint that has never bound is left out of
+        # the next ones (were it violated again, the next sweep finds it); one that has
+        # bound is kept, or the iteration goes round in circles
+        bound = np.r_[bound, np.zeros(len(rows) - bound.size, dtype=bool)] | active
+        if len(rows) > PRUNE_ROWS * delta.size:
+            rows = [r for r, a in zip(rows, bound, strict=True) if a]
+            rhs = [h for h, a in zip(rhs, bound, strict=True) if a]
+            bound = bound[bound]
         change = (null @ delta.reshape(len(block.elements), q).T).T
         current = PoleResidueBlock(
             block.dofs, block.elements, block.poles, start + change, block.added_mass_inf

@@ -47,3 +47,6 @@ from cummins.radiation.passivity.enforcement import (
 )
 from cummins.radiation.passivity.enforcement import enforce_passivity as enforce_passivity
 from cummins.radiation.passivity.enforcement import fit_range_grid as fit_range_grid
+from cummins.radiation.passivity.enforcement import (
+    least_distance as least_distance,
+)

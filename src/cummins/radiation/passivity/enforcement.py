@@ -455,6 +455,13 @@ def constrained_least_squares(misfit, g: NDArray, h: NDArray) -> NDArray:
     programme min ‖x‖ s.t. (G R⁻¹) x ≥ h + G R⁻¹ Qᵀy, solved through the NNLS problem
     min ‖E u − f‖, E = [Fᵀ; eᵀ], f = (0, …, 0, 1), u ≥ 0 (F x ≥ e the constraints).
     """
+    return least_distance(misfit, g, h)[0]
+
+
+def least_distance(misfit, g: NDArray, h: NDArray) -> tuple[NDArray, NDArray[np.bool_]]:
+    """:func:`constrained_least_squares`, and which constraints hold with equality at the
+    solution (their NNLS multiplier u is positive): the others can be left out of the next
+    linearisation without changing its solution."""
     r_blocks, qty = [], []
     for jac, y in misfit:
         q, r = np.linalg.qr(jac)
@@ -478,7 +485,7 @@ def constrained_least_squares(misfit, g: NDArray, h: NDArray) -> NDArray:
     if abs(residual[-1]) < 1e-12:
         raise FitError("passivity enforcement: the linearised constraints are infeasible")
     x = -residual[:n] / residual[-1]
-    return np.linalg.solve(r_all, x - shift)
+    return np.linalg.solve(r_all, x - shift), u > 0
 
 
 def _apply_step(model, groups, bases, step) -> RadiationModel:
