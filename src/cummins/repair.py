@@ -18,7 +18,9 @@ Detection, per diagonal term of A(ω) and B(ω):
   points, tested against the line through the next two points, must be off by four
   times ``spike_threshold``. Points are flagged one at a time, worst first, and the
   test is repeated without them, so that a bad point does not make its neighbours
-  look bad.
+  look bad. A point is judged only where its neighbours lie within
+  :data:`SPIKE_SPAN` (25 %) of its frequency, and the lowest frequency always: on
+  coarser sampling a sound peak looks like a spike.
 """
 
 from __future__ import annotations
