@@ -86,9 +86,9 @@ SPIKE_SPAN = 0.25
 def _judged_points(w: NDArray) -> NDArray[np.bool_]:
     """Which points of ``w`` are sampled finely enough around them (:data:`SPIKE_SPAN`)
     for the straight line of :func:`_leave_one_out_residual` to judge them."""
-    span = np.empty_like(w)
     if w.size < 3:
         return np.zeros(w.size, dtype=bool)
+    span = np.empty_like(w)
     span[1:-1] = w[2:] - w[:-2]
     span[0], span[-1] = 0.0, w[-1] - w[-3]
     return span <= SPIKE_SPAN * np.abs(w)

@@ -15,7 +15,7 @@ import numpy as np
 
 from cummins.errors import FitError
 from cummins.radiation.fit import vector
-from cummins.radiation.fit.data import FitInput
+from cummins.radiation.fit.data import FitInput, range_cut_failures
 from cummins.radiation.fit.metrics import coupling_metrics
 from cummins.radiation.fit.mimo import failure_targets, fit_failures, with_motion_note
 from cummins.radiation.fit.options import MOTION_AIM, FitOptions
@@ -156,4 +156,5 @@ def fit_blocks(
     if sensitivity is not None:
         model = with_motion_note(model, motion_tol)
     failures = fit_failures(model, **failure_targets(options, sensitivity))
+    failures += range_cut_failures(model, inp, options.r2)
     return replace(model, attrs={**model.attrs, "failures": failures})

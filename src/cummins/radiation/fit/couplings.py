@@ -16,7 +16,12 @@ import numpy as np
 from numpy.typing import NDArray
 
 from cummins.errors import FitError
-from cummins.radiation.fit.data import FitInput, prepare_fit, response_weights
+from cummins.radiation.fit.data import (
+    FitInput,
+    prepare_fit,
+    range_cut_failures,
+    response_weights,
+)
 from cummins.radiation.fit.frequency import FrequencyFit, fit_frequency_domain, pruned_poles
 from cummins.radiation.fit.metrics import coupling_metrics
 from cummins.radiation.fit.mimo import (
@@ -174,6 +179,7 @@ def fit_per_coupling(
             }
             model = replace(fallback, attrs=attrs)
             failures = fit_failures(model, **{**target_args, "motion_tol": motion_tol})
+    failures += range_cut_failures(model, inp, options.r2)
     return replace(model, attrs={**model.attrs, "failures": failures})
 
 

@@ -31,6 +31,7 @@ from cummins.hydrodb import dof_matrix, single_speed
 from cummins.radiation.fit.frequency import r_squared
 from cummins.radiation.fit.motion import MotionSensitivity, motion_sensitivity
 from cummins.radiation.fit.options import FitOptions
+from cummins.radiation.fit.scorecard import data_frequencies
 from cummins.radiation.model import RadiationModel
 from cummins.radiation.retardation import added_mass_inf as estimate_added_mass_inf
 from cummins.radiation.retardation import default_retardation_function, significant_couplings
@@ -40,6 +41,22 @@ from cummins.repair import (
     remove_suspect_frequencies,
 )
 from cummins.validation import guard_hydro_data
+
+
+@dataclass(frozen=True)
+class BeyondRange:
+    """The diagonal curves of the DOFs whose points reach beyond the fitting range.
+
+    Attributes
+    ----------
+    omega
+        The frequencies the scoreboard judges a model on, in and out of the range, rad/s.
+    curves
+        ``{label: (A_ii, B_ii)}`` at ``omega``.
+    """
+
+    omega: NDArray[np.float64]
+    curves: dict[str, tuple[NDArray[np.float64], NDArray[np.float64]]]
 
 
 @dataclass(frozen=True)
@@ -76,9 +93,9 @@ class FitInput:
     attrs
         The provenance the model will carry (source, options, what was left out, notes).
     beyond_range
-        For each DOF that keeps frequencies outside the fitting range (cut where every
-        modelled DOF keeps its points): ``{label: (omega, A_ii, B_ii)}`` at all the
-        frequencies it keeps, in and out of the range (:func:`range_cut_failures`).
+        The DOFs that keep frequencies outside the fitting range (cut where every
+        modelled DOF keeps its points), with their curves in and out of it
+        (:func:`range_cut_failures`); None when no DOF does.
     """
 
     ds: xr.Dataset
@@ -98,7 +115,7 @@ class FitInput:
     pairs: list[tuple[int, int]]
     negligible: list[tuple[int, int]]
     attrs: dict[str, Any] = field(default_factory=dict)
-    beyond_range: dict[str, tuple[NDArray, NDArray, NDArray]] = field(default_factory=dict)
+    beyond_range: BeyondRange | None = None
 
 
 def prepare_fit(ds: xr.Dataset, options: FitOptions) -> FitInput:
@@ -440,23 +457,20 @@ def _range_cut_notes(raw: xr.Dataset, keep_dof: NDArray, inside: NDArray) -> lis
     ]
 
 
-def _beyond_range(raw: xr.Dataset, keep_dof: NDArray, inside: NDArray) -> dict:
+def _beyond_range(raw: xr.Dataset, keep_dof: NDArray, inside: NDArray) -> BeyondRange | None:
     """:attr:`FitInput.beyond_range`: the diagonal curves of the DOFs that keep points
-    outside the fitting range, at the positive frequencies that no DOF's curves make
-    suspect (the frequencies the scoreboard judges a model on:
-    :func:`cummins.radiation.fit.scorecard.data_frequencies`)."""
-    w = raw.omega.values
-    cut = np.ones(w.size, dtype=bool)
+    outside the fitting range, at the frequencies the scoreboard judges a model on
+    (:func:`cummins.radiation.fit.scorecard.data_frequencies`)."""
+    cut = np.ones(raw.sizes["omega"], dtype=bool)
     cut[inside] = False
     lost = [d for d in range(keep_dof.shape[1]) if (cut & keep_dof[:, d]).any()]
     if not lost:
-        return {}
-    judged = (w > 0) & np.isfinite(w)
-    for s in find_suspect_frequencies(raw.isel(omega=np.flatnonzero(judged))):
-        judged &= ~np.isclose(w, s.omega, rtol=1e-12, atol=0.0)
+        return None
+    judged = data_frequencies(raw)
     a, b = dof_matrix(raw, "added_mass"), dof_matrix(raw, "radiation_damping")
     labels = raw.influenced_dof.values
-    return {str(labels[d]): (w[judged], a[judged, d, d], b[judged, d, d]) for d in lost}
+    curves = {str(labels[d]): (a[judged, d, d], b[judged, d, d]) for d in lost}
+    return BeyondRange(raw.omega.values[judged], curves)
 
 
 #: A DOF's R² over the frequencies beyond the fitting range may fall this far below the
@@ -472,17 +486,22 @@ def range_cut_failures(model: RadiationModel, inp: FitInput, r2: float) -> list[
     in and out of the range (the scoreboard's measure). One message
     naming them all, for ``attrs["failures"]`` (a model extrapolated where the data are
     sound is not a success), or none."""
+    beyond = inp.beyond_range
+    if beyond is None:
+        return []
+    w = beyond.omega
+    k = model.response(w)
+    a_inf = np.asarray(model.added_mass_inf, dtype=float)
     missed = []
-    for label, (w, a, b) in inp.beyond_range.items():
+    for label, (a, b) in beyond.curves.items():
         if label not in model.dofs:
             continue
         i = model.dofs.index(label)
-        k = model.response(w)[:, i, i]
-        if not np.any(k):
+        if not np.any(k[:, i, i]):
             continue
         scores = {
-            "A": r_squared(a, float(np.asarray(model.added_mass_inf)[i, i]) + k.imag / w),
-            "B": r_squared(b, k.real),
+            "A": r_squared(a, a_inf[i, i] + k[:, i, i].imag / w),
+            "B": r_squared(b, k[:, i, i].real),
         }
         worst = min(scores, key=lambda x: scores[x])
         if scores[worst] < r2 - RANGE_CUT_SLACK:
@@ -493,9 +512,8 @@ def range_cut_failures(model: RadiationModel, inp: FitInput, r2: float) -> list[
     return [
         f"fitted to {top:.4g} rad/s only (other DOFs' suspect points cut the range), the "
         f"model misses these DOFs' curves above it (R² over the data's frequencies "
-        f"up to {max(w.max() for w, _, _ in inp.beyond_range.values()):.4g} rad/s less the "
-        f"suspect ones, target {r2}): {', '.join(missed)}; choose omega_max, or check "
-        "the data (cummins check)"
+        f"up to {w.max():.4g} rad/s less the suspect ones, target {r2}): "
+        f"{', '.join(missed)}; choose omega_max, or check the data (cummins check)"
     ]
 
 
