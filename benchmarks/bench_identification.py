@@ -76,6 +76,12 @@ REFERENCES = {
 PREFERENCE = (".1", ".out", ".nc", ".h5", ".AH1", ".LIS", ".mat")
 
 
+ROOT = Path(__file__).resolve().parent.parent
+#: Cases of the test suite's own data: a two-body float and spar from Capytaine
+#: (tests/data/make_float_spar.py), the RM3-like wave-energy converter the corpus lacks.
+EXTRA = [ROOT / "tests" / "data" / "float_spar_capytaine.nc"]
+
+
 def corpus_cases(root: Path) -> list[Path]:
     """One readable file (or NEMOH folder) per corpus case folder."""
     out = []
@@ -174,12 +180,13 @@ def main(selection: str | None = None) -> None:
     corpus = SHARED_DATA / "corpus"
     if corpus.is_dir():
         cases += corpus_cases(corpus)
+    cases += EXTRA
     results = []
     skipped = []
     failed = []
     print(HEADER)
     for path in cases:
-        name = str(path.relative_to(SHARED_DATA))
+        name = str(path.relative_to(SHARED_DATA if path.is_relative_to(SHARED_DATA) else ROOT))
         if selection and selection not in name:
             continue
         try:

@@ -1,6 +1,7 @@
 """What the source left in the data: ``read_damage`` (damage the reader worked around),
 ``copied_dof`` (a DOF that is an exact scaled copy of another: strip-theory codes
-approximate surge by scaling sway) and ``suspect_frequencies`` (spikes and clearly
+approximate surge by scaling sway; equal surge and sway, roll and pitch of one body are
+an axisymmetric body's, and said to be fine) and ``suspect_frequencies`` (spikes and clearly
 negative damping, :func:`cummins.repair.find_suspect_frequencies`).
 """
 
@@ -11,6 +12,7 @@ import xarray as xr
 
 from cummins.check.common import _labels, _speed_suffix, _speeds
 from cummins.check.report import Finding
+from cummins.dofs import split_dof
 from cummins.repair import find_suspect_frequencies
 
 
@@ -51,6 +53,17 @@ def copied_dofs(ds: xr.Dataset) -> list[Finding]:
             ra = _constant_ratio(a[:, i], a[:, j])
             rb = _constant_ratio(b[:, i], b[:, j])
             if ra is None or rb is None:
+                continue
+            if _axisymmetric_pair(labels[i], labels[j], ra, rb):
+                out.append(
+                    Finding(
+                        "copied_dof",
+                        "ok",
+                        f"{labels[i]} and {labels[j]} are equal, as for a body symmetric "
+                        "about the vertical axis (a buoy, spar or cylinder)",
+                        where=f"{labels[i]}-{labels[j]}",
+                    )
+                )
                 continue
             out.append(
                 Finding(
@@ -99,6 +112,18 @@ def _check_suspect_frequencies(ds: xr.Dataset) -> list[Finding]:
             )
         )
     return out
+
+
+#: DOF pairs that are equal on a body symmetric about its vertical axis.
+AXISYMMETRIC_PAIRS = ({"Surge", "Sway"}, {"Roll", "Pitch"})
+
+
+def _axisymmetric_pair(one: str, two: str, ra: float, rb: float) -> bool:
+    """Surge and sway (roll and pitch) of one body with equal A and B: an axisymmetric
+    body, not a strip-theory copy (which scales sway by a factor other than 1)."""
+    (body_one, dof_one), (body_two, dof_two) = split_dof(one), split_dof(two)
+    same = body_one == body_two and {dof_one, dof_two} in AXISYMMETRIC_PAIRS
+    return same and abs(ra - 1.0) <= 1e-6 and abs(rb - 1.0) <= 1e-6
 
 
 def _constant_ratio(x: np.ndarray, y: np.ndarray) -> float | None:

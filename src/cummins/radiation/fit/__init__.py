@@ -7,7 +7,9 @@
    frequency) are left out of that DOF's couplings — each costs its own point, nothing
    above it — unless ``exclude_suspect`` is false; so is everything outside
    ``omega_min``…``omega_max``. What was left out is recorded. A pair with A_ij ≠ A_ji
-   (or B) beyond 10 % is named in a warning (:func:`asymmetric_pairs`).
+   (or B) beyond 10 % is named in a warning (:func:`asymmetric_pairs`); a difference
+   A_ij − A_ji constant over frequency (a panel mesh's) is kept in A∞
+   (:func:`antisymmetric_added_mass`).
 2. **Couplings**: the significant ones
 (:func:`cummins.radiation.retardation.significant_couplings`);
    negligible couplings (relative threshold) are left out and reported; a symmetric
@@ -68,6 +70,7 @@ from cummins.radiation.fit.couplings import fit_coupling, fit_per_coupling
 from cummins.radiation.fit.data import (
     FitData,
     FitInput,
+    antisymmetric_added_mass,
     asymmetric_pairs,
     fit_data,
     inconsistent_added_mass_inf,
@@ -120,6 +123,7 @@ __all__ = [
     "FitInput",
     "FitOptions",
     "FrequencyFit",
+    "antisymmetric_added_mass",
     "asymmetric_pairs",
     "failure_targets",
     "fit_blocks",

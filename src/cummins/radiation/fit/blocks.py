@@ -45,11 +45,14 @@ def fit_blocks(
     keep = keep_dof[positive]
     # A∞ of what no block models stays the data's row, else Ogilvie's estimate
     inf = prior[0].copy() if a_inf is None else 0.5 * (a_inf + a_inf.T)
+    antisymmetric = inp.constant_antisymmetry()
     k_data = None
     if sensitivity is not None:
         rows = sensitivity.compared_frequencies()
         wk = sensitivity.omega[rows]
-        k_data = measured.damping[rows] + 1j * wk[:, None, None] * measured.added_mass[rows]
+        k_data = measured.damping[rows] + 1j * wk[:, None, None] * (
+            measured.added_mass[rows] + antisymmetric
+        )
     motion_aim = MOTION_AIM * motion_tol if sensitivity is not None else None
     blocks, notes = [], []
     for dofs, elements in vector.block_groups(n, pairs):
@@ -77,6 +80,7 @@ def fit_blocks(
             for e, (i, j) in enumerate(block.elements):
                 ii, jj = dofs.index(i), dofs.index(j)
                 a_block[ii, jj] = a_block[jj, ii] = block.added_mass_inf[e]
+            a_block += antisymmetric[np.ix_(dofs, dofs)]
             k[:, np.asarray(dofs)[:, None], np.asarray(dofs)[None, :]] = (
                 local + 1j * wk[:, None, None] * a_block
             )
@@ -137,7 +141,7 @@ def fit_blocks(
     model = RadiationModel(
         tuple(labels),
         (),
-        inf,
+        inf + antisymmetric,
         {**attrs, "data_notes": [*attrs.get("data_notes", []), *notes]},
         tuple(blocks),
     )
