@@ -185,3 +185,22 @@ def test_float_and_spar_in_regular_waves_follow_the_data(float_spar):
         compared = peak > 1e-3 * peak.max()
         error = np.abs(got - expected)[compared] / peak[compared]
         assert error.max() < 0.02, (period, np.asarray(vessel.dofs)[compared][error.argmax()])
+
+
+def test_the_motion_floor_tells_the_data_from_the_fit():
+    """The tanker's sway–roll damping made non-reciprocal (×1.6 one way, ×0.4 the other:
+    the same symmetric part): the motions of the data's reciprocal part are now far from
+    the data's own (``motion_error_floor``, 27 % measured), the model is as far, and the
+    failure says the data limit it; the tanker as it is has a floor well below its error."""
+    ds = cummins.demo_dataset()
+    plain = _quiet_fit(ds)
+    assert plain.attrs["motion_error_floor"] < 0.5 * plain.attrs["motion_error"]
+    b = ds.radiation_damping.copy()
+    b.loc[{"influenced_dof": "Sway", "radiating_dof": "Roll"}] *= 1.6
+    b.loc[{"influenced_dof": "Roll", "radiating_dof": "Sway"}] *= 0.4
+    model = _quiet_fit(ds.assign(radiation_damping=b))
+    floor, error = model.attrs["motion_error_floor"], model.attrs["motion_error"]
+    assert floor > 0.1
+    assert floor == pytest.approx(error, rel=0.05)
+    failure = [f for f in model.attrs["failures"] if f.startswith("motion error")]
+    assert failure and "the data limit it" in failure[0]

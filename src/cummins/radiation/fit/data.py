@@ -207,6 +207,7 @@ def prepare_fit(ds: xr.Dataset, options: FitOptions) -> FitInput:
     pairs = significant_couplings(data, options.threshold)
     antisymmetric, kept = antisymmetric_added_mass(raw, keep_dof, modelled)
     data_notes += kept
+    measured = fit_data(data)
     n = len(labels)
     negligible = [(i, j) for i in range(n) for j in range(i, n) if (i, j) not in pairs]
     a_raw = dof_matrix(raw, "added_mass")
@@ -239,13 +240,15 @@ def prepare_fit(ds: xr.Dataset, options: FitOptions) -> FitInput:
         "omega_fit_min": float(w[0]),
         "omega_fit_max": float(w[-1]),
     }
+    if sensitivity is not None:
+        attrs["motion_error_floor"] = motion_error_floor(sensitivity, measured, antisymmetric)
     return FitInput(
         ds=ds,
         raw=raw,
         data=data,
         keep_dof=keep_dof,
         labels=labels,
-        measured=fit_data(data),
+        measured=measured,
         added_mass=0.5 * (a_raw + np.swapaxes(a_raw, 1, 2)),
         damping=0.5 * (b_raw + np.swapaxes(b_raw, 1, 2)),
         a_inf_mode=a_inf_mode,
@@ -265,6 +268,20 @@ def prepare_fit(ds: xr.Dataset, options: FitOptions) -> FitInput:
 #: A pair whose A_ij and A_ji (or B) differ by more than this fraction of the larger one
 #: (and of the diagonal scale √(X_ii X_jj)) is named: the fit uses their average.
 ASYMMETRY_TOL = 0.1
+
+
+def motion_error_floor(
+    sensitivity: MotionSensitivity, measured: FitData, antisymmetric: NDArray
+) -> float:
+    """The motion error of the data's own reciprocal part: what the model is fitted to
+    (½(A + Aᵀ), ½(B + Bᵀ) and the antisymmetry kept in A∞) put in the place of the model,
+    against the data's motions (:meth:`MotionSensitivity.error_of`). No reciprocal model
+    does better; a motion error far above it is the fit's, near it the data's (their
+    damping's asymmetry, or A_ij − A_ji that varies over frequency)."""
+    rows = sensitivity.compared_frequencies()
+    w = sensitivity.omega[rows][:, None, None]
+    k = measured.damping[rows] + 1j * w * (measured.added_mass[rows] + antisymmetric)
+    return sensitivity.error_of(k, np.zeros(antisymmetric.shape))[0]
 
 
 #: A pair's antisymmetric added mass ½(A_ij − A_ji) is kept in A∞ when its mean over the

@@ -79,7 +79,8 @@ def fit_failures(
     if motion_tol is not None and error is not None and error > MOTION_FAILURE * motion_tol:
         out.append(
             f"motion error {100 * error:.2f} % of the peak motion (target "
-            f"{100 * motion_tol:.2g} %, never above {100 * MOTION_FAILURE * motion_tol:.2g} %)"
+            f"{100 * motion_tol:.2g} %, never above {100 * MOTION_FAILURE * motion_tol:.2g} %;"
+            f" {_floor_clause(model)})"
         )
     return out
 
@@ -397,6 +398,23 @@ def refreshed_coupling(
     return replace(new, metrics=metrics, note="; ".join(filter(None, [new.note, change])))
 
 
+def _floor_clause(model: RadiationModel) -> str:
+    """What limits the motion error: the data (their reciprocal part alone is as far
+    from their motions, ``attrs["motion_error_floor"]``) or the fit."""
+    floor, error = model.attrs.get("motion_error_floor"), model.attrs.get("motion_error")
+    if floor is None or error is None:
+        return "the data's own consistency may limit it"
+    if floor >= 0.5 * error:
+        return (
+            f"the data limit it: their reciprocal part alone is {100 * floor:.2f} % off "
+            "their own motions (A_ij ≠ A_ji or B_ij ≠ B_ji: cummins check)"
+        )
+    return (
+        f"the data's reciprocal part alone is within {100 * floor:.2f} %; the rest is the "
+        "model's: its order, or a passivity the data lack (cummins check)"
+    )
+
+
 def with_motion_note(model: RadiationModel, motion_tol: float) -> RadiationModel:
     """The model with a data note when its motion error (``attrs["motion_error"]``) is
     above the target ``motion_tol``."""
@@ -405,7 +423,7 @@ def with_motion_note(model: RadiationModel, motion_tol: float) -> RadiationModel
         return model
     note = (
         f"motion error {100 * error:.2f} % of the peak motion, above the target "
-        f"{100 * motion_tol:.2g} % (the data's own consistency may limit it)"
+        f"{100 * motion_tol:.2g} % ({_floor_clause(model)})"
     )
     notes = [*model.attrs.get("data_notes", []), note]
     return replace(model, attrs={**model.attrs, "data_notes": notes})

@@ -68,8 +68,10 @@ TAIL_FACTORS = np.geomspace(1.3, 30.0, 8)
 TAIL_WEIGHT = 0.3
 #: Passivity: a violation is λ_min(Re K) < −VIOLATION · max ‖K‖ on the check grid.
 VIOLATION = 1e-8
-#: Passivity: each linearised constraint asks for λ ≥ MARGIN × the largest |λ| there.
-MARGIN = 1e-5
+#: Passivity: each linearised constraint asks for λ ≥ MARGIN × the largest |λ| there, an
+#: overshoot so that the next sweep does not find the band violated again (1e-5 took
+#: 2.5× the iterations: 203 against 79 on the NEMOH Cubes, same orders and RAO errors).
+MARGIN = 1e-3
 #: Passivity enforcement iterations.
 PASSIVITY_ITERATIONS = 120
 #: The passivity programme keeps every constraint until it has PRUNE_ROWS times as many
