@@ -6,27 +6,28 @@ own flags: R² of A and B from K̂(jω) (``diagonal_r2``), passivity by a dense 
 ``Vessel.response``. Each case is fitted once (module-scoped fixture). Timings are in
 ``benchmarks/bench_identification.py``, not here.
 
-Measured on this machine (2026-12-02), default fit (common poles per block), RAO error
-with 2 % of critical damping; identical orders and values to four digits with 1 and 2
-BLAS threads and under OpenBLAS's Sandybridge kernel:
+Measured on this machine (2026-12-02, third session), default fit (common poles per
+block), RAO error with 2 % of critical damping; identical orders and values to four
+digits with 1 and 2 BLAS threads and under OpenBLAS's Sandybridge kernel (the
+two-body float and spar from Capytaine: tests/test_fit_reciprocity.py):
 
 ==========================  =====  =======  =======  ========  ================
 case                        order  R² A     R² B     RAO err.  common poles
 ==========================  =====  =======  =======  ========  ================
-MSS tanker (WAMIT)          42     0.9948   0.9960   0.55 %    7, 7
+MSS tanker (WAMIT)          42     0.9948   0.9959   0.54 %    7, 7
 MSS supply (ShipX)          44     0.9965   0.9937   0.30 %    5, 7, 9
-MSS S-175 (U = 0)           41     0.9933   0.9913   0.61 %    4, 7, 8
+MSS S-175 (U = 0)           41     0.9933   0.9914   0.61 %    4, 7, 8
 WEC-Sim cylinder (NEMOH)    24     0.9919   0.9916   0.26 %    6, 4, 4
-WEC-Sim sphere (Capytaine)  22     0.9958   0.9931   0.61 %    4, 4, 6
-AQWA floating OWC (12 DOF)  28     0.9887   0.9940   0.36 %    4, 4, 6
-NEMOH OC3 Hywind spar       23     0.9916   0.9910   0.12 %    5, 4, 5
+WEC-Sim sphere (Capytaine)  22     0.9958   0.9931   0.66 %    4, 4, 6
+AQWA floating OWC (12 DOF)  30     0.9935   0.9942   0.33 %    4, 4, 7
+NEMOH OC3 Hywind spar       23     0.9916   0.9908   0.14 %    5, 4, 5
 WAMIT barge, 4 beam modes   90     0.9953   0.9942   0.55 %    9, 4, 14, 4
-WAMIT sphere (mean drift)   46     0.9877   0.9928   0.77 %    8, 7, 5, 11
-Capytaine COER (tank)       70     0.9952   0.9769   0.76 %    20, 10, 6, 4
-AQWA PEND hull (tank)       55     0.9946   0.9905   1.69 %    14, 12, 3
+WAMIT sphere (mean drift)   46     0.9878   0.9928   0.77 %    8, 7, 5, 11
+Capytaine COER (tank)       70     0.9952   0.9769   0.77 %    20, 10, 6, 4
+AQWA PEND hull (tank)       51     0.9946   0.9900   1.72 %    12, 12, 3
 ==========================  =====  =======  =======  ========  ================
 
-Two figures are set by the data, not the fit: the PEND hull's 1.69 % is at 11.07 rad/s,
+Two figures are set by the data, not the fit: the PEND hull's 1.72 % is at 11.07 rad/s,
 one of its irregular frequencies (heave damping spikes at 10.7–11.3 rad/s, left out of
 the fit, kept by the scorecard's comparison; on the fitted frequencies the motion error
 is 0.38 %), and COER's pitch R² of B 0.9769 comes from irregular-frequency spikes at
