@@ -204,3 +204,17 @@ def test_the_motion_floor_tells_the_data_from_the_fit():
     assert floor == pytest.approx(error, rel=0.05)
     failure = [f for f in model.attrs["failures"] if f.startswith("motion error")]
     assert failure and "the data limit it" in failure[0]
+
+
+def test_the_command_line_prints_the_notes_with_their_brackets(tmp_path):
+    """``cummins fit`` on the float and spar: the notes keep A[i, j] (rich markup would
+    eat the brackets), the model is written and the exit status is 0 (no failure)."""
+    from click.testing import CliRunner
+
+    from cummins.cli import main
+
+    output = tmp_path / "float_spar_model.nc"
+    result = CliRunner().invoke(main, ["fit", str(FLOAT_SPAR), "-o", str(output)])
+    assert result.exit_code == 0, result.output
+    assert "A[body2__Surge, body2__Pitch] − A[body2__Pitch, body2__Surge]" in result.output
+    assert output.exists()

@@ -8,6 +8,7 @@ import time
 from pathlib import Path
 
 import click
+from rich.markup import escape
 from rich.progress import BarColumn, Progress, TextColumn, TimeElapsedColumn
 from rich.table import Table
 
@@ -244,14 +245,14 @@ def fit_command(
     elapsed = time.perf_counter() - start
     console.print(fit_table(model))
     for line in fit_notes(model):
-        console.print(line, highlight=False)
+        console.print(escape(line), highlight=False)
     summary = fit_summary(model, elapsed)
     console.print(
         f"total order {summary['total_order']}, every model stable: {summary['mimo_stable']}, "
         f"MIMO passive: {summary['mimo_passive']}, {elapsed:.2f} s"
     )
     for note in model.attrs.get("data_notes", []):
-        console.print(f"[yellow]data:[/yellow] {note}")
+        console.print(f"[yellow]data:[/yellow] {escape(note)}")
     negligible = [c for c in model.attrs.get("negligible_couplings", []) if "-" in c]
     if negligible:
         console.print(
@@ -280,7 +281,7 @@ def fit_command(
             console.print(f"wrote {file}")
     failures = model.attrs.get("failures", [])
     for failure in failures:
-        console.print(f"[bold red]failure:[/bold red] {failure}", highlight=False)
+        console.print(f"[bold red]failure:[/bold red] {escape(failure)}", highlight=False)
     if failures:
         sys.exit(FIT_FAILED)
 

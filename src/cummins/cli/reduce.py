@@ -8,6 +8,7 @@ from pathlib import Path
 
 import click
 import numpy as np
+from rich.markup import escape
 from rich.table import Table
 
 from cummins.cli.common import (
@@ -139,7 +140,7 @@ def reduce_command(
         f for f in reduced.attrs.get("failures", []) if f not in model.attrs.get("failures", [])
     ]
     for failure in failures:
-        console.print(f"[bold red]failure:[/bold red] {failure}", highlight=False)
+        console.print(f"[bold red]failure:[/bold red] {escape(failure)}", highlight=False)
     if failures:
         sys.exit(REDUCE_FAILED)
 
