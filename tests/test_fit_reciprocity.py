@@ -218,3 +218,13 @@ def test_the_command_line_prints_the_notes_with_their_brackets(tmp_path):
     assert result.exit_code == 0, result.output
     assert "A[body2__Surge, body2__Pitch] − A[body2__Pitch, body2__Surge]" in result.output
     assert output.exists()
+
+
+def test_the_per_coupling_fit_keeps_a_symmetric_added_mass_inf(tanker_offset):
+    """``method="fd"`` compares every coupling with the symmetric data and A∞: it keeps
+    A∞ symmetric (the antisymmetric part is the common-pole fit's)."""
+    _, ds, _ = tanker_offset
+    inp = prepare_fit(ds, DEFAULT.with_changes(method="fd").checked())
+    assert np.all(inp.antisymmetric_added_mass == 0.0)
+    model = _quiet_fit(ds, method="fd")
+    assert np.array_equal(model.added_mass_inf, model.added_mass_inf.T)

@@ -106,7 +106,7 @@ def fit_per_coupling(
         out = RadiationModel(
             tuple(labels),
             symmetric_couplings(list(models.values())),
-            a_inf + inp.constant_antisymmetry(),
+            a_inf.copy(),
             inp.attrs,
         )
         if options.passivity == "mimo":

@@ -205,7 +205,11 @@ def prepare_fit(ds: xr.Dataset, options: FitOptions) -> FitInput:
                 hint="use weighting='uniform' or data with the rigid-body inertia and restoring",
             )
     pairs = significant_couplings(data, options.threshold)
-    antisymmetric, kept = antisymmetric_added_mass(raw, keep_dof, modelled)
+    antisymmetric, kept = np.zeros((len(labels), len(labels))), []
+    if method == "vf" and float(ds.coords.get("forward_speed", 0.0)) == 0.0:
+        # at speed A_ij ≠ A_ji is physical; the per-coupling fit compares every
+        # coupling with the symmetric data and its A∞ (it keeps A∞ symmetric)
+        antisymmetric, kept = antisymmetric_added_mass(raw, keep_dof, modelled)
     data_notes += kept
     measured = fit_data(data)
     n = len(labels)
@@ -275,9 +279,10 @@ def motion_error_floor(
 ) -> float:
     """The motion error of the data's own reciprocal part: what the model is fitted to
     (½(A + Aᵀ), ½(B + Bᵀ) and the antisymmetry kept in A∞) put in the place of the model,
-    against the data's motions (:meth:`MotionSensitivity.error_of`). No reciprocal model
-    does better; a motion error far above it is the fit's, near it the data's (their
-    damping's asymmetry, or A_ij − A_ji that varies over frequency)."""
+    against the data's motions (:meth:`MotionSensitivity.error_of`): an estimate of what
+    the data's averaged matrices alone give. A motion error far above it is the fit's,
+    near it the data's (their damping's asymmetry, or A_ij − A_ji that varies over
+    frequency)."""
     rows = sensitivity.compared_frequencies()
     w = sensitivity.omega[rows][:, None, None]
     k = measured.damping[rows] + 1j * w * (measured.added_mass[rows] + antisymmetric)
@@ -286,7 +291,8 @@ def motion_error_floor(
 
 #: A pair's antisymmetric added mass ½(A_ij − A_ji) is kept in A∞ when its mean over the
 #: frequencies the pair keeps is between ANTISYMMETRY_MIN and ANTISYMMETRY_MAX of
-#: √(max|A_ii| max|A_jj|) and it departs from that mean by at most
+#: √(max|A_ii| max|A_jj|) (the notes print the whole difference A_ij − A_ji, twice it)
+#: and it departs from that mean by at most
 #: ANTISYMMETRY_CONSTANT of the mean: constant over frequency and a few per cent, what a
 #: solver's mesh gives (the RM3-like float and spar: 0.5–1.1 %, constant to 2–6 % of
 #: itself). A sign or DOF-order mix-up is not constant; a larger difference is data
@@ -303,16 +309,18 @@ def antisymmetric_added_mass(
     """The part of A_ij ≠ A_ji that the model keeps in A∞, and a note per pair.
 
     At zero speed the added mass is symmetric (reciprocity: Newman (1977) ch. 6); panel
-    methods return A_ij ≠ A_ji by a few per cent on coarse meshes, most between bodies
-    (Capytaine's direct and indirect methods on an RM3-like float and spar: the spar's
-    couplings 1.7 % of √(A_ii A_jj) apart, constant to 0.3 % over 0.1–3.5 rad/s). The
+    methods return A_ij ≠ A_ji by a few per cent on coarse meshes (Capytaine's direct
+    method on an RM3-like float and spar: the spar's surge–pitch and pitch–surge added
+    mass 2.2 % of √(A_ii A_jj) apart, constant to 6 % of that over 0.1–3.5 rad/s). The
     memory K(s) is fitted to the average ½(A_ij + A_ji): an antisymmetric
     jω(A_ij − A_ji) in K(jω) cannot be passive as ω → 0, where K + Kᴴ is dominated by it.
     A difference that is *constant over frequency* is kept in A∞ instead (antisymmetric,
     ½(A_ij − A_ji) above and its negative below the diagonal), where it changes nothing
     of the memory and the model's motions follow the data's: on that float and spar the
     spar's pitch at its lightly damped resonance (0.25 rad/s) was 8 % off the data's
-    RAO with the average alone, 0.65 % with the difference in A∞.
+    RAO with the average alone, 0.50 % with the difference in A∞. Only the
+    common-pole identification (``method="vf"``) at zero speed keeps it (at forward speed
+    A_ij ≠ A_ji is physical).
 
     Parameters
     ----------

@@ -246,6 +246,7 @@ def speed_dependent_model(
     n = len(labels)
     e = speed_coupling_matrix(labels)
     a_inf = model.added_mass_inf
+    a_inf = 0.5 * (a_inf + a_inf.T)  # an antisymmetric A∞ part is not a speed term
     damping_inf = a_inf @ e - e.T @ a_inf
     restoring = np.zeros((2, n, n))
     restoring[1] = -(e.T @ a_inf @ e)
