@@ -45,7 +45,7 @@ def fit_blocks(
     keep = keep_dof[positive]
     # A∞ of what no block models stays the data's row, else Ogilvie's estimate
     inf = prior[0].copy() if a_inf is None else 0.5 * (a_inf + a_inf.T)
-    antisymmetric = inp.constant_antisymmetry()
+    antisymmetric = inp.antisymmetric_added_mass
     k_data = None
     if sensitivity is not None:
         rows = sensitivity.compared_frequencies()

@@ -104,10 +104,7 @@ def fit_per_coupling(
 
     def assemble(last_resort: bool = False) -> RadiationModel:
         out = RadiationModel(
-            tuple(labels),
-            symmetric_couplings(list(models.values())),
-            a_inf.copy(),
-            inp.attrs,
+            tuple(labels), symmetric_couplings(list(models.values())), a_inf.copy(), inp.attrs
         )
         if options.passivity == "mimo":
             say("MIMO passivity")

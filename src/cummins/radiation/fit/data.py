@@ -93,16 +93,16 @@ class FitInput:
         The motion sensitivity (``weighting="motion"``), else None.
     pairs, negligible
         The significant couplings (i ≤ j) and the rest.
+    antisymmetric_added_mass
+        (n, n) antisymmetric part of the data's added mass that is constant over the
+        fitted frequencies, which the model's A∞ keeps (:func:`antisymmetric_added_mass`);
+        zero for reciprocal data.
     attrs
         The provenance the model will carry (source, options, what was left out, notes).
     beyond_range
         The DOFs that keep frequencies outside the fitting range (cut where every
         modelled DOF keeps its points), with their curves in and out of it
         (:func:`range_cut_failures`); None when no DOF does.
-    antisymmetric_added_mass
-        (n, n) antisymmetric part of the data's added mass that is constant over the
-        fitted frequencies, which the model's A∞ keeps (:func:`antisymmetric_added_mass`);
-        zero for reciprocal data.
     """
 
     ds: xr.Dataset
@@ -121,15 +121,9 @@ class FitInput:
     sensitivity: MotionSensitivity | None
     pairs: list[tuple[int, int]]
     negligible: list[tuple[int, int]]
+    antisymmetric_added_mass: NDArray[np.float64]
     attrs: dict[str, Any] = field(default_factory=dict)
     beyond_range: BeyondRange | None = None
-    antisymmetric_added_mass: NDArray[np.float64] | None = None
-
-    def constant_antisymmetry(self) -> NDArray[np.float64]:
-        """:attr:`antisymmetric_added_mass`, zeros when None."""
-        if self.antisymmetric_added_mass is None:
-            return np.zeros((len(self.labels), len(self.labels)))
-        return self.antisymmetric_added_mass
 
 
 def prepare_fit(ds: xr.Dataset, options: FitOptions) -> FitInput:
