@@ -14,6 +14,11 @@
    (about 200 states), reduced by Lyapunov BT as a MIMO model (which mixes the
    couplings), and coupling by coupling by :func:`cummins.radiation.reduce.reduce_radiation_model`
    to the default FD fit's total order.
+4. The default (common-pole) models of the tanker, the float and spar and a corpus WEC
+   reduced block by block (``tol`` 0.02 and 0.01), against the reference measured in the
+   same run: the same fit with fewer common poles (``max_order``, the largest whose total
+   order is at most the reduction's). Printed: states, time, motion-RAO error (the
+   scoreboard's), passivity by the independent sweep.
 
 Run: ``python benchmarks/bench_reduce.py``.
 """
@@ -24,6 +29,8 @@ import os
 
 os.environ.setdefault("OPENBLAS_NUM_THREADS", "1")
 
+
+from pathlib import Path
 
 import numpy as np
 import scipy.linalg
@@ -188,10 +195,67 @@ def tanker_benchmark() -> None:
         )
 
 
+BLOCK_CASES = (
+    ("tanker", SHARED_DATA / "mss" / "tanker" / "tanker.1"),
+    ("float and spar", Path(__file__).resolve().parents[1] / "tests" / "data"
+     / "float_spar_capytaine.nc"),
+)  # fmt: skip
+
+
+def blocks_benchmark() -> None:
+    """Block reduction of the default model against a refit with fewer common poles."""
+    import warnings
+
+    from cummins.radiation.fit.scorecard import motion_rao_error, passivity_margin
+
+    print("default (common-pole) models reduced block by block, against a refit with fewer poles")
+    print(
+        f"   {'case':<16} {'model':<22} {'states':>6} {'time [s]':>9} {'RAO err':>8} {'passive':>8}"
+    )
+
+    def row(case, what, model, seconds, ds):
+        rao = motion_rao_error(ds, model).error
+        passive = passivity_margin(model) >= -1e-6
+        print(
+            f"   {case:<16} {what:<22} {model.total_order:6d} {seconds:9.2f} "
+            f"{100 * rao:7.2f}% {'yes' if passive else 'NO':>8}"
+        )
+
+    for case, path in BLOCK_CASES:
+        if not path.exists():
+            print(f"   {case}: {path} not found, skipped")
+            continue
+        with warnings.catch_warnings():
+            warnings.simplefilter("ignore")
+            ds = cummins.read(path)
+            t_fit, model = timed(lambda ds=ds: fit_radiation(ds), repeat=1)
+            row(case, "default fit", model, t_fit, ds)
+            reduced = {}
+            for tol in (0.02, 0.01):
+                reduced[tol] = timed(
+                    lambda m=model, ds=ds, tol=tol: reduce_radiation_model(m, tol=tol, data=ds),
+                    repeat=1,
+                )
+            refits = []  # (poles, time, model) while the order stays below both reductions
+            largest = max(small.total_order for _, small in reduced.values())
+            for count in range(2, 40):
+                t_try, trial = timed(lambda ds=ds, c=count: fit_radiation(ds, max_order=c), 1)
+                if trial.total_order > largest:
+                    break
+                refits.append((count, t_try, trial))
+            for tol, (t_red, small) in reduced.items():
+                row(case, f"reduced, tol {tol:g}", small, t_red, ds)
+                fitting = [x for x in refits if x[2].total_order <= small.total_order]
+                if fitting:
+                    count, t_refit, refit = fitting[-1]
+                    row(case, f"refit, ≤ {count} poles", refit, t_refit, ds)
+
+
 def main() -> None:
     random_model_benchmark()
     non_minimal_benchmark()
     tanker_benchmark()
+    blocks_benchmark()
 
 
 if __name__ == "__main__":

@@ -313,6 +313,31 @@ def test_reduce_command(runner, tanker_copy, tmp_path):
     assert again.exit_code == 2 and "refusing to overwrite" in again.output
 
 
+def test_reduce_command_on_a_default_model(runner, tanker_copy, tmp_path):
+    """The default fit (common-pole blocks) reduced by --tol and by --order: fewer states,
+    every block passive and stable, the same blocks; the table lists every pair."""
+    fitted, small, summary_path = tmp_path / "m.nc", tmp_path / "s.nc", tmp_path / "s.json"
+    assert runner.invoke(main, ["fit", str(tanker_copy), "-o", str(fitted)]).exit_code in (0, 3)
+    model = cummins.radiation.model.RadiationModel.load(fitted)
+    assert model.blocks
+    args = ["reduce", str(fitted), "-o", str(small), "--tol", "0.02", "--json", str(summary_path)]
+    result = runner.invoke(main, args)
+    assert result.exit_code == 0, result.output
+    assert "R² against the unreduced model" in result.output and "Heave-Pitch" in result.output
+    reduced = cummins.radiation.model.RadiationModel.load(small)
+    summary = json.loads(summary_path.read_text())
+    assert summary["total_order"] == reduced.total_order < model.total_order
+    assert summary["mimo_passive"] and summary["mimo_stable"]
+    assert [b.dofs for b in reduced.blocks] == [b.dofs for b in model.blocks]
+    assert cummins.radiation.passivity.passivity_test(reduced).passive
+    by_order = tmp_path / "o.nc"
+    args = ["reduce", str(fitted), "-o", str(by_order), "--order", "30", "--data", str(tanker_copy)]
+    result = runner.invoke(main, args)
+    assert result.exit_code == 0, result.output
+    assert "R² against the data" in result.output
+    assert cummins.radiation.model.RadiationModel.load(by_order).total_order <= 32
+
+
 def test_simulate_command(runner, tanker_copy, tmp_path):
     """Irregular and regular seas from the command line: run.nc holds motion, velocity
     (time, dof) and the wave elevation; the regular run's heave amplitude is the

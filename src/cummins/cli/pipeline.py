@@ -176,7 +176,8 @@ def model_as_data(model, points: int = 200):
     )
     t_end = 5.0 / max(float(np.abs(poles.real).min()), 1e-6)
     t = np.linspace(0.0, min(t_end, 100 * 2 * np.pi / w[0]), 500)
-    a = model.added_mass_inf[None, :, :] + k.imag / w[:, None, None]
+    inf = 0.5 * (model.added_mass_inf + model.added_mass_inf.T)  # as fit_data's symmetric A
+    a = inf[None, :, :] + k.imag / w[:, None, None]
     return FitData(w, a, k.real, t, model.impulse_response(t).values)
 
 
@@ -191,7 +192,10 @@ def reduce_stage(
 ):
     """Reduce a radiation model and, by default, make the result passive as a MIMO model.
 
-    The reduced model is measured against the data of the fit when ``data`` is given,
+    A model of common-pole blocks (the default fit) comes out of the reduction passive,
+    block by block, or with a failure (:func:`cummins.radiation.reduce.reduce_radiation_model`);
+    ``passive`` applies to per-coupling models. The reduced model is measured against the
+    data of the fit when ``data`` is given,
     else against the unreduced model (:func:`model_as_data`); the passivity correction
     minimises the change against the same reference (:func:`cummins.radiation.passivity.
     enforce_passivity`) and each coupling it changed gets its R² before and after in its
@@ -205,6 +209,9 @@ def reduce_stage(
 
     reduced = reduce_radiation_model(model, order=order, tol=tol, method=method, data=data)
     reference = model_fit_data(model, data) if data is not None else model_as_data(model)
+    if reduced.blocks:  # common-pole blocks are made passive by their reduction
+        attrs = {**reduced.attrs, "mimo_passive": is_passive(reduced)}
+        return replace(reduced, attrs=attrs), None, reference
     if not passive:
         return reduced, None, reference
     # measures of fit against the reference, for the weighting of the correction

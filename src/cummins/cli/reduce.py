@@ -38,14 +38,16 @@ from cummins.cli.common import (
     type=click.IntRange(min=1),
     default=None,
     help="Total number of states of the reduced MIMO model (a symmetric pair counts "
-    "twice), allocated over the couplings so that the worst fit is the best possible.",
+    "twice), allocated over the couplings (or common-pole blocks) so that the worst fit is "
+    "the best possible.",
 )
 @click.option(
     "--tol",
     type=Number(0.0, 1.0, min_open=True),
     default=None,
     help="Instead of --order: per coupling, the smallest order whose relative H-infinity "
-    "error (Glover's bound for lyapunov) is at most TOL.",
+    "error (Glover's bound for lyapunov) is at most TOL; per common-pole block, the "
+    "smallest passive truncation whose measured change (DOFs scaled alike) is at most TOL.",
 )
 @click.option(
     "--method",
@@ -69,7 +71,8 @@ from cummins.cli.common import (
     "--passive/--no-passive",
     default=True,
     show_default=True,
-    help="Make the reduced MIMO model passive (smallest weighted change of the residues).",
+    help="Make the reduced MIMO model passive (smallest weighted change of the residues; "
+    "a model of common-pole blocks is always made passive by its reduction).",
 )
 @click.option(
     "--json",
@@ -96,19 +99,23 @@ def reduce_command(
     json_path,
     force,
 ):
-    """Reduce the order of a radiation model by balanced truncation, coupling by coupling.
+    """Reduce the order of a radiation model by balanced truncation.
 
     \b
-    MODEL is a model file written by `cummins fit`. Each coupling K_ij is truncated in
-    its balanced coordinates (the added mass A = A-inf + Im K/w is weighted at low
-    frequency so it is kept), the zero K(0) = 0 is restored, symmetric pairs stay
-    symmetric, and the MIMO model is then made passive again. The table compares every
-    coupling with the data (--data) or with the unreduced model.
+    MODEL is a model file written by `cummins fit`. A per-coupling model (fit --method
+    fd or realization): each coupling K_ij is truncated in its balanced coordinates (the
+    added mass A = A-inf + Im K/w is weighted at low frequency so it is kept), the zero
+    K(0) = 0 is restored, symmetric pairs stay symmetric, and the MIMO model is then
+    made passive again. A default model (common-pole blocks): each block is truncated
+    as one MIMO model, then K(0) = 0 and passivity are restored in its own states; where
+    that would ruin a truncation, more states are kept (said in the model's notes). The
+    table compares every coupling with the data (--data) or with the unreduced model.
 
     \b
     Examples:
       cummins reduce tanker_era.nc -o tanker_small.nc --order 54
       cummins reduce tanker_era.nc -o small.nc --tol 0.02 --method mixed --data tanker.1
+      cummins reduce tanker_model.nc -o tanker_small.nc --tol 0.02 --data tanker.1
     """
     from cummins.cli.pipeline import reduce_stage
     from cummins.radiation.model import RadiationModel
@@ -154,9 +161,9 @@ def reduction_summary(model, reduced, corrected, reference) -> dict:
     """The ``--json`` summary: orders before and after, R² against the reference."""
     from cummins.radiation.passivity import is_passive
 
-    before = {(k.influenced, k.radiating): k.order for k in model.couplings}
+    before = {(k.influenced, k.radiating): k.order for k in model.modelled}
     couplings = []
-    for k in reduced.couplings:
+    for k in reduced.modelled:
         r2a, r2b = _r2(k, reduced, reference)
         couplings.append(
             {
@@ -191,7 +198,7 @@ def _r2(k, model, reference) -> tuple[float, float]:
         reference.omega,
         reference.added_mass[:, i, j],
         reference.damping[:, i, j],
-        float(model.added_mass_inf[i, j]),
+        0.5 * float(model.added_mass_inf[i, j] + model.added_mass_inf[j, i]),  # symmetric data
     )
     return float(m["r2_added_mass"]), float(m["r2_damping"])
 
@@ -204,9 +211,9 @@ def reduction_table(model, reduced, reference, against: str) -> Table:
     )
     for column in ("coupling", "order", "R² A", "R² B", "bound/max|K|", "passive"):
         table.add_column(column, justify="right")
-    before = {(k.influenced, k.radiating): k.order for k in model.couplings}
+    before = {(k.influenced, k.radiating): k.order for k in model.modelled}
     w = reference.omega
-    for k in reduced.couplings:
+    for k in reduced.modelled:
         if k.influenced > k.radiating:
             continue
         i, j = k.influenced, k.radiating

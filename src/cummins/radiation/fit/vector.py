@@ -488,7 +488,7 @@ def passivity_violations(
     eigenvalue: g the linear form giving each element of Re K there from its
     coefficients, w = S v (v the eigenvector: wᵀ Re K w = λ) and the largest |λ| there;
     and S."""
-    from cummins.radiation.passivity import imaginary_axis_zeros, midpoint
+    from cummins.radiation.passivity import band_points
 
     grid = np.geomspace(omega_min / CHECK_SPAN, omega_max * CHECK_SPAN, CHECK_POINTS)
     k_grid = block.response(grid).real
@@ -496,17 +496,8 @@ def passivity_violations(
     dof_scale = np.where(peak > 0, 1.0 / np.sqrt(np.where(peak > 0, peak, 1.0)), 0.0)
     a, b, c = block.realization(rank_tol=0.0)
     b, c = b * dof_scale[None, :], dof_scale[:, None] * c  # S K S: well conditioned
-    crossings = imaginary_axis_zeros(a, b, c) if a.size else np.zeros(0)
-    edges = np.unique(np.r_[0.0, crossings, np.inf])
     # every point once: the grid, five inside each band between crossings, its midpoint
-    extra = [midpoint(lo, hi, grid) for lo, hi in itertools.pairwise(edges)]
-    extra += [
-        x
-        for lo, hi in itertools.pairwise(edges)
-        if lo > 0 and np.isfinite(hi)
-        for x in np.geomspace(lo, hi, 7)[1:-1]
-    ]
-    extra = np.setdiff1d(np.asarray(extra, dtype=float), grid)
+    edges, extra = band_points(a, b, c, grid)
     points = np.r_[grid, extra]
     order = np.argsort(points)
     points = points[order]

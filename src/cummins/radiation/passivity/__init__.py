@@ -30,6 +30,7 @@ from cummins.radiation.passivity.check import SAME_CROSSING as SAME_CROSSING
 from cummins.radiation.passivity.check import PassivityReport as PassivityReport
 from cummins.radiation.passivity.check import PassivitySweep as PassivitySweep
 from cummins.radiation.passivity.check import ViolationBand as ViolationBand
+from cummins.radiation.passivity.check import band_points as band_points
 from cummins.radiation.passivity.check import default_sweep as default_sweep
 from cummins.radiation.passivity.check import dof_scaling as dof_scaling
 from cummins.radiation.passivity.check import imaginary_axis_zeros as imaginary_axis_zeros

@@ -315,6 +315,24 @@ def midpoint(lo: float, hi: float, sweep: NDArray) -> float:
     return float(np.sqrt(lo * hi))
 
 
+def band_points(
+    a: NDArray, b: NDArray, c: NDArray, grid: NDArray
+) -> tuple[NDArray[np.float64], NDArray[np.float64]]:
+    """The crossings of K(s) = C(sI − A)⁻¹B (:func:`imaginary_axis_zeros`) as band edges
+    (0 and ∞ included), and the frequencies to test besides ``grid``: each band's
+    midpoint and five points across each finite band, those not already in ``grid``."""
+    crossings = imaginary_axis_zeros(a, b, c) if np.size(a) else np.zeros(0)
+    edges = np.unique(np.r_[0.0, crossings, np.inf])
+    extra = [midpoint(lo, hi, grid) for lo, hi in itertools.pairwise(edges)]
+    extra += [
+        x
+        for lo, hi in itertools.pairwise(edges)
+        if lo > 0 and np.isfinite(hi)
+        for x in np.geomspace(lo, hi, 7)[1:-1]
+    ]
+    return edges, np.setdiff1d(np.asarray(extra, dtype=float), grid)
+
+
 def _refine_minimum(lam_min, lo: float, hi: float, w0: float, v0: float) -> tuple[float, float]:
     """The minimum of λ_min(ω) in (lo, hi) near w0, searched on log ω: over the band, and
     polished within ±1 % of the best point (a band-wide bounded search can stop

@@ -42,6 +42,10 @@ The package, one concept a module, each importing only those above it:
 * :mod:`~cummins.radiation.reduce.balancing`: the square-root balancing, low-frequency
   weighting, order selection and :func:`balanced_truncation`;
 * :mod:`~cummins.radiation.reduce.candidates`: the truncations of one radiation coupling;
+* :mod:`~cummins.radiation.reduce.modal`: a symmetric MIMO memory model in modal form with
+  rank-limited residues (the parameters of the corrections of a block);
+* :mod:`~cummins.radiation.reduce.blocks`: the truncations of one common-pole block, with
+  K(0) = 0 and passivity restored in the truncated states;
 * :mod:`~cummins.radiation.reduce.orders`: the order of every coupling (total order,
   mapping or tolerance);
 * :mod:`~cummins.radiation.reduce.radiation_model`: :func:`reduce_radiation_model` and
@@ -52,8 +56,9 @@ Radiation models
 :func:`reduce_radiation_model` reduces a :class:`~cummins.radiation.model.RadiationModel`
 coupling by coupling (each K_ij is a SISO model), so that the block structure, the
 file formats and the symmetry K_ij = K_ji are kept: a symmetric pair is reduced once
-and used twice. See its docstring for the allocation of a total order over the
-couplings and for what is recorded.
+and used twice; a model of common-pole blocks (the default fit) is reduced block by
+block. See its docstring for the allocation of a total order over the couplings and for
+what is recorded.
 """
 
 # Every name of the module before the split stays importable from here.

@@ -51,8 +51,9 @@ def _allocate(
     error of a truncation is not monotone in its order). The states left over go, one
     step at a time, where they lower the error most, preferring steps that keep every
     error within the minimax value (a truncation can be worse with one state more; such
-    a step is taken only when no other is left), so that the total is ``total`` unless
-    only a symmetric pair could take the last state.
+    a step is taken only when no other is left; an order without a truncation is stepped
+    over), so that the total is ``total`` unless only a symmetric pair could take the last
+    state.
     """
     if not units:
         return []
@@ -82,16 +83,18 @@ def _allocate(
     worst = max(_error(t, r, n) for t, r, n in zip(tables, orders, fulls, strict=True))
     budget = total - sum(c * r for c, r in zip(costs, orders, strict=True))
     while budget > 0:
-        steps = [
-            (_error(t, r + 1, n) > worst, _error(t, r + 1, n) - _error(t, r, n), index)
-            for index, (t, r, n, c) in enumerate(zip(tables, orders, fulls, costs, strict=True))
-            if r < n and c <= budget and not math.isinf(_error(t, r + 1, n))
-        ]
+        steps = []
+        for index, (t, r, n, c) in enumerate(zip(tables, orders, fulls, costs, strict=True)):
+            # the next order with a truncation (one may have none: unstable, or a
+            # common-pole block's order between two that split a pair)
+            q = next((q for q in range(r + 1, n + 1) if not math.isinf(_error(t, q, n))), None)
+            if q is not None and c * (q - r) <= budget:
+                steps.append((_error(t, q, n) > worst, _error(t, q, n) - _error(t, r, n), index, q))
         if not steps:
             break
-        index = min(steps)[2]
-        orders[index] += 1
-        budget -= costs[index]
+        _, _, index, q = min(steps)
+        budget -= costs[index] * (q - orders[index])
+        orders[index] = q
         worst = max(worst, _error(tables[index], orders[index], fulls[index]))
     return orders
 
@@ -169,14 +172,22 @@ def _mapped_orders(units: list[_Unique], order: Mapping) -> list[int]:
             keys.append((k.radiating, k.influenced))
         known.update(keys)
         n = next((order[key] for key in keys if key in order), k.order)
-        if isinstance(n, bool) or not isinstance(n, int | np.integer):
-            raise FitError(f"the order of coupling {keys[0]} must be an integer, not {n!r}")
-        if not u.minimum <= n <= k.order:
-            raise FitError(
-                f"order {n} for coupling {keys[0]} is out of range {u.minimum} … {k.order}"
-            )
-        out.append(int(n))
+        out.append(checked_order(n, f"coupling {keys[0]}", u.minimum, k.order))
+    unknown_keys(order, known)
+    return out
+
+
+def checked_order(n: Any, what: str, lowest: int, highest: int) -> int:
+    """``n`` as the order of ``what`` (an integer in ``lowest`` … ``highest``)."""
+    if isinstance(n, bool) or not isinstance(n, int | np.integer):
+        raise FitError(f"the order of {what} must be an integer, not {n!r}")
+    if not lowest <= n <= highest:
+        raise FitError(f"order {n} for {what} is out of range {lowest} … {highest}")
+    return int(n)
+
+
+def unknown_keys(order: Mapping, known: set) -> None:
+    """A FitError naming the first key of ``order`` that is not a modelled coupling."""
     unknown = sorted(set(order) - known)
     if unknown:
         raise FitError(f"the model has no coupling {unknown[0]} (0-based DOF indices)")
-    return out

@@ -1,10 +1,11 @@
-"""Reduction of a radiation model, coupling by coupling: :func:`reduce_radiation_model`.
+"""Reduction of a radiation model: :func:`reduce_radiation_model`.
 
 :func:`reduce_radiation_model` reduces a :class:`~cummins.radiation.model.RadiationModel`
 coupling by coupling (each K_ij is a SISO model), so that the block structure, the
 file formats and the symmetry K_ij = K_ji are kept: a symmetric pair is reduced once
-and used twice. See its docstring for the allocation of a total order over the
-couplings and for what is recorded.
+and used twice; a model of common-pole blocks block by block
+(:mod:`~cummins.radiation.reduce.blocks`). See its docstring for the allocation of a
+total order and for what is recorded.
 
 The reduced couplings record how they were reduced and, given the data of the fit, their
 measures of fit against the data; :func:`reduction_failures` says what misses its target.
@@ -24,21 +25,25 @@ from cummins.errors import FitError
 from cummins.radiation.fit import FitData, model_fit_data
 from cummins.radiation.fit.frequency import is_positive_real
 from cummins.radiation.fit.metrics import coupling_metrics
-from cummins.radiation.model import CouplingModel, RadiationModel
+from cummins.radiation.model import CouplingModel, MemoryBlock, RadiationModel
+from cummins.radiation.reduce.blocks import BlockCandidate, BlockUnit, prepared_block
 from cummins.radiation.reduce.candidates import (
     _Candidate,
     _hinf_change,
     _lowest_real_part,
+    _measurement_grid,
     _prepared,
     _Unique,
 )
 from cummins.radiation.reduce.gramians import DEFAULT_REGULARIZATION
-from cummins.radiation.reduce.orders import _requested
+from cummins.radiation.reduce.modal import ModalBlock
+from cummins.radiation.reduce.orders import _allocate, _requested, checked_order, unknown_keys
 from cummins.radiation.reduce.system import PR_METHODS, _check_method, _check_order_or_tol
 from cummins.validation import guard_hydro_data, guard_radiation_model
 
 if TYPE_CHECKING:
     import xarray as xr
+    from numpy.typing import NDArray
 
 #: Metrics of a fitted coupling computed against the data (stale after a reduction).
 DATA_METRICS = (
@@ -61,9 +66,26 @@ def reduce_radiation_model(
     regularization: float = DEFAULT_REGULARIZATION,
     data: xr.Dataset | None = None,
 ) -> RadiationModel:
-    """Reduce a radiation model coupling by coupling (balanced truncation of each K_ij).
+    """Reduce a radiation model coupling by coupling (balanced truncation of each K_ij), or
+    block by block for a model of common-pole blocks.
 
-    Each coupling is a SISO model; a symmetric pair K_ij = K_ji (two entries with the
+    **Blocks** (the default identification, :class:`~cummins.radiation.model.MemoryBlock`):
+    each block is balanced as one MIMO model with its DOFs scaled alike (S K S,
+    s_i = 1/√max_ω |K_ii|), unweighted and low-frequency weighted as below, and truncated;
+    K(0) = 0 and passivity (Re K(jω) ⪰ 0, Unneland (2007) Prop. 3.4) are restored in the
+    truncated states by the smallest change of its modal vectors
+    (:mod:`~cummins.radiation.reduce.blocks`): no state is added and the model stays
+    symmetric. ``order`` (int) is allocated over the blocks by the same minimax, a mapping
+    names a block by any pair of its DOFs, ``tol`` bounds the measured change
+    max_ω σ_max(S (K − K_r) S) relative to max_ω σ_max(S K S). A truncation that cannot be
+    made passive, or whose correction would more than double its misfit, is not used:
+    the next order is tried and the block's note says which was kept (the block is kept
+    whole when none is). The metrics of every pair hold ``reduction_*`` as below (no
+    Glover bound: NaN), ``passivity_change`` and ``passive`` (of the block); the measures
+    of fit of the unreduced block stay as ``<metric>_unreduced``, and an R² below
+    :data:`FAILED_R2` is a failure only when the reduction made it so.
+
+    **Couplings.** Each coupling is a SISO model; a symmetric pair K_ij = K_ji (two entries with the
     same matrices) is reduced once and used twice, so the block structure, the symmetry
     and the file formats are kept.
 
@@ -143,9 +165,9 @@ def reduce_radiation_model(
     Raises
     ------
     FitError
-        Bad order (out of range, below 2 per coupling, unknown coupling) or tol, unknown
-        method, unstable coupling; a model with common-pole blocks (refit it with fewer
-        poles instead).
+        Bad order (out of range, below 2 per coupling, unknown coupling, two orders for
+        one block) or tol, unknown method, unstable coupling or block; a total order for
+        a model holding both blocks and single couplings (give ``tol``).
 
     Examples
     --------
@@ -158,18 +180,12 @@ def reduce_radiation_model(
     _check_method(method)
     _check_order_or_tol(order, tol)
     guard_radiation_model(model)  # FitError naming the coupling, before LAPACK sees it
-    if model.blocks:
-        raise FitError(
-            "the model holds common-pole blocks (the default identification, method 'vf'), "
-            "whose DOFs share their states; balanced truncation here reduces models of "
-            "single couplings",
-            hint="fit again with fewer common poles (fit_radiation(..., max_order=N) or "
-            "orders=...; cummins fit --max-order N), or fit per coupling (method='fd') "
-            "and reduce that",
-        )
     if data is not None:
         guard_hydro_data(data, what="reduction")
     fitted = None if data is None else model_fit_data(model, data)
+    if model.blocks:
+        result = _reduced_blocks(model, order, tol, method, regularization, fitted)
+        return _recorded(model, result, method, tol)
     units = _prepared(model, method, regularization, None if fitted is None else fitted.omega)
     chosen = _requested(model, units, order, tol)
     couplings = list(model.couplings)
@@ -180,10 +196,17 @@ def reduce_radiation_model(
         for index in u.entries:
             old = model.couplings[index]
             couplings[index] = replace(reduced, influenced=old.influenced, radiating=old.radiating)
-    attrs: dict[str, Any] = dict(model.attrs)
-    result = RadiationModel(model.dofs, tuple(couplings), model.added_mass_inf, attrs)
+    result = RadiationModel(model.dofs, tuple(couplings), model.added_mass_inf, dict(model.attrs))
     if fitted is not None:
         result = _with_data_metrics(result, fitted)
+    return _recorded(model, result, method, tol)
+
+
+def _recorded(
+    model: RadiationModel, result: RadiationModel, method: str, tol: float | None
+) -> RadiationModel:
+    """The reduced model with the reduction's ``attrs``: method, orders, history, failures."""
+    attrs: dict[str, Any] = dict(result.attrs)
     line = (
         f"reduced by {method} balanced truncation from {model.total_order} to "
         f"{result.total_order} states"
@@ -197,6 +220,174 @@ def reduce_radiation_model(
         failures=[*model.attrs.get("failures", []), *reduction_failures(result, tol)],
     )
     return replace(result, attrs=attrs)
+
+
+def _reduced_blocks(
+    model: RadiationModel,
+    order: Any,
+    tol: float | None,
+    method: str,
+    regularization: float,
+    fitted: FitData | None,
+) -> RadiationModel:
+    """A model of common-pole blocks reduced block by block (:mod:`~cummins.radiation.
+    reduce.blocks`): each chosen truncation passive, with K(0) = 0, in its own states."""
+    if model.couplings and tol is None:
+        raise FitError(
+            "the model holds both common-pole blocks and single couplings: reduce it "
+            "with a tolerance (tol=..., cummins reduce --tol)"
+        )
+    units = [
+        prepared_block(block, index, method, regularization, _block_grid(model, block, fitted))
+        for index, block in enumerate(model.blocks)
+    ]
+    chosen = _requested_blocks(units, order, tol)
+    blocks = list(model.blocks)
+    for unit, candidate in zip(units, chosen, strict=True):
+        if candidate is not None:
+            blocks[unit.index] = _reduced_block(unit, candidate, fitted, model)
+        elif unit.notes:
+            blocks[unit.index] = replace(
+                unit.block, note="; ".join(filter(None, [unit.block.note, *unit.notes]))
+            )
+    couplings = model.couplings
+    if model.couplings:
+        reduced = reduce_radiation_model(
+            replace(model, blocks=()), tol=tol, method=method, regularization=regularization
+        )
+        couplings = reduced.couplings
+    return RadiationModel(
+        model.dofs, couplings, model.added_mass_inf, dict(model.attrs), tuple(blocks)
+    )
+
+
+def _block_grid(model: RadiationModel, block: MemoryBlock, fitted: FitData | None) -> NDArray:
+    """Where a block's truncations are compared with it: the fitted frequencies of the
+    data when given, else as for a coupling (:data:`MEASURE_POINTS` over the fitted range)."""
+    view = block.element(block.dofs[0], block.dofs[0])
+    return _measurement_grid(model, view, None if fitted is None else fitted.omega)
+
+
+def _requested_blocks(
+    units: list[BlockUnit], order: Any, tol: float | None
+) -> list[BlockCandidate | None]:
+    """The chosen passive truncation of every block (None: kept as it is)."""
+    if tol is not None:
+        out = []
+        for u in units:
+            found = next(
+                (x for r in range(u.minimum, u.block.order) if (x := u.passive_at(r, tol))),
+                None,
+            )
+            if found is None and u.block.order > u.minimum:
+                u.notes.append(
+                    f"no passive truncation with K(0) = 0 within tol {tol:g} below "
+                    f"{u.block.order} states: kept"
+                )
+            out.append(found)
+        return out
+    if isinstance(order, Mapping):
+        targets = _mapped_block_orders(units, order)
+    else:
+        if isinstance(order, bool) or not isinstance(order, int | np.integer):
+            raise FitError(f"order must be an integer (total order) or a mapping, not {order!r}")
+        lowest = sum(u.minimum for u in units)
+        total = sum(u.block.order for u in units)
+        if not lowest <= order <= total:
+            raise FitError(
+                f"total order {order} is out of range: the model has {total} states and "
+                f"its blocks need at least {lowest}"
+            )
+        tables = [
+            {
+                r: u.best(r) if r < u.block.order else None
+                for r in range(u.minimum, u.block.order + 1)
+            }
+            for u in units
+        ]
+        targets = _allocate(units, tables, int(order))  # type: ignore[arg-type]
+    out = []
+    for u, r in zip(units, targets, strict=True):
+        found = None
+        for n in range(r, u.block.order):
+            found = u.passive_at(n)
+            if found is not None:
+                if n > r:
+                    u.notes.append(f"no passive truncation to {r} states: {n} kept")
+                break
+        if found is None and r < u.block.order:
+            u.notes.append(f"no passive truncation to {r} states: the block is kept")
+        out.append(found)
+    return out
+
+
+def _mapped_block_orders(units: list[BlockUnit], order: Mapping) -> list[int]:
+    """Block orders from a mapping {(i, j): n}: a pair of DOFs of a block names the block."""
+    out = []
+    known = set()
+    for u in units:
+        keys = [key for key in order if key[0] in u.block.dofs and key[1] in u.block.dofs]
+        known.update(keys)
+        values = {order[key] for key in keys}
+        if len(values) > 1:
+            raise FitError(
+                f"the DOFs {u.block.dofs} share their states (one block): give them one order, "
+                f"not {sorted(values)}"
+            )
+        n = values.pop() if values else u.block.order
+        out.append(checked_order(n, f"block {u.block.dofs}", u.minimum, u.block.order))
+    unknown_keys(order, known)
+    return out
+
+
+def _reduced_block(
+    unit: BlockUnit, x: BlockCandidate, fitted: FitData | None, model: RadiationModel
+) -> MemoryBlock:
+    """The memory block of a chosen truncation (DOF scaling undone), with its metrics."""
+    block = unit.block
+    modal = ModalBlock(x.modal.poles, x.modal.vectors / unit.scale[None, :], x.modal.signs)
+    a, b, c = modal.realization()
+    weighted = f", weighted at ω₀ = {x.weight:.3g} rad/s" if x.weight else ""
+    text = (
+        f"reduced by {unit.method} balanced truncation of the block{weighted} from "
+        f"{block.order} to {x.order} states; K(0) = 0 restored ({100 * x.dc_change:.2g} % "
+        f"change) and made passive ({100 * x.passivity_change:.2g} % change) in those states; "
+        f"max σ(S(K − K_r)S) = {x.change:.2g} of max σ(S K S); R² of A and B against the "
+        f"unreduced block ≥ {1 - x.error:.4f}"
+    )
+    reduced = MemoryBlock(block.dofs, a, b, c, block.method, {}, "")
+    stable = reduced.is_stable()
+    metrics = {}
+    for key, old in block.metrics.items():
+        m: dict[str, Any] = {
+            f"{name}_unreduced" if name in DATA_METRICS else name: value
+            for name, value in old.items()
+        }
+        if fitted is not None:  # against the data as the fit was (the unreduced kept)
+            i, j = key
+            m.update(
+                coupling_metrics(
+                    reduced.element(i, j),
+                    fitted.omega,
+                    fitted.added_mass[:, i, j],
+                    fitted.damping[:, i, j],
+                    # the data are symmetrised, as in the fit: the symmetric A∞
+                    0.5 * float(model.added_mass_inf[i, j] + model.added_mass_inf[j, i]),
+                    time=fitted.time,
+                    kernel=fitted.kernel[:, i, j],
+                )
+            )
+        m.update(
+            **_record(unit.method, block.order, x.order, x.weight, x.error, None),
+            reduction_hinf_relative=float(x.change),
+            dc_change=float(x.dc_change),
+            passivity_change=float(x.passivity_change),
+            stable=stable,
+            passive=bool(x.passive),
+        )
+        metrics[key] = m
+    note = "; ".join(filter(None, [block.note, text, *unit.notes]))
+    return replace(reduced, metrics=metrics, note=note)
 
 
 #: A reduced coupling whose R² of A or B against the data (or the unreduced model)
@@ -237,12 +428,39 @@ def reduction_failures(model: RadiationModel, tol: float | None) -> list[str]:
                 f"{name}: the reduction changed K by {change:.3g} of max|K| (tol {tol:g}): "
                 "the tolerance is not met"
             )
-        for key, what in (("r2_added_mass", "A"), ("r2_damping", "B")):
-            value = m.get(key)
-            if value is not None and value < FAILED_R2:
-                out.append(f"{name}: R² of {what} {value:.3g} after the reduction")
+        out += _r2_failures(name, m)
         if not m.get("stable", True):
             out.append(f"{name}: unstable after the reduction")
+    for block in model.blocks:
+        name = "-".join(model.dofs[d] for d in block.dofs)
+        first = next(iter(block.metrics.values()), {})
+        if "reduction_method" not in first:
+            continue
+        change = first.get("reduction_hinf_relative")
+        if tol is not None and change is not None and change > tol * (1 + 1e-9):
+            out.append(
+                f"block {name}: the reduction changed S K S by {change:.3g} of its maximum "
+                f"(tol {tol:g}): the tolerance is not met"
+            )
+        for (i, j), m in block.metrics.items():
+            out += _r2_failures(model.dofs[i] if i == j else f"{model.dofs[i]}-{model.dofs[j]}", m)
+        if not first.get("stable", True):
+            out.append(f"block {name}: unstable after the reduction")
+        if not first.get("passive", True):
+            out.append(f"block {name}: not passive after the reduction")
+    return out
+
+
+def _r2_failures(name: str, metrics: Mapping) -> list[str]:
+    """An R² of A or B below :data:`FAILED_R2` that the unreduced model (when its value is
+    recorded) did not have, said."""
+    out = []
+    for key, what in (("r2_added_mass", "A"), ("r2_damping", "B")):
+        value, before = metrics.get(key), metrics.get(f"{key}_unreduced")
+        if value is not None and value < FAILED_R2:
+            if before is not None and before < FAILED_R2:
+                continue  # the fit's own failure, reported by the fit
+            out.append(f"{name}: R² of {what} {value:.3g} after the reduction")
     return out
 
 
@@ -270,12 +488,7 @@ def _reduced_coupling(u: _Unique, x: _Candidate) -> CouplingModel:
     for key, value in k.metrics.items():
         metrics[f"{key}_unreduced" if key in DATA_METRICS else key] = value
     metrics.update(
-        reduction_method=u.method,
-        reduction_order_before=k.order,
-        reduction_order_after=x.order,
-        reduction_weight=float(x.weight or 0.0),
-        reduction_fit_error=float(x.error),
-        reduction_error_bound=math.nan if x.bound is None else float(x.bound),
+        **_record(u.method, k.order, x.order, x.weight, x.error, x.bound),
         reduction_hinf_change=float(change),
         reduction_hinf_relative=float(change / u.peak) if u.peak > 0 else 0.0,
         dc_change=float(x.dc_change),
@@ -292,6 +505,21 @@ def _reduced_coupling(u: _Unique, x: _Candidate) -> CouplingModel:
         metrics["reduction_min_real_relative"] = lowest / u.peak if u.peak > 0 else 0.0
     note = "; ".join(filter(None, [k.note, text, *u.notes]))
     return replace(new, metrics=metrics, note=note)
+
+
+def _record(
+    method: str, before: int, after: int, weight: float | None, error: float, bound: float | None
+) -> dict[str, Any]:
+    """The metrics every reduced coupling or block pair records (see
+    :func:`reduce_radiation_model`)."""
+    return {
+        "reduction_method": method,
+        "reduction_order_before": before,
+        "reduction_order_after": after,
+        "reduction_weight": float(weight or 0.0),
+        "reduction_fit_error": float(error),
+        "reduction_error_bound": math.nan if bound is None else float(bound),
+    }
 
 
 def _with_data_metrics(model: RadiationModel, fitted: FitData) -> RadiationModel:
