@@ -8,6 +8,7 @@ from pathlib import Path
 
 import click
 import numpy as np
+from rich.markup import escape
 
 from cummins.cli.common import (
     console,
@@ -257,7 +258,7 @@ def identify_damping_command(
                 burn_in=burn_in,
             )
     for w in caught:
-        err_console.print(f"[yellow]warning:[/] {w.message}")
+        err_console.print(f"[yellow]warning:[/] {escape(str(w.message))}", highlight=False)
     _print_estimates(result)
     with console.status("re-predicting"):
         res = residual_force(recs[0], vessel, cutoff=cutoff)
