@@ -69,6 +69,10 @@ COUPLING_FLOOR = 1e-2
 #: block at 4 of 8 states: 0.3 → 900); the order search goes on to more states.
 PASSIVITY_COST = 2.0
 PASSIVITY_FLOOR = 1e-3
+#: :meth:`BlockUnit.first_passive` tries every order of a block of up to LINEAR_UP_TO
+#: states, and LINEAR_ORDERS one by one in a larger one before it doubles its steps.
+LINEAR_UP_TO = 40
+LINEAR_ORDERS = 6
 #: Points per decade of the sweep on which passivity is checked and corrected.
 SWEEP_POINTS = 60
 
@@ -209,6 +213,49 @@ class BlockUnit:
                 continue  # a correction that ruins the truncation: the next order will do
             return y
         return None
+
+    def first_passive(self, start: int, tol: float | None = None) -> BlockCandidate | None:
+        """The passive truncation (:meth:`passive_at`) at the smallest order from ``start``
+        on: every order of a block of up to :data:`LINEAR_UP_TO` states; in a larger one
+        :data:`LINEAR_ORDERS` orders one by one, then doubling steps and bisection, so that
+        a block whose truncations are passive only near its full order costs a few
+        attempts, not one per order (the orders with a passive truncation need not be
+        contiguous, so a smaller one may be missed there). With ``tol``, the search
+        starts at the first order whose truncation is within it."""
+        n = self.block.order
+        if tol is not None:
+            start = next(
+                (
+                    r
+                    for r in range(start, n)
+                    if any((x := self.truncation(r, w)) is not None and x.change <= tol
+                           for w in self.weights())
+                ),
+                n,
+            )  # fmt: skip
+        tried: dict[int, BlockCandidate | None] = {}
+
+        def at(r: int) -> BlockCandidate | None:
+            if r not in tried:
+                tried[r] = self.passive_at(r, tol)
+            return tried[r]
+
+        low, r, step = start - 1, start, 1
+        while r < n and at(r) is None:
+            if n > LINEAR_UP_TO and r - start >= LINEAR_ORDERS - 1:
+                step *= 2
+            low, r = r, r + step
+        if r >= n:
+            if n - 1 <= low or at(n - 1) is None:
+                return None
+            r = n - 1
+        while r - low > 1:  # at(r) is passive, at(low) is not (or low < start)
+            middle = (low + r) // 2
+            if at(middle) is not None:
+                r = middle
+            else:
+                low = middle
+        return tried[r]
 
 
 #: A truncation whose limit lim ω² Re K (ω → ∞) has an eigenvalue below −WRONG_TAIL × its

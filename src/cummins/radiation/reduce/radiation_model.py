@@ -275,10 +275,7 @@ def _requested_blocks(
     if tol is not None:
         out = []
         for u in units:
-            found = next(
-                (x for r in range(u.minimum, u.block.order) if (x := u.passive_at(r, tol))),
-                None,
-            )
+            found = u.first_passive(u.minimum, tol)
             if found is None and u.block.order > u.minimum:
                 u.notes.append(
                     f"no passive truncation with K(0) = 0 within tol {tol:g} below "
@@ -308,13 +305,9 @@ def _requested_blocks(
         targets = _allocate(units, tables, int(order))  # type: ignore[arg-type]
     out = []
     for u, r in zip(units, targets, strict=True):
-        found = None
-        for n in range(r, u.block.order):
-            found = u.passive_at(n)
-            if found is not None:
-                if n > r:
-                    u.notes.append(f"no passive truncation to {r} states: {n} kept")
-                break
+        found = u.first_passive(r) if r < u.block.order else None
+        if found is not None and found.order > r:
+            u.notes.append(f"no passive truncation to {r} states: {found.order} kept")
         if found is None and r < u.block.order:
             u.notes.append(f"no passive truncation to {r} states: the block is kept")
         out.append(found)
