@@ -9,19 +9,21 @@ truncated to r states. A truncation of a symmetric K is symmetric (Lyapunov, Ric
 nearly so (the mixed methods, Unneland (2007) §6.3.3); it has lost the zero K(0) = 0 and
 in general the positive realness. Both are restored *in the r states*: the truncation is
 written in modal form with symmetric residues of the rank of their poles
-(:mod:`~cummins.radiation.reduce.modal`), and its vectors u_k are moved by the smallest
-change, weighted by each term's H₂ size |u_k|/√|Re p_k|, that makes
+(:mod:`~cummins.radiation.reduce.modal`), and its vectors u_k are moved so that
 
 * K(0) = −Σ_k σ_k u_k u_kᵀ/p_k (+ conjugates) = 0 exactly (Unneland (2007) eq. 3.48),
-  by Gauss–Newton steps of minimum weighted norm (the constraint is quadratic in u);
+  by Gauss–Newton steps of minimum norm, each term weighted by its H₂ size
+  |u_k|/√|Re p_k| (the constraint is quadratic in u);
 * Re K(jω) ⪰ 0 at all frequencies and in the limits ω → 0, ∞ (Unneland (2007)
   Prop. 3.4): the negative eigenvalues found on a sweep and between the exact crossings of
   the Hamiltonian pencil (:func:`cummins.radiation.passivity.imaginary_axis_zeros`) are
-  linearised in u and the step is a constrained least-squares problem (Lawson & Hanson
-  (1974); :func:`cummins.radiation.passivity.least_distance`) that fits the unreduced
-  block, every coupling weighted by its spread, with K(0) = 0 as equality constraints
-  (Gauss–Newton), repeated until no violation is left: Gustavsen & Semlyen (2001)'s
-  residue perturbation applied to the rank-limited residues.
+  linearised in u, and each step is the smallest change of the response on the fitted
+  range (linearised at the truncation, every coupling weighted by its spread so that
+  small couplings keep their R²; plus the H₂ sizes, for what the range leaves free) that
+  meets them, with K(0) = 0 as equality constraints: a least-distance programme (Lawson &
+  Hanson (1974); :func:`cummins.radiation.passivity.least_distance`), repeated until no
+  violation is left — Gustavsen & Semlyen (2001)'s residue perturbation applied to the
+  rank-limited residues.
 
 The poles do not move, so the truncation stays stable; the order does not grow.
 """
@@ -62,7 +64,7 @@ LARGEST_CHANGE = 0.25
 DC_TOLERANCE = 1e-12
 #: A coupling of a block is compared with the unreduced one by max(1 − R²) over A and B,
 #: with its spread floored at this fraction of √(spread_ii spread_jj) (a coupling a
-#: thousand times smaller than its diagonals is not fitted to its own shape).
+#: hundred times smaller than its diagonals is not held to its own shape).
 COUPLING_FLOOR = 1e-2
 #: A truncation whose passivity correction takes its fit error max(1 − R²) above
 #: PASSIVITY_COST × its error before + PASSIVITY_FLOOR is not used (the sphere's surge–pitch

@@ -15,9 +15,9 @@ model and its derivatives with respect to the parameters are sums Σ_k σ_k u_k 
 limits of Re K (Unneland (2007) Prop. 3.4 requires them positive semidefinite),
 −p for lim ω² Re K(jω) (ω → ∞) and 1/p³ for lim Re K(jω)/ω² (ω → 0).
 
-A complex symmetric residue R is factored as R = Σ_i u_i u_iᵀ (Takagi) through the real
-symmetric matrix [[Re R, Im R], [Im R, −Re R]]: its eigenvector [x; y] of eigenvalue σ > 0
-gives u = √σ (x + j y).
+A complex symmetric residue R is factored as R = Σ_i u_i u_iᵀ (Takagi; Horn & Johnson
+(2013) §4.4) through the real symmetric matrix [[Re R, Im R], [Im R, −Re R]]: its
+eigenvector [x; y] of eigenvalue σ > 0 gives u = √σ (x + j y).
 """
 
 from __future__ import annotations
