@@ -40,9 +40,9 @@ from numpy.typing import NDArray
 from cummins.errors import FitError
 from cummins.radiation.model import MemoryBlock
 from cummins.radiation.reduce.balancing import _balance, _Balanced, _gramian_pair
-from cummins.radiation.reduce.candidates import WEIGHT_CANDIDATES
+from cummins.radiation.reduce.candidates import candidate_weights
 from cummins.radiation.reduce.gramians import _regularised
-from cummins.radiation.reduce.modal import ModalBlock, modal_form
+from cummins.radiation.reduce.modal import ModalBlock, at_infinity, at_zero, modal_form
 from cummins.radiation.reduce.system import PR_METHODS, _gain, _sweep, frequency_response
 
 #: Passivity in the truncated states: a violation is λ_min(S Re K S) below −VIOLATION
@@ -128,9 +128,7 @@ class BlockUnit:
         return [self.index]
 
     def weights(self) -> list[float | None]:
-        if self.method == "riccati" or not 0 < self.peak_omega < math.inf:
-            return [None]
-        return [None if m is None else m * self.peak_omega for m in WEIGHT_CANDIDATES]
+        return candidate_weights(self.method, self.peak_omega)
 
     def balanced(self, weight: float | None) -> _Balanced | None:
         if weight not in self.cache:
@@ -187,7 +185,7 @@ class BlockUnit:
         modal, passive, change, iterations = make_passive(
             x.modal, self.reference, float(self.grid.min()), float(self.grid.max()), self.peak
         )
-        out = self._measured(
+        return self._measured(
             x.order,
             x.weight,
             modal,
@@ -196,7 +194,6 @@ class BlockUnit:
             passivity_change=change,
             iterations=iterations,
         )
-        return out
 
     def passive_at(self, r: int, tol: float | None = None) -> BlockCandidate | None:
         """The passive truncation to r states (within ``tol`` of the block's ‖K‖∞ when
@@ -268,7 +265,7 @@ WRONG_TAIL = 0.01
 
 
 def _wrong_tail(modal: ModalBlock) -> bool:
-    values = np.linalg.eigvalsh(modal.value(lambda p: -p).real)
+    values = np.linalg.eigvalsh(modal.value(at_infinity).real)
     return bool(values[0] < -WRONG_TAIL * np.abs(values).max())
 
 
@@ -299,38 +296,28 @@ def prepared_block(
     return unit
 
 
-#: The passivity correction fits the unreduced block on at most this many frequencies.
+#: The passivity correction measures its change on at most this many frequencies.
 FIT_POINTS = 40
 
 
 @dataclass(frozen=True)
 class _Reference:
-    """What the passivity correction fits: K_ij(jω) of the unreduced (scaled) block, i ≤ j,
-    at ``omega``, and per pair the weights of Re K (B) and of Im K/ω (A − A∞): 1/their
-    spread over ω (floored at :data:`COUPLING_FLOOR` of the diagonals'), so that every
-    coupling's R² counts, not only the largest."""
+    """How the passivity correction measures a change of the block: K_ij(jω), i ≤ j, at
+    ``omega``, each pair's Re K (B) and Im K/ω (A − A∞) weighted by 1/their spread over ω
+    in the unreduced (scaled) block (floored at :data:`COUPLING_FLOOR` of the
+    diagonals'), so that every coupling's R² counts, not only the largest."""
 
     omega: NDArray
-    values: NDArray  # (n_omega, pairs)
     weight_real: NDArray  # (pairs,)
     weight_imag: NDArray  # (n_omega, pairs): includes the 1/ω
 
-    def residual(self, modal: ModalBlock) -> NDArray:
-        upper = np.triu_indices(modal.size)
-        k = modal.response(self.omega)[:, upper[0], upper[1]]
-        return self._rows(k - self.values)
-
     def jacobian(self, modal: ModalBlock) -> NDArray:
+        """The weighted rows of d K_ij(jω)/du (real parts, then imaginary)."""
         jac = modal.response_jacobian(self.omega)
         g, p, n = jac.shape
         real = (jac.real * self.weight_real[None, :, None]).reshape(g * p, n)
         imag = (jac.imag * self.weight_imag[:, :, None]).reshape(g * p, n)
         return np.vstack([real, imag])
-
-    def _rows(self, k: NDArray) -> NDArray:
-        return np.concatenate(
-            [(k.real * self.weight_real).ravel(), (k.imag * self.weight_imag).ravel()]
-        )
 
 
 def _reference(grid: NDArray, a: NDArray, b: NDArray, c: NDArray) -> _Reference:
@@ -349,7 +336,6 @@ def _reference(grid: NDArray, a: NDArray, b: NDArray, c: NDArray) -> _Reference:
         spreads.append(spread[upper] * np.sqrt(grid.size))
     return _Reference(
         grid,
-        k[:, upper[0], upper[1]],
         1.0 / spreads[0],
         1.0 / (grid[:, None] * spreads[1][None, :]),
     )
@@ -433,7 +419,7 @@ def _pole_values(where: NDArray, poles: NDArray) -> NDArray[np.complex128]:
     where = np.asarray(where, dtype=float)[:, None]
     with np.errstate(divide="ignore", invalid="ignore"):
         at = 1.0 / (1j * np.where(where > 0, where, 1.0) - poles[None, :])
-    return np.where(where == LOW, 1.0 / poles**3, np.where(where == HIGH, -poles, at))
+    return np.where(where == LOW, at_zero(poles), np.where(where == HIGH, at_infinity(poles), at))
 
 
 def _rows(modal: ModalBlock, points: list[_Point]) -> tuple[NDArray, NDArray]:
@@ -477,7 +463,7 @@ def _violations(modal: ModalBlock, lo: float, hi: float) -> list[_Point]:
             local = float(np.abs(lam[k]).max())
             for e in np.flatnonzero(lam[k] < 0):
                 out.append(_Point(float(points[k]), vec[k, :, e], local))
-    for where, f in ((LOW, lambda p: 1.0 / p**3), (HIGH, lambda p: -p)):
+    for where, f in ((LOW, at_zero), (HIGH, at_infinity)):
         limit = modal.value(f).real
         values, vectors = np.linalg.eigh(limit)
         local = float(np.abs(values).max())

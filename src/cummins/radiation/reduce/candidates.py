@@ -39,6 +39,15 @@ MIN_COUPLING_ORDER = 2
 # --------------------------------------------------------------------------- radiation models
 
 
+def candidate_weights(method: str, peak_omega: float) -> list[float | None]:
+    """The low-frequency weights ω₀ a model is balanced with: :data:`WEIGHT_CANDIDATES` ×
+    the frequency of its peak |K| (None: unweighted; only that for ``"riccati"``, whose
+    gramians are never weighted, or without a finite peak frequency)."""
+    if method == "riccati" or not 0 < peak_omega < math.inf:
+        return [None]
+    return [None if m is None else m * peak_omega for m in WEIGHT_CANDIDATES]
+
+
 @dataclass(frozen=True)
 class _Candidate:
     """One truncation of one coupling (K(0) = 0 re-imposed when the coupling had it)."""
@@ -77,10 +86,8 @@ class _Unique:
         return min(MIN_COUPLING_ORDER, self.model.order)
 
     def weights(self) -> list[float | None]:
-        """The candidate ω₀ (:data:`WEIGHT_CANDIDATES` × the peak frequency)."""
-        if self.method == "riccati" or not 0 < self.peak_omega < math.inf:
-            return [None]
-        return [None if m is None else m * self.peak_omega for m in WEIGHT_CANDIDATES]
+        """The candidate ω₀ (:func:`candidate_weights`)."""
+        return candidate_weights(self.method, self.peak_omega)
 
     def balanced(self, weight: float | None) -> _Balanced | None:
         """The balanced realization of the coupling for ω₀ = ``weight`` (cached; None when

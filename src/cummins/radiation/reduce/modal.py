@@ -201,6 +201,16 @@ class ModalBlock:
         return scipy.linalg.block_diag(*a_blocks), np.vstack(b_blocks), np.hstack(c_blocks)
 
 
+def at_zero(p: NDArray) -> NDArray:
+    """f of lim Re K(jω)/ω² (ω → 0) = Σ R_k/p_k³ (module docstring)."""
+    return 1.0 / p**3
+
+
+def at_infinity(p: NDArray) -> NDArray:
+    """f of lim ω² Re K(jω) (ω → ∞) = −Σ R_k p_k (module docstring)."""
+    return -p
+
+
 def modal_form(a: NDArray, b: NDArray, c: NDArray) -> ModalBlock:
     """The modal form of a stable model with a symmetric transfer matrix (module
     docstring): the residues of equal poles summed, made exactly symmetric and factored

@@ -134,14 +134,9 @@ def _requested(
             None if r >= u.model.order else _stable_best(u, r)
             for u, r in zip(units, targets, strict=True)
         ]
-    if isinstance(order, bool) or not isinstance(order, int | np.integer):
-        raise FitError(f"order must be an integer (total order) or a mapping, not {order!r}")
     lowest = sum(len(u.entries) * u.minimum for u in units)
-    if not lowest <= order <= model.total_order:
-        raise FitError(
-            f"total order {order} is out of range: the model has {model.total_order} states "
-            f"and its couplings need at least {lowest} (≥ {MIN_COUPLING_ORDER} each)"
-        )
+    needs = f"its couplings need at least {lowest} (≥ {MIN_COUPLING_ORDER} each)"
+    checked_total(order, lowest, model.total_order, needs)
     tables = _error_tables(units)
     orders = _allocate(units, tables, int(order))
     return [
@@ -175,6 +170,18 @@ def _mapped_orders(units: list[_Unique], order: Mapping) -> list[int]:
         out.append(checked_order(n, f"coupling {keys[0]}", u.minimum, k.order))
     unknown_keys(order, known)
     return out
+
+
+def checked_total(order: Any, lowest: int, highest: int, needs: str) -> int:
+    """``order`` as the total order of a model of ``highest`` states whose parts need
+    ``lowest`` (``needs`` says so in the message)."""
+    if isinstance(order, bool) or not isinstance(order, int | np.integer):
+        raise FitError(f"order must be an integer (total order) or a mapping, not {order!r}")
+    if not lowest <= order <= highest:
+        raise FitError(
+            f"total order {order} is out of range: the model has {highest} states and {needs}"
+        )
+    return int(order)
 
 
 def checked_order(n: Any, what: str, lowest: int, highest: int) -> int:

@@ -37,7 +37,13 @@ from cummins.radiation.reduce.candidates import (
 )
 from cummins.radiation.reduce.gramians import DEFAULT_REGULARIZATION
 from cummins.radiation.reduce.modal import ModalBlock
-from cummins.radiation.reduce.orders import _allocate, _requested, checked_order, unknown_keys
+from cummins.radiation.reduce.orders import (
+    _allocate,
+    _requested,
+    checked_order,
+    checked_total,
+    unknown_keys,
+)
 from cummins.radiation.reduce.system import PR_METHODS, _check_method, _check_order_or_tol
 from cummins.validation import guard_hydro_data, guard_radiation_model
 
@@ -286,15 +292,9 @@ def _requested_blocks(
     if isinstance(order, Mapping):
         targets = _mapped_block_orders(units, order)
     else:
-        if isinstance(order, bool) or not isinstance(order, int | np.integer):
-            raise FitError(f"order must be an integer (total order) or a mapping, not {order!r}")
         lowest = sum(u.minimum for u in units)
         total = sum(u.block.order for u in units)
-        if not lowest <= order <= total:
-            raise FitError(
-                f"total order {order} is out of range: the model has {total} states and "
-                f"its blocks need at least {lowest}"
-            )
+        checked_total(order, lowest, total, f"its blocks need at least {lowest}")
         tables = [
             {
                 r: u.best(r) if r < u.block.order else None
@@ -358,18 +358,9 @@ def _reduced_block(
         }
         if fitted is not None:  # against the data as the fit was (the unreduced kept)
             i, j = key
-            m.update(
-                coupling_metrics(
-                    reduced.element(i, j),
-                    fitted.omega,
-                    fitted.added_mass[:, i, j],
-                    fitted.damping[:, i, j],
-                    # the data are symmetrised, as in the fit: the symmetric A∞
-                    0.5 * float(model.added_mass_inf[i, j] + model.added_mass_inf[j, i]),
-                    time=fitted.time,
-                    kernel=fitted.kernel[:, i, j],
-                )
-            )
+            # the data are symmetrised, as in the fit: the symmetric A∞
+            inf = 0.5 * float(model.added_mass_inf[i, j] + model.added_mass_inf[j, i])
+            m.update(_data_metrics(reduced.element(i, j), fitted, inf))
         m.update(
             **_record(unit.method, block.order, x.order, x.weight, x.error, None),
             reduction_hinf_relative=float(x.change),
@@ -527,16 +518,21 @@ def _with_data_metrics(model: RadiationModel, fitted: FitData) -> RadiationModel
         metrics = dict(k.metrics)
         for key in DATA_METRICS:
             metrics.pop(f"{key}_unreduced", None)
-        metrics.update(
-            coupling_metrics(
-                k,
-                fitted.omega,
-                fitted.added_mass[:, i, j],
-                fitted.damping[:, i, j],
-                float(model.added_mass_inf[i, j]),
-                time=fitted.time,
-                kernel=fitted.kernel[:, i, j],
-            )
-        )
+        metrics.update(_data_metrics(k, fitted, float(model.added_mass_inf[i, j])))
         out.append(replace(k, metrics=metrics))
     return replace(model, couplings=tuple(out))
+
+
+def _data_metrics(k: CouplingModel, fitted: FitData, added_mass_inf: float) -> dict[str, Any]:
+    """The measures of fit of coupling k (its ``influenced``, ``radiating`` pair) against
+    the data, as the fit computes them."""
+    i, j = k.influenced, k.radiating
+    return coupling_metrics(
+        k,
+        fitted.omega,
+        fitted.added_mass[:, i, j],
+        fitted.damping[:, i, j],
+        added_mass_inf,
+        time=fitted.time,
+        kernel=fitted.kernel[:, i, j],
+    )
