@@ -10,6 +10,7 @@ K(0) and K − Kᵀ evaluated from the realization.
 from __future__ import annotations
 
 import warnings
+from dataclasses import replace
 from pathlib import Path
 
 import numpy as np
@@ -142,6 +143,14 @@ def test_mapping_names_a_block(tanker):
     np.testing.assert_array_equal(small.blocks[1].a, model.blocks[1].a)
     with pytest.raises(FitError, match="one block"):
         reduce_radiation_model(model, order={(i, i): 10, (j, j): 12})
+
+
+def test_an_unstable_block_is_refused(tanker):
+    """A block with a pole in the right half-plane: a FitError naming its DOFs and the pole."""
+    _, model = tanker
+    bad = replace(model.blocks[0], a=-model.blocks[0].a)
+    with pytest.raises(FitError, match=r"DOFs \(0, 2, 4\) .*not stable: a pole at"):
+        reduce_radiation_model(replace(model, blocks=(bad, *model.blocks[1:])), tol=0.02)
 
 
 def test_two_bodies_with_antisymmetric_added_mass(float_spar):

@@ -276,7 +276,12 @@ def prepared_block(
     on the scaled block S K S (s_i = 1/√max_ω |K_ii|): a ship's surge memory is 10⁵
     times smaller than its pitch memory and would otherwise be truncated first."""
     if not block.is_stable():
-        raise FitError(f"block {block.dofs} is not stable")
+        worst = block.poles()[np.argmax(block.poles().real)]
+        raise FitError(
+            f"the block of DOFs {block.dofs} (0-based) is not stable: a pole at {worst:.3g}",
+            hint="balanced truncation needs a stable model; fit it again (cummins fit), "
+            "which returns stable blocks",
+        )
     unit = BlockUnit(block, index, method, np.asarray(grid, dtype=float), regularization)
     a, b, c = (np.asarray(x, dtype=float) for x in (block.a, block.b, block.c))
     sweep = _sweep(np.linalg.eigvals(a), SWEEP_POINTS)
