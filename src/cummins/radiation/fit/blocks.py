@@ -14,7 +14,7 @@ from dataclasses import replace
 import numpy as np
 
 from cummins.errors import FitError
-from cummins.radiation.fit import vector
+from cummins.radiation.fit import order_search, vector
 from cummins.radiation.fit.data import FitInput, range_cut_failures
 from cummins.radiation.fit.metrics import coupling_metrics
 from cummins.radiation.fit.mimo import failure_targets, fit_failures, with_motion_note
@@ -55,7 +55,7 @@ def fit_blocks(
         )
     motion_aim = MOTION_AIM * motion_tol if sensitivity is not None else None
     blocks, notes = [], []
-    for dofs, elements in vector.block_groups(n, pairs):
+    for dofs, elements in order_search.block_groups(n, pairs):
         say("block " + "-".join(labels[d] for d in dofs))
         used = np.stack([keep[:, i] & keep[:, j] for i, j in elements], axis=1)
         data = vector.block_data(
@@ -94,7 +94,7 @@ def fit_blocks(
         started = time.perf_counter()
         name = "-".join(labels[d] for d in dofs)
         try:
-            fitted, _, block_notes = vector.identify_block(
+            fitted, _, block_notes = order_search.identify_block(
                 data,
                 r2=r2,
                 r2_coupling=r2_coupling,
@@ -115,7 +115,7 @@ def fit_blocks(
         metrics = {}
         before = None
         if plain_block is not None:
-            before = vector.score_block(plain_block, data, r2=r2, r2_coupling=r2_coupling)
+            before = order_search.score_block(plain_block, data, r2=r2, r2_coupling=r2_coupling)
         for e, (i, j) in enumerate(elements):
             use = used[:, e]
             view = block.element(i, j)
