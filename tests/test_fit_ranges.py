@@ -155,3 +155,16 @@ def test_short_of_its_targets_a_block_keeps_the_fewest_poles_that_fit_as_well(
     assert blocks["most"].a.shape[0] > blocks["default"].a.shape[0]
     assert r2["default"] >= r2["most"] - NEAR * (1 - 0.99) - 1e-9, r2
     assert passivity_margin(default) >= -1e-6
+
+
+def test_the_kept_count_meets_the_targets_or_is_the_fewest_nearly_as_close():
+    """The rule of :func:`kept_count` on its own: a count that meets every target wins
+    over any that does not (however few poles), a passive one over any that is not, and
+    short of the targets the fewest within NEAR of the closest."""
+    from cummins.radiation.fit.order_search import NEAR, kept_count
+
+    assert kept_count({6: (False, 0.05), 10: (False, 0.0), 8: (False, 0.0)}) == 8
+    assert kept_count({5: (True, 0.5), 9: (False, 2.0)}) == 9
+    near, far = 1.10 + 0.9 * NEAR, 1.10 + 1.1 * NEAR
+    assert kept_count({12: (False, far), 15: (False, near), 20: (False, 1.10)}) == 15
+    assert kept_count({12: (False, far), 20: (False, 1.10)}) == 20

@@ -195,27 +195,25 @@ def identify_block(
                 break
             if count not in tried:
                 passivated(count, fitted)
-    best = None
-    if tried:
-        key = min(tried[c][0] for c in tried)
-        # short of the targets, orders closer by less than NEAR are no better: the fewest
-        # poles among them
-        near = [
-            c
-            for c in tried
-            if tried[c][0] == key
-            or (key[1] > 0 and tried[c][0][0] == key[0] and tried[c][0][1] <= key[1] + NEAR)
-        ]
-        count = min(near)
-        best = (tried[count][0], tried[count][1], tried[count][2], count)
-    if best is None:
+    if not tried:
         raise FitError("no stable model could be fitted")
-    _, block, score, count = best
+    count = kept_count({c: key for c, (key, _, _) in tried.items()})
+    _, block, score = tried[count]
     if not score.passive:
         notes.append(f"not passive at {count} common poles")
     if not score.meets(motion_aim):
         notes.append(f"targets not met (best at {count} common poles)")
     return block, score, notes
+
+
+def kept_count(keys: dict[int, tuple[bool, float]]) -> int:
+    """The number of common poles kept among those made passive, from their keys (not
+    passive, distance to the targets): the fewest that meets every target; short of them,
+    the fewest among those within :data:`NEAR` of the closest (the passive first)."""
+    best = min(keys.values())
+    if best[1] == 0:
+        return min(c for c, key in keys.items() if key == best)
+    return min(c for c, (flag, bad) in keys.items() if flag == best[0] and bad <= best[1] + NEAR)
 
 
 #: The order search stops when PATIENCE more poles in a row have not improved the fit
