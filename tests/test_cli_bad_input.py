@@ -404,7 +404,7 @@ def test_regular_wave_summary_gives_the_amplitude(work, monkeypatch):
     measured = 0.5 * np.ptp(heave[t >= t[-1] - 10])
     assert measured == pytest.approx(expected, rel=0.01)
     shown = float(
-        next(line for line in result.output.splitlines() if "Heave" in line).split("│")[2]
+        next(line for line in result.output.splitlines() if "│ Heave" in line).split("│")[2]
     )
     assert shown == pytest.approx(measured, rel=1e-3)
 

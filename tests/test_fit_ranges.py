@@ -95,9 +95,10 @@ def test_the_oswec_2015_periods_are_not_spikes_and_the_fit_covers_its_range(corp
 
 
 def test_a_model_extrapolated_over_sound_data_is_a_failure(corpus, tanker_wamit):
-    """NEMOH two cubes (bemio): the zigzag of the surge and pitch curves from 1.17 rad/s
-    cuts the fitting range at 1.123 of 2 rad/s; the other DOFs' curves are sound above
-    it and the model misses them. The fit names that as a failure, with the DOFs the
+    """NEMOH two cubes (bemio): the zigzag of the surge and pitch curves cuts the fitting
+    range at 1.415 of 2 rad/s (1.123 before its slightly non-passive damping was fitted
+    by its passive part: the negative-damping points are gone); the other DOFs' curves
+    are sound above it and the model misses them. The fit names that as a failure, with the DOFs the
     scoreboard (:func:`diagonal_r2`, computed here) finds below target. The tanker's
     range is cut too (irregular frequencies above 3.4 rad/s), but the model still
     meets the target on every DOF there: no such failure."""
@@ -105,7 +106,7 @@ def test_a_model_extrapolated_over_sound_data_is_a_failure(corpus, tanker_wamit)
     with warnings.catch_warnings():
         warnings.simplefilter("ignore")
         model = fit_radiation(ds)
-    assert model.attrs["omega_fit_max"] < 0.6 * float(ds.omega.max())
+    assert model.attrs["omega_fit_max"] < 0.75 * float(ds.omega.max())
     cut = [f for f in model.attrs["failures"] if "cut the range" in f]
     assert len(cut) == 1, model.attrs["failures"]
     r2 = diagonal_r2(ds, model)

@@ -287,3 +287,110 @@ def remove_suspect_frequencies(
             drop |= set(w[w >= min(high)].tolist())
             reason += f"; all frequencies from {min(high):.4g} rad/s up (irregular frequencies)"
     return remove_frequencies(ds, sorted(drop), reason=reason), suspects
+
+
+#: :func:`nearest_passive_damping` leaves a frequency alone where the DOF-scaled damping
+#: matrix has an eigenvalue below −PASSIVE_LIMIT (a fifth of the diagonal's peak): data
+#: that far from passive are not noise, and projecting them would invent data (the
+#: OSWEC's base body, fixed to the seabed in WEC-Sim: −3.7).
+PASSIVE_LIMIT = 0.2
+
+
+@dataclass(frozen=True)
+class PassiveDamping:
+    """What :func:`nearest_passive_damping` changed: the frequencies (rad/s) whose damping
+    matrix was made positive semi-definite, the most negative DOF-scaled eigenvalue
+    there and its frequency, and the frequencies left alone (beyond
+    :data:`PASSIVE_LIMIT`)."""
+
+    changed: tuple[float, ...]
+    worst: float
+    worst_omega: float
+    left: tuple[float, ...]
+
+    def note(self) -> str | None:
+        """One line for the fit's notes (None when nothing changed)."""
+        if not self.changed:
+            return None
+        text = (
+            f"B(ω) not positive semi-definite at {len(self.changed)} frequencies (worst "
+            f"eigenvalue {self.worst:.3g} of the DOF-scaled peak, {self.worst_omega:.4g} "
+            "rad/s): fitted to its nearest passive part"
+        )
+        if self.left:
+            text += f"; {len(self.left)} frequencies further from passive left as they are"
+        return text
+
+
+def nearest_passive_damping(
+    ds: xr.Dataset, pairs, *, limit: float = PASSIVE_LIMIT
+) -> tuple[xr.Dataset, PassiveDamping]:
+    """The data with B(ω) replaced, frequency by frequency, by its nearest positive
+    semi-definite matrix where it is not one (Higham (1988)).
+
+    Radiation damping is positive semi-definite at every frequency (the energy radiated
+    by any motion is positive: Newman (1977) ch. 6); solvers return slightly indefinite
+    matrices where a coupling is nearly rank one (a vertical cylinder's sway–roll about
+    its waterline: B₂₄² ≈ B₂₂ B₄₄, and HAMS's B₄₄ falls below B₂₄²/B₂₂ by numerical
+    noise). A passive model cannot follow such data and its passivity step, moving
+    every coupling of the block, costs far more than the data's error. Only the
+    ``pairs`` (i, j) are projected — the couplings a model will hold; the others are
+    zero in it and stay as they are here — after the DOF scaling of the passivity check
+    (s_i = 1/√max_ω |B_ii|): the negative eigenvalues of S ½(B + Bᵀ) S are set to zero
+    and the antisymmetric part is kept. Frequencies further from passive than
+    ``limit`` are left alone.
+
+    Parameters
+    ----------
+    ds
+        Canonical dataset at one speed.
+    pairs
+        Index pairs (i, j), i ≤ j, of the couplings to project (those with i == j are
+        the DOFs).
+    limit
+        Most negative DOF-scaled eigenvalue that is projected.
+
+    Returns
+    -------
+    (dataset, report)
+        ``report`` is a :class:`PassiveDamping`.
+    """
+    damping = ds["radiation_damping"]
+    dims = damping.dims
+    b = damping.transpose("omega", "influenced_dof", "radiating_dof").values
+    w = ds.omega.values
+    n = b.shape[1]
+    mask = np.zeros((n, n), dtype=bool)
+    for i, j in pairs:
+        mask[i, j] = mask[j, i] = True
+    dofs = np.flatnonzero(np.diag(mask))
+    peak = np.array([np.nanmax(np.abs(b[:, i, i])) for i in dofs]) if dofs.size else []
+    nothing = PassiveDamping((), 0.0, float("nan"), ())
+    if dofs.size < 2 or not np.all(np.asarray(peak) > 0):
+        return ds, nothing
+    scale = 1.0 / np.sqrt(np.asarray(peak))
+    sub = np.ix_(dofs, dofs)
+    inside = mask[sub]
+    out = b.copy()
+    changed, left, worst, worst_omega = [], [], 0.0, float("nan")
+    for k in range(w.size):
+        matrix = b[k][sub]
+        if not np.all(np.isfinite(matrix)):
+            continue
+        symmetric = np.where(inside, 0.5 * (matrix + matrix.T), 0.0)
+        lam, vec = np.linalg.eigh(symmetric * np.outer(scale, scale))
+        if lam[0] >= 0:
+            continue
+        if lam[0] < -limit:
+            left.append(float(w[k]))
+            continue
+        nearest = (vec * np.maximum(lam, 0.0)) @ vec.T / np.outer(scale, scale)
+        out[k][sub] = np.where(inside, nearest + 0.5 * (matrix - matrix.T), matrix)
+        changed.append(float(w[k]))
+        if lam[0] < worst:
+            worst, worst_omega = float(lam[0]), float(w[k])
+    if not changed:
+        return ds, PassiveDamping((), 0.0, float("nan"), tuple(left))
+    projected = damping.transpose("omega", "influenced_dof", "radiating_dof").copy(data=out)
+    result = ds.assign(radiation_damping=projected.transpose(*dims))
+    return result, PassiveDamping(tuple(changed), worst, worst_omega, tuple(left))

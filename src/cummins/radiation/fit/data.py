@@ -41,6 +41,7 @@ from cummins.radiation.retardation import default_retardation_function, signific
 from cummins.repair import (
     find_suspect_frequencies,
     limit_frequency_range,
+    nearest_passive_damping,
     remove_suspect_frequencies,
 )
 from cummins.validation import guard_hydro_data
@@ -133,9 +134,17 @@ def prepare_fit(ds: xr.Dataset, options: FitOptions) -> FitInput:
     ds = single_speed(ds)
     guard_hydro_data(ds)  # non-finite or absurd values: FitError naming the DOF pair
     method = options.method
+    # a passive model is fitted to the data's passive part (a non-passive B(ω) makes the
+    # passivity step move every coupling of a block); what is said about the data, and
+    # the motions the model is compared with, stay the user's
+    user, passive_part = ds, None
+    if options.passivity != "none":
+        ds, passive_part = nearest_passive_damping(ds, significant_couplings(ds, options.threshold))
     raw, keep_dof, data_notes = _fit_data(
         ds, options.omega_min, options.omega_max, options.exclude_suspect
     )
+    if passive_part is not None and passive_part.note():
+        data_notes.insert(0, passive_part.note())
     # the data with each coupling's suspect points bridged: for Ogilvie's A∞, K(t), the
     # MIMO passivity step and the metrics after it (not extrapolated: the range ends
     # where the modelled DOFs stop keeping their points; a DOF without damping of its
@@ -151,6 +160,10 @@ def prepare_fit(ds: xr.Dataset, options: FitOptions) -> FitInput:
     beyond_range = _beyond_range(raw, keep_dof, inside)
     raw, keep_dof = raw.isel(omega=inside), keep_dof[inside]
     data = _bridged_dataset(raw, keep_dof)
+    if user is ds:
+        user = data
+    else:  # the user's own data at the same frequencies, bridged alike
+        user = _bridged_dataset(user.sel(omega=raw.omega.values), keep_dof)
     excluded = [float(x) for x in raw.omega.values[~keep_dof.all(axis=1)]]
     excluded += [float(x) for x in ds.omega.values if x not in set(raw.omega.values)]
     excluded = sorted(excluded)
@@ -183,7 +196,7 @@ def prepare_fit(ds: xr.Dataset, options: FitOptions) -> FitInput:
             )
     a_inf = dof_matrix(data, "added_mass_inf") if a_inf_mode == "data" else ogilvie.copy()
     labels = tuple(str(d) for d in data.influenced_dof.values)
-    for message in asymmetric_pairs(data):
+    for message in asymmetric_pairs(user):
         warnings.warn(message, CumminsWarning, stacklevel=3)
         data_notes.append(message)
     weighting = options.weighting
@@ -239,7 +252,11 @@ def prepare_fit(ds: xr.Dataset, options: FitOptions) -> FitInput:
         "omega_fit_max": float(w[-1]),
     }
     if sensitivity is not None:
-        attrs["motion_error_floor"] = motion_error_floor(sensitivity, measured, antisymmetric)
+        # the floor: the data's passive reciprocal part against the user's motions
+        reference = sensitivity
+        if user is not data:
+            reference = motion_sensitivity(user, added_mass_inf=a_inf)
+        attrs["motion_error_floor"] = motion_error_floor(reference, measured, antisymmetric)
     return FitInput(
         ds=ds,
         raw=raw,
