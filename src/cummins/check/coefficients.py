@@ -195,8 +195,10 @@ def _check_damping(ds: xr.Dataset) -> list[Finding]:
                     f"{' and '.join(labels[d] for d in dominant)}",
                     where=f"{w[worst]:.4g} rad/s",
                     value=float(rel[worst]),
-                    advice="the radiation force must dissipate energy; these frequencies cannot "
-                    "be fitted by a passive model: exclude or repair them",
+                    advice="the radiation force must dissipate energy: a passive model is "
+                    "fitted to the nearest passive damping (cummins.repair."
+                    "nearest_passive_damping) where it is within 0.2 of the scaled peak; "
+                    "exclude or repair the frequencies further off",
                 )
             )
         else:
