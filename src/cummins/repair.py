@@ -335,7 +335,9 @@ def nearest_passive_damping(
     noise). A passive model cannot follow such data and its passivity step, moving
     every coupling of the block, costs far more than the data's error. Only the
     ``pairs`` (i, j) are projected — the couplings a model will hold; the others are
-    zero in it and stay as they are here — after the DOF scaling of the passivity check
+    zero in it and stay as they are here; a DOF coupled to none is left to the suspect
+    test, its negative damping a bad point rather than noise — after the DOF scaling of
+    the passivity check
     (s_i = 1/√max_ω |B_ii|): the negative eigenvalues of S ½(B + Bᵀ) S are set to zero
     and the antisymmetric part is kept. Frequencies further from passive than
     ``limit`` are left alone.
@@ -363,7 +365,9 @@ def nearest_passive_damping(
     mask = np.zeros((n, n), dtype=bool)
     for i, j in pairs:
         mask[i, j] = mask[j, i] = True
-    dofs = np.flatnonzero(np.diag(mask))
+    # a DOF coupled to none is left to the suspect test: its negative damping is a bad
+    # point (an irregular frequency), not the noise of a nearly rank-one coupling
+    dofs = np.flatnonzero(np.diag(mask) & (mask.sum(axis=1) > 1))
     peak = np.array([np.nanmax(np.abs(b[:, i, i])) for i in dofs]) if dofs.size else []
     nothing = PassiveDamping((), 0.0, float("nan"), ())
     if dofs.size < 2 or not np.all(np.asarray(peak) > 0):
