@@ -6,8 +6,8 @@ vertical cylinder's sway–roll damping about its waterline has B₂₄² ≈ B�
 gives B₄₄ a little below B₂₄²/B₂₂ (and negative at 3.1–3.8 rad/s). Fitted to such data,
 the passivity step moved every coupling of the block (the HAMS cylinder: R² of roll's
 added mass −0.37, motion-RAO error 35 %). :func:`cummins.repair.nearest_passive_damping`
-gives the nearest positive semi-definite damping frequency by frequency (DOF-scaled,
-the pairs a model holds, the antisymmetric part kept), and the fit uses it.
+projects the damping onto the positive semi-definite matrices frequency by frequency
+(DOF-scaled, the pairs a model holds, the antisymmetric part kept), and the fit uses it.
 """
 
 from __future__ import annotations

@@ -337,10 +337,16 @@ def nearest_passive_damping(
     ``pairs`` (i, j) are projected — the couplings a model will hold; the others are
     zero in it and stay as they are here; a DOF coupled to none is left to the suspect
     test, its negative damping a bad point rather than noise — after the DOF scaling of
-    the passivity check
-    (s_i = 1/√max_ω |B_ii|): the negative eigenvalues of S ½(B + Bᵀ) S are set to zero
-    and the antisymmetric part is kept. Frequencies further from passive than
-    ``limit`` are left alone.
+    the passivity check (s_i = 1/√max_ω |B_ii|): the negative eigenvalues of
+    S ½(B + Bᵀ) S, the unmodelled pairs set to zero, are set to zero and the
+    antisymmetric part is kept. Frequencies further from passive than ``limit`` are
+    left alone.
+
+    One projection, not the nearest matrix with that sparsity: the projection fills the
+    unmodelled pairs, which are written back as they were, so the modelled pairs alone
+    are passive up to a small remainder (HAMS cylinder: the smallest scaled eigenvalue
+    −0.093 before, −0.0008 after; NEMOH two cubes −0.048, −9·10⁻⁷), which the fit's
+    passivity step takes up.
 
     Parameters
     ----------
@@ -368,11 +374,10 @@ def nearest_passive_damping(
     # a DOF coupled to none is left to the suspect test: its negative damping is a bad
     # point (an irregular frequency), not the noise of a nearly rank-one coupling
     dofs = np.flatnonzero(np.diag(mask) & (mask.sum(axis=1) > 1))
-    peak = np.array([np.nanmax(np.abs(b[:, i, i])) for i in dofs]) if dofs.size else []
-    nothing = PassiveDamping((), 0.0, float("nan"), ())
-    if dofs.size < 2 or not np.all(np.asarray(peak) > 0):
-        return ds, nothing
-    scale = 1.0 / np.sqrt(np.asarray(peak))
+    peak = np.array([np.nanmax(np.abs(b[:, i, i])) for i in dofs])
+    if dofs.size < 2 or not np.all(peak > 0):
+        return ds, PassiveDamping((), 0.0, float("nan"), ())
+    scale = 1.0 / np.sqrt(peak)
     sub = np.ix_(dofs, dofs)
     inside = mask[sub]
     out = b.copy()

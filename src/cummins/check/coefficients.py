@@ -26,6 +26,7 @@ from cummins.check.common import (
 )
 from cummins.check.report import Finding
 from cummins.hydrodb import dof_matrix, is_rotation
+from cummins.repair import PASSIVE_LIMIT
 
 
 def _check_grid(ds: xr.Dataset) -> list[Finding]:
@@ -197,8 +198,8 @@ def _check_damping(ds: xr.Dataset) -> list[Finding]:
                     value=float(rel[worst]),
                     advice="the radiation force must dissipate energy: a passive model is "
                     "fitted to the nearest passive damping (cummins.repair."
-                    "nearest_passive_damping) where it is within 0.2 of the scaled peak; "
-                    "exclude or repair the frequencies further off",
+                    f"nearest_passive_damping) where it is within {PASSIVE_LIMIT:g} of the "
+                    "scaled peak; exclude or repair the frequencies further off",
                 )
             )
         else:

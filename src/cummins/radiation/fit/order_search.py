@@ -104,6 +104,11 @@ def score_block(
 TIE = 1e-6
 
 
+def _tied(badness: float) -> float:
+    """A distance to the targets on the grid of :data:`TIE`: near-ties compare equal."""
+    return round(badness / TIE) * TIE
+
+
 def identify_block(
     data: BlockData,
     *,
@@ -139,8 +144,7 @@ def identify_block(
         score = score_block(
             block, data, r2=r2, r2_coupling=r2_coupling, motion=motion, passive=is_passive
         )
-        badness = round(_badness(score, r2, motion_aim) / TIE) * TIE
-        tried[count] = ((not is_passive, badness), block, score)
+        tried[count] = ((not is_passive, _tied(_badness(score, r2, motion_aim))), block, score)
         return is_passive and score.meets(motion_aim)
 
     stalled, best_plain = 0, np.inf
@@ -191,7 +195,7 @@ def identify_block(
             passive_best = min(
                 (tried[c][0][1] for c in tried if not tried[c][0][0]), default=np.inf
             )
-            if round(bad / TIE) * TIE >= passive_best:
+            if _tied(bad) >= passive_best:
                 break
             if count not in tried:
                 passivated(count, fitted)
@@ -229,12 +233,12 @@ FINALISTS = 5
 #: costs R² ≈ −3.3 at 8, 10, 11 and 12 common poles). A passivity step that costs a
 #: little (the usual case on sound data) does not stop it.
 PASSIVE_PATIENCE = 2
+LOST = 1.0
 #: Nor does it go on when PASSIVE_STALL more counts in a row, their fits meeting every
 #: target before passivity, have not lessened what passivity costs by IMPROVEMENT (the
 #: RAFT float's heave: 0.01–0.08 of R² at 7 … 20 poles; 3 or 4 give the same models on
 #: every corpus case, 3 is 0.5 s faster on the NEMOH two cubes).
 PASSIVE_STALL = 3
-LOST = 1.0
 #: When no order meets every target, passive fits closer to them by less than NEAR (in
 #: units of the allowed 1 − R², a tenth: R² within 0.001) are equally good, and the
 #: fewest poles among them is kept (the ITI barge: 15 or 20 common poles on its surge–
