@@ -27,9 +27,11 @@ estimate), or the data's ω = ∞ row when it is consistent.
    Prop. 3.4) is enforced on the residues of the whole block by the smallest weighted
    change of the fit (linearised eigenvalue constraints, accumulated; Gustavsen &
    Semlyen (2001)'s residue perturbation, solved as a least-distance programme, Lawson &
-   Hanson (1974)); crossings are found exactly from the Hamiltonian pencil
-   (:func:`cummins.radiation.passivity.imaginary_axis_zeros`). The poles do not move, so the
-   model stays stable.
+   Hanson (1974)). The violations are looked for on a dense grid while it sees any (the
+   deep ones of the first iterations), then between the exact crossings of the
+   Hamiltonian pencil (:func:`cummins.radiation.passivity.imaginary_axis_zeros`), which
+   also find the bands narrower than the grid: a block is passive only when that exact
+   test finds none. The poles do not move, so the model stays stable.
 4. **Order**: the number of common poles grows until every coupling reaches its R²
    targets and the motion error of the block is within its aim
    (:mod:`cummins.radiation.fit.order_search`).
@@ -42,7 +44,6 @@ The result is one :class:`~cummins.radiation.model.MemoryBlock` per block.
 
 from __future__ import annotations
 
-import itertools
 from dataclasses import dataclass, field
 
 import numpy as np
@@ -294,13 +295,12 @@ def relocate(data: BlockData, poles: Poles) -> Poles:
     own = phi if data.fixed_inf is not None else np.hstack([phi, ones])
     sigma = np.hstack([phi, ones])
     k = own.shape[1]
-    blocks, scale = [], 0.0
-    for f, wr, wi in zip(data.values, data.weight_real, data.weight_imag, strict=True):
-        rows = _stacked(np.hstack([own, -f[:, None] * sigma]), wr, wi)
-        r = np.linalg.qr(rows, mode="r")
-        blocks.append(r[k : k + n + 1, k:])
-        scale += float(np.sum((wr * f.real) ** 2 + (wi * f.imag) ** 2))
-    scale = np.sqrt(scale) / s.size
+    f, wr, wi = data.values, data.weight_real, data.weight_imag
+    # one QR per element, stacked: [own, −f σ] weighted, real rows over imaginary rows
+    m = np.concatenate([np.broadcast_to(own, (f.shape[0], *own.shape)), -f[:, :, None] * sigma], 2)
+    r = np.linalg.qr(np.concatenate([wr[:, :, None] * m.real, wi[:, :, None] * m.imag], 1), "r")
+    blocks = list(r[:, k : k + n + 1, k:])
+    scale = np.sqrt(float(np.sum((wr * f.real) ** 2 + (wi * f.imag) ** 2))) / s.size
     norm = scale * np.real(sigma.sum(axis=0))
     lhs = np.vstack([*blocks, norm[None, :]])
     rhs = np.zeros(lhs.shape[0])
@@ -428,6 +428,21 @@ class PoleResidueBlock:
             out.append((complex(p), r * p))
         return out
 
+    def coordinate_realization(self) -> tuple[NDArray, NDArray, NDArray]:
+        """(a, b, c) of K(s) in the poles' real coordinates, one state per DOF and real
+        parameter (:meth:`Poles.state_form` ⊗ I): not minimal, but built without a
+        factorisation, for the passivity sweep. K(s) = s C(sI − Λ⊗I)⁻¹(β⊗I) =
+        C(Λ⊗I)(sI − Λ⊗I)⁻¹(β⊗I), the constant C(β⊗I) being zero in the residue null space."""
+        lam, beta = self.poles.state_form()
+        m = len(self.dofs)
+        x = np.zeros((lam.shape[0], m, m))
+        where = {d: k for k, d in enumerate(self.dofs)}
+        for e, (i, j) in enumerate(self.elements):
+            x[:, where[i], where[j]] = x[:, where[j], where[i]] = self.coefficients[e]
+        a = np.kron(lam, np.eye(m))
+        c = x.transpose(1, 0, 2).reshape(m, -1)  # [X_1 X_2 …], X_k the matrix of parameter k
+        return a, np.kron(beta[:, None], np.eye(m)), c @ a
+
     def realization(self, rank_tol: float = RANK_TOL) -> tuple[NDArray, NDArray, NDArray]:
         """Gilbert's realization (a, b, c), block DOF order; residue ranks below
         ``rank_tol`` × the largest residue eigenvalue are dropped."""
@@ -478,7 +493,7 @@ def vector_fit(data: BlockData, count: int) -> PoleResidueBlock:
 
 
 def passivity_violations(
-    block: PoleResidueBlock, omega_min: float, omega_max: float
+    block: PoleResidueBlock, omega_min: float, omega_max: float, exact: bool = True
 ) -> tuple[list[tuple[float, float, NDArray, float]], NDArray]:
     """(g, λ, w, λ_scale) of the points where S Re K(jω) S (DOF-scaled: s_i =
     1/√max_ω |K_ii(jω)|, as :func:`cummins.radiation.passivity.dof_scaling`, so that translations
@@ -487,29 +502,42 @@ def passivity_violations(
     the limits ω → 0, ∞ (:func:`limit_forms`) below −VIOLATION × their largest
     eigenvalue: g the linear form giving each element of Re K there from its
     coefficients, w = S v (v the eigenvector: wᵀ Re K w = λ) and the largest |λ| there;
-    and S."""
+    and S.
+
+    ``exact=False`` takes the bands from the sign changes of λ_min on the grid alone: no
+    pencil to factor (its QZ is most of the sweep's cost on a 12-DOF block), but a band
+    narrower than the grid's spacing is not seen."""
     from cummins.radiation.passivity import band_points
 
     grid = np.geomspace(omega_min / CHECK_SPAN, omega_max * CHECK_SPAN, CHECK_POINTS)
     k_grid = block.response(grid).real
     peak = np.abs(np.diagonal(k_grid, axis1=1, axis2=2)).max(axis=0)
     dof_scale = np.where(peak > 0, 1.0 / np.sqrt(np.where(peak > 0, peak, 1.0)), 0.0)
-    a, b, c = block.realization(rank_tol=0.0)
-    b, c = b * dof_scale[None, :], dof_scale[:, None] * c  # S K S: well conditioned
-    # every point once: the grid, five inside each band between crossings, its midpoint
-    edges, extra = band_points(a, b, c, grid)
-    points = np.r_[grid, extra]
-    order = np.argsort(points)
-    points = points[order]
-    k_all = np.concatenate([k_grid, block.response(extra).real])[order]
-    lam_all, vec_all = np.linalg.eigh(k_all * np.outer(dof_scale, dof_scale)[None])
-    out = []
+    if exact:
+        a, b, c = block.coordinate_realization()
+        b, c = b * dof_scale[None, :], dof_scale[:, None] * c  # S K S: well conditioned
+        # every point once: the grid, five inside each band between crossings, its midpoint
+        edges, extra = band_points(a, b, c, grid)
+        points = np.r_[grid, extra]
+        order = np.argsort(points)
+        points = points[order]
+        k_all = np.concatenate([k_grid, block.response(extra).real])[order]
+        lam_all, vec_all = np.linalg.eigh(k_all * np.outer(dof_scale, dof_scale)[None])
+    else:
+        points = grid
+        lam_all, vec_all = np.linalg.eigh(k_grid * np.outer(dof_scale, dof_scale)[None])
+        negative = lam_all[:, 0] < 0
+        change = np.flatnonzero(negative[1:] != negative[:-1])
+        edges = np.r_[0.0, np.sqrt(grid[change] * grid[change + 1]), np.inf]
+    out, chosen = [], []
     # between consecutive crossings the sign of λ_min is constant
-    for lo, hi in itertools.pairwise(edges):
-        inside = np.flatnonzero((points > lo) & (points < hi))
-        if not inside.size:
+    starts = np.searchsorted(points, edges, side="right")
+    stops = np.searchsorted(points, edges, side="left")
+    for first, last in zip(starts[:-1], stops[1:], strict=True):
+        if last <= first:
             continue
-        lam, vec, ws = lam_all[inside], vec_all[inside], points[inside]
+        inside = np.arange(first, last)
+        lam = lam_all[inside]
         worst = int(np.argmin(lam[:, 0]))
         if lam[worst, 0] >= -VIOLATION:  # S K S: the diagonal peaks are 1
             continue
@@ -517,12 +545,17 @@ def passivity_violations(
         minima = np.flatnonzero(
             (low < -VIOLATION) & (low <= np.r_[np.inf, low[:-1]]) & (low <= np.r_[low[1:], np.inf])
         )
-        spread = np.linspace(0, ws.size - 1, 5).astype(int)
-        for q in np.unique(np.r_[worst, minima[np.argsort(low[minima])][:MINIMA], spread]):
-            local = float(np.abs(lam[q]).max())
-            form = np.real(1j * ws[q] * block.poles.basis(np.array([1j * ws[q]]))[0])
-            for e in np.flatnonzero(lam[q] < 0):
-                out.append((form, float(lam[q, e]), dof_scale * vec[q, :, e], local))
+        spread = np.linspace(0, inside.size - 1, 5).astype(int)
+        chosen.append(
+            inside[np.unique(np.r_[worst, minima[np.argsort(low[minima])][:MINIMA], spread])]
+        )
+    if chosen:
+        at = np.concatenate(chosen)
+        forms = np.real(1j * points[at, None] * block.poles.basis(1j * points[at]))
+        for form, lam, vec in zip(forms, lam_all[at], vec_all[at], strict=True):
+            local = float(np.abs(lam).max())
+            for e in np.flatnonzero(lam < 0):
+                out.append((form, float(lam[e]), dof_scale * vec[:, e], local))
     # the limits ω → 0 and ω → ∞, where Re K vanishes as ω² L₀ and L_∞/ω²
     for form in limit_forms(block.poles):
         matrix = _element_matrix(block, block.coefficients @ form) * np.outer(dof_scale, dof_scale)
@@ -580,8 +613,15 @@ def enforce_passivity(
     start = block.coefficients
     delta = np.zeros(len(block.elements) * q)
     current = block
+    # the grid while it sees violations, then the exact crossings to the end (the narrow
+    # bands they find come back for a few iterations): half the sweeps' cost on two
+    # bodies, and the grid alone took twice the iterations on the ITI barge
+    exact = False
     for iteration in range(PASSIVITY_ITERATIONS):
-        found, _ = passivity_violations(current, float(w.min()), float(w.max()))
+        found, _ = passivity_violations(current, float(w.min()), float(w.max()), exact=exact)
+        if not found and not exact:
+            exact = True
+            found, _ = passivity_violations(current, float(w.min()), float(w.max()), exact=exact)
         if not found:
             return current, True, iteration
         for form, lam, vec, local in found:
