@@ -33,6 +33,7 @@ from numpy.typing import ArrayLike, NDArray
 
 from cummins.errors import HydroDataError
 from cummins.hydrodb import add_history, validate
+from cummins.radiation.retardation import causal_limits
 
 #: Negative diagonal damping below this fraction of its peak makes a frequency suspect.
 NEGATIVE_DAMPING = 0.01
@@ -185,6 +186,66 @@ def find_suspect_frequencies(
             ),
         )
     return tuple(sorted(found.values(), key=lambda s: s.omega))
+
+
+@dataclass(frozen=True)
+class IrregularFrequencySpan:
+    """The frequencies, from ``omega_start`` to the last, where an irregular frequency
+    spoils a DOF's added mass beyond its spikes (:func:`irregular_frequency_spans`).
+
+    Attributes
+    ----------
+    dof
+        DOF label.
+    omega_start
+        First frequency of the span, rad/s; the data below it are a causal pair.
+    departure
+        Median departure of Ogilvie's A∞ estimate over the span, as a fraction of the
+        DOF's scale (:func:`cummins.radiation.retardation.causal_limits`).
+    suspects
+        The DOF's suspect frequencies inside the span, rad/s.
+    """
+
+    dof: str
+    omega_start: float
+    departure: float
+    suspects: tuple[float, ...]
+
+    def description(self) -> str:
+        """What the data do there, in one sentence (without the DOF)."""
+        return (
+            f"A(ω) departs from what B(ω) implies from {self.omega_start:.4g} rad/s to the "
+            f"last frequency (Kramers–Kronig: Ogilvie's A∞ estimate {self.departure:.0%} of "
+            f"its scale off), around {len(self.suspects)} suspect frequencies: an irregular "
+            "frequency spoils more than its spikes, and no causal model follows the data there"
+        )
+
+
+def irregular_frequency_spans(ds: xr.Dataset) -> tuple[IrregularFrequencySpan, ...]:
+    """The DOFs whose added mass an irregular frequency spoils to the end of the data.
+
+    An irregular frequency of a panel method without irregular-frequency removal puts a
+    pole's shape in A(ω) and a spike in B(ω); the spike test
+    (:func:`find_suspect_frequencies`) finds the points near it, but A(ω) can stay off
+    for the rest of the data (the ITI barge from WAMIT: heave 34 % off what B(ω) implies
+    from 2.8 to 5 rad/s, spikes at 3.1–3.9 rad/s only). A span is reported where
+    A(ω) departs from the Kramers–Kronig transform of B(ω) to the last frequency
+    (:func:`cummins.radiation.retardation.causal_limits`) *and* holds suspect frequencies
+    of that DOF's own curves: a departure without spikes near the end of the data is
+    more likely the unknown damping tail (data that end before B has decayed).
+
+    Returns
+    -------
+    tuple of IrregularFrequencySpan
+        In DOF order; empty for data without such spans.
+    """
+    out = []
+    for label, (start, departure) in causal_limits(ds).items():
+        one = ds.sel(influenced_dof=[label], radiating_dof=[label])
+        inside = tuple(s.omega for s in find_suspect_frequencies(one) if s.omega >= start)
+        if inside:
+            out.append(IrregularFrequencySpan(label, start, departure, inside))
+    return tuple(out)
 
 
 def _keep_worst(found: dict[float, SuspectFrequency], item: SuspectFrequency) -> None:

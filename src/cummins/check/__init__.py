@@ -25,7 +25,9 @@ changed in the data. Each finding says what was measured, where, and what to do.
   approximate surge by scaling sway).
 * ``finite`` — NaN/Inf anywhere (validation of the dataset already refuses them).
 * ``suspect_frequencies`` — spikes and clearly negative damping
-  (:func:`cummins.repair.find_suspect_frequencies`).
+  (:func:`cummins.repair.find_suspect_frequencies`), and the DOFs whose added mass an
+  irregular frequency spoils to the end of the data
+  (:func:`cummins.repair.irregular_frequency_spans`).
 * ``retardation`` — per significant coupling: K(0), ∫K dt against B(0) = 0,
   K(t_max)/max|K|, the tail's share of ∫B dω, the Ogilvie estimate of A∞ and its spread
   over frequency (and its distance from the solver's ω = ∞ row), and the

@@ -13,7 +13,7 @@ import xarray as xr
 from cummins.check.common import _labels, _speed_suffix, _speeds
 from cummins.check.report import Finding
 from cummins.dofs import split_dof
-from cummins.repair import find_suspect_frequencies
+from cummins.repair import find_suspect_frequencies, irregular_frequency_spans
 
 
 def _check_read_warnings(ds: xr.Dataset) -> list[Finding]:
@@ -111,6 +111,20 @@ def _check_suspect_frequencies(ds: xr.Dataset) -> list[Finding]:
                 },
             )
         )
+        for span in irregular_frequency_spans(sub):
+            out.append(
+                Finding(
+                    "suspect_frequencies",
+                    "warning",
+                    span.description() + suffix,
+                    where=span.dof,
+                    value=span.departure,
+                    advice=f"fit below {span.omega_start:.4g} rad/s (cummins fit --omega-max "
+                    f"{span.omega_start:.4g}), or rerun the solver with irregular-frequency "
+                    "removal (WAMIT IRR ≥ 1, a lid in NEMOH or Capytaine, AQWA's lid)",
+                    details={"omega_start": span.omega_start, "suspects": list(span.suspects)},
+                )
+            )
     return out
 
 

@@ -417,6 +417,74 @@ def kramers_kronig_error(
     )
 
 
+#: A DOF's A(ω) departs from what its B(ω) implies where Ogilvie's A∞ estimate at that
+#: frequency (:func:`added_mass_inf_per_frequency`) is further than CAUSAL_DEPARTURE × the
+#: DOF's scale from its median over the trusted frequencies; the scale is the larger of
+#: that median and the median |A_ii(ω)|.
+CAUSAL_DEPARTURE = 0.1
+#: … and the data are said to depart from a frequency on when that holds there and at
+#: this share of the frequencies above it (an irregular frequency's pole crosses the
+#: median now and then), over at least three frequencies.
+CAUSAL_DEPARTURE_SHARE = 0.8
+
+
+def causal_limits(
+    ds: xr.Dataset, *, tol: float = CAUSAL_DEPARTURE
+) -> dict[str, tuple[float, float]]:
+    """Per DOF, where A(ω) stops agreeing with what B(ω) implies, to the last frequency.
+
+    For a causal pair, A(ω) − (2/π) PV∫ B(ν)/(ν² − ω²) dν is the same constant A∞ at every
+    frequency (Kramers–Kronig, Hjulstad (2004) eq. 5.23). Near an irregular frequency of a
+    panel method A(ω) takes a pole's shape, B(ω) a spike, and the A(ω) above it is often
+    off for the rest of the data (the ITI barge from WAMIT without irregular-frequency
+    removal: heave's estimate 30 % below its median from 2.8 to the last frequency,
+    5 rad/s, while the spikes end at 3.9 rad/s). A model, causal by construction, cannot
+    follow such data there; fitted below that frequency the same data give a model that
+    meets its targets.
+
+    Parameters
+    ----------
+    ds
+        A ``HydroDB`` at one forward speed.
+    tol
+        Departure of the per-frequency estimate from its median, as a fraction of the
+        DOF's scale (:data:`CAUSAL_DEPARTURE`).
+
+    Returns
+    -------
+    dict
+        DOF label → (ω₀, departure): the data depart from ω₀ (rad/s) to the last
+        frequency (:data:`CAUSAL_DEPARTURE_SHARE` of them at least, in the upper half
+        of the data), the median departure there as a fraction of the scale. DOFs whose
+        data agree are absent.
+    """
+    ds = single_speed(ds)
+    w = ds.omega.values
+    if w.size < 6:
+        return {}
+    estimate = np.diagonal(added_mass_inf_per_frequency(ds).values, axis1=1, axis2=2)
+    added_mass = np.abs(np.diagonal(dof_matrix(ds, "added_mass"), axis1=1, axis2=2))
+    trusted = trusted_frequencies(ds)
+    out = {}
+    for i, label in enumerate(str(d) for d in ds.influenced_dof.values):
+        curve = estimate[:, i]
+        if not np.all(np.isfinite(curve)):
+            continue
+        centre = float(np.median(curve[trusted]))
+        scale = max(abs(centre), float(np.median(added_mass[:, i])))
+        if not scale > 1e-6 * added_mass.max():
+            continue
+        off = np.abs(curve - centre) / scale
+        departs = off > tol
+        share = np.cumsum(departs[::-1])[::-1] / np.arange(w.size, 0, -1)
+        start = np.flatnonzero(departs & (share >= CAUSAL_DEPARTURE_SHARE))
+        start = start[start <= w.size - 3]
+        # the departure must hold above a consistent part, not be the data's whole
+        if start.size and start[0] >= w.size // 2:
+            out[label] = (float(w[start[0]]), float(np.median(off[start[0] :])))
+    return out
+
+
 def reconstruct_added_mass_damping(
     kernel: xr.DataArray, added_mass_inf: ArrayLike, omega: ArrayLike
 ) -> xr.Dataset:

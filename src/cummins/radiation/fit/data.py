@@ -40,6 +40,7 @@ from cummins.radiation.retardation import added_mass_inf as estimate_added_mass_
 from cummins.radiation.retardation import default_retardation_function, significant_couplings
 from cummins.repair import (
     find_suspect_frequencies,
+    irregular_frequency_spans,
     limit_frequency_range,
     nearest_passive_damping,
     remove_suspect_frequencies,
@@ -548,6 +549,11 @@ def _fit_data(
             one = data.sel(influenced_dof=[label], radiating_dof=[label])
             for s in find_suspect_frequencies(one):
                 keep[np.isclose(w, s.omega, rtol=1e-12, atol=0.0), d] = False
+        for span in irregular_frequency_spans(data):
+            notes.append(
+                f"{span.dof}: {span.description()}; fitted below {span.omega_start:.4g} rad/s "
+                "(omega_max, --omega-max) the model follows the consistent part"
+            )
         for d, label in enumerate(labels):
             dropped = int((~keep[:, d]).sum())
             if dropped and keep[:, d].sum() < MIN_KEPT_FREQUENCIES:
