@@ -20,30 +20,10 @@ import warnings
 import numpy as np
 import pytest
 
-import cummins
-from cummins.hydrodb import make_hydrodb
+from _synthetic import one_dof_hydrodb, read_quietly
 from cummins.radiation.fit import fit_radiation
 from cummins.radiation.fit.scorecard import diagonal_r2, passivity_margin
 from cummins.repair import find_suspect_frequencies
-
-
-def _synthetic_hydrodb(w, a, b):
-    """One heave DOF with the given A(ω), B(ω)."""
-    return make_hydrodb(
-        w,
-        np.asarray(a)[:, None, None],
-        np.asarray(b)[:, None, None],
-        rho=1025.0,
-        g=9.81,
-        source_format="synthetic",
-        dofs=["Heave"],
-    )
-
-
-def _read(path):
-    with warnings.catch_warnings():
-        warnings.simplefilter("ignore")
-        return cummins.read(path)
 
 
 def test_a_coarsely_sampled_peak_is_not_a_spike():
@@ -55,12 +35,12 @@ def test_a_coarsely_sampled_peak_is_not_a_spike():
     w = 2 * np.pi / periods
     b = w**4 / ((1.0 - w**2) ** 2 + (0.6 * w) ** 2)
     a = 1.0 + 0.5 / (1.0 + w**2)
-    assert find_suspect_frequencies(_synthetic_hydrodb(w, a, b)) == ()
+    assert find_suspect_frequencies(one_dof_hydrodb(w, a, b)) == ()
     fine = np.linspace(0.2, 3.0, 120)
     b = fine**4 / ((1.0 - fine**2) ** 2 + (0.6 * fine) ** 2)
     b[60] *= 1.5  # a spike of 50 % of the local value: ~20 % of the curve's range
     a = 1.0 + 0.5 / (1.0 + fine**2)
-    found = [round(s.omega, 6) for s in find_suspect_frequencies(_synthetic_hydrodb(fine, a, b))]
+    found = [round(s.omega, 6) for s in find_suspect_frequencies(one_dof_hydrodb(fine, a, b))]
     assert found == [round(fine[60], 6)]
 
 
@@ -71,7 +51,7 @@ def test_the_oswec_2015_periods_are_not_spikes_and_the_fit_covers_its_range(corp
     passive by a dense sweep and stable, and reports what passivity cost; the order
     search stops once passivity has lost a coupling at two orders in a row, since more
     poles cannot make non-passive data passive."""
-    ds = _read(corpus / "WEC-Sim" / "wamit_OSWEC_2015_with_bemio_h5" / "oswec.out")
+    ds = read_quietly(corpus / "WEC-Sim" / "wamit_OSWEC_2015_with_bemio_h5" / "oswec.out")
     w = ds.omega.values
     top = w[w > 0.78]
     for label in ("body1__Surge", "body1__Pitch", "body1__Yaw"):
@@ -102,7 +82,7 @@ def test_a_model_extrapolated_over_sound_data_is_a_failure(corpus, tanker_wamit)
     scoreboard (:func:`diagonal_r2`, computed here) finds below target. The tanker's
     range is cut too (irregular frequencies above 3.4 rad/s), but the model still
     meets the target on every DOF there: no such failure."""
-    ds = _read(corpus / "bemio" / "nemoh_two_body")
+    ds = read_quietly(corpus / "bemio" / "nemoh_two_body")
     with warnings.catch_warnings():
         warnings.simplefilter("ignore")
         model = fit_radiation(ds)
@@ -138,7 +118,7 @@ def test_short_of_its_targets_a_block_keeps_the_fewest_poles_that_fit_as_well(
     what the data allow is not bought with states."""
     from cummins.radiation.fit.order_search import NEAR
 
-    ds = _read(corpus / case)
+    ds = read_quietly(corpus / case)
     with warnings.catch_warnings():
         warnings.simplefilter("ignore")
         default = fit_radiation(ds)

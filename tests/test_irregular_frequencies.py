@@ -17,34 +17,16 @@ import numpy as np
 import pytest
 
 import cummins
-from cummins.hydrodb import make_hydrodb
+from _synthetic import one_dof_hydrodb, read_quietly
 from cummins.radiation.fit import fit_radiation
 from cummins.radiation.fit.scorecard import scorecard
 from cummins.radiation.retardation import causal_limits
 from cummins.repair import irregular_frequency_spans
 
 
-def _one_dof(w, added, damping):
-    return make_hydrodb(
-        w,
-        added[:, None, None],
-        damping[:, None, None],
-        rho=1025.0,
-        g=9.81,
-        source_format="analytic",
-        dofs=["Heave"],
-    )
-
-
-def _read(path):
-    with warnings.catch_warnings():
-        warnings.simplefilter("ignore")
-        return cummins.read(path)
-
-
 @pytest.fixture(scope="module")
 def barge(corpus):
-    return _read(corpus / "ROSCO" / "wamit_ITI_barge_5MW_Baseline" / "Barge.1")
+    return read_quietly(corpus / "ROSCO" / "wamit_ITI_barge_5MW_Baseline" / "Barge.1")
 
 
 def test_the_barge_spans_start_where_its_added_mass_leaves_causality(barge):
@@ -105,7 +87,7 @@ def test_the_check_says_where_and_what_to_do(barge):
 def test_consistent_data_have_no_span(shared_data, case):
     """Ships with irregular-frequency spikes of their own (the tanker's 3.6–4.5 rad/s)
     and offshore structures whose added mass stays a causal pair with their damping."""
-    assert irregular_frequency_spans(_read(shared_data / case)) == ()
+    assert irregular_frequency_spans(read_quietly(shared_data / case)) == ()
 
 
 def test_a_departure_without_spikes_is_not_called_an_irregular_frequency(corpus):
@@ -113,7 +95,7 @@ def test_a_departure_without_spikes_is_not_called_an_irregular_frequency(corpus)
     frequencies (2.2–2.8 rad/s), with no spike there: data that end before the damping
     has decayed (the unknown tail), not an irregular frequency; no span, and fitting
     below 2.2 rad/s would not help (its heave then fails)."""
-    ds = _read(corpus / "RAFT" / "capytaine_integration_float" / "floatData.nc")
+    ds = read_quietly(corpus / "RAFT" / "capytaine_integration_float" / "floatData.nc")
     assert "Surge" in causal_limits(ds)
     assert irregular_frequency_spans(ds) == ()
 
@@ -130,10 +112,10 @@ def test_a_causal_pair_has_no_departure():
     added = a_inf + a_tilde.real
     damping = -w * a_tilde.imag
     assert damping.min() > 0
-    ds = _one_dof(w, added, damping)
+    ds = one_dof_hydrodb(w, added, damping)
     assert causal_limits(ds) == {}
     shifted = added - 0.3 * a_inf * (w >= 4.0)
-    spoiled = _one_dof(w, shifted, damping)
+    spoiled = one_dof_hydrodb(w, shifted, damping)
     start, departure = causal_limits(spoiled)["Heave"]
     assert start == pytest.approx(w[w >= 4.0][0])
     assert departure == pytest.approx(0.3 * a_inf / max(a_inf, np.median(np.abs(added))), rel=0.2)
