@@ -308,7 +308,7 @@ def test_reduce_command(runner, tanker_copy, tmp_path):
     both = runner.invoke(
         main, ["reduce", str(era), "-o", str(by_tol), "--order", "40", "--tol", "0.1"]
     )
-    assert both.exit_code == 2 and "exactly one of --order and --tol" in both.output
+    assert both.exit_code == 2 and "exactly one of --order, --tol and --motion-tol" in both.output
     again = runner.invoke(main, ["reduce", str(era), "-o", str(small), "--order", "54"])
     assert again.exit_code == 2 and "refusing to overwrite" in again.output
 

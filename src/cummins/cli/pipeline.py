@@ -189,6 +189,7 @@ def reduce_stage(
     method: str = "lyapunov",
     data: xr.Dataset | None = None,
     passive: bool = True,
+    motion_tol: float | None = None,
 ):
     """Reduce a radiation model and, by default, make the result passive as a MIMO model.
 
@@ -199,15 +200,20 @@ def reduce_stage(
     else against the unreduced model (:func:`model_as_data`); the passivity correction
     minimises the change against the same reference (:func:`cummins.radiation.passivity.
     enforce_passivity`) and each coupling it changed gets its R² before and after in its
-    note. Returns the reduced model, whether a passivity correction was made (None when
-    ``passive`` is false) and the reference (:class:`cummins.radiation.fit.FitData`).
+    note. With ``motion_tol`` (and ``data``), the fewest states whose motion RAOs stay
+    within it (:func:`cummins.radiation.reduce.reduce_to_motion_tolerance`). Returns the
+    reduced model, whether a passivity correction was made (None when ``passive`` is
+    false) and the reference (:class:`cummins.radiation.fit.FitData`).
     """
     from cummins.radiation.fit import make_passive, model_fit_data
     from cummins.radiation.fit.metrics import coupling_metrics
     from cummins.radiation.passivity import is_passive
-    from cummins.radiation.reduce import reduce_radiation_model
+    from cummins.radiation.reduce import reduce_radiation_model, reduce_to_motion_tolerance
 
-    reduced = reduce_radiation_model(model, order=order, tol=tol, method=method, data=data)
+    if motion_tol is not None:
+        reduced = reduce_to_motion_tolerance(model, data, motion_tol, method=method)
+    else:
+        reduced = reduce_radiation_model(model, order=order, tol=tol, method=method, data=data)
     reference = model_fit_data(model, data) if data is not None else model_as_data(model)
     if reduced.blocks:  # common-pole blocks are made passive by their reduction
         attrs = {**reduced.attrs, "mimo_passive": is_passive(reduced)}

@@ -50,6 +50,14 @@ from cummins.cli.common import (
     "smallest passive truncation whose measured change (DOFs scaled alike) is at most TOL.",
 )
 @click.option(
+    "--motion-tol",
+    type=Number(0.0, 1.0, min_open=True),
+    default=None,
+    help="Instead of --order or --tol, for a default model (common-pole blocks) and --data "
+    "with the inertia and restoring: the fewest states whose motion RAOs (2 % of critical "
+    "damping, four headings) stay within MOTION_TOL of each DOF's peak, e.g. 0.01.",
+)
+@click.option(
     "--method",
     type=click.Choice(["lyapunov", "mixed", "mixed-rq", "riccati"]),
     default="lyapunov",
@@ -88,6 +96,7 @@ def reduce_command(
     output,
     order,
     tol,
+    motion_tol,
     method,
     data_path,
     format_,
@@ -116,12 +125,18 @@ def reduce_command(
       cummins reduce tanker_era.nc -o tanker_small.nc --order 54
       cummins reduce tanker_era.nc -o small.nc --tol 0.02 --method mixed --data tanker.1
       cummins reduce tanker_model.nc -o tanker_small.nc --tol 0.02 --data tanker.1
+      cummins reduce tanker_model.nc -o tanker_1pc.nc --motion-tol 0.01 --data tanker.1
     """
     from cummins.cli.pipeline import reduce_stage
     from cummins.radiation.model import RadiationModel
 
-    if (order is None) == (tol is None):
-        raise click.UsageError("give exactly one of --order and --tol")
+    if sum(x is not None for x in (order, tol, motion_tol)) != 1:
+        raise click.UsageError("give exactly one of --order, --tol and --motion-tol")
+    if motion_tol is not None and data_path is None:
+        raise click.UsageError(
+            "--motion-tol compares the motions with the data's: give --data (the file the "
+            "model was fitted to, with the inertia and restoring)"
+        )
     prepare_outputs(output, json_path, force=force)
     model = RadiationModel.load(model_path)
     data = None
@@ -129,7 +144,13 @@ def reduce_command(
         data = select_speed(read_hydrodb(data_path, format_, rho, g, ulen), speed)
     with console.status(f"reducing {model.total_order} states ({method})"):
         reduced, corrected, reference = reduce_stage(
-            model, order=order, tol=tol, method=method, data=data, passive=passive
+            model,
+            order=order,
+            tol=tol,
+            method=method,
+            data=data,
+            passive=passive,
+            motion_tol=motion_tol,
         )
     against = "the data" if data is not None else "the unreduced model"
     console.print(reduction_table(model, reduced, reference, against))
@@ -138,6 +159,8 @@ def reduce_command(
         f"{model.total_order} → {reduced.total_order} states, every model stable: "
         f"{summary['mimo_stable']}, MIMO passive: {summary['mimo_passive']}"
     )
+    if motion_tol is not None:
+        console.print(_motion_line(reduced))
     reduced.save(output, force=force)
     console.print(f"wrote {output}")
     if json_path:
@@ -150,6 +173,19 @@ def reduce_command(
         console.print(f"[bold red]failure:[/bold red] {escape(failure)}", highlight=False)
     if failures:
         sys.exit(REDUCE_FAILED)
+
+
+def _motion_line(reduced) -> str:
+    """What the motion tolerance gave: the motion-RAO errors and the tolerance used."""
+    a = reduced.attrs
+    line = (
+        f"motion-RAO error {a['motion_error']:.2%} of the peak (unreduced "
+        f"{a['motion_error_unreduced']:.2%}, target {a['motion_tol']:.2%})"
+    )
+    if "reduction_tol" in a:
+        line += f", reduced at --tol {a['reduction_tol']:g}"
+    kept = [n for n in a.get("data_notes", []) if n.startswith("no reduction down to tol")]
+    return line + "".join(f"\n  note: {n}" for n in kept)
 
 
 #: Exit status of ``cummins reduce`` when the model was written but misses its tolerance

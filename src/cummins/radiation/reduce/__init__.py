@@ -49,7 +49,9 @@ The package, one concept a module, each importing only those above it:
 * :mod:`~cummins.radiation.reduce.orders`: the order of every coupling (total order,
   mapping or tolerance);
 * :mod:`~cummins.radiation.reduce.radiation_model`: :func:`reduce_radiation_model` and
-  :func:`reduction_failures`.
+  :func:`reduction_failures`;
+* :mod:`~cummins.radiation.reduce.motions`: :func:`reduce_to_motion_tolerance`, the fewest
+  states whose motion RAOs stay within a tolerance of the data's.
 
 Radiation models
 ----------------
@@ -82,6 +84,10 @@ from cummins.radiation.reduce.gramians import (  # noqa: F401
     lyapunov_gramians,
     positive_real_gramians,
 )
+from cummins.radiation.reduce.motions import (  # noqa: F401
+    MOTION_SEARCH,
+    reduce_to_motion_tolerance,
+)
 from cummins.radiation.reduce.radiation_model import (  # noqa: F401
     DATA_METRICS,
     FAILED_R2,
@@ -109,4 +115,5 @@ __all__ = [
     "lyapunov_gramians",
     "positive_real_gramians",
     "reduce_radiation_model",
+    "reduce_to_motion_tolerance",
 ]
