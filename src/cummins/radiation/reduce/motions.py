@@ -17,6 +17,7 @@ from dataclasses import replace
 import xarray as xr
 
 from cummins.errors import FitError, HydroDataError
+from cummins.radiation.fit.scorecard import motion_rao_error
 from cummins.radiation.model import RadiationModel
 from cummins.radiation.reduce.radiation_model import reduce_radiation_model
 
@@ -70,8 +71,6 @@ def reduce_to_motion_tolerance(
     >>> small.attrs["motion_error"] <= 0.02
     True
     """
-    from cummins.radiation.fit.scorecard import motion_rao_error
-
     if not 0.0 < motion_tol < 1.0:
         raise FitError(f"motion_tol = {motion_tol} is not a fraction between 0 and 1")
     if not model.blocks:
