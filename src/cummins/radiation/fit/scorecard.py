@@ -262,7 +262,12 @@ def motion_rao_error(
     ds = single_speed(ds)
     for name in ("inertia_matrix", "hydrostatic_stiffness", "excitation_force"):
         if name not in ds:
-            raise HydroDataError(f"the motion-RAO error needs {name} in the data")
+            raise HydroDataError(
+                f"the motion-RAO error needs {name} in the data",
+                path=ds.attrs.get("source_file"),
+                hint="the motions need the rigid-body inertia, the restoring and the wave "
+                "excitation; without them compare K (R² of A and B, or reduce's tol)",
+            )
     dofs = list(model.dofs)
     ds = constant_additional_damping(ds.sel(influenced_dof=dofs, radiating_dof=dofs))
     w_all = ds.omega.values.astype(float)

@@ -400,14 +400,7 @@ class PoleResidueBlock:
 
     def response(self, omega: NDArray) -> NDArray[np.complex128]:
         """K(jω) of the block, (n_omega, m, m), local DOF order."""
-        values = self.element_response(omega)
-        where = {d: k for k, d in enumerate(self.dofs)}
-        m = len(self.dofs)
-        out = np.zeros((values.shape[0], m, m), dtype=complex)
-        for e, (i, j) in enumerate(self.elements):
-            out[:, where[i], where[j]] = values[:, e]
-            out[:, where[j], where[i]] = values[:, e]
-        return out
+        return _element_matrix(self, self.element_response(omega).T)
 
     def residue_matrices(self) -> list[tuple[complex, NDArray]]:
         """(p_k, M_k) with K(s) = Σ M_k/(s − p_k) over real poles and the upper member
@@ -435,10 +428,7 @@ class PoleResidueBlock:
         C(Λ⊗I)(sI − Λ⊗I)⁻¹(β⊗I), the constant C(β⊗I) being zero in the residue null space."""
         lam, beta = self.poles.state_form()
         m = len(self.dofs)
-        x = np.zeros((lam.shape[0], m, m))
-        where = {d: k for k, d in enumerate(self.dofs)}
-        for e, (i, j) in enumerate(self.elements):
-            x[:, where[i], where[j]] = x[:, where[j], where[i]] = self.coefficients[e]
+        x = _element_matrix(self, self.coefficients)  # (parameters, m, m)
         a = np.kron(lam, np.eye(m))
         c = x.transpose(1, 0, 2).reshape(m, -1)  # [X_1 X_2 …], X_k the matrix of parameter k
         return a, np.kron(beta[:, None], np.eye(m)), c @ a
@@ -580,11 +570,14 @@ def limit_forms(poles: Poles) -> tuple[NDArray, NDArray]:
 
 
 def _element_matrix(block: PoleResidueBlock, values: NDArray) -> NDArray:
-    """The symmetric m×m matrix of one value per element (block DOF order)."""
+    """The symmetric m×m matrices of one value per element (block DOF order): ``values``
+    (n_elements, …) gives (…, m, m), in its dtype."""
+    values = np.asarray(values)
     where = {d: k for k, d in enumerate(block.dofs)}
-    out = np.zeros((len(block.dofs), len(block.dofs)))
+    m = len(block.dofs)
+    out = np.zeros((*values.shape[1:], m, m), dtype=np.result_type(values, float))
     for e, (i, j) in enumerate(block.elements):
-        out[where[i], where[j]] = out[where[j], where[i]] = values[e]
+        out[..., where[i], where[j]] = out[..., where[j], where[i]] = values[e]
     return out
 
 

@@ -16,7 +16,7 @@ from dataclasses import replace
 
 import xarray as xr
 
-from cummins.errors import FitError, HydroDataError
+from cummins.errors import FitError
 from cummins.radiation.fit.scorecard import motion_rao_error
 from cummins.radiation.model import RadiationModel
 from cummins.radiation.reduce.radiation_model import reduce_radiation_model
@@ -78,14 +78,7 @@ def reduce_to_motion_tolerance(
             "a motion tolerance reduces a model of common-pole blocks (the default fit)",
             hint="reduce a per-coupling model with tol or order, or refit with method='vf'",
         )
-    for name in ("inertia_matrix", "hydrostatic_stiffness", "excitation_force"):
-        if name not in data:
-            raise HydroDataError(
-                f"a motion tolerance needs the motion RAOs of the data, and they lack {name}",
-                path=data.attrs.get("source_file"),
-                hint="give tol (a bound on the change of K) instead",
-            )
-    unreduced = motion_rao_error(data, model).error
+    unreduced = motion_rao_error(data, model).error  # HydroDataError without the inertia
     known = set(model.attrs.get("failures", []))
     base = {"motion_error_unreduced": unreduced, "motion_tol": motion_tol}
     if unreduced > motion_tol:
@@ -93,7 +86,7 @@ def reduce_to_motion_tolerance(
             f"the unreduced model's motions are already {unreduced:.2%} of their peak from "
             f"the data's (motion_tol {motion_tol:.2%}): no reduction can meet it"
         )
-        return _noted(model, base, failure=failure)
+        return _noted(model, {**base, "motion_error": unreduced}, failure=failure)
 
     def within(tol: float) -> RadiationModel | None:
         reduced = reduce_radiation_model(model, tol=tol, method=method, data=data)
@@ -129,7 +122,6 @@ def _noted(model, attrs, *, failure: str | None = None, note: str | None = None)
     out = {**model.attrs, **attrs}
     if failure:
         out["failures"] = [*model.attrs.get("failures", []), failure]
-        out["motion_error"] = attrs["motion_error_unreduced"]
     if note:
         out["data_notes"] = [*model.attrs.get("data_notes", []), note]
     return replace(model, attrs=out)
