@@ -77,9 +77,13 @@ PREFERENCE = (".1", ".out", ".nc", ".h5", ".AH1", ".LIS", ".mat")
 
 
 ROOT = Path(__file__).resolve().parent.parent
-#: Cases of the test suite's own data: a two-body float and spar from Capytaine
-#: (tests/data/make_float_spar.py), the RM3-like wave-energy converter the corpus lacks.
-EXTRA = [ROOT / "tests" / "data" / "float_spar_capytaine.nc"]
+#: Cases of the test suite's own data, computed with Capytaine for what the corpus lacks:
+#: a two-body float and spar (tests/data/make_float_spar.py), the RM3-like wave-energy
+#: converter, and a semisubmersible with its inertia (tests/data/make_semisub.py).
+EXTRA = [
+    ROOT / "tests" / "data" / "float_spar_capytaine.nc",
+    ROOT / "tests" / "data" / "semisub_capytaine.nc",
+]
 
 
 def corpus_cases(root: Path) -> list[Path]:
