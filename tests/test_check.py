@@ -99,6 +99,34 @@ def test_undecayed_damping_and_copied_dof():
     assert copied and copied[0].where == "Surge-Sway" and "0.25" in copied[0].message
 
 
+def test_identical_bodies_placed_symmetrically_are_not_copies():
+    """A row of three identical buoys has the same diagonal A and B on the outer two (their
+    mirror images): fine, and said so, not "strip-theory codes approximate surge by
+    scaling sway" (as it read on a Capytaine array of three buoys). A DOF of another
+    body scaled by a factor other than 1 is still named, without strip theory."""
+    from cummins.check.artefacts import copied_dofs
+
+    one = _clean_dataset()
+    a, b = one.added_mass.values, one.radiation_damping.values
+    n = a.shape[0]
+    a3, b3 = np.zeros((n, 18, 18)), np.zeros((n, 18, 18))
+    for k in range(3):
+        block = slice(6 * k, 6 * k + 6)
+        scale = 1.1 if k == 1 else 1.0  # the middle buoy differs (its neighbours)
+        a3[:, block, block], b3[:, block, block] = scale * a, scale * b
+    dofs = [f"body{k + 1}__{d}" for k in range(3) for d in cummins.DOF_NAMES]
+    ds = make_hydrodb(
+        one.omega.values, a3, b3, rho=1025, g=9.81, source_format="arrays", dofs=dofs
+    )
+    found = {f.where: f for f in copied_dofs(ds)}
+    outer = found["body1__Surge-body3__Surge"]
+    assert outer.severity == "ok" and "identical bodies placed symmetrically" in outer.message
+    middle = found["body1__Surge-body2__Surge"]
+    assert middle.severity == "info" and "0.9091" in middle.message
+    assert "strip-theory" not in middle.advice
+    assert all("strip-theory" not in (f.advice or "") for f in found.values())
+
+
 def test_tanker_facts(tanker_wamit):
     """The figures the identification issue measured on the WAMIT tanker, found by check:
     each diagonal damping's most negative value relative to its peak, min B_ii / max|B_ii|,

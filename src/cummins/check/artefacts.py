@@ -1,8 +1,9 @@
 """What the source left in the data: ``read_damage`` (damage the reader worked around),
 ``copied_dof`` (a DOF that is an exact scaled copy of another: strip-theory codes
 approximate surge by scaling sway; equal surge and sway, roll and pitch of one body are
-an axisymmetric body's, and said to be fine) and ``suspect_frequencies`` (spikes and clearly
-negative damping, :func:`cummins.repair.find_suspect_frequencies`).
+an axisymmetric body's, the same DOF of two bodies equal are identical bodies placed
+symmetrically, and both are said to be fine) and ``suspect_frequencies`` (spikes and
+clearly negative damping, :func:`cummins.repair.find_suspect_frequencies`).
 """
 
 from __future__ import annotations
@@ -54,13 +55,13 @@ def copied_dofs(ds: xr.Dataset) -> list[Finding]:
             rb = _constant_ratio(b[:, i], b[:, j])
             if ra is None or rb is None:
                 continue
-            if _axisymmetric_pair(labels[i], labels[j], ra, rb):
+            symmetry = _symmetric_pair(labels[i], labels[j], ra, rb)
+            if symmetry:
                 out.append(
                     Finding(
                         "copied_dof",
                         "ok",
-                        f"{labels[i]} and {labels[j]} are equal, as for a body symmetric "
-                        "about the vertical axis (a buoy, spar or cylinder)",
+                        f"{labels[i]} and {labels[j]} are equal, as for {symmetry}",
                         where=f"{labels[i]}-{labels[j]}",
                     )
                 )
@@ -72,11 +73,20 @@ def copied_dofs(ds: xr.Dataset) -> list[Finding]:
                     f"{labels[i]} and {labels[j]} are exact scaled copies of each other "
                     f"(A ratio {ra:.4g}, B ratio {rb:.4g})",
                     where=f"{labels[i]}-{labels[j]}",
-                    advice="strip-theory codes approximate surge by scaling sway; the "
-                    "fluid memory of the copied DOF is then no more than a guess",
+                    advice=_copy_advice(labels[i], labels[j]),
                 )
             )
     return out
+
+
+def _copy_advice(one: str, two: str) -> str:
+    (body_one, dof_one), (body_two, dof_two) = split_dof(one), split_dof(two)
+    if body_one == body_two and {dof_one, dof_two} == {"Surge", "Sway"}:
+        return (
+            "strip-theory codes approximate surge by scaling sway; the fluid memory of the "
+            "copied DOF is then no more than a guess"
+        )
+    return "a solver computes each DOF on its own: check that both were computed, not copied"
 
 
 def _check_suspect_frequencies(ds: xr.Dataset) -> list[Finding]:
@@ -132,12 +142,19 @@ def _check_suspect_frequencies(ds: xr.Dataset) -> list[Finding]:
 AXISYMMETRIC_PAIRS = ({"Surge", "Sway"}, {"Roll", "Pitch"})
 
 
-def _axisymmetric_pair(one: str, two: str, ra: float, rb: float) -> bool:
-    """Surge and sway (roll and pitch) of one body with equal A and B: an axisymmetric
-    body, not a strip-theory copy (which scales sway by a factor other than 1)."""
+def _symmetric_pair(one: str, two: str, ra: float, rb: float) -> str:
+    """What symmetry makes two DOFs' A and B equal, or "" when none does: surge and sway
+    (roll and pitch) of one body are an axisymmetric body's, not a strip-theory copy
+    (which scales sway by a factor other than 1); the same DOF of two bodies, identical
+    bodies placed symmetrically (the outer buoys of a row of three)."""
+    if abs(ra - 1.0) > 1e-6 or abs(rb - 1.0) > 1e-6:
+        return ""
     (body_one, dof_one), (body_two, dof_two) = split_dof(one), split_dof(two)
-    same = body_one == body_two and {dof_one, dof_two} in AXISYMMETRIC_PAIRS
-    return same and abs(ra - 1.0) <= 1e-6 and abs(rb - 1.0) <= 1e-6
+    if body_one == body_two and {dof_one, dof_two} in AXISYMMETRIC_PAIRS:
+        return "a body symmetric about the vertical axis (a buoy, spar or cylinder)"
+    if body_one != body_two and dof_one == dof_two:
+        return "identical bodies placed symmetrically (an array's mirror images)"
+    return ""
 
 
 def _constant_ratio(x: np.ndarray, y: np.ndarray) -> float | None:
