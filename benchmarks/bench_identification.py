@@ -79,10 +79,12 @@ PREFERENCE = (".1", ".out", ".nc", ".h5", ".AH1", ".LIS", ".mat")
 ROOT = Path(__file__).resolve().parent.parent
 #: Cases of the test suite's own data, computed with Capytaine for what the corpus lacks:
 #: a two-body float and spar (tests/data/make_float_spar.py), the RM3-like wave-energy
-#: converter, and a semisubmersible with its inertia (tests/data/make_semisub.py).
+#: converter, a semisubmersible with its inertia (tests/data/make_semisub.py) and a row of
+#: three buoys, 18 DOFs (tests/data/make_three_buoys.py).
 EXTRA = [
     ROOT / "tests" / "data" / "float_spar_capytaine.nc",
     ROOT / "tests" / "data" / "semisub_capytaine.nc",
+    ROOT / "tests" / "data" / "three_buoys_capytaine.nc",
 ]
 
 

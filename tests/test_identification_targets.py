@@ -26,12 +26,16 @@ WAMIT sphere (mean drift)   46     0.9878   0.9928   0.77 %    8, 7, 5, 11
 Capytaine COER (tank)       70     0.9952   0.9769   0.77 %    20, 10, 6, 4
 AQWA PEND hull (tank)       51     0.9946   0.9900   1.72 %    12, 12, 3
 Capytaine semisub ¹         64     0.9988   0.9949   0.37 %    6, 6, 4, 4
+Capytaine 3 buoys (18 DOF)¹ 243    0.9942   0.9915   0.95 %    19, 12
 ==========================  =====  =======  =======  ========  ================
 
-¹ ``tests/data/semisub_capytaine.nc`` (``tests/data/make_semisub.py``, added 2026-12-03):
-an OC4-like semisubmersible with its inertia, roll and pitch resonant at 0.29 rad/s and
-heave at 0.36 rad/s where the radiation damping is nearly zero; the corpus's semis carry
-no inertia, so no motions.
+¹ Computed with Capytaine for what the corpus lacks (added 2026-12-03):
+``tests/data/semisub_capytaine.nc`` (``tests/data/make_semisub.py``), an OC4-like
+semisubmersible with its inertia, roll and pitch resonant at 0.29 rad/s and heave at
+0.36 rad/s where the radiation damping is nearly zero (the corpus's semis carry no
+inertia, so no motions); ``tests/data/three_buoys_capytaine.nc``
+(``tests/data/make_three_buoys.py``), a row of three identical buoys, three bodies in
+one model.
 
 Two figures are set by the data, not the fit: the PEND hull's 1.72 % is at 11.07 rad/s,
 one of its irregular frequencies (heave damping spikes at 10.7–11.3 rad/s, left out of
@@ -74,7 +78,7 @@ CORPUS = {
     "pend_hull": "WEC-Sim/aqwa_19.1_PEND_hull/19_1.AH1",
 }
 #: Cases computed for the tests (tests/data), with their inertia.
-GENERATED = {"semisub": "semisub_capytaine.nc"}
+GENERATED = {"semisub": "semisub_capytaine.nc", "three_buoys": "three_buoys_capytaine.nc"}
 #: Diagonal R² floors other than 0.98, with the reason in the module docstring.
 R2_FLOOR = {"coer": 0.97}
 

@@ -24,7 +24,9 @@ The test suite uses ``tests/data/semisub_capytaine.nc``, made with Capytaine 3.0
 """
 
 import argparse
+import sys
 import time
+from pathlib import Path
 
 import capytaine as cpt
 import numpy as np
@@ -33,26 +35,14 @@ from capytaine.io.xarray import VARIABLES_ATTRIBUTES
 from capytaine.meshes.meshes import Mesh
 from capytaine.meshes.symmetric_meshes import RotationSymmetricMesh
 
+sys.path.insert(0, str(Path(__file__).resolve().parent))
+from make_float_spar import cosine_spacing, polyline
+
 RHO, G = 1025.0, 9.81
 Z_G = -10.0
 OFFSET = 28.9  # m, centre to offset column axis
 OMEGA = np.concatenate([np.geomspace(0.05, 0.5, 24), np.linspace(0.5, 3.0, 36)[1:]])
 HEADINGS_DEG = [0.0, 45.0, 90.0, 135.0, 180.0]
-
-
-def polyline(points, nsegs):
-    """Points along the (r, z) vertices ``points`` (as in make_float_spar.py)."""
-    out = [np.asarray(points[0], float)]
-    for p0, p1, n in zip(points[:-1], points[1:], nsegs, strict=True):
-        p0, p1 = np.asarray(p0, float), np.asarray(p1, float)
-        ts = np.linspace(0, 1, int(n) + 1)[1:] if np.ndim(n) == 0 else np.asarray(n, float)[1:]
-        out.extend(p0 + t * (p1 - p0) for t in ts)
-    return np.array(out)
-
-
-def cosine_spacing(n):
-    """Fractions 0..1 refined towards 1 (the free surface)."""
-    return np.sin(np.linspace(0, np.pi / 2, n + 1))
 
 
 def revolve_sector(profile_rz, th0, th1, n, axis_xy=(0.0, 0.0), name=None):

@@ -471,7 +471,7 @@ def least_distance(misfit, g: NDArray, h: NDArray) -> tuple[NDArray, NDArray[np.
         qty.append(q.T @ y)
     r_all = scipy.linalg.block_diag(*r_blocks)
     shift = np.concatenate(qty)
-    f = np.linalg.solve(r_all.T, g.T).T  # G R⁻¹
+    f = scipy.linalg.solve_triangular(r_all, g.T, trans="T").T  # G R⁻¹ (R upper triangular)
     e = h + f @ shift
     norms = np.linalg.norm(f, axis=1)
     norms[norms == 0] = 1.0
@@ -485,7 +485,7 @@ def least_distance(misfit, g: NDArray, h: NDArray) -> tuple[NDArray, NDArray[np.
     if abs(residual[-1]) < 1e-12:
         raise FitError("passivity enforcement: the linearised constraints are infeasible")
     x = -residual[:n] / residual[-1]
-    return np.linalg.solve(r_all, x - shift), u > 0
+    return scipy.linalg.solve_triangular(r_all, x - shift), u > 0
 
 
 def _apply_step(model, groups, bases, step) -> RadiationModel:
