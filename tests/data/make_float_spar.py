@@ -130,13 +130,25 @@ def join_with_single_lid(flt, spar, lid):
     return body
 
 
-def make_body(mesh, lid, name, zg):
-    b = cpt.FloatingBody(mesh=mesh, lid_mesh=lid, name=name, center_of_mass=(0, 0, zg))
+def make_body(mesh, lid, name, zg, x=0.0):
+    """A floating body in hydrostatic equilibrium, its centre of mass at (x, 0, zg)."""
+    b = cpt.FloatingBody(mesh=mesh, lid_mesh=lid, name=name, center_of_mass=(x, 0, zg))
     b.mass = RHO * b.volume  # displaced mass: body in hydrostatic equilibrium
     b.add_all_rigid_body_dofs()  # rotation centre = centre of mass
     b.inertia_matrix = b.compute_rigid_body_inertia(rho=RHO)
     b.hydrostatic_stiffness = b.compute_hydrostatic_stiffness(rho=RHO, g=G)
     return b
+
+
+def direct_solver():
+    """Capytaine's direct BIE method (the default indirect method gives A_ij != A_ji by up
+    to 25 % for float/spar couplings) with a finer Delhommeau tabulation."""
+    return cpt.BEMSolver(
+        green_function=cpt.Delhommeau(
+            tabulation_nr=1500, tabulation_nz=1500, tabulation_zmin=-300.0, tabulation_rmax=200.0
+        ),
+        method="direct",
+    )
 
 
 def parse_args():
@@ -188,13 +200,7 @@ def main():
             "g": [G],
         }
     )
-    # the default indirect method gives A_ij != A_ji by up to 25 % for float/spar couplings
-    solver = cpt.BEMSolver(
-        green_function=cpt.Delhommeau(
-            tabulation_nr=1500, tabulation_nz=1500, tabulation_zmin=-300.0, tabulation_rmax=200.0
-        ),
-        method="direct",
-    )
+    solver = direct_solver()
     t0 = time.perf_counter()
     ds = solver.fill_dataset(test_matrix, body, hydrostatics=True, progress_bar=False)
     t1 = time.perf_counter()

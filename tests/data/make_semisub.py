@@ -36,9 +36,8 @@ from capytaine.meshes.meshes import Mesh
 from capytaine.meshes.symmetric_meshes import RotationSymmetricMesh
 
 sys.path.insert(0, str(Path(__file__).resolve().parent))
-from make_float_spar import cosine_spacing, polyline
+from make_float_spar import RHO, G, cosine_spacing, direct_solver, make_body, polyline
 
-RHO, G = 1025.0, 9.81
 Z_G = -10.0
 OFFSET = 28.9  # m, centre to offset column axis
 OMEGA = np.concatenate([np.geomspace(0.05, 0.5, 24), np.linspace(0.5, 3.0, 36)[1:]])
@@ -87,15 +86,6 @@ def build():
     return hull, lid
 
 
-def make_body(mesh, lid):
-    body = cpt.FloatingBody(mesh=mesh, lid_mesh=lid, name="semisub", center_of_mass=(0, 0, Z_G))
-    body.mass = RHO * body.volume  # displaced mass: in hydrostatic equilibrium
-    body.add_all_rigid_body_dofs()  # rotation centre = centre of mass
-    body.inertia_matrix = body.compute_rigid_body_inertia(rho=RHO)
-    body.hydrostatic_stiffness = body.compute_hydrostatic_stiffness(rho=RHO, g=G)
-    return body
-
-
 def with_hydrostatics(ds, plain_body):
     """What ``fill_dataset(hydrostatics=True)`` adds, computed on the body with plain
     meshes: Capytaine 3.0.0 fails on a RotationSymmetricMesh there (``Multibody([body])``
@@ -121,20 +111,15 @@ def main():
     parser.add_argument("out", nargs="?", default="semisub_capytaine.nc", help="output NetCDF")
     args = parser.parse_args()
     hull, lid = build()
-    body = make_body(hull, lid)
-    plain = make_body(hull.merged(), lid.merged())
+    body = make_body(hull, lid, "semisub", Z_G)
+    plain = make_body(hull.merged(), lid.merged(), "semisub", Z_G)
     k = body.hydrostatic_stiffness.values
     print(
         f"hull panels {body.mesh.nb_faces} lid panels {body.lid_mesh.nb_faces}"
         f" volume {body.volume:.1f} m3 mass {body.mass / 1e3:.1f} t"
         f" GM roll {k[3, 3] / (RHO * G * body.volume):.2f} m"
     )
-    solver = cpt.BEMSolver(
-        green_function=cpt.Delhommeau(
-            tabulation_nr=1500, tabulation_nz=1500, tabulation_zmin=-300.0, tabulation_rmax=200.0
-        ),
-        method="direct",
-    )
+    solver = direct_solver()
     common = {"radiating_dof": list(body.dofs), "water_depth": [np.inf], "rho": [RHO], "g": [G]}
     start = time.perf_counter()
     waves = xr.Dataset(

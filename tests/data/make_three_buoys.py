@@ -31,9 +31,8 @@ import numpy as np
 import xarray as xr
 
 sys.path.insert(0, str(Path(__file__).resolve().parent))
-from make_float_spar import cosine_spacing, polyline, revolve
+from make_float_spar import RHO, G, cosine_spacing, direct_solver, make_body, polyline, revolve
 
-RHO, G = 1025.0, 9.81
 RADIUS, DRAFT, Z_G = 4.0, 6.0, -3.0
 POSITIONS = {"b1": -15.0, "b2": 0.0, "b3": 15.0}  # buoy axes, x in m
 NTHETA = 24
@@ -45,12 +44,7 @@ def buoy(name, x0):
     hull = revolve(profile, NTHETA, name).merged().translated((x0, 0.0, 0.0), name=name)
     lid = revolve(polyline([(RADIUS, 0.0), (0.0, 0.0)], [5]), NTHETA, f"{name}_lid")
     lid = lid.merged().translated((x0, 0.0, 0.0), name=f"{name}_lid")
-    body = cpt.FloatingBody(mesh=hull, lid_mesh=lid, name=name, center_of_mass=(x0, 0, Z_G))
-    body.mass = RHO * body.volume  # displaced mass: in hydrostatic equilibrium
-    body.add_all_rigid_body_dofs()  # rotation centre = centre of mass
-    body.inertia_matrix = body.compute_rigid_body_inertia(rho=RHO)
-    body.hydrostatic_stiffness = body.compute_hydrostatic_stiffness(rho=RHO, g=G)
-    return body
+    return make_body(hull, lid, name, Z_G, x=x0)
 
 
 def main():
@@ -65,12 +59,7 @@ def main():
             f"GM {gm:.3f} m"
         )
     body = buoys[0] + buoys[1] + buoys[2]  # every buoy has a lid: the plain sum works
-    solver = cpt.BEMSolver(
-        green_function=cpt.Delhommeau(
-            tabulation_nr=1500, tabulation_nz=1500, tabulation_zmin=-300.0, tabulation_rmax=200.0
-        ),
-        method="direct",
-    )
+    solver = direct_solver()
     common = {"radiating_dof": list(body.dofs), "water_depth": [np.inf], "rho": [RHO], "g": [G]}
     start = time.perf_counter()
     waves = xr.Dataset(
