@@ -405,3 +405,29 @@ def test_identify_damping_bounded_with_a_coupling_term(fitted, shared_data, tmp_
     ds = cummins.read(shared_data / "mss" / "tanker" / "tanker.1")
     m = ds.inertia_matrix.values + RadiationModel.load(model).added_mass_inf
     assert abs(terms["acceleration"]["value"]) < 1e-3 * abs(m[3, 1])
+
+
+def test_the_fit_table_of_three_bodies_fits_80_columns(tmp_path):
+    """A row of three buoys (18 DOFs): every coupling of the table named in full, short
+    (``b1.Surge-b2.Pitch``), within 80 columns; the hundred-odd negligible couplings
+    counted, a dozen named (all in the model file), not printed on one line of 2 700
+    characters."""
+    from pathlib import Path
+
+    from cummins.cli.fit import NEGLIGIBLE_LISTED
+
+    data = Path(__file__).parent / "data" / "three_buoys_capytaine.nc"
+    model = tmp_path / "model.nc"
+    output = _run(["fit", data, "-o", model]).output.splitlines()
+    start = next(i for i, line in enumerate(output) if line.lstrip().startswith("coupling"))
+    end = next(i for i in range(start + 2, len(output)) if not output[i].strip())
+    table = output[start:end]
+    assert all(len(line) <= 80 and "…" not in line for line in table), table
+    rows = [line.split()[0] for line in table[2:]]
+    assert "b1.Surge" in rows and "b1.Surge-b2.Surge" in rows and "b1.Pitch-b3.Pitch" in rows
+    negligible = next(line for line in output if "negligible couplings" in line)
+    saved = cummins.radiation.RadiationModel.load(model).attrs["negligible_couplings"]
+    pairs = [c for c in saved if "-" in c]
+    assert negligible.startswith(f"{len(pairs)} negligible couplings")
+    assert f"and {len(pairs) - NEGLIGIBLE_LISTED} more" in negligible
+    assert len(negligible) < 600

@@ -151,6 +151,15 @@ def direct_solver():
     )
 
 
+def without_round_off(ds):
+    """``ds`` with the restoring and inertia entries that are zero up to quadrature noise
+    set to zero (e.g. K33 = -1e-10 of a submerged spar)."""
+    for v in ("hydrostatic_stiffness", "inertia_matrix"):
+        x = ds[v]
+        ds[v] = x.where(abs(x) > 1e-9 * float(abs(x).max()), 0.0)
+    return ds
+
+
 def parse_args():
     parser = argparse.ArgumentParser(description=__doc__.splitlines()[0])
     parser.add_argument("out", nargs="?", default="float_spar_capytaine.nc", help="output NetCDF")
@@ -222,11 +231,7 @@ def main():
         ds = xr.merge([ds, ds_lim], compat="no_conflicts", join="outer")
     except Exception as e:
         print("omega 0/inf failed:", repr(e))
-    # round-off clean-up: entries that are zero up to quadrature noise
-    # (e.g. K33 = -1e-10 of a submerged spar)
-    for v in ("hydrostatic_stiffness", "inertia_matrix"):
-        x = ds[v]
-        ds[v] = x.where(abs(x) > 1e-9 * float(abs(x).max()), 0.0)
+    ds = without_round_off(ds)
     ds.attrs["total_solve_time_s"] = time.perf_counter() - t0
     geometry = (
         "annular float (r 3.5-10 m) around a surface-piercing spar with heave plate"

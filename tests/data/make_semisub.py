@@ -36,7 +36,15 @@ from capytaine.meshes.meshes import Mesh
 from capytaine.meshes.symmetric_meshes import RotationSymmetricMesh
 
 sys.path.insert(0, str(Path(__file__).resolve().parent))
-from make_float_spar import RHO, G, cosine_spacing, direct_solver, make_body, polyline
+from make_float_spar import (
+    RHO,
+    G,
+    cosine_spacing,
+    direct_solver,
+    make_body,
+    polyline,
+    without_round_off,
+)
 
 Z_G = -10.0
 OFFSET = 28.9  # m, centre to offset column axis
@@ -133,10 +141,7 @@ def main():
         for problems in (waves, limits)
     )
     ds = xr.merge([ds, ds_limits], compat="no_conflicts", join="outer")
-    for name in ("hydrostatic_stiffness", "inertia_matrix"):  # round-off to zero
-        x = ds[name]
-        ds[name] = x.where(abs(x) > 1e-9 * float(abs(x).max()), 0.0)
-    cpt.io.xarray.save_dataset_as_netcdf(args.out, ds)
+    cpt.io.xarray.save_dataset_as_netcdf(args.out, without_round_off(ds))
     print(f"wrote {args.out} in {time.perf_counter() - start:.0f} s")
 
 

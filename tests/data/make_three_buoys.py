@@ -31,7 +31,16 @@ import numpy as np
 import xarray as xr
 
 sys.path.insert(0, str(Path(__file__).resolve().parent))
-from make_float_spar import RHO, G, cosine_spacing, direct_solver, make_body, polyline, revolve
+from make_float_spar import (
+    RHO,
+    G,
+    cosine_spacing,
+    direct_solver,
+    make_body,
+    polyline,
+    revolve,
+    without_round_off,
+)
 
 RADIUS, DRAFT, Z_G = 4.0, 6.0, -3.0
 POSITIONS = {"b1": -15.0, "b2": 0.0, "b3": 15.0}  # buoy axes, x in m
@@ -75,10 +84,7 @@ def main():
         compat="no_conflicts",
         join="outer",
     )
-    for name in ("hydrostatic_stiffness", "inertia_matrix"):  # round-off to zero
-        x = ds[name]
-        ds[name] = x.where(abs(x) > 1e-9 * float(abs(x).max()), 0.0)
-    cpt.io.xarray.save_dataset_as_netcdf(args.out, ds)
+    cpt.io.xarray.save_dataset_as_netcdf(args.out, without_round_off(ds))
     print(f"wrote {args.out} in {time.perf_counter() - start:.0f} s")
 
 

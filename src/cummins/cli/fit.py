@@ -26,6 +26,7 @@ from cummins.cli.common import (
     select_speed,
     speed_option,
 )
+from cummins.dofs import split_dof
 
 
 @click.command(name="fit")
@@ -255,9 +256,13 @@ def fit_command(
         console.print(f"[yellow]data:[/yellow] {escape(note)}")
     negligible = [c for c in model.attrs.get("negligible_couplings", []) if "-" in c]
     if negligible:
+        listed = ", ".join(negligible[:NEGLIGIBLE_LISTED])
+        more = len(negligible) - NEGLIGIBLE_LISTED
+        if more > 0:
+            listed += f" and {more} more (the model file's attrs: negligible_couplings)"
         console.print(
-            f"negligible couplings (< {threshold:g} of the diagonal terms): "
-            + ", ".join(negligible)
+            f"{len(negligible)} negligible couplings (< {threshold:g} of the diagonal terms): "
+            + listed
         )
     model.save(output, force=force)
     console.print(f"wrote {output}")
@@ -349,11 +354,16 @@ def fit_summary(model, elapsed: float) -> dict:
     }
 
 
+#: The negligible couplings ``cummins fit`` names (a multi-body model has hundreds).
+NEGLIGIBLE_LISTED = 12
+
+
 def fit_table(model) -> Table:
     """Per-coupling summary printed by ``cummins fit``: narrow enough for an 80-column
-    terminal (12-DOF labels included); each coupling's note is numbered in the last column
-    and printed below the table (:func:`fit_notes`). The order of a pair of a common-pole
-    block is the number of poles its DOFs share (the block's states are in the notes)."""
+    terminal (the DOFs of several bodies named short: :func:`table_label`); each
+    coupling's note is numbered in the last column and printed below the table
+    (:func:`fit_notes`). The order of a pair of a common-pole block is the number of
+    poles its DOFs share (the block's states are in the notes)."""
     from rich import box
 
     table = Table(
@@ -361,15 +371,17 @@ def fit_table(model) -> Table:
         f"{model.attrs.get('added_mass_inf_method')})",
         box=box.SIMPLE_HEAD,
         pad_edge=False,
+        collapse_padding=True,
     )
     for column in ("coupling", "order", "R² A", "R² B", "R² K(t)", "stable", "passive", "note"):
-        table.add_column(column, justify="left" if column == "coupling" else "right")
+        left = column == "coupling"
+        table.add_column(column, justify="left" if left else "right", no_wrap=left)
     numbers: dict[str, int] = {}
     for k in model.modelled:
         if k.influenced > k.radiating:
             continue
         m = k.metrics
-        a, b = model.dofs[k.influenced], model.dofs[k.radiating]
+        a, b = table_label(model.dofs[k.influenced]), table_label(model.dofs[k.radiating])
         passive = m.get("passive")
         note = short_note(k.note)
         if note and note not in numbers:
@@ -385,6 +397,18 @@ def fit_table(model) -> Table:
             f"[{numbers[note]}]" if note else "",
         )
     return table
+
+
+def table_label(dof: str) -> str:
+    """A DOF as the fit table names it: ``body2__Pitch`` as ``b2.Pitch``, so that both
+    DOFs of a coupling between bodies fit an 80-column terminal (the notes below the
+    table and the model file keep the full names); a single body's DOFs as they are."""
+    body, name = split_dof(dof)
+    if body is None:
+        return name
+    if body.startswith("body") and body[4:].isdigit():
+        body = "b" + body[4:]
+    return f"{body}.{name}"
 
 
 def fit_notes(model) -> list[str]:
