@@ -115,9 +115,7 @@ def test_identical_bodies_placed_symmetrically_are_not_copies():
         scale = 1.1 if k == 1 else 1.0  # the middle buoy differs (its neighbours)
         a3[:, block, block], b3[:, block, block] = scale * a, scale * b
     dofs = [f"body{k + 1}__{d}" for k in range(3) for d in cummins.DOF_NAMES]
-    ds = make_hydrodb(
-        one.omega.values, a3, b3, rho=1025, g=9.81, source_format="arrays", dofs=dofs
-    )
+    ds = make_hydrodb(one.omega.values, a3, b3, rho=1025, g=9.81, source_format="arrays", dofs=dofs)
     found = {f.where: f for f in copied_dofs(ds)}
     outer = found["body1__Surge-body3__Surge"]
     assert outer.severity == "ok" and "identical bodies placed symmetrically" in outer.message
