@@ -17,6 +17,7 @@ import numpy as np
 import pytest
 
 import cummins
+from _waves import regular_wave_errors
 from cummins.radiation.fit import antisymmetric_added_mass, fit_radiation, prepare_fit
 from cummins.radiation.fit.options import DEFAULT
 from cummins.radiation.fit.scorecard import motion_rao_error, passivity_margin
@@ -155,36 +156,9 @@ def test_float_and_spar_in_regular_waves_follow_the_data(float_spar):
     """Regular waves, head seas, three periods (the spar's pitch resonance at 25 s among
     them), started on the steady state: the simulated motions of the default model
     within 2 % of each DOF's peak RAO of the data (``motion_rao``)."""
-    from cummins.radiation.fit.scorecard import critical_damping
-    from cummins.seakeeping.frequency_domain import motion_rao
-    from cummins.timedomain.simulate import simulate, steady_state
-    from cummins.vessel import vessel_from_hydrodb
-
     ds, model = float_spar
-    damping = critical_damping(ds, added_mass_inf=model.added_mass_inf)
-    vessel = vessel_from_hydrodb(ds, model, viscous_damping=np.diag(damping))
-    beta = float(ds.wave_direction.values[0])
-    terms = {"additional": False, "viscous_damping": vessel.viscous_damping}
-    band = ds.omega.values[np.isfinite(ds.omega.values) & (ds.omega.values >= 0.15)]
-    peak = np.abs(motion_rao(ds, band, [beta], **terms).values[:, 0]).max(axis=0)
-    f = ds.excitation_force.sel(wave_direction=beta).transpose("omega", "influenced_dof")
-    dt = 0.05
-    for nominal in (6.0, 10.0, 25.0):  # s; the data frequency nearest to each
-        k = int(np.argmin(np.abs(ds.omega.values - 2 * np.pi / nominal)))
-        w = float(ds.omega.values[k])
-        period = 2 * np.pi / w
-        force = f.values[k]
-        t = np.arange(0.0, 3 * period, dt)
-        tau = np.real(force[None, :] * np.exp(1j * w * t[:, None]))
-        run = simulate(vessel, t, tau, initial_state=steady_state(vessel, [w], [force]))
-        last = t >= period
-        basis = np.c_[np.cos(w * t[last]), -np.sin(w * t[last])]
-        coef, *_ = np.linalg.lstsq(basis, run.motion.values[last], rcond=None)
-        got = coef[0] + 1j * coef[1]
-        expected = motion_rao(ds, [w], [beta], **terms).values[0, 0]
-        compared = peak > 1e-3 * peak.max()
-        error = np.abs(got - expected)[compared] / peak[compared]
-        assert error.max() < 0.02, (period, np.asarray(vessel.dofs)[compared][error.argmax()])
+    for period, error, dof in regular_wave_errors(ds, model, (6.0, 10.0, 25.0)):
+        assert error < 0.02, (period, dof, error)
 
 
 def test_the_motion_floor_tells_the_data_from_the_fit():
