@@ -25,6 +25,7 @@ Detection, per diagonal term of A(ω) and B(ω):
 
 from __future__ import annotations
 
+from collections.abc import Mapping, Sequence
 from dataclasses import dataclass
 
 import numpy as np
@@ -221,7 +222,9 @@ class IrregularFrequencySpan:
         )
 
 
-def irregular_frequency_spans(ds: xr.Dataset) -> tuple[IrregularFrequencySpan, ...]:
+def irregular_frequency_spans(
+    ds: xr.Dataset, suspects: Mapping[str, Sequence[float]] | None = None
+) -> tuple[IrregularFrequencySpan, ...]:
     """The DOFs whose added mass an irregular frequency spoils to the end of the data.
 
     An irregular frequency of a panel method without irregular-frequency removal puts a
@@ -234,6 +237,15 @@ def irregular_frequency_spans(ds: xr.Dataset) -> tuple[IrregularFrequencySpan, .
     of that DOF's own curves: a departure without spikes near the end of the data is
     more likely the unknown damping tail (data that end before B has decayed).
 
+    Parameters
+    ----------
+    ds
+        A ``HydroDB`` at one forward speed.
+    suspects
+        Per DOF label, the suspect frequencies of its own curves when the caller has
+        them already; else :func:`find_suspect_frequencies` is run on the DOFs that
+        depart.
+
     Returns
     -------
     tuple of IrregularFrequencySpan
@@ -241,8 +253,12 @@ def irregular_frequency_spans(ds: xr.Dataset) -> tuple[IrregularFrequencySpan, .
     """
     out = []
     for label, (start, departure) in causal_limits(ds).items():
-        one = ds.sel(influenced_dof=[label], radiating_dof=[label])
-        inside = tuple(s.omega for s in find_suspect_frequencies(one) if s.omega >= start)
+        if suspects is None:
+            one = ds.sel(influenced_dof=[label], radiating_dof=[label])
+            own = [s.omega for s in find_suspect_frequencies(one)]
+        else:
+            own = suspects.get(label, ())
+        inside = tuple(float(x) for x in own if x >= start)
         if inside:
             out.append(IrregularFrequencySpan(label, start, departure, inside))
     return tuple(out)

@@ -545,11 +545,13 @@ def _fit_data(
     elif exclude_suspect:
         for s in find_suspect_frequencies(data):
             notes.append(f"{s.omega:.4g} rad/s left out: {s.quantity}, {s.reason}")
+        own = {}  # each DOF's suspect frequencies, of its own curves
         for d, label in enumerate(labels):
             one = data.sel(influenced_dof=[label], radiating_dof=[label])
-            for s in find_suspect_frequencies(one):
-                keep[np.isclose(w, s.omega, rtol=1e-12, atol=0.0), d] = False
-        for span in irregular_frequency_spans(data):
+            own[label] = [s.omega for s in find_suspect_frequencies(one)]
+            for omega in own[label]:
+                keep[np.isclose(w, omega, rtol=1e-12, atol=0.0), d] = False
+        for span in irregular_frequency_spans(data, own):
             notes.append(
                 f"{span.dof}: {span.description()}; fitted below {span.omega_start:.4g} rad/s "
                 "(omega_max, --omega-max) the model follows the consistent part"
@@ -640,12 +642,9 @@ def range_cut_failures(model: RadiationModel, inp: FitInput, r2: float) -> list[
         i = model.dofs.index(label)
         if not np.any(k[:, i, i]):
             continue
-        a_model, b_model = a_inf[i, i] + k[:, i, i].imag / w, k[:, i, i].real
-        scores = {"A": r_squared(a, a_model), "B": r_squared(b, b_model)}
-        within = {
-            "A": r_squared(a[inside], a_model[inside]) if inside.sum() > 2 else 1.0,
-            "B": r_squared(b[inside], b_model[inside]) if inside.sum() > 2 else 1.0,
-        }
+        curves = (a, b, a_inf[i, i] + k[:, i, i].imag / w, k[:, i, i].real)
+        scores = _r2_of_curves(*curves, np.ones(w.size, dtype=bool))
+        within = _r2_of_curves(*curves, inside) if inside.sum() > 2 else {"A": 1.0, "B": 1.0}
         lost = [
             x
             for x in scores
@@ -668,6 +667,11 @@ def range_cut_failures(model: RadiationModel, inp: FitInput, r2: float) -> list[
         f"ones, target {r2}): {', '.join(missed)}; choose omega_min/omega_max, or check "
         "the data (cummins check)"
     ]
+
+
+def _r2_of_curves(a, b, a_model, b_model, rows) -> dict[str, float]:
+    """R² of A and of B at the frequencies ``rows``."""
+    return {"A": r_squared(a[rows], a_model[rows]), "B": r_squared(b[rows], b_model[rows])}
 
 
 def _common_frequencies(keep: NDArray) -> NDArray[np.intp]:
