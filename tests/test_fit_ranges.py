@@ -175,18 +175,18 @@ def test_a_coupling_no_order_follows_does_not_stop_the_diagonal_improving(corpus
 
 
 def test_the_badness_of_a_fit_is_its_largest_shortfall_when_a_diagonal_term_has_it():
-    """:func:`_badness` on its own: the largest shortfall when it is a diagonal term's
+    """:func:`distance` on its own: the largest shortfall when it is a diagonal term's
     (the measure the order search always had), the mean of it and the largest diagonal
     shortfall when a coupling is furthest from its target."""
-    from cummins.radiation.fit.order_search import BlockScore, _badness
+    from cummins.radiation.fit.order_search import BlockScore, distance
 
     def score(r2):
         short = max((0.99 if i == j else 0.97) - min(p) for (i, j), p in r2.items())
         return BlockScore(r2, max(short, 0.0), None, True)
 
     diagonal_worst = score({(0, 0): (0.95, 0.97), (0, 1): (0.96, 0.96), (1, 1): (0.99, 0.99)})
-    assert _badness(diagonal_worst, 0.99, None) == pytest.approx(0.04 / 0.01)
+    assert distance(diagonal_worst, 0.99, None) == pytest.approx(0.04 / 0.01)
     coupling_worst = score({(0, 0): (0.98, 0.99), (0, 1): (0.0, 0.1), (1, 1): (0.99, 0.99)})
-    assert _badness(coupling_worst, 0.99, None) == pytest.approx(0.5 * (0.97 + 0.01) / 0.01)
+    assert distance(coupling_worst, 0.99, None) == pytest.approx(0.5 * (0.97 + 0.01) / 0.01)
     met = score({(0, 0): (0.995, 0.999), (0, 1): (0.98, 0.99), (1, 1): (0.99, 0.992)})
-    assert _badness(met, 0.99, None) == 0.0
+    assert distance(met, 0.99, None) == 0.0

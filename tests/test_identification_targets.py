@@ -197,6 +197,28 @@ def test_better_motions_than_the_previous_default(shared_data, vessel):
     assert new <= 0.5 * old, (new, old)
 
 
+@pytest.mark.parametrize("vessel", ["tanker", "supply"])
+def test_a_tighter_motion_target_never_gives_worse_motions(shared_data, vessel):
+    """``MOTION_ACCURACY`` (``--accurate``) weighs the motions more, and passivity can cost
+    such fits more: on the supply vessel its heave-pitch block was 0.55 % at 10 common
+    poles against the default's 0.29 % at 9. A block the tighter fit leaves further from
+    its targets than the default's fit keeps the default's (measured by the scorecard,
+    2 % damping: supply 0.29 % at 50 states against the default's 0.30 % at 44; tanker
+    0.14 % against 0.54 %)."""
+    from cummins.radiation.fit import MOTION_ACCURACY
+
+    ds = _read(shared_data / SHARED[vessel])
+    with warnings.catch_warnings():
+        warnings.simplefilter("ignore")
+        default = motion_rao_error(ds, fit_radiation(ds)).error
+        accurate_model = fit_radiation(ds, MOTION_ACCURACY)
+    accurate = motion_rao_error(ds, accurate_model).error
+    assert accurate <= 1.1 * default, (accurate, default)
+    if vessel == "tanker":  # where the data allow it, the tighter target buys motions
+        assert accurate <= 0.5 * default, (accurate, default)
+    assert not [f for f in accurate_model.attrs["failures"] if "motion" in f]
+
+
 def test_an_inconsistent_infinite_frequency_row_is_not_used(corpus):
     """AQWA's "100 rad/s" added mass of the PEND hull (52.1 kg in surge where A(18.8 rad/s)
     is 2.2 kg and Ogilvie's estimate 3.4 kg) contradicts the finite frequencies: the fit

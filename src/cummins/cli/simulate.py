@@ -117,7 +117,8 @@ from cummins.validation import check_simulation_size
     "--accurate",
     is_flag=True,
     help="Fit the radiation model for closer agreement with the data's RAOs: within "
-    "0.2 % of each DOF's peak instead of 1 % (a few more states).",
+    "0.2 % of each DOF's peak instead of 1 % (a few more states; where the data "
+    "cannot give that, never further from the RAOs than the default).",
 )
 @speed_option(
     "Forward speed of DATA. The waves are met at the encounter frequencies; when DATA "

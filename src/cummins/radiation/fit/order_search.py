@@ -144,7 +144,7 @@ def identify_block(
         score = score_block(
             block, data, r2=r2, r2_coupling=r2_coupling, motion=motion, passive=is_passive
         )
-        tried[count] = ((not is_passive, _tied(_badness(score, r2, motion_aim))), block, score)
+        tried[count] = (closeness(score, r2, motion_aim), block, score)
         return is_passive and score.meets(motion_aim)
 
     stalled, best_plain = 0, np.inf
@@ -158,7 +158,7 @@ def identify_block(
         except np.linalg.LinAlgError:
             continue
         plain = score_block(fitted, data, r2=r2, r2_coupling=r2_coupling, motion=motion)
-        bad = _badness(plain, r2, motion_aim)
+        bad = distance(plain, r2, motion_aim)
         plain_fits.append((bad, count, fitted))
         if bad < (1 - IMPROVEMENT) * best_plain or bad == 0:
             best_plain, stalled = min(bad, best_plain), 0
@@ -246,7 +246,13 @@ PASSIVE_STALL = 3
 NEAR = 0.1
 
 
-def _badness(score: BlockScore, r2: float, motion_aim: float | None) -> float:
+def closeness(score: BlockScore, r2: float, motion_aim: float | None) -> tuple[bool, float]:
+    """The key that ranks fits made passive: not passive, then the :func:`distance` to the
+    targets on the grid of :data:`TIE` (the smaller the closer)."""
+    return (not score.passive, _tied(distance(score, r2, motion_aim)))
+
+
+def distance(score: BlockScore, r2: float, motion_aim: float | None) -> float:
     """Distance of a fit to its targets: the R² shortfall in units of the allowed 1 − R²,
     plus the motion error's excess in units of its aim.
 
