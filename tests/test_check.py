@@ -176,3 +176,19 @@ def test_wave_parity_flags_the_mss_drift_tables(shared_data):
     assert [f.where for f in supply.by_check("wave_parity") if f.severity == "warning"] == ["Yaw"]
     tanker = cummins.check(cummins.demo_dataset())
     assert [f.severity for f in tanker.by_check("wave_parity")] == ["ok"]
+
+
+def test_a_sharp_resonance_is_told_from_an_irregular_frequency(corpus):
+    """check names the MHK RM1's surge points at 2.0–2.2 rad/s, which the spike test
+    flags, as a sharp resonance (A follows B: Kramers–Kronig), and calls none of the PEND
+    hull's irregular-frequency spikes one."""
+    from cummins.check.artefacts import _check_suspect_frequencies
+
+    ds = cummins.read(corpus / "ROSCO" / "wamit_MHK_RM1_floating" / "MHK_RM1_Floating.1")
+    sharp = [f for f in _check_suspect_frequencies(ds) if "sharp resonance" in f.message]
+    assert [f.where for f in sharp] == ["Surge"] and sharp[0].severity == "info"
+    assert all(1.9 < x < 2.3 for x in sharp[0].details["omega"])
+    pend = cummins.read(corpus / "WEC-Sim" / "aqwa_19.1_PEND_hull" / "19_1.AH1")
+    found = _check_suspect_frequencies(pend)
+    assert any(f.severity == "warning" for f in found)
+    assert not [f for f in found if "sharp resonance" in f.message]

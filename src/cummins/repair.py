@@ -21,6 +21,9 @@ Detection, per diagonal term of A(ω) and B(ω):
   look bad. A point is judged only where its neighbours lie within
   :data:`SPIKE_SPAN` (25 %) of its frequency, and the lowest frequency always: on
   coarser sampling a sound peak looks like a spike.
+
+:func:`sharp_features` tells the suspect points of a real, sharp resonance (A(ω) follows
+B(ω) through them: Kramers–Kronig) from those of an irregular frequency.
 """
 
 from __future__ import annotations
@@ -34,7 +37,7 @@ from numpy.typing import ArrayLike, NDArray
 
 from cummins.errors import HydroDataError
 from cummins.hydrodb import add_history, validate
-from cummins.radiation.retardation import causal_limits
+from cummins.radiation.retardation import added_mass_inf_per_frequency, causal_limits
 
 #: Negative diagonal damping below this fraction of its peak makes a frequency suspect.
 NEGATIVE_DAMPING = 0.01
@@ -262,6 +265,87 @@ def irregular_frequency_spans(
         if inside:
             out.append(IrregularFrequencySpan(label, start, departure, inside))
     return tuple(out)
+
+
+#: A group of suspect points is a sharp feature of the data when Ogilvie's A∞ estimate
+#: around it, with the points kept, departs from its median by at most this fraction of
+#: its departure with the points bridged (:func:`sharp_features`) ...
+FEATURE_RATIO = 0.5
+#: ... and bridging them moves the estimate by more than this fraction of the DOF's
+#: largest added mass (below it, the points matter to no estimate).
+FEATURE_MIN_DEPARTURE = 0.01
+
+
+def sharp_features(ds: xr.Dataset, suspects: Sequence[SuspectFrequency]) -> tuple[float, ...]:
+    """The suspect frequencies of one DOF that are a sharp feature of its data, not an
+    error: its A(ω) follows its B(ω) through them (Kramers–Kronig).
+
+    A resonance between the hulls or columns of a platform gives B(ω) a narrow peak and
+    A(ω) the matching swing; sampled at a few per cent of ω they look like spikes
+    (:func:`find_suspect_frequencies`). An irregular frequency of a panel method looks
+    the same but breaks the Kramers–Kronig relation between A and B. Each group of two
+    or more adjacent suspect points of the DOF's own curves (negative damping excepted)
+    is judged by Ogilvie's A∞ estimate at each frequency, A(ω) − (2/π) PV∫ B(ν)/(ν² − ω²)
+    dν, the same constant at every frequency for a causal pair (Hjulstad (2004) eq. 5.23):
+    over the group and a neighbour on each side, its largest departure from its median
+    with the group's points kept against the same with them bridged (linear
+    interpolation; the DOF's other suspect points bridged in both). A group that keeps
+    the estimate flatter by :data:`FEATURE_RATIO` is a feature. The corpus's WAMIT MHK
+    RM1 platform: surge damping peaks at 2.1 rad/s (0.58 of its maximum, five points
+    flagged) and the estimate stays within 4.5 % of its scale through it, 27 % off with
+    the points bridged; the AQWA PEND hull's heave spikes at 10.7–11.3 rad/s (an
+    irregular frequency): 8.5 % off with them, 1.8 % without.
+
+    Parameters
+    ----------
+    ds
+        A ``HydroDB`` of one DOF (its diagonal term) at one forward speed.
+    suspects
+        That DOF's suspect frequencies (:func:`find_suspect_frequencies` of ``ds``).
+
+    Returns
+    -------
+    tuple of float
+        The suspect frequencies (rad/s) that belong to a sharp feature.
+    """
+    w = ds.omega.values
+    if w.size < 6 or ds.sizes["influenced_dof"] != 1:
+        return ()
+    suspect = np.zeros(w.size, dtype=bool)
+    spike = np.zeros(w.size, dtype=bool)
+    for s in suspects:
+        at = np.isclose(w, s.omega, rtol=1e-12, atol=0.0)
+        suspect |= at
+        if not s.reason.startswith("negative"):
+            spike |= at
+    index = np.flatnonzero(spike)
+    groups = [g for g in np.split(index, np.flatnonzero(np.diff(index) > 1) + 1) if g.size > 1]
+    a = ds.added_mass.values.reshape(w.size)
+    b = ds.radiation_damping.values.reshape(w.size)
+    scale = float(np.abs(a).max())
+    if not groups or suspect.all() or scale == 0.0:
+        return ()
+
+    def estimate(bridged: NDArray[np.bool_]) -> NDArray[np.float64]:
+        kept = ~bridged
+        one = ds
+        for name, x in (("added_mass", a), ("radiation_damping", b)):
+            y = np.interp(w, w[kept], x[kept])
+            one = one.assign({name: ds[name].copy(data=y.reshape(ds[name].shape))})
+        curve = added_mass_inf_per_frequency(one).values.reshape(w.size)
+        return curve - np.median(curve[~suspect])
+
+    without = estimate(suspect)
+    features: list[float] = []
+    for group in groups:
+        window = np.arange(max(group[0] - 1, 0), min(group[-1] + 2, w.size))
+        others = suspect.copy()
+        others[group] = False
+        kept = float(np.abs(estimate(others)[window]).max())
+        bridged = float(np.abs(without[window]).max())
+        if bridged > FEATURE_MIN_DEPARTURE * scale and kept <= FEATURE_RATIO * bridged:
+            features += [float(x) for x in w[group]]
+    return tuple(features)
 
 
 def _keep_worst(found: dict[float, SuspectFrequency], item: SuspectFrequency) -> None:

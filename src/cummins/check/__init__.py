@@ -27,7 +27,9 @@ changed in the data. Each finding says what was measured, where, and what to do.
 * ``suspect_frequencies`` — spikes and clearly negative damping
   (:func:`cummins.repair.find_suspect_frequencies`), and the DOFs whose added mass an
   irregular frequency spoils to the end of the data
-  (:func:`cummins.repair.irregular_frequency_spans`).
+  (:func:`cummins.repair.irregular_frequency_spans`); suspect points through which A(ω)
+  follows B(ω) are named as a sharp resonance of the data (info,
+  :func:`cummins.repair.sharp_features`).
 * ``retardation`` — per significant coupling: K(0), ∫K dt against B(0) = 0,
   K(t_max)/max|K|, the tail's share of ∫B dω, the Ogilvie estimate of A∞ and its spread
   over frequency (and its distance from the solver's ω = ∞ row), and the

@@ -3,7 +3,8 @@
 approximate surge by scaling sway; equal surge and sway, roll and pitch of one body are
 an axisymmetric body's, the same DOF of two bodies equal are identical bodies placed
 symmetrically, and both are said to be fine) and ``suspect_frequencies`` (spikes and
-clearly negative damping, :func:`cummins.repair.find_suspect_frequencies`).
+clearly negative damping, :func:`cummins.repair.find_suspect_frequencies`; those that are
+a sharp resonance of the data, :func:`cummins.repair.sharp_features`).
 """
 
 from __future__ import annotations
@@ -14,7 +15,7 @@ import xarray as xr
 from cummins.check.common import _labels, _speed_suffix, _speeds
 from cummins.check.report import Finding
 from cummins.dofs import split_dof
-from cummins.repair import find_suspect_frequencies, irregular_frequency_spans
+from cummins.repair import find_suspect_frequencies, irregular_frequency_spans, sharp_features
 
 
 def _check_read_warnings(ds: xr.Dataset) -> list[Finding]:
@@ -121,6 +122,24 @@ def _check_suspect_frequencies(ds: xr.Dataset) -> list[Finding]:
                 },
             )
         )
+        for label in _labels(sub):
+            one = sub.sel(influenced_dof=[label], radiating_dof=[label])
+            features = sharp_features(one, find_suspect_frequencies(one))
+            if features:
+                out.append(
+                    Finding(
+                        "suspect_frequencies",
+                        "info",
+                        f"{min(features):.4g}–{max(features):.4g} rad/s look like "
+                        "spikes, but A(ω) follows B(ω) through them (Kramers–Kronig): a sharp "
+                        f"resonance of the data, not an irregular frequency{suffix}",
+                        where=label,
+                        advice="keep them (the fit leaves them out of the model, which does "
+                        "not follow a peak of a few points, but keeps them for A∞); a finer "
+                        "frequency grid there resolves the resonance",
+                        details={"omega": list(features)},
+                    )
+                )
         for span in irregular_frequency_spans(sub):
             out.append(
                 Finding(

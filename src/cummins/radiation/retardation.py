@@ -303,13 +303,37 @@ def trusted_frequencies(ds: xr.Dataset) -> NDArray[np.bool_]:
     return keep
 
 
+def _damping_bridged(
+    ds: xr.Dataset, kept: NDArray[np.bool_]
+) -> tuple[xr.Dataset, dict[tuple[int, int], NDArray[np.bool_]]]:
+    """``ds`` with each B_ij bridged over the frequencies DOF i or j leaves out (``kept``:
+    omega × DOF), linearly and from B = 0 at ω = 0; and per pair that leaves some out,
+    the frequencies both keep."""
+    w = ds.omega.values
+    b = dof_matrix(ds, "radiation_damping")
+    rows = {}
+    for i in range(b.shape[1]):
+        for j in range(b.shape[2]):
+            both = kept[:, i] & kept[:, j]
+            if both.all() or not both.any():
+                continue
+            rows[(i, j)] = both
+            b[~both, i, j] = np.interp(w[~both], np.r_[0.0, w[both]], np.r_[0.0, b[both, i, j]])
+    if not rows:
+        return ds, rows
+    damping = ds.radiation_damping.transpose("omega", "influenced_dof", "radiating_dof")
+    return ds.assign(radiation_damping=damping.copy(data=b)), rows
+
+
 def _added_mass_inf_matrix(ds: xr.Dataset) -> NDArray:
     if "added_mass_inf" in ds:
         return dof_matrix(ds, "added_mass_inf")
     return added_mass_inf(ds, method="ogilvie").values
 
 
-def added_mass_inf(ds: xr.Dataset, method: str = "auto", *, tail: str = "auto") -> xr.DataArray:
+def added_mass_inf(
+    ds: xr.Dataset, method: str = "auto", *, tail: str = "auto", kept: ArrayLike | None = None
+) -> xr.DataArray:
     """Infinite-frequency added mass A∞, from the data or estimated.
 
     Parameters
@@ -323,6 +347,12 @@ def added_mass_inf(ds: xr.Dataset, method: str = "auto", *, tail: str = "auto") 
         the data row when present, else the estimate.
     tail
         Damping tail used by the estimate (see :func:`fit_damping_tail`).
+    kept
+        Optional (omega, dof) mask of the frequencies whose data each DOF keeps. Pair
+        (i, j) then takes B_ij bridged linearly over the points either DOF leaves out
+        (from B = 0 at ω = 0 below the first kept one: the same integral as without
+        those points) and the median over the trusted frequencies both keep (all the
+        trusted ones when fewer than three).
 
     Returns
     -------
@@ -353,11 +383,20 @@ def added_mass_inf(ds: xr.Dataset, method: str = "auto", *, tail: str = "auto") 
         spread = np.zeros_like(values)
         used = "data"
     else:
+        rows = None
+        if kept is not None:
+            ds, rows = _damping_bridged(ds, np.asarray(kept, dtype=bool))
         curve = added_mass_inf_per_frequency(ds, tail=tail).values
         keep = trusted_frequencies(ds)
         values = np.median(curve[keep], axis=0)
         q75, q25 = np.percentile(curve[keep], [75, 25], axis=0)
         spread = 0.5 * (q75 - q25)
+        for (i, j), both in (rows or {}).items():
+            use = keep & both
+            if use.sum() >= 3:
+                values[i, j] = np.median(curve[use, i, j])
+                q75, q25 = np.percentile(curve[use, i, j], [75, 25])
+                spread[i, j] = 0.5 * (q75 - q25)
         used = "ogilvie"
     return xr.DataArray(
         values,
