@@ -122,9 +122,12 @@ def _check_suspect_frequencies(ds: xr.Dataset) -> list[Finding]:
                 },
             )
         )
+        own = {}  # each DOF's suspect frequencies, of its own curves
         for label in _labels(sub):
             one = sub.sel(influenced_dof=[label], radiating_dof=[label])
-            features = sharp_features(one, find_suspect_frequencies(one))
+            found = find_suspect_frequencies(one)
+            own[label] = [s.omega for s in found]
+            features = sharp_features(one, found)
             if features:
                 out.append(
                     Finding(
@@ -140,7 +143,7 @@ def _check_suspect_frequencies(ds: xr.Dataset) -> list[Finding]:
                         details={"omega": list(features)},
                     )
                 )
-        for span in irregular_frequency_spans(sub):
+        for span in irregular_frequency_spans(sub, own):
             out.append(
                 Finding(
                     "suspect_frequencies",
