@@ -303,26 +303,27 @@ def trusted_frequencies(ds: xr.Dataset) -> NDArray[np.bool_]:
     return keep
 
 
-def _damping_bridged(
-    ds: xr.Dataset, kept: NDArray[np.bool_]
-) -> tuple[xr.Dataset, dict[tuple[int, int], NDArray[np.bool_]]]:
-    """``ds`` with each B_ij bridged over the frequencies DOF i or j leaves out (``kept``:
-    omega × DOF), linearly and from B = 0 at ω = 0; and per pair that leaves some out,
-    the frequencies both keep."""
-    w = ds.omega.values
-    b = dof_matrix(ds, "radiation_damping")
-    rows = {}
-    for i in range(b.shape[1]):
-        for j in range(b.shape[2]):
+def bridged_couplings(
+    values: ArrayLike, omega: ArrayLike, kept: ArrayLike, *, from_zero: bool = False
+) -> NDArray[np.float64]:
+    """``values`` (omega, n, n) with each coupling (i, j) replaced, at the frequencies DOF i
+    or j leaves out (``kept``: omega × DOF), by the linear interpolation of the points
+    both keep; below the first kept point the first value holds, or with ``from_zero``
+    the line from 0 at ω = 0 (the damping: then the same integral as without the points).
+    A coupling whose DOFs keep no point is left as it is."""
+    w = np.asarray(omega, dtype=float)
+    kept = np.asarray(kept, dtype=bool)
+    out = np.array(values, dtype=float, copy=True)
+    start = [0.0] if from_zero else []
+    for i in range(out.shape[1]):
+        for j in range(out.shape[2]):
             both = kept[:, i] & kept[:, j]
             if both.all() or not both.any():
                 continue
-            rows[(i, j)] = both
-            b[~both, i, j] = np.interp(w[~both], np.r_[0.0, w[both]], np.r_[0.0, b[both, i, j]])
-    if not rows:
-        return ds, rows
-    damping = ds.radiation_damping.transpose("omega", "influenced_dof", "radiating_dof")
-    return ds.assign(radiation_damping=damping.copy(data=b)), rows
+            out[~both, i, j] = np.interp(
+                w[~both], np.r_[start, w[both]], np.r_[start, out[both, i, j]]
+            )
+    return out
 
 
 def _added_mass_inf_matrix(ds: xr.Dataset) -> NDArray:
@@ -383,17 +384,20 @@ def added_mass_inf(
         spread = np.zeros_like(values)
         used = "data"
     else:
-        rows = None
         if kept is not None:
-            ds, rows = _damping_bridged(ds, np.asarray(kept, dtype=bool))
+            kept = np.asarray(kept, dtype=bool)
+            damping = ds.radiation_damping.transpose("omega", "influenced_dof", "radiating_dof")
+            bridged = bridged_couplings(damping.values, ds.omega.values, kept, from_zero=True)
+            ds = ds.assign(radiation_damping=damping.copy(data=bridged))
         curve = added_mass_inf_per_frequency(ds, tail=tail).values
         keep = trusted_frequencies(ds)
         values = np.median(curve[keep], axis=0)
         q75, q25 = np.percentile(curve[keep], [75, 25], axis=0)
         spread = 0.5 * (q75 - q25)
-        for (i, j), both in (rows or {}).items():
-            use = keep & both
-            if use.sum() >= 3:
+        pairs = np.ndindex(curve.shape[1:]) if kept is not None else ()
+        for i, j in pairs:
+            use = keep & kept[:, i] & kept[:, j]
+            if 3 <= use.sum() < keep.sum():
                 values[i, j] = np.median(curve[use, i, j])
                 q75, q25 = np.percentile(curve[use, i, j], [75, 25])
                 spread[i, j] = 0.5 * (q75 - q25)

@@ -4,8 +4,9 @@
 * **Frequencies**: the fitting range; a suspect frequency
   (:func:`cummins.repair.find_suspect_frequencies`, run on each DOF's own curves) costs
   that point, and only to the couplings of the DOFs whose curves it spoils; the data
-  bridged over each coupling's left-out points for what needs every frequency (Ogilvie's
-  A∞, K(t), the MIMO passivity step, metrics).
+  bridged over each coupling's left-out points for what needs every frequency (K(t), the
+  MIMO passivity step, metrics; Ogilvie's A∞ bridges the damping only over each pair's
+  own points that are not a sharp resonance).
 * **A∞**: the solver's ω = ∞ row when present and consistent with the finite
   frequencies (:func:`inconsistent_added_mass_inf`), else estimated; Ogilvie's estimate
   and its spread as the prior.
@@ -37,7 +38,11 @@ from cummins.radiation.fit.options import FitOptions
 from cummins.radiation.fit.scorecard import data_frequencies
 from cummins.radiation.model import RadiationModel
 from cummins.radiation.retardation import added_mass_inf as estimate_added_mass_inf
-from cummins.radiation.retardation import default_retardation_function, significant_couplings
+from cummins.radiation.retardation import (
+    bridged_couplings,
+    default_retardation_function,
+    significant_couplings,
+)
 from cummins.repair import (
     find_suspect_frequencies,
     irregular_frequency_spans,
@@ -709,26 +714,12 @@ MIN_KEPT_FREQUENCIES = 8
 
 def _bridged_dataset(data: xr.Dataset, keep: NDArray) -> xr.Dataset:
     """``data`` with A(ω) and B(ω) bridged over each coupling's suspect points
-    (:func:`_bridged`)."""
+    (:func:`cummins.radiation.retardation.bridged_couplings`)."""
     if keep.all():
         return data
     w = data.omega.values
     out = data
     for name in ("added_mass", "radiation_damping"):
         var = data[name].transpose("omega", "influenced_dof", "radiating_dof")
-        out = out.assign({name: var.copy(data=_bridged(var.values, w, keep))})
-    return out
-
-
-def _bridged(values: NDArray, w: NDArray, keep: NDArray) -> NDArray:
-    """``values`` (omega, n, n) with each coupling's left-out frequencies replaced by the
-    linear interpolation of its kept neighbours (``keep``: omega, n per DOF)."""
-    out = np.array(values, dtype=float, copy=True)
-    n = keep.shape[1]
-    for i in range(n):
-        for j in range(n):
-            mask = keep[:, i] & keep[:, j]
-            if mask.all() or not mask.any():
-                continue
-            out[~mask, i, j] = np.interp(w[~mask], w[mask], values[mask, i, j])
+        out = out.assign({name: var.copy(data=bridged_couplings(var.values, w, keep))})
     return out
