@@ -226,7 +226,7 @@ class IrregularFrequencySpan:
 
 
 def irregular_frequency_spans(
-    ds: xr.Dataset, suspects: Mapping[str, Sequence[float]] | None = None
+    ds: xr.Dataset, suspects: Mapping[str, DofSuspects] | None = None
 ) -> tuple[IrregularFrequencySpan, ...]:
     """The DOFs whose added mass an irregular frequency spoils to the end of the data.
 
@@ -245,9 +245,9 @@ def irregular_frequency_spans(
     ds
         A ``HydroDB`` at one forward speed.
     suspects
-        Per DOF label, the suspect frequencies of its own curves when the caller has
-        them already; else :func:`find_suspect_frequencies` is run on the DOFs that
-        depart.
+        Per DOF label, the suspects of its own curves (:func:`suspects_by_dof`) when the
+        caller has them already; else :func:`find_suspect_frequencies` is run on the
+        DOFs that depart.
 
     Returns
     -------
@@ -257,11 +257,10 @@ def irregular_frequency_spans(
     out = []
     for label, (start, departure) in causal_limits(ds).items():
         if suspects is None:
-            one = ds.sel(influenced_dof=[label], radiating_dof=[label])
-            own = [s.omega for s in find_suspect_frequencies(one)]
+            own = find_suspect_frequencies(ds.sel(influenced_dof=[label], radiating_dof=[label]))
         else:
-            own = suspects.get(label, ())
-        inside = tuple(float(x) for x in own if x >= start)
+            own = suspects[label].suspects if label in suspects else ()
+        inside = tuple(float(x.omega) for x in own if x.omega >= start)
         if inside:
             out.append(IrregularFrequencySpan(label, start, departure, inside))
     return tuple(out)
@@ -346,6 +345,45 @@ def sharp_features(ds: xr.Dataset, suspects: Sequence[SuspectFrequency]) -> tupl
         if bridged > FEATURE_MIN_DEPARTURE * scale and kept <= FEATURE_RATIO * bridged:
             features += [float(x) for x in w[group]]
     return tuple(features)
+
+
+@dataclass(frozen=True)
+class DofSuspects:
+    """The suspect frequencies of one DOF's own curves (:func:`suspects_by_dof`).
+
+    Attributes
+    ----------
+    suspects
+        :func:`find_suspect_frequencies` of the DOF alone.
+    features
+        Those of them (rad/s) that are a sharp resonance of the data, not an error
+        (:func:`sharp_features`).
+    """
+
+    suspects: tuple[SuspectFrequency, ...]
+    features: tuple[float, ...]
+
+    def feature_description(self) -> str:
+        """What the features are, in one sentence (without the DOF); "" when none."""
+        if not self.features:
+            return ""
+        return (
+            f"{min(self.features):.4g}–{max(self.features):.4g} rad/s look like spikes, but "
+            "A(ω) follows B(ω) through them (Kramers–Kronig): a sharp resonance of the data, "
+            "not an irregular frequency"
+        )
+
+
+def suspects_by_dof(ds: xr.Dataset) -> dict[str, DofSuspects]:
+    """Per DOF label, the suspect frequencies of its own curves and those that are a sharp
+    resonance (what the fit leaves out of each DOF's couplings, and ``cummins check``
+    reports)."""
+    out = {}
+    for label in (str(d) for d in ds.influenced_dof.values):
+        one = ds.sel(influenced_dof=[label], radiating_dof=[label])
+        found = find_suspect_frequencies(one)
+        out[label] = DofSuspects(found, sharp_features(one, found))
+    return out
 
 
 def _keep_worst(found: dict[float, SuspectFrequency], item: SuspectFrequency) -> None:

@@ -15,7 +15,7 @@ import xarray as xr
 from cummins.check.common import _labels, _speed_suffix, _speeds
 from cummins.check.report import Finding
 from cummins.dofs import split_dof
-from cummins.repair import find_suspect_frequencies, irregular_frequency_spans, sharp_features
+from cummins.repair import find_suspect_frequencies, irregular_frequency_spans, suspects_by_dof
 
 
 def _check_read_warnings(ds: xr.Dataset) -> list[Finding]:
@@ -122,25 +122,19 @@ def _check_suspect_frequencies(ds: xr.Dataset) -> list[Finding]:
                 },
             )
         )
-        own = {}  # each DOF's suspect frequencies, of its own curves
-        for label in _labels(sub):
-            one = sub.sel(influenced_dof=[label], radiating_dof=[label])
-            found = find_suspect_frequencies(one)
-            own[label] = [s.omega for s in found]
-            features = sharp_features(one, found)
-            if features:
+        own = suspects_by_dof(sub)
+        for label, found in own.items():
+            if found.features:
                 out.append(
                     Finding(
                         "suspect_frequencies",
                         "info",
-                        f"{min(features):.4g}–{max(features):.4g} rad/s look like "
-                        "spikes, but A(ω) follows B(ω) through them (Kramers–Kronig): a sharp "
-                        f"resonance of the data, not an irregular frequency{suffix}",
+                        found.feature_description() + suffix,
                         where=label,
                         advice="keep them (the fit leaves them out of the model, which does "
                         "not follow a peak of a few points, but keeps them for A∞); a finer "
                         "frequency grid there resolves the resonance",
-                        details={"omega": list(features)},
+                        details={"omega": list(found.features)},
                     )
                 )
         for span in irregular_frequency_spans(sub, own):

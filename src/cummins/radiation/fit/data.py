@@ -49,7 +49,7 @@ from cummins.repair import (
     limit_frequency_range,
     nearest_passive_damping,
     remove_suspect_frequencies,
-    sharp_features,
+    suspects_by_dof,
 )
 from cummins.validation import guard_hydro_data
 
@@ -561,22 +561,16 @@ def _fit_data(
     elif exclude_suspect:
         for s in find_suspect_frequencies(data):
             notes.append(f"{s.omega:.4g} rad/s left out: {s.quantity}, {s.reason}")
-        own = {}  # each DOF's suspect frequencies, of its own curves
+        own = suspects_by_dof(data)
         for d, label in enumerate(labels):
-            one = data.sel(influenced_dof=[label], radiating_dof=[label])
-            found = find_suspect_frequencies(one)
-            own[label] = [s.omega for s in found]
-            for omega in own[label]:
-                keep[np.isclose(w, omega, rtol=1e-12, atol=0.0), d] = False
-            features = sharp_features(one, found)
-            for omega in features:
+            for s in own[label].suspects:
+                keep[np.isclose(w, s.omega, rtol=1e-12, atol=0.0), d] = False
+            for omega in own[label].features:
                 sound[np.isclose(w, omega, rtol=1e-12, atol=0.0), d] = True
-            if features:
+            if own[label].features:
                 notes.append(
-                    f"{label}: {min(features):.4g}–{max(features):.4g} rad/s look like spikes, "
-                    "but A(ω) follows B(ω) through them (Kramers–Kronig): a sharp resonance of "
-                    "the data, kept for A∞'s estimate and left out of the fit (a broadband "
-                    "model does not follow it)"
+                    f"{label}: {own[label].feature_description()}; kept for A∞'s estimate and "
+                    "left out of the fit (a broadband model does not follow it)"
                 )
         for span in irregular_frequency_spans(data, own):
             notes.append(
