@@ -131,17 +131,15 @@ def fit_blocks(
             if order_search.closeness(default[2], r2, motion_aim) < order_search.closeness(
                 score, r2, motion_aim
             ):
-                data, fitted, score, _ = default
-                block_notes = [
-                    *[x for x in block_notes if not x.startswith("targets not met")],
+                # its own notes (a miss of the default's targets among them), not those
+                # of the fits set aside
+                data, fitted, score, block_notes = default
+                block_notes.append(
                     f"the default's fit ({fitted.poles.count} common poles) is closer to the "
-                    "tighter motion target than the fits made for it: kept",
-                    *(
-                        []
-                        if score.meets(motion_aim)
-                        else [f"targets not met (best at {fitted.poles.count} common poles)"]
-                    ),
-                ]
+                    "tighter motion target than the fits made for it: kept"
+                )
+                if score.meets(MOTION_AIM * MOTION_TOL) and not score.meets(motion_aim):
+                    block_notes.append(order_search.targets_not_met(fitted.poles.count))
         plain_block = vector.fit_residues_at(data, fitted.poles) if passive else None
         a, b, c = fitted.realization()
         for e, (i, j) in enumerate(elements):

@@ -206,8 +206,13 @@ def identify_block(
     if not score.passive:
         notes.append(f"not passive at {count} common poles")
     if not score.meets(motion_aim):
-        notes.append(f"targets not met (best at {count} common poles)")
+        notes.append(targets_not_met(count))
     return block, score, notes
+
+
+def targets_not_met(count: int) -> str:
+    """The note of a block that meets no target at any number of common poles."""
+    return f"targets not met (best at {count} common poles)"
 
 
 def kept_count(keys: dict[int, tuple[bool, float]]) -> int:
