@@ -141,7 +141,7 @@ def shared_data() -> Path:
 
 @pytest.fixture(scope="session")
 def corpus(shared_data) -> Path:
-    """Path of ``../shared/data/corpus``: 32 cases of public solver output (see its README)."""
+    """Path of ``../shared/data/corpus``: 33 cases of public solver output (see its README)."""
     path = shared_data / "corpus"
     if not path.is_dir():
         message = f"the public corpus is not at {path}"

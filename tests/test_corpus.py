@@ -1,6 +1,6 @@
 """Every real case users bring reads, and yields the equation of motion its files hold.
 
-The 32 cases of ``../shared/data/corpus`` (see its README) are passed to
+The 33 cases of ``../shared/data/corpus`` (see its README) are passed to
 :func:`cummins.read` as a user would pass them: the case folder itself. Each reads, or
 refuses with a ``CumminsError`` that names what is missing; never another exception.
 Where the files hold the mass properties, the dataset has ``inertia_matrix``; where it
@@ -73,8 +73,8 @@ def _read(path: Path):
         return cummins.read(path)
 
 
-def test_the_manifest_lists_32_cases():
-    assert len(CASES) == 32, CASES
+def test_the_manifest_lists_33_cases():
+    assert len(CASES) == 33, CASES
 
 
 @pytest.mark.parametrize("name", CASES)
