@@ -193,7 +193,7 @@ def test_rm3_irregular_statistics_against_response_spectra(rm3):
 def test_wecsim_rm3_planar_joint(rm3):
     """WEC-Sim's examples/RM3: the float follows the spar's surge and pitch. Against the
     model's own frequency response (Vessel.response, K(jω) of the fit) every DOF within
-    0.5 % (measured ≤ 0.03 % at dt 0.05 s); against the data's A, B, F the heave, the
+    0.5 % (measured ≤ 0.1 % at dt 0.05 s); against the data's A, B, F the heave, the
     relative heave and the power within 0.5 % (measured ≤ 0.16 % at 8–12 s; at 6 s the
     spar heaves 4 cm and is 0.26 % off, the fit's error as without the planar joint),
     while surge and pitch

@@ -578,6 +578,9 @@ grid:                     # outer product of the axes; or `cases:` a list of map
   # seed: [1, 2, 3]       # simulate: realisations (default: one per case)
 viscous_damping:
   Roll: 5.0e+8            # kg m^2/s
+# system:                # several bodies: joints, PTOs (docs/wec.md); adds pto_mean_power
+#   body_coupling: false
+#   joints: [{{kind: translational, body: body1, base: body2, pto: {{damping: 1.2e6}}}}]
 limits:                   # significant single amplitude 2 sqrt(m0) unless `max:`
   Roll: 4 deg
   Pitch: 2 deg

@@ -24,8 +24,8 @@ def harmonic_amplitude(
     --------
     >>> t = np.arange(0.0, 40.0, 0.1)
     >>> X = harmonic_amplitude(t, 2.0 * np.cos(0.8 * t + 0.3) + 1.0, 0.8)
-    >>> round(abs(X), 6), round(float(np.angle(X)), 6)
-    (2.0, 0.3)
+    >>> print(round(float(abs(X)), 6), round(float(np.angle(X)), 6))
+    2.0 0.3
     """
     t = np.asarray(t, dtype=float).reshape(-1)
     values = np.asarray(x, dtype=float)
@@ -34,12 +34,12 @@ def harmonic_amplitude(
     if not omega > 0:
         raise ArgumentError(f"omega must be > 0 rad/s, not {omega}")
     period = 2 * np.pi / omega
-    span = min(periods, np.floor((t[-1] - t[0]) / period + 1e-9)) * period
-    if span <= 0:
-        span = t[-1] - t[0]
-    last = t >= t[-1] - span - 1e-9 * period
-    if span == periods * period or span < t[-1] - t[0]:
-        last &= ~np.isclose(t, t[-1] - span, rtol=0, atol=1e-9 * period)  # one end of the period
+    whole = np.floor((t[-1] - t[0]) / period + 1e-9)
+    if whole >= 1:  # whole periods, their first sample left out (it repeats the last)
+        span = min(periods, whole) * period
+        last = t > t[-1] - span + 0.5 * float(np.min(np.diff(t)))
+    else:
+        last = np.ones(t.size, bool)
     tt = t[last]
     basis = np.c_[np.cos(omega * tt), -np.sin(omega * tt), np.ones(tt.size)]
     coef, *_ = np.linalg.lstsq(basis, values[last], rcond=None)
