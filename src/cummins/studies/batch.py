@@ -226,12 +226,17 @@ def case_statistics(context: StudyContext, case: Case) -> dict[str, Any]:
     heading = math.radians(case.heading)
     if study.analysis == "rao":
         return _rao_statistics(context, case, heading)
-    from cummins.seakeeping.waves import irregular_waves, wave_spectrum
+    from cummins.seakeeping.waves import energy_range, irregular_waves, wave_spectrum
     from cummins.timedomain.simulate import simulate_waves
 
     seed = _derived_seed(case) if case.seed is None else case.seed
+    shape = wave_spectrum(study.spectrum, case.hs, case.tp, _gamma(study, case))
+    lo, hi = energy_range(shape)
+    data_w = context.ds.omega.values
     sea = irregular_waves(
-        wave_spectrum(study.spectrum, case.hs, case.tp, _gamma(study, case)),
+        shape,
+        omega_min=max(lo, float(data_w[0])),  # as `cummins simulate`: the force is known
+        omega_max=min(hi, float(data_w[-1])),  # within the data's frequencies only
         duration=study.duration,
         n_components=study.components,
         direction=heading,
