@@ -212,7 +212,14 @@ class Vessel:
                 f"the vessel model is unstable: eigenvalue {lam[k]:.4g} 1/s, mode dominated "
                 f"by {dof}",
                 hint="check the restoring matrix (negative stiffness?) and that the "
-                "radiation model is passive (cummins.radiation.passivity.passivity_test)",
+                "radiation model is passive (cummins.radiation.passivity.passivity_test)"
+                + (
+                    "; a body held by a joint with a buoyancy other than its weight needs "
+                    "the moment of that net force about the joint as a stiffness "
+                    "(docs/wec.md, Limitations)"
+                    if self.constraint is not None
+                    else ""
+                ),
             )
         return lam
 

@@ -27,7 +27,7 @@ from cummins.cli.system_options import (
     system_from_options,
     system_options,
 )
-from cummins.hydrodb import is_rotation
+from cummins.hydrodb import bodies, is_rotation
 
 #: Options that take a list of numbers: ``--headings 0 45 90`` (as well as repeated).
 _LIST_OPTIONS = ("--headings",)
@@ -229,10 +229,11 @@ def rao_command(
             f"unknown DOF {unknown[0]!r}; the data have {', '.join(labels)}", param_hint="--dof"
         )
     system = system_from_options(system_options, dofs)
-    if system is None and dofs:
+    if system is None and (dofs or len(bodies(ds)) > 1):
         from cummins.mechanics import MechanicalSystem
 
-        system = MechanicalSystem(dofs=tuple(dofs))
+        # several bodies: through the system, so that the body coupling is stated
+        system = MechanicalSystem(dofs=tuple(dofs) or None)
     if system is not None:
         from cummins.cli.system_options import print_system
         from cummins.mechanics import assemble

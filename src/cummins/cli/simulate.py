@@ -226,6 +226,13 @@ def simulate_command(
     system = system_from_options(system_options, dofs)
     model, data_path = model_and_data(path)
     data = read_hydrodb(data_path, format_, rho, g, ulen)
+    if system is None and speed is None:
+        from cummins.hydrodb import bodies
+
+        if len(bodies(data)) > 1:  # through the system, so that the body coupling is stated
+            from cummins.mechanics import MechanicalSystem
+
+            system = MechanicalSystem(dofs=tuple(dofs) or None)
     if dofs:
         from cummins.hydrodb import select_dofs
 

@@ -280,6 +280,9 @@ def print_system(assembly) -> None:
     from cummins.cli.common import console
 
     system = assembly.system
+    if system.is_plain and not assembly.held:
+        console.print(system.coupling_note())
+        return
     held = ""
     if assembly.held:
         listed = ", ".join(assembly.held[:6]) + (" …" if len(assembly.held) > 6 else "")
