@@ -50,6 +50,11 @@ def expand_system_args(args: Sequence[str]) -> list[str]:
         if token in ELEMENTS:
             element += 1
         elif token in ATTACHED:
+            count = 1 if token.startswith("--pto-") else 3
+            values = list(args[k + 1 : k + 1 + count])
+            if len(values) < count or any(v.startswith("--") for v in values):
+                what = "one number" if count == 1 else "three numbers X Y Z"
+                raise click.UsageError(f"{token} takes {what}")
             out.append(str(element))
     return out
 
@@ -184,7 +189,7 @@ def system_from_options(options: dict, dofs: Sequence[str] = ()) -> MechanicalSy
                 )
         return None
     # the elements in the order written: their numbers are shared (expand_system_args)
-    order = _element_order(joints_given, ptos_given, options)
+    order = _element_order(joints_given, ptos_given)
     attached: dict[int, dict[str, object]] = {k: {} for k in range(1, len(order) + 1)}
     for option, values in (
         ("--axis", options["axes"]),
@@ -244,7 +249,7 @@ def system_from_options(options: dict, dofs: Sequence[str] = ()) -> MechanicalSy
         raise click.BadParameter(str(exc)) from None
 
 
-def _element_order(joints, ptos, options) -> list[tuple[str, str, tuple]]:
+def _element_order(joints, ptos) -> list[tuple[str, str, tuple]]:
     """(kind, option text, values) of every --joint and --pto, in the order written (the
     order of click's parse, kept in the context's original arguments)."""
     ctx = click.get_current_context(silent=True)

@@ -21,7 +21,7 @@ import numpy as np
 import xarray as xr
 from numpy.typing import ArrayLike, NDArray
 
-from cummins.dofs import DOF_NAMES, bodies, body_names, split_dof
+from cummins.dofs import DOF_NAMES, bodies, body_names
 from cummins.errors import ArgumentError, HydroDataError
 from cummins.kinematics import screw_transform
 
@@ -138,8 +138,3 @@ def body_frame(ds: xr.Dataset) -> BodyFrame:
             hint="select the DOFs after applying joints (MechanicalSystem(dofs=...)), not before",
         )
     return BodyFrame(labels, prefixes, tuple(str(n) for n in names), points)
-
-
-def body_of(label: str) -> str | None:
-    """The body prefix of a DOF label (None for an unprefixed one)."""
-    return split_dof(label)[0]
