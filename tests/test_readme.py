@@ -45,6 +45,8 @@ def workdir(tmp_path, shared_data, monkeypatch):
         shutil.copy(f, tmp_path / f.name)
     shutil.copytree(shared_data / "mss" / "supply", tmp_path / "supply")
     shutil.copy(cummins.demo_files().parent / "s175" / "s175.mat", tmp_path / "s175.mat")
+    for f in (shared_data / "corpus" / "WEC-Sim" / "wamit_RM3_2body").glob("rm3.*"):
+        shutil.copy(f, tmp_path / f.name)  # the README's wave-energy converter
     monkeypatch.chdir(tmp_path)
     return tmp_path
 
@@ -141,12 +143,14 @@ def _read_back(args: list[str], workdir: Path) -> None:
 
 
 def test_readme_python_block(workdir):
-    """The README's Python block runs with every warning an error: what it shows a user
-    raises none (a warning there would be the first thing a user sees)."""
+    """The README's Python blocks run with every warning an error: what they show a user
+    raise none (a warning there would be the first thing a user sees)."""
     import warnings
 
-    (code,) = _blocks("python")
-    with warnings.catch_warnings():
-        warnings.simplefilter("error")
-        exec(compile(code, "README.md", "exec"), {})
+    blocks = _blocks("python")
+    assert blocks
+    for code in blocks:
+        with warnings.catch_warnings():
+            warnings.simplefilter("error")
+            exec(compile(code, "README.md", "exec"), {})
     assert (workdir / "tanker_at_cg.nc").is_file()

@@ -17,6 +17,17 @@ external (wave) force. With the state x = (ξ, ξ̇, χ):
 Its frequency response is that of the frequency-domain equation with the model's
 K(jω) = B(ω) + jω(A(ω) − A∞) in place of the data:
 [−ω²M + jω (B_v + K(jω)) + C] X = F, i.e. −ω²(M_RB + A(ω)) + jω(B(ω) + B_v) + C.
+
+**Joined bodies and PTOs** (:mod:`cummins.mechanics`). A vessel may carry the basis T
+(n × m) of the motions its joints allow, ξ = T q, and PTOs, each adding k d dᵀ to C and
+c d dᵀ to B_v. The state is then x = (q, q̇, χ) and
+
+    F = [[0, I, 0], [−M_q⁻¹C_q, −M_q⁻¹B_q, −M_q⁻¹TᵀC_r], [0, B_r T, A_r]],
+    G = [0; M_q⁻¹Tᵀ; 0],   M_q = TᵀMT, C_q = TᵀCT, B_q = TᵀB_vT:
+
+the memory is driven by the body velocities T q̇ and its force enters through Tᵀ (the
+constraint forces do no work on the allowed motions). The input τ and the outputs ξ = T q,
+ξ̇ = T q̇, μ stay in the body DOFs (:meth:`Vessel.output_matrix`).
 """
 
 from __future__ import annotations
@@ -30,8 +41,10 @@ import numpy as np
 import xarray as xr
 from numpy.typing import ArrayLike, NDArray
 
-from cummins.errors import HydroDataError, SimulationError
+from cummins.errors import ArgumentError, HydroDataError, SimulationError
 from cummins.hydrodb import dof_matrix, single_speed
+from cummins.mechanics import MechanicalSystem, PTOLine, assemble, pto_matrices
+from cummins.mechanics.coupling import cross_body_mask
 from cummins.radiation.model import RadiationModel
 
 
@@ -53,6 +66,12 @@ class Vessel:
         The fluid-memory model; its ``added_mass_inf`` is the A∞ used.
     attrs
         Provenance: source file, reference point, axis convention.
+    constraint
+        T (n × m), ξ = T q: the motions the joints allow (None: every DOF free).
+    ptos
+        The PTOs (:class:`cummins.mechanics.PTOLine` over ``dofs``); their stiffness and
+        damping are not in ``stiffness`` and ``viscous_damping``, they are added to them
+        (:attr:`restoring`, :attr:`damping`).
     """
 
     dofs: tuple[str, ...]
@@ -61,6 +80,20 @@ class Vessel:
     viscous_damping: NDArray[np.float64]
     radiation: RadiationModel
     attrs: Mapping[str, Any] = field(default_factory=dict)
+    constraint: NDArray[np.float64] | None = None
+    ptos: tuple[PTOLine, ...] = ()
+
+    def __post_init__(self) -> None:
+        n = len(self.dofs)
+        if self.constraint is not None:
+            t = np.asarray(self.constraint, dtype=float)
+            if t.ndim != 2 or t.shape[0] != n or not 1 <= t.shape[1] <= n:
+                raise SimulationError(f"the constraint basis T must be {n} x m, not {t.shape}")
+            object.__setattr__(self, "constraint", t)
+        object.__setattr__(self, "ptos", tuple(self.ptos))
+        for pto in self.ptos:
+            if np.shape(pto.direction) != (n,):
+                raise SimulationError(f"PTO {pto.name} is not resolved on the vessel's {n} DOFs")
 
     @property
     def added_mass_inf(self) -> NDArray[np.float64]:
@@ -73,42 +106,91 @@ class Vessel:
         return self.rigid_body_mass + self.added_mass_inf
 
     @property
+    def basis(self) -> NDArray[np.float64]:
+        """T (n × m): ξ = T q (the identity when no joint constrains the DOFs)."""
+        return np.eye(len(self.dofs)) if self.constraint is None else self.constraint
+
+    @property
+    def n_coordinates(self) -> int:
+        """m, the number of independent coordinates q."""
+        return self.basis.shape[1]
+
+    @property
+    def pto_stiffness(self) -> NDArray[np.float64]:
+        """Σ k d dᵀ of the PTOs (n × n)."""
+        return pto_matrices(self.ptos, len(self.dofs))[0]
+
+    @property
+    def pto_damping(self) -> NDArray[np.float64]:
+        """Σ c d dᵀ of the PTOs (n × n)."""
+        return pto_matrices(self.ptos, len(self.dofs))[1]
+
+    @property
+    def restoring(self) -> NDArray[np.float64]:
+        """C + the PTOs' stiffness (n × n)."""
+        return self.stiffness + self.pto_stiffness
+
+    @property
+    def damping(self) -> NDArray[np.float64]:
+        """B_v + the PTOs' damping (n × n)."""
+        return self.viscous_damping + self.pto_damping
+
+    @property
     def n_states(self) -> int:
-        """2n + the order of the radiation model."""
-        return 2 * len(self.dofs) + self.radiation.total_order
+        """2m + the order of the radiation model (m = n without joints)."""
+        return 2 * self.n_coordinates + self.radiation.total_order
 
     def state_space(self) -> tuple[NDArray[np.float64], NDArray[np.float64]]:
-        """(F, G) of ẋ = F x + G τ, x = (ξ, ξ̇, χ) (module docstring)."""
-        n, m = len(self.dofs), self.radiation.total_order
-        m_inv = np.linalg.inv(self.mass)
-        f = np.zeros((2 * n + m, 2 * n + m))
-        f[:n, n : 2 * n] = np.eye(n)
-        f[n : 2 * n, :n] = -m_inv @ self.stiffness
-        f[n : 2 * n, n : 2 * n] = -m_inv @ self.viscous_damping
-        if m:
-            f[n : 2 * n, 2 * n :] = -m_inv @ self.radiation.C
-            f[2 * n :, n : 2 * n] = self.radiation.B
-            f[2 * n :, 2 * n :] = self.radiation.A
-        g = np.zeros((2 * n + m, n))
-        g[n : 2 * n] = m_inv
+        """(F, G) of ẋ = F x + G τ, x = (q, q̇, χ) (q = ξ without joints; module
+        docstring); τ (n) in the body DOFs."""
+        t = self.basis
+        m, r = t.shape[1], self.radiation.total_order
+        m_inv = np.linalg.inv(t.T @ self.mass @ t)
+        f = np.zeros((2 * m + r, 2 * m + r))
+        f[:m, m : 2 * m] = np.eye(m)
+        f[m : 2 * m, :m] = -m_inv @ (t.T @ self.restoring @ t)
+        f[m : 2 * m, m : 2 * m] = -m_inv @ (t.T @ self.damping @ t)
+        if r:
+            f[m : 2 * m, 2 * m :] = -m_inv @ (t.T @ self.radiation.C)
+            f[2 * m :, m : 2 * m] = self.radiation.B @ t
+            f[2 * m :, 2 * m :] = self.radiation.A
+        g = np.zeros((2 * m + r, len(self.dofs)))
+        g[m : 2 * m] = m_inv @ t.T
         return f, g
 
+    def output_matrix(self) -> NDArray[np.float64]:
+        """H (3n × n_states): (ξ, ξ̇, μ) = H x, the body motions, velocities and memory
+        force from the state (q, q̇, χ)."""
+        t = self.basis
+        n, m = t.shape
+        out = np.zeros((3 * n, self.n_states))
+        out[:n, :m] = t
+        out[n : 2 * n, m : 2 * m] = t
+        if self.radiation.total_order:
+            out[2 * n :, 2 * m :] = self.radiation.C
+        return out
+
     def impedance(self, omega: ArrayLike) -> NDArray[np.complex128]:
-        """Z(ω) = −ω²M + jω (B_v + K(jω)) + C, shape (len(omega), n, n): Z X = F
-        (the memory force is K(jω) times the velocity jωX)."""
+        """Z(ω) = −ω²M + jω (B_v + B_pto + K(jω)) + C + C_pto, shape (len(omega), n, n),
+        in the body DOFs: Z X = F (the memory force is K(jω) times the velocity jωX)."""
         w = np.asarray(omega, dtype=float).reshape(-1)
         k = self.radiation.response(w)
         return (
             -(w**2)[:, None, None] * self.mass
-            + 1j * w[:, None, None] * (self.viscous_damping + k)
-            + self.stiffness
+            + 1j * w[:, None, None] * (self.damping + k)
+            + self.restoring
         )
 
     def response(self, omega: ArrayLike, force: ArrayLike) -> NDArray[np.complex128]:
-        """X(ω) = Z(ω)⁻¹ F for complex force amplitudes F, shape (len(omega), n)."""
+        """X(ω) = T (TᵀZ(ω)T)⁻¹ TᵀF for complex force amplitudes F, shape (len(omega),
+        n) (X = Z⁻¹F without joints)."""
         z = self.impedance(omega)
         f = np.asarray(force, dtype=complex).reshape(z.shape[0], -1)
-        return np.linalg.solve(z, f[..., None])[..., 0]
+        if self.constraint is None:
+            return np.linalg.solve(z, f[..., None])[..., 0]
+        t = self.constraint
+        q = np.linalg.solve(t.T @ z @ t, (f @ t)[..., None])[..., 0]
+        return q @ t.T
 
     def stability(self) -> NDArray[np.complex128]:
         """Eigenvalues of F; raises :class:`SimulationError` when one is in the right
@@ -122,13 +204,22 @@ class Vessel:
         bad = np.flatnonzero(lam.real > 10 * np.sqrt(np.finfo(float).eps) * scale)
         if bad.size:
             k = bad[np.argmax(lam.real[bad])]
-            n = len(self.dofs)
-            dof = self.dofs[int(np.argmax(np.abs(vec[:n, k]) + np.abs(vec[n : 2 * n, k])))]
+            t = self.basis
+            m = t.shape[1]
+            mode = np.abs(t @ vec[:m, k]) + np.abs(t @ vec[m : 2 * m, k])
+            dof = self.dofs[int(np.argmax(mode))]
             raise SimulationError(
                 f"the vessel model is unstable: eigenvalue {lam[k]:.4g} 1/s, mode dominated "
                 f"by {dof}",
                 hint="check the restoring matrix (negative stiffness?) and that the "
-                "radiation model is passive (cummins.radiation.passivity.passivity_test)",
+                "radiation model is passive (cummins.radiation.passivity.passivity_test)"
+                + (
+                    "; a body held by a joint with a buoyancy other than its weight needs "
+                    "the moment of that net force about the joint as a stiffness "
+                    "(docs/wec.md, Limitations)"
+                    if self.constraint is not None
+                    else ""
+                ),
             )
         return lam
 
@@ -175,6 +266,7 @@ def vessel_from_hydrodb(
     *,
     viscous_damping: ArrayLike | None = None,
     additional: bool = True,
+    system: MechanicalSystem | None = None,
     **fit_options: Any,
 ) -> Vessel:
     """The :class:`Vessel` of a ``HydroDB``, fitting its radiation model when none is given.
@@ -198,17 +290,29 @@ def vessel_from_hydrodb(
         vary with frequency (MSS's surge/sway/yaw estimates) are left out with a
         warning naming them; give the value you want through ``viscous_damping``.
         Frequency-dependent ``additional_added_mass`` is likewise left out.
+    system
+        Joints, PTOs, the DOFs that move and the body coupling
+        (:class:`cummins.mechanics.MechanicalSystem`): the vessel holds the DOFs that can
+        move (the data's others are held at zero and left out), the basis T of the
+        allowed motions and the PTOs; with ``body_coupling=False`` the radiation model is
+        fitted to data without the cross-body terms (a ``model`` given must have none).
+        ``viscous_damping`` is then over the DOFs that can move.
     fit_options
         Passed to :func:`cummins.radiation.fit.fit_radiation` when ``model`` is None.
 
     Returns
     -------
     Vessel
-        ``attrs["viscous_damping_source"]`` says where each part of B_v came from.
+        ``attrs["viscous_damping_source"]`` says where each part of B_v came from; with a
+        system, ``attrs`` also hold its description (:meth:`cummins.mechanics.Assembly.attrs`).
     """
     from cummins.radiation.fit import fit_radiation
 
     ds = single_speed(ds)
+    assembly = None
+    if system is not None:
+        assembly = assemble(ds, system)
+        ds = assembly.ds
     dofs = tuple(str(d) for d in ds.influenced_dof.values)
     missing_data_message(ds, ("inertia_matrix", "hydrostatic_stiffness"), "a simulation")
     m_rb = dof_matrix(ds, "inertia_matrix")
@@ -225,7 +329,10 @@ def vessel_from_hydrodb(
         model = fit_radiation(ds, **fit_options)
     if tuple(model.dofs) != dofs:
         raise SimulationError(
-            f"the radiation model's DOFs {model.dofs} differ from the data's {dofs}"
+            f"the radiation model's DOFs {model.dofs} differ from the data's {dofs}",
+            hint=None
+            if assembly is None
+            else "with joints, fit the model on the DOFs that can move, or give the data",
         )
     attrs = {
         "source_file": str(ds.attrs.get("source_file", "")),
@@ -233,7 +340,36 @@ def vessel_from_hydrodb(
         "axis_convention": str(ds.attrs.get("axis_convention", "z-up")),
         "viscous_damping_source": "; ".join(sources),
     }
-    return Vessel(dofs, m_rb, c, b_v, model, attrs)
+    if assembly is None:
+        return Vessel(dofs, m_rb, c, b_v, model, attrs)
+    if not assembly.system.body_coupling:
+        _check_no_body_coupling(model, ds)
+    return Vessel(
+        dofs,
+        m_rb,
+        c,
+        b_v,
+        model,
+        {**attrs, **assembly.attrs()},
+        constraint=assembly.basis if assembly.is_constrained else None,
+        ptos=assembly.ptos,
+    )
+
+
+def _check_no_body_coupling(model: RadiationModel, ds: xr.Dataset) -> None:
+    """ArgumentError when a radiation model given with ``body_coupling=False`` couples
+    bodies (its A∞ or K(jω) has cross-body terms)."""
+    mask = cross_body_mask(model.dofs)
+    if not mask.any():
+        return
+    w = ds.omega.values[:: max(1, ds.sizes["omega"] // 20)]
+    k = np.abs(model.response(w)).max(axis=0) + np.abs(model.added_mass_inf)
+    if np.any(k[mask] > 0):
+        raise ArgumentError(
+            "body_coupling is off but the radiation model given couples the bodies",
+            hint="fit the model on data without the cross-body terms "
+            "(cummins.mechanics.without_body_coupling), or give the data to fit it",
+        )
 
 
 def viscous_damping_matrix(dofs, viscous_damping: Any) -> NDArray[np.float64]:

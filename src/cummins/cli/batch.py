@@ -119,6 +119,13 @@ def batch_command(study_file, output, scheduler, workers, example, force):
         f"{run.computed} cases computed, {run.skipped} resumed from saved parts ({where}) "
         f"in {run.elapsed:.1f} s"
     )
+    if "pto_mean_power" in run.results:
+        for name in run.results.pto.values:
+            power = run.results.pto_mean_power.sel(pto=name).values / 1e3
+            console.print(
+                f"{name}: mean absorbed power {np.nanmin(power):.4g} to {np.nanmax(power):.4g} kW "
+                "over the cases (pto_mean_power)"
+            )
     _print_tables(run.results)
     console.print(f"wrote {output}")
 

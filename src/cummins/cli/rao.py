@@ -22,7 +22,12 @@ from cummins.cli.common import (
     viscous_damping_option,
     viscous_damping_values,
 )
-from cummins.hydrodb import is_rotation
+from cummins.cli.system_options import (
+    prepare_system_args,
+    system_from_options,
+    system_options,
+)
+from cummins.hydrodb import bodies, is_rotation
 
 #: Options that take a list of numbers: ``--headings 0 45 90`` (as well as repeated).
 _LIST_OPTIONS = ("--headings",)
@@ -64,7 +69,7 @@ class ListOptionsCommand(click.Command):
     """A click command whose list options take several values after one flag."""
 
     def parse_args(self, ctx: click.Context, args: list[str]) -> list[str]:
-        return super().parse_args(ctx, expand_list_options(list(args)))
+        return super().parse_args(ctx, prepare_system_args(ctx, expand_list_options(list(args))))
 
 
 def parse_headings(values: tuple[str, ...]) -> list[float]:
@@ -130,6 +135,15 @@ def parse_headings(values: tuple[str, ...]) -> list[float]:
     "(WAMIT external damping, MSS viscous damping, VERES roll damping).",
 )
 @click.option(
+    "--dof",
+    "dofs",
+    multiple=True,
+    metavar="NAME",
+    help="Only these DOFs move (repeatable), e.g. --dof body1__Heave --dof body2__Heave; "
+    "the others are held at zero.",
+)
+@system_options
+@click.option(
     "--plot",
     "plot_dir",
     type=click.Path(file_okay=False),
@@ -152,6 +166,8 @@ def rao_command(
     n_omega,
     viscous_damping,
     no_additional,
+    dofs,
+    system_options,
     plot_dir,
     speed,
     force,
@@ -165,6 +181,14 @@ def rao_command(
     solved there (the RAO itself is never interpolated, so sharp resonances are
     resolved). Headings missing on one side of a port/starboard symmetric hull are
     mirrored.
+
+    \b
+    Several bodies: --joint joins them (or a body to the ground) and --pto puts a damper
+    (and spring) on a relative motion; the equation is then T^T Z T q = T^T F with X = T q
+    in the DOFs that can move, and the file also holds each PTO's relative motion
+    (pto_displacement), force (pto_force) and mean absorbed power 0.5 c w^2 |x|^2 per
+    unit wave amplitude squared (pto_power, W/m^2). --no-body-coupling leaves out the
+    radiation coupling between bodies, as WEC-Sim does by default (docs/wec.md).
 
     \b
     Examples:
@@ -198,21 +222,69 @@ def rao_command(
                 param_hint="--omega-min/--omega-max",
             )
     beta = np.radians(parse_headings(headings)) if headings else None
-    damping = viscous_damping_values(viscous_damping, [str(d) for d in ds.influenced_dof.values])
-    rao = motion_rao(ds, omega, beta, viscous_damping=damping, additional=not no_additional)
+    labels = [str(d) for d in ds.influenced_dof.values]
+    unknown = [d for d in dofs if d not in labels]
+    if unknown:
+        raise click.BadParameter(
+            f"unknown DOF {unknown[0]!r}; the data have {', '.join(labels)}", param_hint="--dof"
+        )
+    system = system_from_options(system_options, dofs)
+    if system is None and (dofs or len(bodies(ds)) > 1):
+        from cummins.mechanics import MechanicalSystem
+
+        # several bodies: through the system, so that the body coupling is stated
+        system = MechanicalSystem(dofs=tuple(dofs) or None)
+    if system is not None:
+        from cummins.cli.system_options import print_system
+        from cummins.mechanics import assemble
+
+        assembly = assemble(ds, system)
+        labels = list(assembly.dofs)
+        print_system(assembly)
+    damping = viscous_damping_values(viscous_damping, labels)
+    rao = motion_rao(
+        ds, omega, beta, viscous_damping=damping, additional=not no_additional, system=system
+    )
+    pto = None
+    if system is not None and system.ptos:
+        from cummins.seakeeping.frequency_domain import pto_rao
+
+        pto = pto_rao(rao, ds, system)
     if "excitation_force" in ds and "wave_direction" in ds.dims:
         coverage = heading_coverage(ds)
         if coverage.mirror_used:
             console.print(f"headings: {coverage.reason}")
     console.print(f"terms: {rao.attrs['terms']}")
     console.print(rao_table(rao))
-    save_rao(rao, output, force=force)
+    if pto is not None:
+        console.print(pto_table(pto))
+    save_rao(rao, output, force=force, pto=pto)
     console.print(f"wrote {output}")
     if plot_file:
         from cummins.plots import plot_rao, save_figure
 
         save_figure(plot_rao(rao), plot_file, force=force)
         console.print(f"wrote {plot_file}")
+
+
+def pto_table(pto) -> Table:
+    """Largest mean absorbed power per unit wave amplitude squared of each PTO, with the
+    frequency and heading where it occurs."""
+    table = Table(title="PTOs: mean absorbed power 0.5 c w^2 |x|^2 per unit wave amplitude^2")
+    for column in ("PTO", "max power (kW/m²)", "at ω (rad/s)", "period (s)", "heading (deg)"):
+        table.add_column(column, justify="right")
+    w = pto.omega.values
+    for name in pto.pto.values:
+        power = pto.pto_power.sel(pto=name).values
+        i, j = np.unravel_index(int(np.argmax(power)), power.shape)
+        table.add_row(
+            str(name),
+            f"{power[i, j] / 1e3:.4g}",
+            f"{w[i]:.4g}",
+            f"{2 * np.pi / w[i]:.4g}",
+            f"{np.degrees(pto.wave_direction.values[j]):.4g}",
+        )
+    return table
 
 
 def rao_table(rao) -> Table:

@@ -25,10 +25,11 @@ from cummins.cli.common import (
     viscous_damping_option,
     viscous_damping_values,
 )
+from cummins.cli.system_options import SystemCommand, system_from_options, system_options
 from cummins.validation import check_simulation_size
 
 
-@click.command(name="simulate")
+@click.command(name="simulate", cls=SystemCommand)
 @click.argument("path", metavar="DATA|MODEL", type=click.Path(exists=True))
 @read_options
 @click.option(
@@ -51,10 +52,10 @@ from cummins.validation import check_simulation_size
 @click.option(
     "--heading",
     type=finite("deg"),
-    default=180.0,
-    show_default=True,
+    default=None,
     metavar="DEG",
-    help="Direction the waves travel, degrees: 0 following seas (along +x), 180 head seas.",
+    help="Direction the waves travel, degrees: 0 following seas (along +x), 180 head seas "
+    "(default: 180, or the data's heading when they hold only one).",
 )
 @click.option(
     "--spreading",
@@ -131,8 +132,9 @@ from cummins.validation import check_simulation_size
     multiple=True,
     metavar="NAME",
     help="Simulate only these DOFs (repeatable), e.g. --dof Heave --dof Pitch: the vertical "
-    "plane of a ship in head or following seas.",
+    "plane of a ship in head or following seas; the others are held at zero.",
 )
+@system_options
 @click.option(
     "--soft-springs",
     type=positive("s"),
@@ -179,6 +181,7 @@ def simulate_command(
     speed,
     dofs,
     soft_springs,
+    system_options,
     plot_dir,
     force,
 ):
@@ -192,10 +195,20 @@ def simulate_command(
     reference point and axes, and the wave elevation at the origin.
 
     \b
+    Several bodies: --joint joins them (or a body to the ground), --pto puts a linear
+    damper (and spring) on a relative motion; the run then holds each PTO's relative
+    displacement, velocity, force and absorbed power (pto_*), and the mean power is
+    printed. --no-body-coupling leaves out the radiation coupling between bodies, as
+    WEC-Sim does by default (docs/wec.md).
+
+    \b
     Examples:
       cummins simulate tanker.1 --hs 4 --tp 10 --heading 150 --duration 1800 -o run.nc
       cummins simulate tanker.1 --regular --wave-period 9 --wave-amplitude 1 -o reg.nc
       cummins simulate s175.mat --speed 10.29 --dof Heave --dof Pitch --hs 4 --tp 10 -o s.nc
+      cummins simulate rm3.out --rho 1000 --mass 725833 --mass 886687 ... --joint
+          translational body2 ground --joint translational body1 body2 --pto-damping 1.2e6
+          --no-body-coupling --regular --wave-period 8 --wave-amplitude 1.25 -o rm3.nc
     """
     from cummins.seakeeping import waves as wv
     from cummins.timedomain.simulate import quadratic_damping_force, simulate_waves
@@ -210,8 +223,16 @@ def simulate_command(
     # the run's size before any work: the states are at least the DOFs' positions and
     # velocities (the fluid memory adds its own, checked again once it is fitted)
     check_simulation_size(duration, dt, 12, 6, option="--duration")
+    system = system_from_options(system_options, dofs)
     model, data_path = model_and_data(path)
     data = read_hydrodb(data_path, format_, rho, g, ulen)
+    if system is None and speed is None:
+        from cummins.hydrodb import bodies
+
+        if len(bodies(data)) > 1:  # through the system, so that the body coupling is stated
+            from cummins.mechanics import MechanicalSystem
+
+            system = MechanicalSystem(dofs=tuple(dofs) or None)
     if dofs:
         from cummins.hydrodb import select_dofs
 
@@ -222,7 +243,8 @@ def simulate_command(
                 + ", ".join(str(x) for x in data.influenced_dof.values),
                 param_hint="--dof",
             )
-        data = select_dofs(data, list(dofs))
+        if system is None:  # with joints the selection is part of the system
+            data = select_dofs(data, list(dofs))
     ds = select_speed(data, speed)
     from cummins.vessel import missing_data_message
 
@@ -241,8 +263,26 @@ def simulate_command(
             "--soft-springs applies to a ship at --speed U > 0 whose data hold zero speed too"
         )
     labels = [str(d) for d in ds.influenced_dof.values]
+    if system is not None:
+        if at_speed:
+            raise click.UsageError(
+                "joints, PTOs and --no-body-coupling are for bodies at zero speed: leave "
+                "--speed out"
+            )
+        from cummins.cli.system_options import print_system
+        from cummins.mechanics import assemble
+
+        assembly = assemble(ds, system)
+        labels = list(assembly.dofs)
+        print_system(assembly)
     b_v = viscous_damping_values(viscous_damping, labels)
     b_q = viscous_damping_values(quadratic_damping, labels, "--quadratic-damping")
+    if heading is None:
+        heading = 180.0
+        if "wave_direction" in ds.dims and ds.sizes["wave_direction"] == 1:
+            heading = float(np.degrees(ds.wave_direction.values[0]))
+            if abs(heading - 180.0) > 1e-9:
+                console.print(f"heading {heading:g}°: the data's only one (--heading)")
     direction = np.radians(heading)
     if regular:
         sea = wv.regular_wave(wave_amplitude, wave_period, direction)
@@ -283,7 +323,9 @@ def simulate_command(
                 data, speed, soft_springs=soft_springs, viscous_damping=b_v, **fit_options
             )
         else:
-            vessel = vessel_from_hydrodb(ds, model, viscous_damping=b_v, **fit_options)
+            vessel = vessel_from_hydrodb(
+                ds, model, viscous_damping=b_v, system=system, **fit_options
+            )
     with progress_bar() as bar:
         task = bar.add_task(f"simulating {duration:g} s, {title}, heading {heading:g}°", total=1.0)
         run = simulate_waves(
@@ -308,6 +350,10 @@ def simulate_command(
         }
     )
     _summary(run, regular=regular)
+    if vessel.ptos:
+        from cummins.cli.system_options import print_pto_run
+
+        print_pto_run(run, vessel, sea if regular else None, ds, system, b_v)
     from cummins.io.netcdf import save_netcdf
 
     save_netcdf(run, output)
@@ -343,9 +389,10 @@ def _summary(run, regular: bool = False) -> None:
             units[k] if k < len(units) else "",
         )
     console.print(table)
+    pto = f", PTOs {run.attrs['energy_pto']:.4g} J" if run.attrs.get("energy_pto") else ""
     console.print(
         f"energy: in {run.attrs['energy_input']:.4g} J, radiated "
-        f"{run.attrs['energy_radiated']:.4g} J, viscous {run.attrs['energy_viscous']:.4g} J, "
-        "balance error "
+        f"{run.attrs['energy_radiated']:.4g} J, viscous {run.attrs['energy_viscous']:.4g} J"
+        f"{pto}, balance error "
         f"{run.attrs['energy_relative_residual']:.2g}"
     )

@@ -43,6 +43,10 @@ says so (attribute ``encounter_outside_data``). The response spectrum and the
 significant amplitudes below stay on the wave-frequency axis: the variance is the same
 on either axis.
 
+**Joined bodies and PTOs** (``system``, :mod:`cummins.mechanics`): with the motions the
+joints allow, ξ = T q, and each PTO's k d dᵀ and c d dᵀ added to Z, the RAO solves
+Tᵀ Z(ω) T q = Tᵀ F and is X = T q, in the body DOFs that can move.
+
 The response spectrum of DOF j to a wave spectrum S(ω) in one direction is
 S_j(ω) = |X_j(ω, β)|² S(ω) (de Haan (2022) eq. 2.5); in a short-crested sea with spreading
 D(θ), S_j(ω) = Σ_β w_β |X_j(ω, β)|² S(ω), w_β = ∫_bin D dθ. The significant amplitude is
@@ -61,6 +65,7 @@ from numpy.typing import ArrayLike, NDArray
 
 from cummins.errors import ArgumentError, HydroDataError
 from cummins.hydrodb import dof_matrix, single_speed
+from cummins.mechanics import MechanicalSystem, assemble
 from cummins.seakeeping.excitation import (
     INTERPOLATION_METHODS,
     _interpolate_frequency,
@@ -75,9 +80,11 @@ from cummins.vessel import missing_data_message, viscous_damping_matrix
 
 __all__ = [
     "impedance",
+    "load_pto_rao",
     "load_rao",
     "motion_rao",
     "motion_transfer",
+    "pto_rao",
     "response_spectrum",
     "save_rao",
     "significant_amplitude",
@@ -259,6 +266,7 @@ def motion_rao(
     additional: bool = True,
     method: str = "hermite",
     mirror: bool | None = None,
+    system: MechanicalSystem | None = None,
 ) -> xr.DataArray:
     """Coupled motion RAOs X(ω, β) per metre of wave amplitude (module docstring).
 
@@ -282,6 +290,12 @@ def motion_rao(
         Frequency interpolation of A, B and F (``"hermite"`` default).
     mirror
         Port/starboard mirroring of the headings (None: decide from the data).
+    system
+        Joints, PTOs, the DOFs that move and the body coupling
+        (:class:`cummins.mechanics.MechanicalSystem`): the RAO solves Tᵀ Z T q = Tᵀ F
+        with the PTOs' stiffness and damping in Z, X = T q over the DOFs that can move;
+        ``viscous_damping`` is then over those DOFs. The PTOs' response:
+        :func:`pto_rao`.
 
     Returns
     -------
@@ -307,6 +321,9 @@ def motion_rao(
     1.0
     """
     ds = single_speed(ds)
+    assembly = None if system is None else assemble(ds, system)
+    if assembly is not None:
+        ds = assembly.ds
     w = ds.omega.values.astype(float) if omega is None else np.asarray(omega, float).reshape(-1)
     if wave_direction is None:
         if "wave_direction" not in ds.dims:
@@ -330,18 +347,27 @@ def motion_rao(
     ).reshape(w.size, beta.size, -1)
     speed = forward_speed(ds)
     options = {"viscous_damping": viscous_damping, "additional": additional, "method": method}
+    basis = None
+    if assembly is not None and assembly.is_constrained:
+        basis = assembly.basis
     if speed == 0.0:
-        z = impedance(ds, w, **options)
+        z = _with_ptos(impedance(ds, w, **options), w, assembly)
+        zq, fq = _project(z, force, basis)
         try:
-            x = np.linalg.solve(z[:, None], force[..., None])[..., 0]
+            x = np.linalg.solve(zq[:, None], fq[..., None])[..., 0]
         except np.linalg.LinAlgError:
-            x = np.stack([_solve(z, force[:, j], _where(ds), w) for j in range(beta.size)], 1)
+            x = np.stack([_solve(zq, fq[:, j], _where(ds), w) for j in range(beta.size)], 1)
     else:
         we = encounter_frequencies(ds, ww, bb)
         force = encounter_excitation(force, we)
         z = impedance(ds, we.reshape(-1), outside="hold", **options)
+        z = _with_ptos(z, we.reshape(-1), assembly)
         n = force.shape[-1]
-        x = _solve(z, force.reshape(-1, n), _where(ds), we.reshape(-1)).reshape(force.shape)
+        zq, fq = _project(z, force.reshape(-1, n), basis)
+        x = _solve(zq, fq, _where(ds), we.reshape(-1))
+        x = x.reshape(*force.shape[:-1], x.shape[-1])
+    if basis is not None:
+        x = x @ basis.T
     labels = [str(d) for d in ds.influenced_dof.values]
     included = ["inertia_matrix", "added_mass", "radiation_damping", "hydrostatic_stiffness"]
     if additional:
@@ -353,6 +379,12 @@ def motion_rao(
     if viscous_damping is not None:
         included.append("viscous_damping (given)")
     attrs = {}
+    if assembly is not None:
+        if assembly.ptos:
+            included.append("PTO stiffness and damping")
+        if basis is not None:
+            included.append("joints (T^T Z T q = T^T F, X = T q)")
+        attrs.update(assembly.attrs())
     coords = {}
     if speed != 0.0:
         data_w = ds.omega.values
@@ -397,6 +429,85 @@ def motion_rao(
             **attrs,
         },
     )
+
+
+def _with_ptos(z: NDArray, omega: NDArray, assembly) -> NDArray:
+    """Z + C_pto + iω B_pto (Z unchanged without PTOs)."""
+    if assembly is None or not assembly.ptos:
+        return z
+    stiffness, damping = assembly.pto_matrices()
+    return z + stiffness + 1j * np.asarray(omega)[:, None, None] * damping
+
+
+def _project(z: NDArray, force: NDArray, basis) -> tuple[NDArray, NDArray]:
+    """(TᵀZT, TᵀF) for Z (k, n, n) and F (k, …, n); unchanged without joints."""
+    if basis is None:
+        return z, force
+    return basis.T @ z @ basis, force @ basis
+
+
+def pto_rao(rao: xr.DataArray, ds: xr.Dataset, system: MechanicalSystem) -> xr.Dataset:
+    """The PTOs' response per metre of wave amplitude, from a :func:`motion_rao` of the
+    same data and system.
+
+    Returns
+    -------
+    xarray.Dataset
+        ``pto_displacement`` Δ̂ = dᵀX (complex, m/m or rad/m), ``pto_force`` −(k + iωc)Δ̂
+        (complex, N/m or N·m/m, on the PTO's first body) and ``pto_power`` ½ c ω² |Δ̂|²,
+        the mean power absorbed in a regular wave of unit amplitude (W/m²; times the
+        amplitude squared in a wave of amplitude a), dims (omega, wave_direction, pto).
+        At a forward speed ω is the encounter frequency.
+    """
+    from cummins.mechanics import pto_frequency_response
+
+    assembly = assemble(single_speed(ds), system)
+    if not assembly.ptos:
+        raise ArgumentError("the system has no PTO")
+    lines = [line.on([str(d) for d in rao.dof.values], assembly.dofs) for line in assembly.ptos]
+    if "encounter_frequency" in rao.coords:
+        w = rao.encounter_frequency.values
+    else:
+        w = rao.omega.values[:, None] * np.ones(rao.sizes["wave_direction"])
+    x = rao.transpose("omega", "wave_direction", "dof").values
+    out = pto_frequency_response(lines, w, x)
+    dims = ("omega", "wave_direction", "pto")
+    units = [line.units for line in lines]
+
+    def unit(key: str, per: str) -> str:
+        return " | ".join(dict.fromkeys(f"{u[key]}{per}" for u in units))
+
+    coords = {
+        "omega": rao.omega,
+        "wave_direction": rao.wave_direction,
+        "pto": ("pto", [line.name for line in lines]),
+    }
+    result = xr.Dataset(
+        {
+            "pto_displacement": (
+                dims,
+                out["displacement"],
+                {"units": unit("displacement", "/m"), "long_name": "PTO relative displacement RAO"},
+            ),
+            "pto_force": (
+                dims,
+                out["force"],
+                {"units": unit("force", "/m"), "long_name": "PTO force RAO, -(k + i omega c) x"},
+            ),
+            "pto_power": (
+                dims,
+                out["power"],
+                {
+                    "units": "W/m^2",
+                    "long_name": "mean absorbed power per unit wave amplitude squared, "
+                    "0.5 c omega^2 |x|^2",
+                },
+            ),
+        },
+        coords=coords,
+    )
+    result.pto.attrs["description"] = "\n".join(f"{p.name}: {p.description}" for p in lines)
+    return result
 
 
 # --------------------------------------------------------------------------- spectra
@@ -503,8 +614,9 @@ def significant_amplitude(response_spectrum: xr.DataArray) -> xr.DataArray:
 # --------------------------------------------------------------------------- files
 
 
-def save_rao(rao: xr.DataArray, path, *, force: bool = False):
-    """Write a RAO from :func:`motion_rao` to NetCDF-4 in Capytaine's layout.
+def save_rao(rao: xr.DataArray, path, *, force: bool = False, pto: xr.Dataset | None = None):
+    """Write a RAO from :func:`motion_rao` (and the PTOs' response, :func:`pto_rao`, as
+    ``pto_*`` variables on a ``pto`` dimension) to NetCDF-4 in Capytaine's layout.
 
     As every NetCDF file cummins writes (:mod:`cummins.io.netcdf`): the complex values
     are conjugated to Capytaine's time convention x(t) = Re{X e^{−iωt}} and split along a
@@ -541,6 +653,19 @@ def save_rao(rao: xr.DataArray, path, *, force: bool = False):
             "dof": ("dof", [str(d) for d in rao.dof.values]),
         },
     )
+    if pto is not None:
+        for name, var in pto.data_vars.items():
+            values = var.transpose("omega", "wave_direction", "pto").values
+            if np.iscomplexobj(values):
+                values = np.conj(values)
+                out[name] = (
+                    ("complex", "omega", "wave_direction", "pto"),
+                    np.stack([values.real, values.imag]),
+                    encode_attributes(dict(var.attrs)),
+                )
+            else:
+                out[name] = (("omega", "wave_direction", "pto"), values, dict(var.attrs))
+        out = out.assign_coords(pto=("pto", [str(p) for p in pto.pto.values], dict(pto.pto.attrs)))
     out.attrs = encode_attributes({"title": "cummins motion RAO", **_version_attr()})
     return save_netcdf(out, path)
 
@@ -570,3 +695,25 @@ def load_rao(path) -> xr.DataArray:
     coords = {d: (d, raw[d].values, dict(raw[d].attrs)) for d in dims}
     coords["wave_direction"][2].pop("degrees", None)
     return xr.DataArray(np.conj(value), dims=dims, coords=coords, name="rao", attrs=attrs)
+
+
+def load_pto_rao(path) -> xr.Dataset:
+    """The PTOs' response of a file written by :func:`save_rao` with ``pto`` (cummins'
+    convention x(t) = Re{X e^{iωt}})."""
+    try:
+        with xr.open_dataset(path, engine="h5netcdf") as f:
+            raw = f.load()
+    except (OSError, ValueError) as exc:
+        raise HydroDataError(f"cannot read the RAO file ({exc})", path=path) from None
+    names = [n for n in raw.data_vars if str(n).startswith("pto_")]
+    if not names:
+        raise HydroDataError("no PTO variables (pto_*) in the file", path=path)
+    out = {}
+    for name in names:
+        var = raw[name]
+        if "complex" in var.dims:
+            value = var.sel(complex="re").values + 1j * var.sel(complex="im").values
+            out[name] = (tuple(d for d in var.dims if d != "complex"), np.conj(value), var.attrs)
+        else:
+            out[name] = var.drop_vars("complex", errors="ignore")
+    return xr.Dataset(out).drop_vars("complex", errors="ignore")

@@ -34,6 +34,12 @@ ignored (and counted). At the end the results are gathered into one ``xarray.Dat
 list), limits applied (:mod:`cummins.studies.operability`), written as NetCDF (or Zarr for a
 ``.zarr`` output) and the parts removed.
 
+A study may describe a multi-body system (``system:``, :mod:`cummins.mechanics`): joints,
+PTOs, the DOFs that move, the body coupling. Both analyses then solve the joined system
+and report, besides the motions of the DOFs that can move, each PTO's mean absorbed power
+``pto_mean_power``: Σ_β w_β ∫ c ω² |Δ̂(ω, β)|² S(ω) dω in the frequency domain, the mean of
+(kΔ + cΔ̇)Δ̇ over the run in the time domain (W).
+
 The study itself is defined in :mod:`cummins.studies.study`.
 """
 
@@ -107,6 +113,13 @@ class StudyContext:
     vessel: Any = None
     omega: Any = None
     cache: dict = field(default_factory=dict, repr=False)
+    dofs: tuple[str, ...] = ()
+    ptos: tuple[str, ...] = ()
+
+    @property
+    def labels(self) -> list[str]:
+        """The DOFs of the results (those the system lets move)."""
+        return list(self.dofs) or [str(d) for d in self.ds.influenced_dof.values]
 
 
 def prepare_study(study: Study) -> tuple[StudyContext, str]:
@@ -117,16 +130,25 @@ def prepare_study(study: Study) -> tuple[StudyContext, str]:
     ds = read(study.data)
     ds = _select_speed(ds, study)
     labels = [str(d) for d in ds.influenced_dof.values]
+    system = {}
+    if study.system is not None:
+        from cummins.mechanics import assemble
+
+        assembly = assemble(single_speed(ds), study.system)
+        labels = list(assembly.dofs)
+        system = {"dofs": assembly.dofs, "ptos": tuple(p.name for p in assembly.ptos)}
     for lim in study.limits:
         if lim.dof not in labels:
             raise StudyError(
-                f"{at_key(study.source, f'limits.{lim.dof}')}: the data have no DOF {lim.dof!r}",
+                f"{at_key(study.source, f'limits.{lim.dof}')}: the data have no DOF {lim.dof!r}"
+                + (" that can move" if study.system is not None else ""),
                 hint=f"DOFs: {', '.join(labels)}",
             )
     for dof, _ in study.viscous_damping:
         if dof not in labels:
             raise StudyError(
-                f"{at_key(study.source, f'viscous_damping.{dof}')}: the data have no DOF {dof!r}",
+                f"{at_key(study.source, f'viscous_damping.{dof}')}: the data have no DOF {dof!r}"
+                + (" that can move" if study.system is not None else ""),
                 hint=f"DOFs: {', '.join(labels)}",
             )
     digest = hashlib.sha256(_dataset_digest(ds).encode())
@@ -137,7 +159,8 @@ def prepare_study(study: Study) -> tuple[StudyContext, str]:
         hi = float(w[-1]) if study.omega_max is None else study.omega_max
         if not hi > lo:
             raise StudyError(f"{at_key(study.source, 'omega_max')}: must exceed omega_min")
-        return StudyContext(study, ds, omega=np.linspace(lo, hi, study.n_omega)), digest.hexdigest()
+        omega = np.linspace(lo, hi, study.n_omega)
+        return StudyContext(study, ds, omega=omega, **system), digest.hexdigest()
     from cummins.radiation.model import RadiationModel
     from cummins.vessel import vessel_from_hydrodb
 
@@ -145,9 +168,11 @@ def prepare_study(study: Study) -> tuple[StudyContext, str]:
     if study.model is not None:
         model = RadiationModel.load(study.model)
         digest.update(Path(study.model).read_bytes())
-    vessel = vessel_from_hydrodb(single_speed(ds), model, viscous_damping=damping)
+    vessel = vessel_from_hydrodb(
+        single_speed(ds), model, viscous_damping=damping, system=study.system
+    )
     vessel.stability()
-    return StudyContext(study, ds, vessel=vessel), digest.hexdigest()
+    return StudyContext(study, ds, vessel=vessel, **system), digest.hexdigest()
 
 
 def _select_speed(ds: xr.Dataset, study: Study) -> xr.Dataset:
@@ -201,12 +226,17 @@ def case_statistics(context: StudyContext, case: Case) -> dict[str, Any]:
     heading = math.radians(case.heading)
     if study.analysis == "rao":
         return _rao_statistics(context, case, heading)
-    from cummins.seakeeping.waves import irregular_waves, wave_spectrum
+    from cummins.seakeeping.waves import energy_range, irregular_waves, wave_spectrum
     from cummins.timedomain.simulate import simulate_waves
 
     seed = _derived_seed(case) if case.seed is None else case.seed
+    shape = wave_spectrum(study.spectrum, case.hs, case.tp, _gamma(study, case))
+    lo, hi = energy_range(shape)
+    data_w = context.ds.omega.values
     sea = irregular_waves(
-        wave_spectrum(study.spectrum, case.hs, case.tp, _gamma(study, case)),
+        shape,
+        omega_min=max(lo, float(data_w[0])),  # as `cummins simulate`: the force is known
+        omega_max=min(hi, float(data_w[-1])),  # within the data's frequencies only
         duration=study.duration,
         n_components=study.components,
         direction=heading,
@@ -220,13 +250,16 @@ def case_statistics(context: StudyContext, case: Case) -> dict[str, Any]:
     centred = xi - xi.mean(axis=0)
     up = ((centred[:-1] < 0) & (centred[1:] >= 0)).sum(axis=0)
     tz = np.where(up > 0, study.duration / np.maximum(up, 1), np.nan)
-    return {
+    out = {
         "std": std.tolist(),
         "significant_amplitude": (2.0 * std).tolist(),
         "maximum": np.abs(xi).max(axis=0).tolist(),
         "zero_crossing_period": tz.tolist(),
         "seed": int(seed),
     }
+    if "pto_power" in run:
+        out["pto_mean_power"] = run.pto_power.mean("time").values.tolist()
+    return out
 
 
 def _gamma(study: Study, case: Case) -> float | None:
@@ -259,8 +292,16 @@ def _rao_statistics(context: StudyContext, case: Case, heading: float) -> dict[s
             context.omega,
             directions,
             viscous_damping=dict(study.viscous_damping) or None,
+            system=study.system,
         )
+        if study.system is not None and study.system.ptos:
+            from cummins.seakeeping.frequency_domain import pto_rao
+
+            rao = (rao, pto_rao(rao, context.ds, study.system).pto_power)
         context.cache[key] = rao
+    power = None
+    if isinstance(rao, tuple):
+        rao, power = rao
     sea = wave_spectrum(study.spectrum, case.hs, case.tp, _gamma(study, case))
     response = response_spectrum(rao, sea, direction_weights=weights)
     m0 = spectral_moment(response, 0).values
@@ -270,13 +311,20 @@ def _rao_statistics(context: StudyContext, case: Case, heading: float) -> dict[s
         tz = np.where(m2 > 0, 2.0 * np.pi * np.sqrt(m0 / m2), np.nan)
         n_peaks = np.where(tz > 0, study.duration / tz, 1.0)
     mpm = sigma * np.sqrt(2.0 * np.log(np.maximum(n_peaks, math.e)))
-    return {
+    out = {
         "std": sigma.tolist(),
         "significant_amplitude": significant_amplitude(response).values.tolist(),
         "maximum": mpm.tolist(),
         "zero_crossing_period": tz.tolist(),
         "seed": None,
     }
+    if power is not None:
+        # a component of amplitude a = sqrt(2 S dω) absorbs pto_power a²: P = ∫ 2 pto_power S dω
+        w = np.ones(directions.size) / directions.size if weights is None else np.asarray(weights)
+        density = 2.0 * (power * xr.DataArray(w, dims="wave_direction")).sum("wave_direction")
+        mean = (density * xr.DataArray(sea(power.omega.values), dims="omega")).integrate("omega")
+        out["pto_mean_power"] = mean.values.tolist()
+    return out
 
 
 def _run_case(context: StudyContext, case: Case) -> dict[str, Any]:
@@ -463,8 +511,7 @@ def run_study(
         finally:
             if cluster is not None:
                 cluster.close()
-    labels = [str(d) for d in context.ds.influenced_dof.values]
-    results = gather_results(study, [done[i] for i in ids], ids, labels)
+    results = gather_results(study, [done[i] for i in ids], ids, context.labels, ptos=context.ptos)
     write_results(results, output, force=force)
     shutil.rmtree(folder, ignore_errors=True)
     return BatchRun(
@@ -490,11 +537,17 @@ _VARIABLES = {
 
 
 def gather_results(
-    study: Study, values: Sequence[dict], ids: Sequence[str], dofs: Sequence[str]
+    study: Study,
+    values: Sequence[dict],
+    ids: Sequence[str],
+    dofs: Sequence[str],
+    *,
+    ptos: Sequence[str] = (),
 ) -> xr.Dataset:
     """One Dataset of the cases' statistics, limits applied (:func:`cummins.studies.operability.
     exceedance`): ``values`` from :func:`case_statistics` and ``ids`` from :func:`case_ids`
-    in ``study.all_cases`` order; ``dofs`` the data's DOF labels."""
+    in ``study.all_cases`` order; ``dofs`` the DOF labels of the results; ``ptos`` the PTOs'
+    names (their ``pto_mean_power``, W)."""
     from cummins._version import __version__
     from cummins.studies.operability import exceedance
 
@@ -528,6 +581,14 @@ def gather_results(
             (*dims, "dof"),
             array,
             {"units": units, "long_name": max_label if name == "maximum" else long_name},
+        )
+    if ptos:
+        coords["pto"] = ("pto", list(ptos))
+        power = np.array([v["pto_mean_power"] for v in values], dtype=float)
+        data["pto_mean_power"] = (
+            (*dims, "pto"),
+            power.reshape(*shape, len(ptos)),
+            {"units": "W", "long_name": "mean power absorbed by the PTO"},
         )
     data["case_id"] = (dims, np.array(list(ids), dtype=object).reshape(shape))
     if study.analysis == "simulate":

@@ -33,6 +33,7 @@ import numpy as np
 
 from cummins.errors import ArgumentError
 from cummins.hydrodb import DOF_NAMES, is_rotation, split_dof
+from cummins.mechanics import MechanicalSystem, system_from_mapping
 
 #: The analyses a study can run on each case.
 ANALYSES: dict[str, str] = {
@@ -80,6 +81,8 @@ STUDY_KEYS: dict[str, str] = {
     "n_omega": "number of RAO frequencies (rao)",
     "viscous_damping": "{DOF: value}, linear damping added (kg/s, kg m^2/s)",
     "speed": "m/s: the forward speed to take from data holding several",
+    "system": "joints, PTOs, dofs, body_coupling (cummins.mechanics.system_from_mapping); "
+    "the results then hold each PTO's mean absorbed power",
     "limits": "{DOF: '3 deg'} or {DOF: {significant: .., max: ..}}",
     "scatter": "{hs: [..], tp: [..], probability: [[..] per hs]} weights of the sea states",
 }
@@ -384,6 +387,7 @@ class Study:
     scatter: Any = ()
     name: str = ""
     source: Path | None = None
+    system: Any = None
 
     def __post_init__(self) -> None:
         src = self.source
@@ -436,6 +440,11 @@ class Study:
             "viscous_damping",
             tuple((str(d), _number(v, f"viscous_damping.{d}", src)) for d, v in damping.items()),
         )
+        if self.system is not None and not isinstance(self.system, MechanicalSystem):
+            try:
+                set_(self, "system", system_from_mapping(self.system, at_key(src, "system")))
+            except ArgumentError as exc:
+                raise StudyError(str(exc)) from None
         set_(self, "limits", _parse_limits(self.limits, src))
         set_(self, "scatter", _normalise_scatter(self.scatter or None, self.grid, src))
         if self.analysis == "rao":
@@ -471,6 +480,8 @@ class Study:
             "viscous_damping": [list(p) for p in self.viscous_damping],
             "speed": self.speed,
         }
+        if self.system is not None:
+            out["system"] = self.system.describe()
         if self.analysis == "rao":
             out.update(omega_min=self.omega_min, omega_max=self.omega_max, n_omega=self.n_omega)
         else:
@@ -567,6 +578,9 @@ grid:                     # outer product of the axes; or `cases:` a list of map
   # seed: [1, 2, 3]       # simulate: realisations (default: one per case)
 viscous_damping:
   Roll: 5.0e+8            # kg m^2/s
+# system:                # several bodies: joints, PTOs (docs/wec.md); adds pto_mean_power
+#   body_coupling: false
+#   joints: [{{kind: translational, body: body1, base: body2, pto: {{damping: 1.2e6}}}}]
 limits:                   # significant single amplitude 2 sqrt(m0) unless `max:`
   Roll: 4 deg
   Pitch: 2 deg

@@ -24,6 +24,11 @@ implicit, and Newmark's average-acceleration scheme for the rest. Its cost grows
 the length of K in samples: it is the benchmark's reference and a check of the
 state-space model against the retardation function of the data.
 
+**Joined bodies and PTOs.** A vessel with joints (:mod:`cummins.mechanics`) is simulated in
+its independent coordinates, x = (q, q̇, χ) (:mod:`cummins.vessel`); the run is written in
+the body DOFs, ξ = T q, with each PTO's relative displacement, velocity, force and
+absorbed power (``pto_*``, dims time × pto).
+
 Initial conditions: ``initial="rest"`` starts from ξ = ξ̇ = 0 and an unloaded memory;
 ``"steady"`` starts on the periodic (or, for irregular waves, stationary) solution of
 the same linear model at t = 0 — the frequency-domain response of every wave component
@@ -45,6 +50,7 @@ from scipy.signal import lfilter
 
 from cummins.errors import ArgumentError, SimulationError
 from cummins.hydrodb import is_rotation
+from cummins.mechanics import pto_time_series
 from cummins.validation import check_simulation_size, positive
 from cummins.vessel import Vessel
 
@@ -113,7 +119,7 @@ def simulate(
     force
         τ at those times, shape (N, n_dofs), N, N·m (linear between samples).
     initial_state
-        x(t₀) = (ξ, ξ̇, χ), default zero (at rest).
+        x(t₀) = (q, q̇, χ) (q = ξ without joints), default zero (at rest).
     nonlinear_force
         τ_nl(t, ξ, ξ̇) added to τ; switches to the Runge–Kutta path.
     progress
@@ -124,7 +130,9 @@ def simulate(
     xarray.Dataset
         ``motion`` and ``velocity`` (time, dof) in m, rad and m/s, rad/s about the
         database's reference point and axes; ``memory_force`` μ (time, dof);
-        ``external_force`` τ (time, dof); attributes ``method``, ``dt``.
+        ``external_force`` τ (time, dof); with PTOs ``pto_displacement``,
+        ``pto_velocity``, ``pto_force`` and ``pto_power`` (time, pto,
+        :func:`cummins.mechanics.pto_time_series`); attributes ``method``, ``dt``.
 
     Raises
     ------
@@ -150,18 +158,15 @@ def simulate(
     ns = vessel.n_states
     x0 = np.zeros(ns) if initial_state is None else np.asarray(initial_state, dtype=float)
     if x0.shape != (ns,):
-        raise SimulationError(f"initial_state must have {ns} values (ξ, ξ̇, χ)")
+        raise SimulationError(f"initial_state must have {ns} values (q, q̇, χ)")
     # outputs y = H x: ξ, ξ̇ and the memory force μ = C_r χ
-    h = np.zeros((3 * n, ns))
-    h[: 2 * n, : 2 * n] = np.eye(2 * n)
-    if vessel.radiation.total_order:
-        h[2 * n :, 2 * n :] = vessel.radiation.C
+    h = vessel.output_matrix()
     report = progress or _no_progress
     if nonlinear_force is None:
         y = _exact(discretize(vessel, dt), tau, x0, h, report)
         method = "state space, exact (first-order hold)"
     else:
-        y = _runge_kutta(vessel, t, tau, x0, nonlinear_force, report) @ h.T
+        y = _runge_kutta(vessel, t, tau, x0, nonlinear_force, report, h) @ h.T
         method = "state space, Runge-Kutta 4 (nonlinear forces)"
     _check_divergence(vessel, t, y[:, :n], tau)
     return _result(vessel, t, y[:, :n], y[:, n : 2 * n], y[:, 2 * n :], tau, method, dt)
@@ -219,6 +224,7 @@ def simulate_waves(
         raise ArgumentError(f"initial must be 'steady' or 'rest', not {initial!r}")
     check_simulation_size(duration, dt, vessel.n_states, len(vessel.dofs))
     duration, dt = float(duration), float(dt)
+    ds = _on_vessel_dofs(ds, vessel)
     t = np.arange(0.0, duration + 0.5 * dt, dt)
     omega_e, coefficients = encounter_coefficients(ds, waves, **excitation_options)
     report = progress or _no_progress
@@ -299,7 +305,25 @@ def component_motions(
     ½|x_k|² the share of component k in each DOF's variance (m², rad²)."""
     from cummins.seakeeping.excitation import encounter_coefficients
 
+    ds = _on_vessel_dofs(ds, vessel)
     return vessel.response(*encounter_coefficients(ds, waves, **excitation_options))
+
+
+def _on_vessel_dofs(ds: xr.Dataset, vessel: Vessel) -> xr.Dataset:
+    """The data on the vessel's DOFs: a vessel with joints holds only the DOFs that can
+    move (the wave forces on the others do no work)."""
+    labels = [str(d) for d in ds.influenced_dof.values]
+    if labels == list(vessel.dofs):
+        return ds
+    missing = [d for d in vessel.dofs if d not in labels]
+    if missing:
+        raise SimulationError(
+            f"the data have no DOF {missing[0]!r} of the vessel",
+            hint="give the data the vessel was built from",
+        )
+    from cummins.hydrodb import select_dofs
+
+    return select_dofs(ds, list(vessel.dofs))
 
 
 def simulate_convolution(
@@ -341,6 +365,11 @@ def simulate_convolution(
     tau = np.asarray(force, dtype=float)
     k = np.asarray(kernel, dtype=float)
     n = len(vessel.dofs)
+    if vessel.constraint is not None or vessel.ptos:
+        raise SimulationError(
+            "the direct convolution solves free bodies only: simulate joints and PTOs with "
+            "the state-space model (simulate)"
+        )
     dt = float(t[1] - t[0])
     if k.ndim != 3 or k.shape[1:] != (n, n):
         raise SimulationError(f"kernel must have shape (L + 1, {n}, {n}), not {k.shape}")
@@ -395,11 +424,13 @@ def simulate_convolution(
 def energy_balance(vessel: Vessel, result: xr.Dataset) -> dict[str, float]:
     """Work done on and by the vessel over the run, J (trapezoid in time).
 
-    ``input`` ∫ξ̇ᵀτ, ``viscous`` ∫ξ̇ᵀB_vξ̇, ``radiated`` ∫ξ̇ᵀμ (≥ 0 from rest for a passive
-    model), ``mechanical_change`` ΔE of E = ½ξ̇ᵀMξ̇ + ½ξᵀCξ, ``residual`` input −
-    viscous − radiated − mechanical change (a numerical error, relative to the input in
+    ``input`` ∫ξ̇ᵀτ, ``viscous`` ∫ξ̇ᵀB_vξ̇, ``pto`` ∫ξ̇ᵀB_ptoξ̇ (absorbed by the PTOs'
+    dampers), ``radiated`` ∫ξ̇ᵀμ (≥ 0 from rest for a passive model), ``mechanical_change``
+    ΔE of E = ½ξ̇ᵀMξ̇ + ½ξᵀ(C + C_pto)ξ, ``residual`` input − viscous − pto − radiated −
+    mechanical change (a numerical error, relative to the input in
     ``relative_residual``), ``radiated_min`` the smallest running radiated work (negative:
-    energy came out of the fluid memory).
+    energy came out of the fluid memory). With joints the constraint forces do no work
+    on the allowed motions ξ̇ = T q̇, so the same sums hold in the body DOFs.
     """
     t = result.time.values
     v = result.velocity.values
@@ -409,20 +440,23 @@ def energy_balance(vessel: Vessel, result: xr.Dataset) -> dict[str, float]:
     mass = vessel.mass
     p_in = np.einsum("ti,ti->t", v, tau)
     p_v = np.einsum("ti,ij,tj->t", v, vessel.viscous_damping, v)
+    p_pto = np.einsum("ti,ij,tj->t", v, vessel.pto_damping, v)
     p_r = np.einsum("ti,ti->t", v, mu)
     energy = 0.5 * np.einsum("ti,ij,tj->t", v, mass, v) + 0.5 * np.einsum(
-        "ti,ij,tj->t", xi, vessel.stiffness, xi
+        "ti,ij,tj->t", xi, vessel.restoring, xi
     )
 
     def integral(p):
         return np.concatenate([[0.0], np.cumsum(0.5 * (p[1:] + p[:-1]) * np.diff(t))])
 
     work_in, work_v, work_r = integral(p_in), integral(p_v), integral(p_r)
-    residual = work_in[-1] - work_v[-1] - work_r[-1] - (energy[-1] - energy[0])
+    work_pto = integral(p_pto)
+    residual = work_in[-1] - work_v[-1] - work_pto[-1] - work_r[-1] - (energy[-1] - energy[0])
     scale = max(abs(work_in[-1]), float(np.abs(energy).max()), 1e-300)
     return {
         "input": float(work_in[-1]),
         "viscous": float(work_v[-1]),
+        "pto": float(work_pto[-1]),
         "radiated": float(work_r[-1]),
         "mechanical_change": float(energy[-1] - energy[0]),
         "residual": float(residual),
@@ -486,15 +520,17 @@ def _exact(
     return x @ h.T
 
 
-def _runge_kutta(vessel, t, tau, x0, nonlinear_force, report=_no_progress) -> NDArray:
+def _runge_kutta(vessel, t, tau, x0, nonlinear_force, report=_no_progress, h=None) -> NDArray:
     f, g = vessel.state_space()
     n = len(vessel.dofs)
+    motion = (vessel.output_matrix() if h is None else h)[: 2 * n]  # (ξ, ξ̇) = H x
     dt = t[1] - t[0]
     x = np.empty((t.size, x0.size))
     x[0] = x0
 
     def rate(tk, xk, force):
-        extra = np.asarray(nonlinear_force(tk, xk[:n], xk[n : 2 * n]), dtype=float)
+        y = motion @ xk
+        extra = np.asarray(nonlinear_force(tk, y[:n], y[n:]), dtype=float)
         return f @ xk + g @ (force + extra)
 
     for k in range(t.size - 1):
@@ -506,7 +542,7 @@ def _runge_kutta(vessel, t, tau, x0, nonlinear_force, report=_no_progress) -> ND
         k4 = rate(t[k + 1], xk + dt * k3, tau[k + 1])
         x[k + 1] = xk + dt / 6 * (k1 + 2 * k2 + 2 * k3 + k4)
         if not np.all(np.isfinite(x[k + 1])):
-            _check_divergence(vessel, t[: k + 2], x[: k + 2, :n], tau[: k + 2])
+            _check_divergence(vessel, t[: k + 2], x[: k + 2] @ motion[:n].T, tau[: k + 2])
         if (k + 1) % _STEPS_PER_REPORT == 0:
             report((k + 1) / (t.size - 1))
     report(1.0)
@@ -525,7 +561,7 @@ def _check_divergence(vessel: Vessel, t: NDArray, xi: NDArray, tau: NDArray) -> 
             hint="check the stability of added nonlinear forces and the time step",
         )
     peak = np.abs(tau).max(axis=0)
-    stiff = np.abs(np.diag(vessel.stiffness))
+    stiff = np.abs(np.diag(vessel.restoring))
     static = np.where(stiff > 0, peak / np.where(stiff > 0, stiff, 1.0), 0.0)
     scale = np.where(static > 0, static, max(float(static.max()), 1.0))
     limit = DIVERGENCE_FACTOR * np.maximum(scale, 1e-6)
@@ -564,6 +600,14 @@ def _result(vessel, t, xi, v, memory, tau, method, dt) -> xr.Dataset:
     ds.velocity.attrs["units"] = " | ".join(f"{u}/s" for u in units)
     ds.memory_force.attrs["units"] = "N | N m"
     ds.external_force.attrs["units"] = "N | N m"
+    if vessel.ptos:
+        ds = ds.assign(pto_time_series(vessel.ptos, xi, v)).assign_coords(
+            pto=[p.name for p in vessel.ptos]
+        )
+        ds.pto.attrs["description"] = "\n".join(f"{p.name}: {p.description}" for p in vessel.ptos)
+    for key in ("body_coupling", "body_coupling_note", "system", "constrained_coordinates"):
+        if key in vessel.attrs:
+            ds.attrs[key] = str(vessel.attrs[key])
     return ds
 
 

@@ -1,0 +1,350 @@
+"""A multi-body system: which DOFs move, the joints between bodies, the PTOs.
+
+:class:`MechanicalSystem` is a small frozen description that the frequency domain
+(:func:`cummins.seakeeping.frequency_domain.motion_rao`), the vessel of the time domain
+(:func:`cummins.vessel.vessel_from_hydrodb`) and batch studies all take: the DOFs kept
+(the others held at zero, as ``--dof`` does), the joints (:mod:`cummins.mechanics.joints`),
+the power take-offs (:mod:`cummins.mechanics.pto`) and whether the radiation coupling
+between bodies is kept (``body_coupling``, default True: the complete physics; False as
+WEC-Sim by default, :mod:`cummins.mechanics.coupling`). Moorings are stiffness matrices on
+the data (``cummins.with_external_terms``, ``--external-stiffness``).
+
+:func:`assemble` applies it to a dataset: the constraint rows of every joint and of every
+DOF left out form G; ξ = T q spans its null space (:mod:`cummins.mechanics.constraints`);
+the DOFs that cannot move are dropped from the data (exactly); each PTO becomes a row
+d over the DOFs that remain. The result, :class:`Assembly`, holds the reduced data, T and
+the PTOs; outputs stay in the body DOFs (ξ = T q).
+
+Examples
+--------
+WEC-Sim's RM3 (float ``body1`` on a PTO sliding along the spar ``body2``, the spar on a
+heave-only joint to the ground):
+
+>>> rm3 = MechanicalSystem(
+...     joints=(Joint("translational", "body2", "ground", axis=(0, 0, 1)),
+...             Joint("translational", "body1", "body2", axis=(0, 0, 1), name="pto")),
+...     ptos=(PTO(joint="pto", damping=1.2e6),),
+...     body_coupling=False)
+>>> rm3.describe()["joints"][1]["kind"]
+'translational'
+"""
+
+from __future__ import annotations
+
+import json
+from collections.abc import Mapping, Sequence
+from dataclasses import dataclass
+from typing import Any
+
+import numpy as np
+import xarray as xr
+from numpy.typing import NDArray
+
+from cummins.errors import ArgumentError
+from cummins.hydrodb import add_history, dof_matrix, select_dofs
+from cummins.mechanics.bodies import body_frame
+from cummins.mechanics.constraints import check_inertia, held_dofs, is_locked, null_space_basis
+from cummins.mechanics.coupling import without_body_coupling
+from cummins.mechanics.joints import JOINT_KINDS, Joint, joint_rows
+from cummins.mechanics.pto import PTO, PTOLine, pto_matrices, resolve_pto
+
+
+@dataclass(frozen=True)
+class MechanicalSystem:
+    """Bodies joined by joints, with PTOs (module docstring).
+
+    Parameters
+    ----------
+    joints
+        :class:`~cummins.mechanics.joints.Joint` s.
+    ptos
+        :class:`~cummins.mechanics.pto.PTO` s (named ``pto1``, ``pto2`` … unless named).
+    dofs
+        The DOFs that may move (None: all); the others are held at zero.
+    body_coupling
+        Keep the radiation coupling between bodies (default); False leaves it out, as
+        WEC-Sim does by default.
+    """
+
+    joints: tuple[Joint, ...] = ()
+    ptos: tuple[PTO, ...] = ()
+    dofs: tuple[str, ...] | None = None
+    body_coupling: bool = True
+
+    def __post_init__(self) -> None:
+        object.__setattr__(self, "joints", tuple(self.joints))
+        object.__setattr__(self, "ptos", tuple(self.ptos))
+        for k, joint in enumerate(self.joints):
+            if not isinstance(joint, Joint):
+                raise ArgumentError(f"joints[{k}] is not a Joint: {joint!r}")
+        for k, pto in enumerate(self.ptos):
+            if not isinstance(pto, PTO):
+                raise ArgumentError(f"ptos[{k}] is not a PTO: {pto!r}")
+        if self.dofs is not None:
+            dofs = tuple(str(d) for d in self.dofs)
+            if not dofs:
+                raise ArgumentError("dofs: an empty selection leaves no DOF free")
+            object.__setattr__(self, "dofs", dofs)
+        names = [p.name for p in self.ptos if p.name]
+        if len(set(names)) != len(names):
+            raise ArgumentError(f"two PTOs share a name: {', '.join(names)}")
+        object.__setattr__(self, "body_coupling", bool(self.body_coupling))
+
+    @property
+    def is_plain(self) -> bool:
+        """No joint, no PTO, body coupling kept (a DOF selection at most)."""
+        return not self.joints and not self.ptos and self.body_coupling
+
+    def describe(self) -> dict[str, Any]:
+        """JSON-ready description (stored in the attributes of results)."""
+        return {
+            "dofs": None if self.dofs is None else list(self.dofs),
+            "joints": [j.describe() for j in self.joints],
+            "ptos": [p.describe() for p in self.ptos],
+            "body_coupling": self.body_coupling,
+        }
+
+    def coupling_note(self) -> str:
+        """One line: whether the radiation coupling between bodies is in the model."""
+        if self.body_coupling:
+            return "body coupling on: the radiation coupling between bodies is included"
+        return (
+            "body coupling off: the radiation coupling between bodies is left out "
+            "(as WEC-Sim by default)"
+        )
+
+
+@dataclass(frozen=True, eq=False)
+class Assembly:
+    """A :class:`MechanicalSystem` applied to a dataset (:func:`assemble`).
+
+    Attributes
+    ----------
+    system
+        The description.
+    ds
+        The data on the DOFs that can move (cross-body radiation terms zero with
+        ``body_coupling=False``).
+    basis
+        T (n × m): ξ = T q over ``ds``'s DOFs.
+    coordinates
+        The DOFs chosen as the independent coordinates q.
+    ptos
+        The PTOs resolved on ``ds``'s DOFs.
+    held
+        The DOFs of the data that cannot move (dropped from ``ds``).
+    """
+
+    system: MechanicalSystem
+    ds: xr.Dataset
+    basis: NDArray[np.float64]
+    coordinates: tuple[str, ...]
+    ptos: tuple[PTOLine, ...]
+    held: tuple[str, ...]
+
+    @property
+    def dofs(self) -> tuple[str, ...]:
+        """The DOFs of ``ds`` (those that can move)."""
+        return tuple(str(d) for d in self.ds.influenced_dof.values)
+
+    @property
+    def is_constrained(self) -> bool:
+        """True when T is not the identity."""
+        n, m = self.basis.shape
+        return n != m or not np.array_equal(self.basis, np.eye(n))
+
+    def pto_matrices(self) -> tuple[NDArray[np.float64], NDArray[np.float64]]:
+        """(stiffness, damping) the PTOs add, n × n."""
+        return pto_matrices(self.ptos, len(self.dofs))
+
+    def attrs(self) -> dict[str, str]:
+        """Attributes for results: ``body_coupling`` (on/off), ``system`` (JSON),
+        ``constrained_coordinates``, ``held_dofs``, ``ptos`` (one line each)."""
+        return {
+            "body_coupling": "on" if self.system.body_coupling else "off",
+            "body_coupling_note": self.system.coupling_note(),
+            "system": json.dumps(self.system.describe()),
+            "constrained_coordinates": ", ".join(self.coordinates),
+            "held_dofs": ", ".join(self.held),
+            "ptos": "\n".join(f"{p.name}: {p.description}" for p in self.ptos),
+        }
+
+
+def assemble(ds: xr.Dataset, system: MechanicalSystem) -> Assembly:
+    """Apply ``system`` to ``ds`` (module docstring).
+
+    Parameters
+    ----------
+    ds
+        A ``HydroDB`` with all the DOFs of its bodies (select DOFs through
+        ``system.dofs``, not before: the reference points are stored per body).
+    system
+        The description.
+
+    Raises
+    ------
+    ArgumentError
+        A joint or PTO on a body or DOF the data do not have; constraints that leave no
+        DOF free; a joint or PTO the other constraints lock (contradictory joints and
+        DOF selection); a motion left free without inertia.
+    """
+    frame = body_frame(ds)
+    labels = list(frame.labels)
+    rows: list[NDArray] = []
+    free: list[tuple[Joint, NDArray]] = []
+    for joint in system.joints:
+        g, f = joint_rows(joint, frame)
+        rows.append(g)
+        if f.size:
+            free.append((joint, f))
+    if system.dofs is not None:
+        unknown = [d for d in system.dofs if d not in labels]
+        if unknown:
+            raise ArgumentError(
+                f"dofs: the data have no DOF {unknown[0]!r}", hint=f"DOFs: {', '.join(labels)}"
+            )
+        for i, label in enumerate(labels):
+            if label not in system.dofs:
+                row = np.zeros((1, frame.n))
+                row[0, i] = 1.0
+                rows.append(row)
+    lines = [resolve_pto(p, k + 1, frame, system.joints) for k, p in enumerate(system.ptos)]
+    _unique_names(lines)
+    g = np.vstack(rows) if rows else np.zeros((0, frame.n))
+    try:
+        t, coordinates = null_space_basis(g, labels)
+    except ArgumentError:
+        if system.dofs is None or not system.joints:
+            raise
+        joints_only = np.vstack([joint_rows(j, frame)[0] for j in system.joints])
+        _, free_dofs = null_space_basis(joints_only, labels)  # raises if the joints alone do
+        raise ArgumentError(
+            f"the joints and the DOF selection ({', '.join(system.dofs)}) contradict each "
+            f"other: together they leave no DOF free, the joints alone let "
+            f"{', '.join(free_dofs)} move",
+            hint="keep DOFs the joints let move, or leave the DOF selection out",
+        ) from None
+    selection = "the DOF selection" if system.dofs is not None else ""
+    for joint, f in free:
+        if is_locked(f, t):
+            others = " and ".join(x for x in (selection, "the other joints") if x)
+            raise ArgumentError(
+                f"{joint.where}: the {joint.kind} joint cannot move: {others} hold the "
+                f"motion it leaves free ({JOINT_KINDS[joint.kind].split(' (')[0]})",
+                hint="the joint and the DOF selection contradict each other: keep the DOFs "
+                "the joint moves, or leave the DOF selection out",
+            )
+    for pto, line in zip(system.ptos, lines, strict=True):
+        if is_locked(line.direction, t):
+            raise ArgumentError(
+                f"{pto.where}: the PTO's motion ({line.description}) is held at zero by the "
+                "joints and DOF selection: it can absorb nothing",
+                hint="check the DOFs, the axis and the joints",
+            )
+    held = held_dofs(t)
+    keep = [label for label, h in zip(labels, held, strict=True) if not h]
+    out = ds if system.body_coupling else without_body_coupling(ds)
+    if held.any():
+        out = select_dofs(out, keep)
+    basis = t[~held]
+    coordinates = tuple(c for c in coordinates if c in keep)
+    ptos = tuple(line.on(keep, labels) for line in lines)
+    if "inertia_matrix" in out:
+        check_inertia(dof_matrix(out, "inertia_matrix"), basis, keep, "rigid-body inertia")
+    out.attrs["body_coupling"] = "on" if system.body_coupling else "off"
+    if not system.is_plain or held.any():
+        add_history(
+            out,
+            f"mechanical system: {len(system.joints)} joints, {len(ptos)} PTOs; "
+            f"coordinates {', '.join(coordinates)}"
+            + (f"; held at zero: {', '.join(np.asarray(labels)[held])}" if held.any() else ""),
+        )
+    return Assembly(system, out, basis, coordinates, ptos, tuple(np.asarray(labels)[held].tolist()))
+
+
+def _unique_names(lines: Sequence[PTOLine]) -> None:
+    names = [line.name for line in lines]
+    for name in names:
+        if names.count(name) > 1:
+            raise ArgumentError(f"two PTOs are called {name!r}: name them apart")
+
+
+# --------------------------------------------------------------------------- from YAML
+
+
+def system_from_mapping(raw: Any, where: str = "system") -> MechanicalSystem:
+    """A :class:`MechanicalSystem` from a mapping (a study file's ``system:`` entry)::
+
+        dofs: [body1__Heave, body2__Heave]      # optional
+        body_coupling: false                    # default true
+        joints:
+          - {kind: translational, body: body2, base: ground, axis: [0, 0, 1]}
+          - {kind: translational, body: body1, base: body2, axis: [0, 0, 1],
+             pto: {damping: 1.2e6}}             # a PTO on this joint's free motion
+        ptos:
+          - {dofs: [body1__Heave, body2__Heave], damping: 1.2e6}
+
+    Errors name the key (``system.joints[1].axis``).
+    """
+    if not isinstance(raw, Mapping):
+        raise ArgumentError(f"{where}: expected a mapping (dofs, body_coupling, joints, ptos)")
+    allowed = {"dofs", "body_coupling", "joints", "ptos"}
+    unknown = sorted(set(map(str, raw)) - allowed)
+    if unknown:
+        raise ArgumentError(f"{where}.{unknown[0]}: unknown key; use {', '.join(sorted(allowed))}")
+    joints: list[Joint] = []
+    ptos: list[PTO] = []
+    for k, item in enumerate(_sequence(raw.get("joints", ()), f"{where}.joints")):
+        key = f"{where}.joints[{k}]"
+        fields = _fields(item, key, {"kind", "body", "base", "axis", "point", "name", "pto"})
+        pto = fields.pop("pto", None)
+        if "kind" not in fields or "body" not in fields:
+            raise ArgumentError(f"{key}: a joint needs kind and body (and base: default ground)")
+        joint = Joint(**fields, origin=key)
+        joints.append(joint)
+        if pto is not None:
+            extra = _fields(pto, f"{key}.pto", {"damping", "stiffness", "name"})
+            ptos.append(PTO(joint=str(k + 1), origin=f"{key}.pto", **extra))
+    pto_keys = {
+        "dofs",
+        "joint",
+        "body",
+        "base",
+        "kind",
+        "axis",
+        "point",
+        "damping",
+        "stiffness",
+        "name",
+    }
+    for k, item in enumerate(_sequence(raw.get("ptos", ()), f"{where}.ptos")):
+        key = f"{where}.ptos[{k}]"
+        fields = _fields(item, key, pto_keys)
+        if "dofs" in fields:
+            fields["dofs"] = tuple(_sequence(fields["dofs"], f"{key}.dofs"))
+        ptos.append(PTO(**fields, origin=key))
+    dofs = raw.get("dofs")
+    coupling = raw.get("body_coupling", True)
+    if not isinstance(coupling, bool):
+        raise ArgumentError(f"{where}.body_coupling: true or false, not {coupling!r}")
+    return MechanicalSystem(
+        tuple(joints),
+        tuple(ptos),
+        None if dofs is None else tuple(_sequence(dofs, f"{where}.dofs")),
+        coupling,
+    )
+
+
+def _sequence(value: Any, key: str) -> list:
+    if isinstance(value, (str, bytes)) or not isinstance(value, Sequence):
+        raise ArgumentError(f"{key}: expected a list")
+    return list(value)
+
+
+def _fields(item: Any, key: str, allowed: set[str]) -> dict[str, Any]:
+    if not isinstance(item, Mapping):
+        raise ArgumentError(f"{key}: expected a mapping ({', '.join(sorted(allowed))})")
+    unknown = sorted(set(map(str, item)) - allowed)
+    if unknown:
+        raise ArgumentError(f"{key}.{unknown[0]}: unknown key; use {', '.join(sorted(allowed))}")
+    return {str(k): v for k, v in item.items()}
