@@ -233,6 +233,13 @@ def _check_format(ctx, param, value):
     return value.lower()
 
 
+def format_names() -> str:
+    """The formats read, ``name (what it is)``, from the readers' registry."""
+    from cummins.io import FORMATS
+
+    return "; ".join(f"{name} ({f.description})" for name, f in FORMATS.items())
+
+
 def read_options(func):
     """--format, --rho, --g, --ulen: how to read solver files; --mass,
     --center-of-gravity, --radii-of-gyration, --inertia-matrix, --external-stiffness,
@@ -245,8 +252,7 @@ def read_options(func):
             metavar="NAME",
             default=None,
             callback=_check_format,
-            help="Solver format (wamit, wamit-out, nemoh, aqwa, veres, netcdf, mss); "
-            "detected from the content by default.",
+            help=f"Solver format, detected from the content by default: {format_names()}.",
         ),
         click.option(
             "--rho",

@@ -14,16 +14,9 @@ from dataclasses import dataclass
 from pathlib import Path
 
 import click
-import numpy as np
 
-from cummins.check import check
 from cummins.cli.common import console, force_option, prepare_outputs, reports_errors
-from cummins.cli.pipeline import kernel_stage, write_kernel_plots
 from cummins.errors import check_writable
-from cummins.hydrodb import change_axes, describe, move_reference_point
-from cummins.io import read, write
-from cummins.plots import plot_added_mass_damping, plot_excitation, save_figure
-from cummins.radiation.retardation import added_mass_inf
 
 
 @dataclass(frozen=True)
@@ -91,7 +84,15 @@ def run_demo(
     list of DemoStep
         What was done, in order.
     """
+    import numpy as np
+
     from cummins import demo_files
+    from cummins.check import check
+    from cummins.cli.pipeline import kernel_stage, write_kernel_plots
+    from cummins.hydrodb import change_axes, describe, move_reference_point
+    from cummins.io import read, write
+    from cummins.plots import plot_added_mass_damping, plot_excitation, save_figure
+    from cummins.radiation.retardation import added_mass_inf
 
     out = Path(outdir)
     for name in DEMO_FILES:
@@ -267,6 +268,8 @@ def _simulate_step(ds, model, out: Path, force: bool) -> DemoStep:
     """Half an hour in a JONSWAP sea from 150°, checked against the frequency domain."""
     import functools
 
+    import numpy as np
+
     from cummins.cli.pipeline import write_simulation_plots
     from cummins.io.netcdf import save_netcdf
     from cummins.seakeeping.waves import irregular_waves, jonswap
@@ -302,7 +305,7 @@ def _simulate_step(ds, model, out: Path, force: bool) -> DemoStep:
 def _lf_step(ds, out: Path, force: bool) -> DemoStep:
     """Constant coefficients at ω = 0 (surge, sway, yaw) and at ω₀ (heave, roll, pitch)."""
     from cummins.io.netcdf import save_netcdf
-    from cummins.plots import plot_lf_model
+    from cummins.plots import plot_lf_model, save_figure
     from cummins.timedomain.lfmodel import lf_model_from_frequency_data
 
     lf = lf_model_from_frequency_data(ds)

@@ -22,7 +22,7 @@ from cummins.cli.common import (
     viscous_damping_option,
     viscous_damping_values,
 )
-from cummins.hydrodb import is_rotation
+from cummins.dofs import is_rotation
 
 #: Options that take a list of numbers: ``--headings 0 45 90`` (as well as repeated).
 _LIST_OPTIONS = ("--headings",)
