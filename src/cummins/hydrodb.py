@@ -584,7 +584,6 @@ def _per_body_transform(ds: xr.Dataset, block) -> NDArray[np.float64]:
     return block_diag(*blocks)
 
 
-
 def _apply(ds: xr.Dataset, left: NDArray, right: NDArray, motion: NDArray) -> xr.Dataset:
     """Return a copy with matrices L·M·R, forces L·F, motions motion·X."""
     out = ds.copy(deep=True)
