@@ -14,9 +14,10 @@ from typing import NoReturn
 
 import click
 import numpy as np
-from rich.console import Console
+from rich.console import Console, ConsoleDimensions
 from rich.markup import escape
 from rich.progress import BarColumn, Progress, TaskProgressColumn, TextColumn, TimeElapsedColumn
+from rich.table import Table
 
 from cummins.errors import (
     ArgumentError,
@@ -26,8 +27,35 @@ from cummins.errors import (
     check_writable,
 )
 
-console = Console(highlight=False, soft_wrap=True)
-err_console = Console(stderr=True, highlight=False, soft_wrap=True)
+#: The width of the output when it is not a terminal (a pipe, a log, CI), unless COLUMNS
+#: says otherwise: wide enough for every table, where rich would otherwise take 80.
+PIPE_WIDTH = 200
+
+
+class _Console(Console):
+    """A rich console that reads right anywhere: not on a terminal it is
+    :data:`PIPE_WIDTH` wide, and the columns of its tables fold a value that does not fit
+    onto the next line instead of cutting it ("5.297e…"); JSON stays the machine
+    interface."""
+
+    def _size(self) -> ConsoleDimensions:
+        size = Console.size.fget(self)
+        if self._width is None and "COLUMNS" not in self._environ and not self.is_terminal:
+            return ConsoleDimensions(max(size.width, PIPE_WIDTH), size.height)
+        return size
+
+    size = property(_size, Console.size.fset)
+
+    def print(self, *objects, **kwargs) -> None:
+        for item in objects:
+            if isinstance(item, Table):
+                for column in item.columns:
+                    column.overflow = "fold"
+        super().print(*objects, **kwargs)
+
+
+console = _Console(highlight=False, soft_wrap=True)
+err_console = _Console(stderr=True, highlight=False, soft_wrap=True)
 
 
 def progress_bar() -> Progress:

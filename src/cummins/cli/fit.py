@@ -362,8 +362,8 @@ def fit_table(model) -> Table:
     """Per-coupling summary printed by ``cummins fit``: narrow enough for an 80-column
     terminal (the DOFs of several bodies named short: :func:`table_label`); each
     coupling's note is numbered in the last column and printed below the table
-    (:func:`fit_notes`). The order of a pair of a common-pole block is the number of
-    poles its DOFs share (the block's states are in the notes)."""
+    (:func:`fit_notes`). The poles of a pair of a common-pole block are those its DOFs
+    share (the block's states are in the notes), of a per-coupling model its order."""
     from rich import box
 
     table = Table(
@@ -373,7 +373,7 @@ def fit_table(model) -> Table:
         pad_edge=False,
         collapse_padding=True,
     )
-    for column in ("coupling", "order", "R² A", "R² B", "R² K(t)", "stable", "passive", "note"):
+    for column in ("coupling", "poles", "R² A", "R² B", "R² K(t)", "stable", "passive", "note"):
         left = column == "coupling"
         table.add_column(column, justify="left" if left else "right", no_wrap=left)
     numbers: dict[str, int] = {}

@@ -13,6 +13,7 @@ from pathlib import Path
 import numpy as np
 import xarray as xr
 
+from cummins.errors import check_writable
 from cummins.hydrodb import dof_matrix
 
 
@@ -116,25 +117,31 @@ def write_kernel_plots(
     return [save_figure(fig, folder / name, force=force) for name, fig in figures]
 
 
-def write_fit_plots(model, ds: xr.Dataset, folder: Path, *, force: bool = False) -> list[Path]:
-    """One PNG per fitted coupling (i ≤ j): data against the model (``fit_<coupling>.png``).
+def write_fit_plots(
+    model,
+    ds: xr.Dataset,
+    folder: Path,
+    *,
+    force: bool = False,
+    say: Callable[[str], object] = lambda message: None,
+) -> list[Path]:
+    """One PNG per DOF with a fitted coupling, a row per coupling (i, j ≥ i): data against
+    the model (``fit_<DOF>.png``, :func:`cummins.fit_figures.fit_figures`); ``say`` is
+    told each file as it is written.
 
     ``ds`` is the data as read (one forward speed); the frequencies the fit left out are
     drawn as open circles.
     """
-    from cummins.plots import plot_coupling_fit, save_figure
+    from cummins.fit_figures import fit_figures, fitted_rows
+    from cummins.plots import save_figure
 
-    excluded = model.attrs.get("excluded_frequencies", [])
-    if "forward_speed" in ds.dims:
-        ds = ds.isel(forward_speed=0)
+    names = [f"fit_{model.dofs[i]}.png" for i in fitted_rows(model)]
+    for name in names:  # before any work: no file is overwritten without --force
+        check_writable(folder / name, force)
     written = []
-    for k in model.modelled:
-        if k.influenced > k.radiating:
-            continue
-        a, b = model.dofs[k.influenced], model.dofs[k.radiating]
-        name = f"fit_{a}.png" if a == b else f"fit_{a}-{b}.png"
-        fig = plot_coupling_fit(ds, model, k.influenced, k.radiating, excluded)
+    for name, fig in fit_figures(model, ds):
         written.append(save_figure(fig, folder / name, force=force))
+        say(f"wrote {written[-1]}")
     return written
 
 

@@ -242,10 +242,14 @@ def _r2(k, model, reference) -> tuple[float, float]:
 def reduction_table(model, reduced, reference, against: str) -> Table:
     """Per coupling: order before and after, R² of A and B against the reference,
     Glover's bound relative to the coupling's peak |K| (lyapunov), passivity."""
+    method = reduced.attrs.get("reduction_method")
     table = Table(
-        title=f"reduced model ({reduced.attrs.get('reduction_method')}; R² against {against})"
+        title=f"reduced model ({method + '; ' if method else ''}R² against {against})",
+        caption="states: of the coupling's model, or of the block of common poles it belongs to"
+        if reduced.blocks
+        else None,
     )
-    for column in ("coupling", "order", "R² A", "R² B", "bound/max|K|", "passive"):
+    for column in ("coupling", "states", "R² A", "R² B", "bound/max|K|", "passive"):
         table.add_column(column, justify="right")
     before = {(k.influenced, k.radiating): k.order for k in model.modelled}
     w = reference.omega

@@ -1,0 +1,119 @@
+"""What the commands print reads right anywhere: in a pipe, a log or CI (no terminal)
+the tables show every number in full, the help lists every format read, and the symbols
+and column names say what the result is."""
+
+from __future__ import annotations
+
+import json
+import os
+import re
+import shutil
+import subprocess
+import sys
+
+import numpy as np
+import pytest
+import xarray as xr
+
+import cummins
+
+
+def _run(*args: str, cwd) -> str:
+    """``python -m cummins ARGS`` with its output in a pipe (not a terminal), as a log or CI
+    gets it: no COLUMNS, no terminal size to take."""
+    env = {k: v for k, v in os.environ.items() if k not in ("COLUMNS", "LINES")}
+    run = subprocess.run(
+        [sys.executable, "-m", "cummins", *args],
+        capture_output=True,
+        text=True,
+        cwd=cwd,
+        env=env,
+        stdin=subprocess.DEVNULL,
+    )
+    assert run.returncode == 0, run.stdout + run.stderr
+    return run.stdout
+
+
+@pytest.fixture
+def tanker_deep(tmp_path):
+    """The bundled tanker in a folder whose path is wider than 80 columns."""
+    folder = tmp_path / ("a_folder_with_a_long_name_" * 3) / "tanker"
+    folder.mkdir(parents=True)
+    for f in cummins.demo_files().glob("tanker.*"):
+        shutil.copy(f, folder / f.name)
+    return folder / "tanker.1"
+
+
+def test_info_in_a_pipe_names_the_whole_file(tanker_deep, tmp_path):
+    out = _run("info", str(tanker_deep), cwd=tmp_path)
+    assert "…" not in out
+    row = next(line for line in out.splitlines() if line.startswith("file"))
+    assert str(tanker_deep) in row and "(wamit)" in row
+
+
+def test_kernel_in_a_pipe_prints_every_number_in_full(tanker_deep, tmp_path):
+    out = _run("kernel", str(tanker_deep), "-o", "K.nc", cwd=tmp_path)
+    assert "…" not in out
+    with xr.open_dataset(tmp_path / "K.nc", engine="h5netcdf") as f:
+        k0 = f.retardation_function.isel(time=0).load()
+    rows = {line.split("│")[1].strip(): line for line in out.splitlines() if "│" in line}
+    for name in ("Surge", "Heave-Pitch", "Roll-Yaw", "Yaw"):
+        a, _, b = name.partition("-")
+        value = float(k0.sel(influenced_dof=a, radiating_dof=b or a))
+        assert f"{value:.4g}" in rows[name], (name, rows[name])
+    # the header too: the column that says how far K has decayed
+    assert "K(t_max)/max|K|" in out
+
+
+def test_fit_in_a_pipe_prints_the_r2_of_the_json_summary(tanker_deep, tmp_path):
+    out = _run("fit", str(tanker_deep), "-o", "m.nc", "--json", "fit.json", cwd=tmp_path)
+    assert "…" not in out
+    summary = json.loads((tmp_path / "fit.json").read_text())
+    labels = list(cummins.DOF_NAMES)
+    rows = [line.split() for line in out.splitlines()]
+    printed = {
+        r[0]: r for r in rows if len(r) >= 7 and r[0].split("-")[0] in labels and r[1].isdigit()
+    }
+    assert len(printed) == sum(c["i"] <= c["j"] for c in summary["couplings"])
+    for c in summary["couplings"]:
+        if c["i"] > c["j"]:
+            continue
+        a, b = labels[c["i"] - 1], labels[c["j"] - 1]
+        row = printed[a if a == b else f"{a}-{b}"]
+        assert row[1] == str(c["order"])  # the poles column
+        assert row[2] == f"{c['r2_added_mass']:.4f}" and row[3] == f"{c['r2_damping']:.4f}"
+    # one meaning per column name: the fit counts poles, the reduction states
+    assert re.search(r"coupling\s+poles\s+R² A", out)
+
+
+def test_help_lists_every_format_read():
+    from click.testing import CliRunner
+
+    from cummins.cli import main
+
+    runner = CliRunner()
+    top = " ".join(runner.invoke(main, ["--help"]).output.split())
+    option = " ".join(runner.invoke(main, ["convert", "--help"]).output.split())
+    for name, fmt in cummins.FORMATS.items():
+        assert " ".join(fmt.description.split()) in top, name
+        assert f"{name} (" in option, name
+    for words in ("HAMS", "BEMIO .h5"):
+        assert words in top and words in option
+
+
+def test_help_starts_without_the_library():
+    """``cummins --help`` imports no SciPy, xarray or matplotlib (they take seconds)."""
+    code = (
+        "import sys\n"
+        "from cummins.cli import main\n"
+        "try:\n"
+        "    main(['--help'])\n"
+        "except SystemExit:\n"
+        "    pass\n"
+        "print(sorted(m for m in ('scipy', 'xarray', 'matplotlib', 'pandas') "
+        "if m in sys.modules))"
+    )
+    run = subprocess.run([sys.executable, "-c", code], capture_output=True, text=True)
+    assert run.returncode == 0, run.stderr
+    assert run.stdout.strip().splitlines()[-1] == "[]"
+    assert np  # numpy is fine: the commands' options use it
