@@ -117,3 +117,34 @@ def test_help_starts_without_the_library():
     assert run.returncode == 0, run.stderr
     assert run.stdout.strip().splitlines()[-1] == "[]"
     assert np  # numpy is fine: the commands' options use it
+
+
+def test_the_demo_marks_a_missed_target_not_with_a_check_mark(monkeypatch, tmp_path):
+    from click.testing import CliRunner
+
+    import cummins.cli.demo as demo
+    from cummins.cli import main
+
+    steps = [
+        demo.DemoStep("fit", "42 states, passive"),
+        demo.DemoStep("reduce", "smallest diagonal R² 0.7862, below the target", ok=False),
+    ]
+    monkeypatch.setattr(demo, "run_demo", lambda *args, **kwargs: steps)
+    out = CliRunner().invoke(main, ["demo", "-o", str(tmp_path / "d")]).output
+    lines = out.splitlines()
+    assert any(line.startswith("✓ fit") for line in lines)
+    assert any(line.startswith("! reduce") for line in lines)
+    assert not any(line.startswith("✓ reduce") for line in lines)
+    assert "1 step(s) did not reach their targets: reduce" in out
+
+
+def test_the_demo_reduction_is_judged_by_its_r2(tmp_path):
+    """The demo's ERA reduction to the fit's order: marked by the R² it reaches."""
+    import cummins.cli.demo as demo
+
+    ds = cummins.demo_dataset()
+    model = cummins.fit_radiation(ds)
+    step = demo._reduce_step(ds, model, tmp_path, False)
+    worst = float(re.search(r"smallest diagonal R² against the data ([-\d.]+)", step.detail)[1])
+    assert step.ok == (worst >= 0.99)
+    assert ("below the fit's target" in step.detail) == (not step.ok)

@@ -8,7 +8,7 @@ import math
 import os
 import sys
 import warnings
-from collections.abc import Iterator
+from collections.abc import Callable, Iterator
 from pathlib import Path
 from typing import NoReturn
 
@@ -16,7 +16,14 @@ import click
 import numpy as np
 from rich.console import Console, ConsoleDimensions
 from rich.markup import escape
-from rich.progress import BarColumn, Progress, TaskProgressColumn, TextColumn, TimeElapsedColumn
+from rich.progress import (
+    BarColumn,
+    Progress,
+    SpinnerColumn,
+    TaskProgressColumn,
+    TextColumn,
+    TimeElapsedColumn,
+)
 from rich.table import Table
 
 from cummins.errors import (
@@ -68,6 +75,22 @@ def progress_bar() -> Progress:
         console=console,
         transient=True,
     )
+
+
+@contextlib.contextmanager
+def stage_progress(description: str) -> Iterator[Callable[[str], None]]:
+    """On a terminal, a spinner with ``description``, the current step and the time
+    elapsed (gone when done); in a pipe or a log, nothing. Yields ``say(message)``, which
+    shows ``message`` as the current step (the ``progress=`` of the library's long work)."""
+    with Progress(
+        SpinnerColumn(),
+        TextColumn("{task.description}"),
+        TimeElapsedColumn(),
+        console=console,
+        transient=True,
+    ) as bar:
+        task = bar.add_task(description, total=None)
+        yield lambda message: bar.update(task, description=f"{description}: {message}")
 
 
 def exit_status(exc: BaseException) -> int:

@@ -25,6 +25,7 @@ from cummins.cli.common import (
     select_body,
     select_speed,
     speed_option,
+    stage_progress,
 )
 from cummins.dofs import split_dof
 
@@ -282,8 +283,9 @@ def fit_command(
     if plot_dir:
         from cummins.cli.pipeline import write_fit_plots
 
-        for file in write_fit_plots(model, ds, Path(plot_dir), force=force):
-            console.print(f"wrote {file}")
+        with stage_progress("drawing the fit of every DOF's couplings") as say:
+            write_fit_plots(model, ds, Path(plot_dir), force=force, say=console.print)
+            say("done")
     failures = model.attrs.get("failures", [])
     for failure in failures:
         console.print(f"[bold red]failure:[/bold red] {escape(failure)}", highlight=False)

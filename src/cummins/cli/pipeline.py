@@ -197,6 +197,7 @@ def reduce_stage(
     data: xr.Dataset | None = None,
     passive: bool = True,
     motion_tol: float | None = None,
+    progress: Callable[[str], object] | None = None,
 ):
     """Reduce a radiation model and, by default, make the result passive as a MIMO model.
 
@@ -218,15 +219,21 @@ def reduce_stage(
     from cummins.radiation.reduce import reduce_radiation_model, reduce_to_motion_tolerance
 
     if motion_tol is not None:
-        reduced = reduce_to_motion_tolerance(model, data, motion_tol, method=method)
+        reduced = reduce_to_motion_tolerance(
+            model, data, motion_tol, method=method, progress=progress
+        )
     else:
-        reduced = reduce_radiation_model(model, order=order, tol=tol, method=method, data=data)
+        reduced = reduce_radiation_model(
+            model, order=order, tol=tol, method=method, data=data, progress=progress
+        )
     reference = model_fit_data(model, data) if data is not None else model_as_data(model)
     if reduced.blocks:  # common-pole blocks are made passive by their reduction
         attrs = {**reduced.attrs, "mimo_passive": is_passive(reduced)}
         return replace(reduced, attrs=attrs), None, reference
     if not passive:
         return reduced, None, reference
+    if progress is not None:
+        progress("measuring the couplings; passivity of the MIMO model")
     # measures of fit against the reference, for the weighting of the correction
     couplings = []
     for k in reduced.couplings:

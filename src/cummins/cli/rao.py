@@ -19,6 +19,7 @@ from cummins.cli.common import (
     reports_errors,
     select_speed,
     speed_option,
+    stage_progress,
     viscous_damping_option,
     viscous_damping_values,
 )
@@ -199,7 +200,8 @@ def rao_command(
             )
     beta = np.radians(parse_headings(headings)) if headings else None
     damping = viscous_damping_values(viscous_damping, [str(d) for d in ds.influenced_dof.values])
-    rao = motion_rao(ds, omega, beta, viscous_damping=damping, additional=not no_additional)
+    with stage_progress("solving the equation of motion at every frequency and heading"):
+        rao = motion_rao(ds, omega, beta, viscous_damping=damping, additional=not no_additional)
     if "excitation_force" in ds and "wave_direction" in ds.dims:
         coverage = heading_coverage(ds)
         if coverage.mirror_used:
@@ -211,7 +213,8 @@ def rao_command(
     if plot_file:
         from cummins.plots import plot_rao, save_figure
 
-        save_figure(plot_rao(rao), plot_file, force=force)
+        with stage_progress("drawing the RAOs"):
+            save_figure(plot_rao(rao), plot_file, force=force)
         console.print(f"wrote {plot_file}")
 
 

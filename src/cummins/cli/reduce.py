@@ -21,6 +21,7 @@ from cummins.cli.common import (
     reports_errors,
     select_speed,
     speed_option,
+    stage_progress,
 )
 
 
@@ -142,7 +143,7 @@ def reduce_command(
     data = None
     if data_path:
         data = select_speed(read_hydrodb(data_path, format_, rho, g, ulen), speed)
-    with console.status(f"reducing {model.total_order} states ({method})"):
+    with stage_progress(f"reducing {model.total_order} states ({method})") as say:
         reduced, corrected, reference = reduce_stage(
             model,
             order=order,
@@ -151,6 +152,7 @@ def reduce_command(
             data=data,
             passive=passive,
             motion_tol=motion_tol,
+            progress=say,
         )
     against = "the data" if data is not None else "the unreduced model"
     console.print(reduction_table(model, reduced, reference, against))
