@@ -60,3 +60,24 @@ def test_damping_the_user_gave_is_not_a_warning_again():
         vessel = cummins.vessel_from_hydrodb(ds, model, viscous_damping=[1e6, 1e6, 0, 0, 0, 1e10])
     source = vessel.attrs["viscous_damping_source"]
     assert "replaced by the given: Surge-Surge" in source and "Yaw-Yaw" in source
+
+
+def test_the_rao_file_says_its_time_convention(tmp_path):
+    """In memory x(t) = Re{X e^{iωt}}; the file holds Capytaine's e^{−iωt} and says so on
+    the file itself, and reads back in cummins' convention."""
+    import h5py
+
+    from cummins.seakeeping.frequency_domain import load_rao, motion_rao, save_rao
+
+    rao = motion_rao(cummins.demo_dataset(), [0.5, 0.8], [np.pi])
+    save_rao(rao, tmp_path / "rao.nc")
+    with h5py.File(tmp_path / "rao.nc", "r") as f:
+        said = f.attrs["time_convention"]
+        said = said.decode() if isinstance(said, bytes) else str(said)
+        stored = f["rao"][...]
+    assert "exp(-i omega t)" in said
+    back = load_rao(tmp_path / "rao.nc")
+    np.testing.assert_allclose(back.values, rao.values, rtol=1e-12)
+    # the stored imaginary part is the conjugate's
+    value = rao.transpose("omega", "wave_direction", "dof").values
+    np.testing.assert_allclose(stored[..., 1] if stored.shape[-1] == 2 else stored[1], -value.imag)

@@ -541,7 +541,13 @@ def save_rao(rao: xr.DataArray, path, *, force: bool = False):
             "dof": ("dof", [str(d) for d in rao.dof.values]),
         },
     )
-    out.attrs = encode_attributes({"title": "cummins motion RAO", **_version_attr()})
+    out.attrs = encode_attributes(
+        {
+            "title": "cummins motion RAO",
+            "time_convention": FILE_TIME_CONVENTION,  # the file's, said on the file too
+            **_version_attr(),
+        }
+    )
     return save_netcdf(out, path)
 
 
