@@ -27,6 +27,7 @@ sea = irregular_waves(
     data=ds,
 )
 run = cummins.simulate_waves(vessel, ds, sea, duration=1800, dt=0.1)
+run.attrs["sea"] = "JONSWAP Hs 4 m, Tp 10 s, waves from 150°"
 print(
     "heave std",
     float(run.motion.sel(dof="Heave").std()),

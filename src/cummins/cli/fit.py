@@ -117,7 +117,8 @@ from cummins.dofs import split_dof
     "plot_dir",
     type=click.Path(file_okay=False),
     default=None,
-    help="Write one PNG per coupling (A, B, |K|, phase of K, K(t)).",
+    help="Write one PNG per DOF, fit_<DOF>.png, a row per coupling of that DOF (A, B, |K|, "
+    "K(t): data against the model).",
 )
 @click.option(
     "--openfast",
