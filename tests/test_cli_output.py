@@ -53,7 +53,7 @@ def test_info_in_a_pipe_names_the_whole_file(tanker_deep, tmp_path):
 
 def test_kernel_in_a_pipe_prints_every_number_in_full(tanker_deep, tmp_path):
     out = _run("kernel", str(tanker_deep), "-o", "K.nc", cwd=tmp_path)
-    assert "…" not in out
+    assert "…" not in out and "\x1b[" not in out  # full numbers, no spinner
     with xr.open_dataset(tmp_path / "K.nc", engine="h5netcdf") as f:
         k0 = f.retardation_function.isel(time=0).load()
     rows = {line.split("│")[1].strip(): line for line in out.splitlines() if "│" in line}
@@ -84,6 +84,23 @@ def test_fit_in_a_pipe_prints_the_r2_of_the_json_summary(tanker_deep, tmp_path):
         assert row[2] == f"{c['r2_added_mass']:.4f}" and row[3] == f"{c['r2_damping']:.4f}"
     # one meaning per column name: the fit counts poles, the reduction states
     assert re.search(r"coupling\s+poles\s+R² A", out)
+    assert "\x1b[" not in out and "\r" not in out  # no progress bar in a pipe
+    reduced = _run(
+        "reduce", "m.nc", "-o", "s.nc", "--tol", "0.02", "--data", str(tanker_deep), cwd=tmp_path
+    )
+    assert "\x1b[" not in reduced and "\r" not in reduced  # no spinner in a pipe
+    assert "None" not in reduced and "(lyapunov; R² against the data)" in reduced
+    assert re.search(r"coupling\s*┃\s*states\s*┃", reduced), reduced
+    # a pair of a block shows its block's states (as the model files hold them)
+    states = re.search(r"│\s+Heave\s+│\s+(\d+) → (\d+)\s+│", reduced)
+    heave = cummins.DOF_NAMES.index("Heave")
+    (before,) = [
+        b.order for b in cummins.RadiationModel.load(tmp_path / "m.nc").blocks if heave in b.dofs
+    ]
+    (after,) = [
+        b.order for b in cummins.RadiationModel.load(tmp_path / "s.nc").blocks if heave in b.dofs
+    ]
+    assert states and (int(states[1]), int(states[2])) == (before, after)
 
 
 def test_help_lists_every_format_read():
