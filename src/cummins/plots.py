@@ -696,14 +696,14 @@ def plot_lf_comparison(result: xr.Dataset, dof: str, kind: str) -> Figure:
     (:func:`cummins.timedomain.lfmodel.compare_with_cummins`)."""
     fig = Figure(figsize=(9, 3.5), layout="constrained")
     ax = fig.subplots()
+    scale, unit = rotation_scale("rad" if is_rotation(dof) else "m")
     for n, (name, label) in enumerate(
         (("cummins", "Cummins model (fluid memory)"), ("lf", "low-frequency model"))
     ):
-        ax.plot(
-            result.time.values, result[name].sel(dof=dof).values, lw=1.0, color=f"C{n}", label=label
-        )
+        values = scale * result[name].sel(dof=dof).values
+        ax.plot(result.time.values, values, lw=1.0, color=f"C{n}", label=label)
     ax.set_xlabel("t [s]")
-    ax.set_ylabel(dof)
+    ax.set_ylabel(f"{dof} [{unit}]")
     ax.set_title(f"{kind} of {dof}: low-frequency model against the Cummins model")
     ax.legend(fontsize="small")
     ax.grid(alpha=0.3)
