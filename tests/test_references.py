@@ -31,6 +31,13 @@ NOT_AUTHORS = {"Copyright", "Version", "ISO", "Release", "Python", "January", "D
 def _sources() -> list[Path]:
     files = sorted((ROOT / "src" / "cummins").rglob("*.py"))
     files += [ROOT / "README.md", *sorted((ROOT / "docs").glob("*.md"))]
+    # the site's pages and the gallery's examples (docs/_build and generated pages aside)
+    files += sorted(
+        f
+        for f in (ROOT / "docs").glob("*/*.md")
+        if f.parts[-2] in ("guide", "theory") and not f.name.endswith(".inc.md")
+    )
+    files += sorted((ROOT / "examples").glob("*.py"))
     return [f for f in files if f.name != "references.md"]
 
 

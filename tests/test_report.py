@@ -102,7 +102,8 @@ def test_kind_is_detected_from_the_content(files, kind):
 
 EXPECTED = {
     "data": ("Data checks", "Retardation functions K(t)", "Motion RAOs", 4),
-    "model": ("Fitted couplings", "Fits against the data", "Heave–Pitch", 4),
+    # K(t) and one figure per DOF: heave (heave, heave ← pitch) and pitch
+    "model": ("Fitted couplings", "Fits against the data", "Heave–Pitch", 3),
     "rao": ("Motion RAOs", "max |RAO|", "Roll", 1),
     "run": ("Response statistics", "Time series", "Response spectra", 2),
     "batch": ("Operability", "Limiting Hs", "Statistics per case", 2),

@@ -10,11 +10,14 @@ labels and reads them back: which body, which mode, rotation or translation.
 from __future__ import annotations
 
 from collections.abc import Sequence
+from typing import TYPE_CHECKING
 
 import numpy as np
-import xarray as xr
 
 from cummins.errors import HydroDataError
+
+if TYPE_CHECKING:
+    import xarray as xr
 
 DOF_NAMES: tuple[str, ...] = ("Surge", "Sway", "Heave", "Roll", "Pitch", "Yaw")
 

@@ -47,7 +47,6 @@ from collections.abc import Iterable, Sequence
 from typing import Any
 
 import numpy as np
-import scipy.linalg
 import xarray as xr
 from numpy.typing import ArrayLike, NDArray
 
@@ -561,6 +560,8 @@ def _per_body_transform(ds: xr.Dataset, block) -> NDArray[np.float64]:
     """Block-diagonal matrix with ``block(body_index)`` (6×6) on the six rigid-body modes of
     each body and the identity on its generalized modes (``Mode7`` …), which stay as they
     are: their amplitudes are defined by the solver's mode shapes, not by the axes."""
+    from scipy.linalg import block_diag  # here: reading a file need not load scipy.linalg
+
     labels = [str(d) for d in ds.influenced_dof.values]
     blocks = []
     start = 0
@@ -578,9 +579,9 @@ def _per_body_transform(ds: xr.Dataset, block) -> NDArray[np.float64]:
                 "(then its generalized modes)",
                 hint="read the full 6-DOF data, transform, then select_dofs",
             )
-        blocks.append(scipy.linalg.block_diag(block(k), np.eye(len(extra))))
+        blocks.append(block_diag(block(k), np.eye(len(extra))))
         start += len(own)
-    return scipy.linalg.block_diag(*blocks)
+    return block_diag(*blocks)
 
 
 def _apply(ds: xr.Dataset, left: NDArray, right: NDArray, motion: NDArray) -> xr.Dataset:

@@ -14,7 +14,16 @@ import numpy as np
 import xarray as xr
 from matplotlib.figure import Figure
 
+from cummins.display import (
+    kernel_window,
+    mark_negligible,
+    negligible_series,
+    note_kernel_window,
+    rotation_scale,
+    unwrapped_phase_deg,
+)
 from cummins.errors import check_writable
+from cummins.fit_figures import plot_coupling_fit as plot_coupling_fit  # its earlier place
 from cummins.hydrodb import is_rotation
 
 
@@ -129,34 +138,55 @@ def plot_rao(
         "RAO",
         lambda dof: "rad/m" if is_rotation(dof) else "m/m",
         f"Motion RAOs (per metre of wave amplitude) {('— ' + source) if source else ''}",
+        degrees=True,
     )
 
 
 def _amplitude_phase_by_heading(
-    values: xr.DataArray, dofs: Sequence[str], picks: Sequence[int], symbol: str, unit, title: str
+    values: xr.DataArray,
+    dofs: Sequence[str],
+    picks: Sequence[int],
+    symbol: str,
+    unit,
+    title: str,
+    *,
+    degrees: bool = False,
 ) -> Figure:
     """|values| and phase (deg) against ω, a row per DOF, a line per picked heading;
-    ``values`` complex with dims (omega, wave_direction, dof). The phase is left out
-    where the magnitude is below 10⁻⁶ of the DOF's largest (it is noise there)."""
+    ``values`` complex with dims (omega, wave_direction, dof). The phase is a line,
+    unwrapped along ω, left out where the magnitude is below 10⁻⁶ of the DOF's largest
+    (it is noise there). A DOF numerically zero at every heading drawn (sway in head
+    seas) is drawn as "≈ 0" (:func:`cummins.display.negligible_series`); with
+    ``degrees`` rotations are shown in degrees."""
     beta = np.degrees(values.wave_direction.values)
     fig = Figure(figsize=(10, 2.2 * len(dofs) + 0.8), layout="constrained")
     axes = fig.subplots(len(dofs), 2, squeeze=False, sharex=True)
     w = values.omega.values
+    shown = values.isel(wave_direction=list(picks))
+    peaks = [float(np.abs(shown.sel(dof=dof).values).max()) for dof in dofs]
+    zero = negligible_series(peaks, [is_rotation(d) for d in dofs])
     for row, dof in enumerate(dofs):
         x = values.sel(dof=dof)
+        scale, shown_unit = rotation_scale(unit(dof)) if degrees else (1.0, unit(dof))
         tiny = 1e-6 * float(np.abs(x.values).max())
         for k in picks:
             xk = x.isel(wave_direction=k).values
             label = f"β = {beta[k]:.0f}°"
-            axes[row, 0].plot(w, np.abs(xk), label=label)
-            phase = np.where(np.abs(xk) > tiny, np.degrees(np.angle(xk)), np.nan)
-            axes[row, 1].plot(w, phase, ".", ms=3, label=label)
-        axes[row, 0].set_ylabel(f"|{symbol}| {dof} [{unit(dof)}]")
+            axes[row, 0].plot(w, scale * np.abs(xk), label=label)
+            if not zero[row]:
+                axes[row, 1].plot(w, unwrapped_phase_deg(xk, tiny), lw=1.0, label=label)
+        axes[row, 0].set_ylabel(f"|{symbol}| {dof} [{shown_unit}]")
         axes[row, 1].set_ylabel(f"∠{symbol} {dof} [deg]")
-        axes[row, 1].set_ylim(-185, 185)
+        if zero[row]:
+            mark_negligible(axes[row, 0], scale * peaks[row], shown_unit)
         for ax in axes[row]:
             ax.grid(alpha=0.3)
-    axes[0, 0].legend(fontsize="small")
+    fig.legend(
+        *axes[0, 0].get_legend_handles_labels(),
+        loc="outside lower center",
+        ncols=min(len(picks), 8),
+        fontsize="small",
+    )
     for ax in axes[-1]:
         ax.set_xlabel("ω [rad/s]")
     fig.suptitle(title)
@@ -181,12 +211,27 @@ def heading_picks(beta_deg, headings_deg=None, most: int = 5) -> list[int]:
 def save_figure(
     fig: Figure, path: str | os.PathLike[str], *, force: bool = False, dpi: int = 120
 ) -> Path:
-    """Write ``fig`` as PNG; refuse to overwrite an existing file unless ``force``."""
+    """Write ``fig`` as PNG; refuse to overwrite an existing file unless ``force``.
+
+    A figure of constrained layout is laid out once before it is written: the tick labels
+    chosen at the final axes' size can be wider than those the layout measured, and a
+    y label ("A Roll [kg·m²]") would be cut at the edge (:func:`settle_layout`)."""
     p = Path(path)
     check_writable(p, force)
     p.parent.mkdir(parents=True, exist_ok=True)
+    settle_layout(fig, dpi)
     fig.savefig(p, dpi=dpi)
     return p
+
+
+def settle_layout(fig: Figure, dpi: float | None = None) -> None:
+    """Run a figure's layout engine once at ``dpi`` so that the layout of the drawing
+    that follows sees the tick labels of the final axes' size."""
+    engine = fig.get_layout_engine()
+    if engine is not None:
+        if dpi is not None:
+            fig.set_dpi(dpi)
+        engine.execute(fig)
 
 
 def _pairs(kernel, couplings) -> list[tuple[str, str]]:
@@ -208,7 +253,9 @@ def plot_retardation(
     reference: xr.DataArray | None = None,
     reference_label: str = "reference",
 ) -> Figure:
-    """K_ij(t) per coupling (diagonal by default), optionally against a reference K(t)."""
+    """K_ij(t) per coupling (diagonal by default), optionally against a reference K(t);
+    each panel ends a little after |K| stays below 1 % of its peak
+    (:func:`cummins.display.kernel_window`), and says where the record ends."""
     pairs = _pairs(kernel, couplings)
     ncols = 2 if len(pairs) > 3 else 1
     nrows = int(np.ceil(len(pairs) / ncols))
@@ -216,11 +263,15 @@ def plot_retardation(
     axes = np.atleast_1d(fig.subplots(nrows, ncols, squeeze=False).ravel())
     t = kernel.time.values
     for ax, (a, b) in zip(axes, pairs, strict=False):
-        ax.plot(t, kernel.sel(influenced_dof=a, radiating_dof=b).values, color="C0", label="K(t)")
+        k = kernel.sel(influenced_dof=a, radiating_dof=b).values
+        shown = kernel_window(t, [k])
+        ax.plot(t, k, color="C0", label="K(t)")
         if reference is not None:
             ref = reference.sel(influenced_dof=a, radiating_dof=b)
             ax.plot(ref.time.values, ref.values, "--", color="C3", label=reference_label)
         ax.axhline(0.0, color="0.6", lw=0.8)
+        ax.set_xlim(0.0, shown)  # to where K has decayed, not the whole record
+        note_kernel_window(ax, shown, float(t[-1]))
         ax.set_title(a if a == b else f"{a} ← {b}", fontsize="medium")
         ax.set_ylabel(f"K [{_k_unit(a, b)}]")
         ax.grid(alpha=0.3)
@@ -286,115 +337,25 @@ def plot_added_mass_inf(
     return fig
 
 
-def plot_coupling_fit(
-    ds: xr.Dataset, model, i: int, j: int, left_out: Sequence[float] = ()
-) -> Figure:
-    """Data against the fitted model for coupling (i, j): A, B, |K|, ∠K and K(t).
-
-    The data drawn are what the fit used, the symmetric part ½(X_ij + X_ji); where the
-    entry as read differs (A_ij ≠ A_ji) it is drawn as crosses too.
-
-    Parameters
-    ----------
-    ds
-        The data (one forward speed).
-    model
-        A :class:`cummins.radiation.model.RadiationModel`.
-    i, j
-        0-based DOF indices (force, velocity).
-    left_out
-        Frequencies (rad/s) of ``ds`` the fit left out: drawn as open circles, and not
-        used for K(t) from the data.
-    """
-    from cummins.radiation.retardation import default_time_grid, retardation_function
-
-    dof_i, dof_j = model.dofs[i], model.dofs[j]
-    title = dof_i if i == j else f"{dof_i} ← {dof_j}"
-    out = np.isin(ds.omega.values, np.asarray(left_out, dtype=float))
-    w = ds.omega.values
-    w_model = np.geomspace(w[~out][0] * 0.5, w[~out][-1] * 2.0, 400)
-    sel = {"influenced_dof": dof_i, "radiating_dof": dof_j}
-    swapped = {"influenced_dof": dof_j, "radiating_dof": dof_i}
-    # what the fit used: the symmetric part ½(X_ij + X_ji) (the R² in the title are
-    # against it); the entries as read are drawn too where they differ
-    a_read = ds.added_mass.sel(sel).values
-    b_read = ds.radiation_damping.sel(sel).values
-    a_data = 0.5 * (a_read + ds.added_mass.sel(swapped).values)
-    b_data = 0.5 * (b_read + ds.radiation_damping.sel(swapped).values)
-    a_inf = float(model.added_mass_inf[i, j])
-    k_data = b_data + 1j * w * (a_data - a_inf)
-    k_model = model.frequency_response(w_model).values[:, i, j]
-    fig = Figure(figsize=(11, 7.5), layout="constrained")
-    grid = fig.add_gridspec(3, 2)
-    ax_a, ax_b = fig.add_subplot(grid[0, 0]), fig.add_subplot(grid[0, 1])
-    ax_m, ax_p = fig.add_subplot(grid[1, 0]), fig.add_subplot(grid[1, 1])
-    ax_k = fig.add_subplot(grid[2, :])
-    rot = sum(is_rotation(d) for d in (dof_i, dof_j))
-    mass_unit = ("kg", "kg·m", "kg·m²")[rot]
-
-    def points(ax, values, plot="plot"):
-        getattr(ax, plot)(w[~out], values[~out], "o", ms=3, color="0.3", label="data")
-        if out.any():
-            getattr(ax, plot)(
-                w[out], values[out], "o", ms=4, mfc="none", color="0.5", label="left out"
-            )
-
-    for ax, read, fitted in ((ax_a, a_read, a_data), (ax_b, b_read, b_data)):
-        if not np.allclose(read, fitted, rtol=1e-6, atol=0.0):
-            ax.plot(w, read, "x", ms=3, color="0.6", label=f"{dof_i}, {dof_j} as read")
-    points(ax_a, a_data)
-    ax_a.plot(w_model, a_inf + k_model.imag / w_model, color="C0", label="model")
-    ax_a.axhline(a_inf, color="C3", ls="--", lw=0.8, label="A∞")
-    ax_a.set_ylabel(f"A [{mass_unit}]")
-    points(ax_b, b_data)
-    ax_b.plot(w_model, k_model.real, color="C1")
-    ax_b.set_ylabel(f"B [{mass_unit}/s]")
-    points(ax_m, np.abs(k_data), "loglog")
-    ax_m.loglog(w_model, np.abs(k_model), color="C2")
-    ax_m.set_ylabel(f"|K(jω)| [{mass_unit}/s]")
-    points(ax_p, np.degrees(np.angle(k_data)), "semilogx")
-    ax_p.semilogx(w_model, np.degrees(np.angle(k_model)), color="C4")
-    ax_p.set_ylabel("∠K(jω) [deg]")
-    for ax in (ax_a, ax_b, ax_m, ax_p):
-        ax.set_xlabel("ω [rad/s]")
-        ax.grid(alpha=0.3, which="both")
-    ax_a.legend(fontsize="small")
-    kept = ds.isel(omega=np.flatnonzero(~out))
-    t = default_time_grid(kept)
-    k_t = retardation_function(kept, t).sel(sel).values
-    ax_k.plot(t, k_t, color="0.3", label="from the data" + (" kept" if out.any() else ""))
-    ax_k.plot(t, model.impulse_response(t).values[:, i, j], "--", color="C0", label="model")
-    ax_k.set_xlabel("t [s]")
-    ax_k.set_ylabel(f"K(t) [{mass_unit}/s²]")
-    ax_k.grid(alpha=0.3)
-    ax_k.legend(fontsize="small")
-    coupling = model.coupling(i, j)
-    metrics = coupling.metrics if coupling is not None else {}
-    r2 = ", ".join(
-        f"{label} {metrics[k]:.4f}"
-        for k, label in (("r2_added_mass", "A"), ("r2_damping", "B"), ("r2_kernel", "K(t)"))
-        if metrics.get(k) is not None
-    )
-    order = coupling.order if coupling is not None else 0
-    poles = metrics.get("common_poles")
-    size = f"{poles} common poles" if poles else f"order {order}"
-    fig.suptitle(f"{title}: {size}; R² {r2}")
-    return fig
-
-
 def plot_time_series(run: xr.Dataset, window: float | None = 600.0) -> Figure:
-    """Wave elevation and the motions of a simulation (the last ``window`` seconds)."""
+    """Wave elevation and the motions of a simulation (the last ``window`` seconds);
+    rotations in degrees, a DOF that is numerically zero drawn as "≈ 0"."""
     t = run.time.values
     keep = t >= t[-1] - window if window else np.ones(t.size, dtype=bool)
     dofs = [str(d) for d in run.dof.values]
-    units = run.motion.attrs.get("units", "").split(" | ")
+    units = _motion_units(run, dofs)
+    motion = run.motion.values[keep]
+    zero = negligible_series(np.abs(motion).max(axis=0), [is_rotation(d) for d in dofs])
     fig = Figure(figsize=(11, 1.6 * (len(dofs) + 1)), layout="constrained")
     axes = fig.subplots(len(dofs) + 1, 1, sharex=True)
     axes[0].plot(t[keep], run.wave_elevation.values[keep], color="C0", lw=0.8)
     axes[0].set_ylabel("ζ [m]")
     for k, dof in enumerate(dofs):
-        axes[k + 1].plot(t[keep], run.motion.values[keep, k], color=f"C{k + 1}", lw=0.8)
-        axes[k + 1].set_ylabel(f"{dof} [{units[k] if k < len(units) else ''}]")
+        scale, unit = rotation_scale(units[k])
+        axes[k + 1].plot(t[keep], scale * motion[:, k], color=f"C{k + 1}", lw=0.8)
+        axes[k + 1].set_ylabel(f"{dof} [{unit}]")
+        if zero[k]:
+            mark_negligible(axes[k + 1], scale * float(np.abs(motion[:, k]).max()), unit)
     for ax in axes:
         ax.grid(alpha=0.3)
     axes[-1].set_xlabel("t [s]")
@@ -402,10 +363,21 @@ def plot_time_series(run: xr.Dataset, window: float | None = 600.0) -> Figure:
     return fig
 
 
+def _motion_units(run: xr.Dataset, dofs: Sequence[str]) -> list[str]:
+    """The unit of each DOF's motion: the run's ``units`` attribute, else m or rad."""
+    given = str(run.motion.attrs.get("units", "")).split(" | ")
+    return [
+        given[k] if k < len(given) and given[k] else ("rad" if is_rotation(d) else "m")
+        for k, d in enumerate(dofs)
+    ]
+
+
 def plot_response_spectra(
     run: xr.Dataset, references: dict[str, tuple[np.ndarray, np.ndarray]]
 ) -> Figure:
-    """Response spectra of a simulation (Welch) against frequency-domain ones.
+    """Response spectra of a simulation (Welch) against frequency-domain ones, at most
+    three panels a row (the figure grows with the DOFs), the legend above them;
+    rotations in deg², a DOF numerically zero drawn as "≈ 0".
 
     ``references`` maps a label to (ω, S(ω) of shape (len(ω), n_dofs)), one-sided, per
     rad/s.
@@ -416,24 +388,32 @@ def plot_response_spectra(
     dofs = [str(d) for d in run.dof.values]
     f, p = welch(run.motion.values, fs=1 / dt, nperseg=min(4096, run.sizes["time"]), axis=0)
     w, s_td = 2 * np.pi * f, p / (2 * np.pi)
-    fig = Figure(figsize=(11, 7.5), layout="constrained")
-    axes = fig.subplots(2, (len(dofs) + 1) // 2).ravel()
-    units = run.motion.attrs.get("units", "").split(" | ")
+    ncols = min(3, len(dofs))
+    nrows = (len(dofs) + ncols - 1) // ncols
+    fig = Figure(figsize=(11, 2.6 * nrows + 1.2), layout="constrained")
+    axes = np.atleast_1d(fig.subplots(nrows, ncols, squeeze=False).ravel())
+    units = _motion_units(run, dofs)
+    zero = negligible_series(np.abs(run.motion.values).max(axis=0), [is_rotation(d) for d in dofs])
     # up to where the responses hold 99.9 % of their variance, with a margin
-    share = np.cumsum(s_td / np.maximum(s_td.sum(axis=0), 1e-300), axis=0).min(axis=1)
+    share = np.cumsum(s_td / np.maximum(s_td.sum(axis=0), 1e-300), axis=0)[:, ~zero].min(
+        axis=1, initial=1.0
+    )
     top = 1.3 * float(w[min(np.searchsorted(share, 0.999), w.size - 1)])
     for k, dof in enumerate(dofs):
         ax = axes[k]
-        ax.plot(w, s_td[:, k], color="0.2", lw=1.0, label="time domain (Welch)")
+        scale, unit = rotation_scale(f"{units[k]}²·s/rad")
+        ax.plot(w, scale * s_td[:, k], color="0.2", lw=1.0, label="time domain (Welch)")
         for n, (label, (w_ref, s_ref)) in enumerate(references.items()):
-            ax.plot(w_ref, s_ref[:, k], "--", color=f"C{n}", lw=1.2, label=label)
+            ax.plot(w_ref, scale * s_ref[:, k], "--", color=f"C{n}", lw=1.2, label=label)
         ax.set_xlim(0, top)
-        ax.set_title(dof)
-        unit = units[k] if k < len(units) else ""
-        ax.set_ylabel(f"S [{unit}²·s/rad]")
-        ax.set_xlabel("ω_e [rad/s] (encounter)" if run.attrs.get("forward_speed") else "ω [rad/s]")
+        ax.set_title(dof, fontsize="medium")
+        ax.set_ylabel(f"S [{unit}]")
+        if zero[k]:
+            mark_negligible(ax, scale * float(s_td[:, k].max()), unit)
         ax.grid(alpha=0.3)
-    axes[0].legend(fontsize="small")
+    for ax in axes[len(dofs) - ncols : len(dofs)]:
+        ax.set_xlabel("ω_e [rad/s] (encounter)" if run.attrs.get("forward_speed") else "ω [rad/s]")
+    fig.legend(*axes[0].get_legend_handles_labels(), loc="outside lower center", ncols=3)
     for ax in axes[len(dofs) :]:
         ax.set_visible(False)
     fig.suptitle(f"response spectra: {run.attrs.get('sea', '')}")
@@ -716,14 +696,14 @@ def plot_lf_comparison(result: xr.Dataset, dof: str, kind: str) -> Figure:
     (:func:`cummins.timedomain.lfmodel.compare_with_cummins`)."""
     fig = Figure(figsize=(9, 3.5), layout="constrained")
     ax = fig.subplots()
+    scale, unit = rotation_scale("rad" if is_rotation(dof) else "m")
     for n, (name, label) in enumerate(
         (("cummins", "Cummins model (fluid memory)"), ("lf", "low-frequency model"))
     ):
-        ax.plot(
-            result.time.values, result[name].sel(dof=dof).values, lw=1.0, color=f"C{n}", label=label
-        )
+        values = scale * result[name].sel(dof=dof).values
+        ax.plot(result.time.values, values, lw=1.0, color=f"C{n}", label=label)
     ax.set_xlabel("t [s]")
-    ax.set_ylabel(dof)
+    ax.set_ylabel(f"{dof} [{unit}]")
     ax.set_title(f"{kind} of {dof}: low-frequency model against the Cummins model")
     ax.legend(fontsize="small")
     ax.grid(alpha=0.3)

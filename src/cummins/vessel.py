@@ -323,7 +323,7 @@ def vessel_from_hydrodb(
         if "additional_stiffness" in ds:
             c = c + dof_matrix(ds, "additional_stiffness")
         if "additional_damping" in ds:
-            b_v = b_v + _constant_part(ds, "additional_damping", dofs)
+            b_v = b_v + _constant_part(ds, "additional_damping", dofs, given=b_v, said=sources)
             sources.append("database additional_damping (frequency-independent entries)")
     if model is None:
         model = fit_radiation(ds, **fit_options)
@@ -414,18 +414,39 @@ def viscous_damping_matrix(dofs, viscous_damping: Any) -> NDArray[np.float64]:
     return arr
 
 
-def _constant_part(ds: xr.Dataset, name: str, dofs: tuple[str, ...]) -> NDArray[np.float64]:
-    """The frequency-independent entries of ``ds[name]``; a warning names the others."""
+def _constant_part(
+    ds: xr.Dataset,
+    name: str,
+    dofs: tuple[str, ...],
+    *,
+    given: NDArray[np.float64] | None = None,
+    said: list[str] | None = None,
+) -> NDArray[np.float64]:
+    """The frequency-independent entries of ``ds[name]``; a warning names the others,
+    but for the entries whose DOFs have a damping ``given`` by the user (MSS's surge,
+    sway and yaw estimates where --viscous-damping replaces them): those are only
+    appended to ``said`` (the vessel's ``viscous_damping_source``)."""
     values = ds[name]
     if "omega" not in values.dims:
         return dof_matrix(ds, name)
     stack = values.transpose("omega", "influenced_dof", "radiating_dof").values.astype(float)
     spread = stack.max(axis=0) - stack.min(axis=0)
     constant = spread <= 1e-9 * np.maximum(np.abs(stack).max(axis=0), 1e-300)
-    varying = [
-        f"{dofs[i]}-{dofs[j]} ({stack[:, i, j].min():.3g} to {stack[:, i, j].max():.3g})"
-        for i, j in zip(*np.nonzero(~constant), strict=True)
-    ]
+    covered = np.zeros_like(constant)
+    if given is not None:
+        on_dof = np.diag(given) != 0
+        covered = (given != 0) | (on_dof[:, None] & on_dof[None, :])
+
+    def listed(mask) -> list[str]:
+        return [
+            f"{dofs[i]}-{dofs[j]} ({stack[:, i, j].min():.3g} to {stack[:, i, j].max():.3g})"
+            for i, j in zip(*np.nonzero(mask), strict=True)
+        ]
+
+    varying = listed(~constant & ~covered)
+    replaced = listed(~constant & covered)
+    if replaced and said is not None:
+        said.append(f"{name} varying with frequency replaced by the given: {', '.join(replaced)}")
     if varying:
         warnings.warn(
             f"{name} varies with frequency for {', '.join(varying)}: a linear time-domain "

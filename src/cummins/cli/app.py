@@ -9,27 +9,71 @@ shown once each as one-line notes.
 
 from __future__ import annotations
 
+import importlib
+
 import click
 
 from cummins._version import __version__
-from cummins.cli.batch import batch_command
-from cummins.cli.bem import bem_command
-from cummins.cli.check import check_command
-from cummins.cli.convert import convert_command
-from cummins.cli.demo import demo_command
-from cummins.cli.dp import dp_demo_command
-from cummins.cli.fit import fit_command
-from cummins.cli.info import info_command
-from cummins.cli.kernel import kernel_command
-from cummins.cli.lfmodel import lf_model_command
-from cummins.cli.rao import rao_command
-from cummins.cli.reduce import reduce_command
-from cummins.cli.report import report_command
-from cummins.cli.simulate import simulate_command
-from cummins.cli.sysid import identify_damping_command
+
+#: The commands, in the order ``cummins --help`` lists them, and where each is defined.
+#: A command's module is imported when the command is run or its help is shown, so that
+#: ``cummins --help`` and ``cummins info`` do not wait for SciPy or matplotlib.
+COMMANDS: dict[str, str] = {
+    "info": "cummins.cli.info:info_command",
+    "check": "cummins.cli.check:check_command",
+    "convert": "cummins.cli.convert:convert_command",
+    "demo": "cummins.cli.demo:demo_command",
+    # works without Capytaine: it then says how to install it
+    "bem": "cummins.cli.bem:bem_command",
+    "kernel": "cummins.cli.kernel:kernel_command",
+    "fit": "cummins.cli.fit:fit_command",
+    "reduce": "cummins.cli.reduce:reduce_command",
+    "rao": "cummins.cli.rao:rao_command",
+    "simulate": "cummins.cli.simulate:simulate_command",
+    "identify-damping": "cummins.cli.sysid:identify_damping_command",
+    "dp-demo": "cummins.cli.dp:dp_demo_command",
+    "lf-model": "cummins.cli.lfmodel:lf_model_command",
+    # works without Dask: it then says how to install it
+    "batch": "cummins.cli.batch:batch_command",
+    "report": "cummins.cli.report:report_command",
+}
+
+
+class LazyGroup(click.Group):
+    """A group whose commands (:data:`COMMANDS`) are imported when first asked for."""
+
+    def list_commands(self, ctx: click.Context) -> list[str]:
+        return [*COMMANDS, *(n for n in super().list_commands(ctx) if n not in COMMANDS)]
+
+    def get_command(self, ctx: click.Context, cmd_name: str) -> click.Command | None:
+        if cmd_name in self.commands or cmd_name not in COMMANDS:
+            return super().get_command(ctx, cmd_name)
+        module, _, name = COMMANDS[cmd_name].partition(":")
+        command = getattr(importlib.import_module(module), name)
+        self.commands[cmd_name] = command
+        return command
+
+    def format_help_text(self, ctx: click.Context, formatter: click.HelpFormatter) -> None:
+        super().format_help_text(ctx, formatter)
+        formatter.write_paragraph()
+        with formatter.indentation():
+            formatter.write_text(formats_read())
+
+
+def formats_read() -> str:
+    """The sentence of ``cummins --help`` that lists the formats read, from the readers'
+    registry (:data:`cummins.io.FORMATS`)."""
+    from cummins.io import FORMATS
+
+    listed = "; ".join(f.description for f in FORMATS.values())
+    return (
+        f"Formats read (detected from the content, or --format NAME): {listed}. "
+        "Nondimensional files (WAMIT, HAMS) take --rho, --g and --ulen."
+    )
 
 
 @click.group(
+    cls=LazyGroup,
     context_settings={"help_option_names": ["-h", "--help"], "max_content_width": 100},
 )
 @click.version_option(__version__, "--version", "-V", prog_name="cummins")
@@ -55,30 +99,8 @@ def main() -> None:
       cummins report FILE      a self-contained HTML page of a data, model, run or results file
       cummins demo             run all of it on a bundled real vessel (WAMIT tanker)
 
-    \b
-    Formats read (detected from the content): WAMIT .1/.3/.hst/.out, NEMOH .tec,
-    AQWA .LIS/.AH1, ShipX/VERES .re7/.re8/.re1, Capytaine NetCDF, MSS .mat.
-    Nondimensional WAMIT files take --rho, --g and --ulen.
-
     Run `cummins COMMAND --help` for the options of a command.
     """
-
-
-main.add_command(info_command)
-main.add_command(check_command)
-main.add_command(convert_command)
-main.add_command(demo_command)
-main.add_command(bem_command)  # works without Capytaine: it then says how to install it
-main.add_command(kernel_command)
-main.add_command(fit_command)
-main.add_command(reduce_command)
-main.add_command(rao_command)
-main.add_command(simulate_command)
-main.add_command(identify_damping_command)
-main.add_command(dp_demo_command)
-main.add_command(lf_model_command)
-main.add_command(batch_command)  # works without Dask: it then says how to install it
-main.add_command(report_command)
 
 
 if __name__ == "__main__":  # pragma: no cover

@@ -8,15 +8,23 @@ import math
 import os
 import sys
 import warnings
-from collections.abc import Iterator
+from collections.abc import Callable, Iterator
 from pathlib import Path
 from typing import NoReturn
 
 import click
 import numpy as np
-from rich.console import Console
+from rich.console import Console, ConsoleDimensions
 from rich.markup import escape
-from rich.progress import BarColumn, Progress, TaskProgressColumn, TextColumn, TimeElapsedColumn
+from rich.progress import (
+    BarColumn,
+    Progress,
+    SpinnerColumn,
+    TaskProgressColumn,
+    TextColumn,
+    TimeElapsedColumn,
+)
+from rich.table import Table
 
 from cummins.errors import (
     ArgumentError,
@@ -26,8 +34,35 @@ from cummins.errors import (
     check_writable,
 )
 
-console = Console(highlight=False, soft_wrap=True)
-err_console = Console(stderr=True, highlight=False, soft_wrap=True)
+#: The width of the output when it is not a terminal (a pipe, a log, CI), unless COLUMNS
+#: says otherwise: wide enough for every table, where rich would otherwise take 80.
+PIPE_WIDTH = 200
+
+
+class _Console(Console):
+    """A rich console that reads right anywhere: not on a terminal it is
+    :data:`PIPE_WIDTH` wide, and the columns of its tables fold a value that does not fit
+    onto the next line instead of cutting it ("5.297e…"); JSON stays the machine
+    interface."""
+
+    def _size(self) -> ConsoleDimensions:
+        size = Console.size.fget(self)
+        if self._width is None and "COLUMNS" not in self._environ and not self.is_terminal:
+            return ConsoleDimensions(max(size.width, PIPE_WIDTH), size.height)
+        return size
+
+    size = property(_size, Console.size.fset)
+
+    def print(self, *objects, **kwargs) -> None:
+        for item in objects:
+            if isinstance(item, Table):
+                for column in item.columns:
+                    column.overflow = "fold"
+        super().print(*objects, **kwargs)
+
+
+console = _Console(highlight=False, soft_wrap=True)
+err_console = _Console(stderr=True, highlight=False, soft_wrap=True)
 
 
 def progress_bar() -> Progress:
@@ -40,6 +75,22 @@ def progress_bar() -> Progress:
         console=console,
         transient=True,
     )
+
+
+@contextlib.contextmanager
+def stage_progress(description: str) -> Iterator[Callable[[str], None]]:
+    """On a terminal, a spinner with ``description``, the current step and the time
+    elapsed (gone when done); in a pipe or a log, nothing. Yields ``say(message)``, which
+    shows ``message`` as the current step (the ``progress=`` of the library's long work)."""
+    with Progress(
+        SpinnerColumn(),
+        TextColumn("{task.description}"),
+        TimeElapsedColumn(),
+        console=console,
+        transient=True,
+    ) as bar:
+        task = bar.add_task(description, total=None)
+        yield lambda message: bar.update(task, description=f"{description}: {message}")
 
 
 def exit_status(exc: BaseException) -> int:
@@ -233,6 +284,13 @@ def _check_format(ctx, param, value):
     return value.lower()
 
 
+def format_names() -> str:
+    """The formats read, ``name (what it is)``, from the readers' registry."""
+    from cummins.io import FORMATS
+
+    return "; ".join(f"{name} ({f.description})" for name, f in FORMATS.items())
+
+
 def read_options(func):
     """--format, --rho, --g, --ulen: how to read solver files; --mass,
     --center-of-gravity, --radii-of-gyration, --inertia-matrix, --external-stiffness,
@@ -245,8 +303,7 @@ def read_options(func):
             metavar="NAME",
             default=None,
             callback=_check_format,
-            help="Solver format (wamit, wamit-out, nemoh, aqwa, veres, netcdf, mss); "
-            "detected from the content by default.",
+            help=f"Solver format, detected from the content by default: {format_names()}.",
         ),
         click.option(
             "--rho",

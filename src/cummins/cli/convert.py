@@ -52,6 +52,9 @@ def convert_command(source, destination, format_, rho, g, ulen, axes, reference_
     """Convert SOURCE to canonical NetCDF (.nc), a BEMIO .h5 for WEC-Sim, or an MSS
     vessel struct (.mat).
 
+    SOURCE is any file or folder cummins reads (WAMIT, HAMS, NEMOH, AQWA, VERES, Capytaine,
+    BEMIO .h5, MSS .mat: see --format).
+
     \b
     The NetCDF has Capytaine's layout (complex values on a re/im dimension) plus
     cummins' variables (added_mass_inf, ...), in SI units. The .h5 has the layout

@@ -25,6 +25,7 @@ from cummins.cli.common import (
     select_body,
     select_speed,
     speed_option,
+    stage_progress,
 )
 from cummins.dofs import split_dof
 
@@ -116,7 +117,8 @@ from cummins.dofs import split_dof
     "plot_dir",
     type=click.Path(file_okay=False),
     default=None,
-    help="Write one PNG per coupling (A, B, |K|, phase of K, K(t)).",
+    help="Write one PNG per DOF, fit_<DOF>.png, a row per coupling of that DOF (A, B, |K|, "
+    "K(t): data against the model).",
 )
 @click.option(
     "--openfast",
@@ -282,8 +284,9 @@ def fit_command(
     if plot_dir:
         from cummins.cli.pipeline import write_fit_plots
 
-        for file in write_fit_plots(model, ds, Path(plot_dir), force=force):
-            console.print(f"wrote {file}")
+        with stage_progress("drawing the fit of every DOF's couplings") as say:
+            write_fit_plots(model, ds, Path(plot_dir), force=force, say=console.print)
+            say("done")
     failures = model.attrs.get("failures", [])
     for failure in failures:
         console.print(f"[bold red]failure:[/bold red] {escape(failure)}", highlight=False)
@@ -362,8 +365,8 @@ def fit_table(model) -> Table:
     """Per-coupling summary printed by ``cummins fit``: narrow enough for an 80-column
     terminal (the DOFs of several bodies named short: :func:`table_label`); each
     coupling's note is numbered in the last column and printed below the table
-    (:func:`fit_notes`). The order of a pair of a common-pole block is the number of
-    poles its DOFs share (the block's states are in the notes)."""
+    (:func:`fit_notes`). The poles of a pair of a common-pole block are those its DOFs
+    share (the block's states are in the notes), of a per-coupling model its order."""
     from rich import box
 
     table = Table(
@@ -373,7 +376,7 @@ def fit_table(model) -> Table:
         pad_edge=False,
         collapse_padding=True,
     )
-    for column in ("coupling", "order", "R² A", "R² B", "R² K(t)", "stable", "passive", "note"):
+    for column in ("coupling", "poles", "R² A", "R² B", "R² K(t)", "stable", "passive", "note"):
         left = column == "coupling"
         table.add_column(column, justify="left" if left else "right", no_wrap=left)
     numbers: dict[str, int] = {}

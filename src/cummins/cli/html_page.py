@@ -52,7 +52,10 @@ class Section:
 
 def figure_html(fig, caption: str) -> str:
     """A matplotlib figure as an ``<img>`` with an embedded PNG, and its caption."""
+    from cummins.plots import settle_layout
+
     buffer = io.BytesIO()
+    settle_layout(fig, _DPI)
     fig.savefig(buffer, format="png", dpi=_DPI)
     data = base64.b64encode(buffer.getvalue()).decode("ascii")
     text = html.escape(caption)

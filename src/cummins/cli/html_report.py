@@ -234,7 +234,8 @@ def rao_table_html(rao: xr.DataArray) -> str:
 
 def model_sections(path: Path) -> list[Section]:
     """The fit table, K(t) of the model and, with its data, the fit of every coupling."""
-    from cummins.plots import plot_coupling_fit, plot_retardation
+    from cummins.fit_figures import fit_figures
+    from cummins.plots import plot_retardation
     from cummins.radiation.model import RadiationModel
 
     model = RadiationModel.load(path)
@@ -292,14 +293,9 @@ def model_sections(path: Path) -> list[Section]:
     ds = read(source)
     if "forward_speed" in ds.dims:
         ds = ds.isel(forward_speed=0)
-    excluded = model.attrs.get("excluded_frequencies", [])
     figures = [
-        figure_html(
-            plot_coupling_fit(ds, model, k.influenced, k.radiating, excluded),
-            f"{model.dofs[k.influenced]}–{model.dofs[k.radiating]}: data against the model",
-        )
-        for k in model.modelled
-        if k.influenced <= k.radiating
+        figure_html(fig, f"{name[4:-4]}: its couplings, data against the model")
+        for name, fig in fit_figures(model, ds)
     ]
     sections.append(Section(f"Fits against the data ({Path(str(source)).name})", "".join(figures)))
     return sections

@@ -18,6 +18,7 @@ from cummins.cli.common import (
     reports_errors,
     select_speed,
     speed_option,
+    stage_progress,
 )
 
 
@@ -131,23 +132,26 @@ def kernel_command(
 
     prepare_outputs(output, force=force, folders=[plot_dir])
     ds = select_speed(read_hydrodb(path, format_, rho, g, ulen), speed)
-    result, ds = kernel_stage(
-        ds,
-        t_max=t_max,
-        dt=dt,
-        tail=tail,
-        interpolation=interpolation,
-        omega_max=omega_max,
-        remove_suspect=remove_suspect,
-        above_first=above_first,
-        truncate=truncate,
-        say=console.print,
-    )
+    with stage_progress("K(t) of every coupling and A∞"):
+        result, ds = kernel_stage(
+            ds,
+            t_max=t_max,
+            dt=dt,
+            tail=tail,
+            interpolation=interpolation,
+            omega_max=omega_max,
+            remove_suspect=remove_suspect,
+            above_first=above_first,
+            truncate=truncate,
+            say=console.print,
+        )
     console.print(kernel_table(result))
     result.to_netcdf(output, engine="h5netcdf")
     console.print(f"wrote {output}")
     if plot_dir:
-        for file in write_kernel_plots(result, ds, Path(plot_dir), force=force):
+        with stage_progress("drawing K(t), A and B rebuilt from it, A∞"):
+            files = write_kernel_plots(result, ds, Path(plot_dir), force=force)
+        for file in files:
             console.print(f"wrote {file}")
 
 

@@ -13,6 +13,7 @@ from pathlib import Path
 import numpy as np
 import xarray as xr
 
+from cummins.errors import check_writable
 from cummins.hydrodb import dof_matrix
 
 
@@ -116,25 +117,31 @@ def write_kernel_plots(
     return [save_figure(fig, folder / name, force=force) for name, fig in figures]
 
 
-def write_fit_plots(model, ds: xr.Dataset, folder: Path, *, force: bool = False) -> list[Path]:
-    """One PNG per fitted coupling (i ≤ j): data against the model (``fit_<coupling>.png``).
+def write_fit_plots(
+    model,
+    ds: xr.Dataset,
+    folder: Path,
+    *,
+    force: bool = False,
+    say: Callable[[str], object] = lambda message: None,
+) -> list[Path]:
+    """One PNG per DOF with a fitted coupling, a row per coupling (i, j ≥ i): data against
+    the model (``fit_<DOF>.png``, :func:`cummins.fit_figures.fit_figures`); ``say`` is
+    told each file as it is written.
 
     ``ds`` is the data as read (one forward speed); the frequencies the fit left out are
     drawn as open circles.
     """
-    from cummins.plots import plot_coupling_fit, save_figure
+    from cummins.fit_figures import fit_figures, fitted_rows
+    from cummins.plots import save_figure
 
-    excluded = model.attrs.get("excluded_frequencies", [])
-    if "forward_speed" in ds.dims:
-        ds = ds.isel(forward_speed=0)
+    names = [f"fit_{model.dofs[i]}.png" for i in fitted_rows(model)]
+    for name in names:  # before any work: no file is overwritten without --force
+        check_writable(folder / name, force)
     written = []
-    for k in model.modelled:
-        if k.influenced > k.radiating:
-            continue
-        a, b = model.dofs[k.influenced], model.dofs[k.radiating]
-        name = f"fit_{a}.png" if a == b else f"fit_{a}-{b}.png"
-        fig = plot_coupling_fit(ds, model, k.influenced, k.radiating, excluded)
+    for name, fig in fit_figures(model, ds):
         written.append(save_figure(fig, folder / name, force=force))
+        say(f"wrote {written[-1]}")
     return written
 
 
@@ -190,6 +197,7 @@ def reduce_stage(
     data: xr.Dataset | None = None,
     passive: bool = True,
     motion_tol: float | None = None,
+    progress: Callable[[str], object] | None = None,
 ):
     """Reduce a radiation model and, by default, make the result passive as a MIMO model.
 
@@ -211,15 +219,21 @@ def reduce_stage(
     from cummins.radiation.reduce import reduce_radiation_model, reduce_to_motion_tolerance
 
     if motion_tol is not None:
-        reduced = reduce_to_motion_tolerance(model, data, motion_tol, method=method)
+        reduced = reduce_to_motion_tolerance(
+            model, data, motion_tol, method=method, progress=progress
+        )
     else:
-        reduced = reduce_radiation_model(model, order=order, tol=tol, method=method, data=data)
+        reduced = reduce_radiation_model(
+            model, order=order, tol=tol, method=method, data=data, progress=progress
+        )
     reference = model_fit_data(model, data) if data is not None else model_as_data(model)
     if reduced.blocks:  # common-pole blocks are made passive by their reduction
         attrs = {**reduced.attrs, "mimo_passive": is_passive(reduced)}
         return replace(reduced, attrs=attrs), None, reference
     if not passive:
         return reduced, None, reference
+    if progress is not None:
+        progress("measuring the couplings; passivity of the MIMO model")
     # measures of fit against the reference, for the weighting of the correction
     couplings = []
     for k in reduced.couplings:

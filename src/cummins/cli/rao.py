@@ -19,6 +19,7 @@ from cummins.cli.common import (
     reports_errors,
     select_speed,
     speed_option,
+    stage_progress,
     viscous_damping_option,
     viscous_damping_values,
 )
@@ -27,7 +28,8 @@ from cummins.cli.system_options import (
     system_from_options,
     system_options,
 )
-from cummins.hydrodb import bodies, is_rotation
+from cummins.dofs import is_rotation
+from cummins.hydrodb import bodies
 
 #: Options that take a list of numbers: ``--headings 0 45 90`` (as well as repeated).
 _LIST_OPTIONS = ("--headings",)
@@ -242,9 +244,10 @@ def rao_command(
         labels = list(assembly.dofs)
         print_system(assembly)
     damping = viscous_damping_values(viscous_damping, labels)
-    rao = motion_rao(
-        ds, omega, beta, viscous_damping=damping, additional=not no_additional, system=system
-    )
+    with stage_progress("solving the equation of motion at every frequency and heading"):
+        rao = motion_rao(
+            ds, omega, beta, viscous_damping=damping, additional=not no_additional, system=system
+        )
     pto = None
     if system is not None and system.ptos:
         from cummins.seakeeping.frequency_domain import pto_rao
@@ -263,7 +266,8 @@ def rao_command(
     if plot_file:
         from cummins.plots import plot_rao, save_figure
 
-        save_figure(plot_rao(rao), plot_file, force=force)
+        with stage_progress("drawing the RAOs"):
+            save_figure(plot_rao(rao), plot_file, force=force)
         console.print(f"wrote {plot_file}")
 
 

@@ -21,6 +21,7 @@ from cummins.cli.common import (
     reports_errors,
     select_speed,
     speed_option,
+    stage_progress,
 )
 
 
@@ -142,7 +143,7 @@ def reduce_command(
     data = None
     if data_path:
         data = select_speed(read_hydrodb(data_path, format_, rho, g, ulen), speed)
-    with console.status(f"reducing {model.total_order} states ({method})"):
+    with stage_progress(f"reducing {model.total_order} states ({method})") as say:
         reduced, corrected, reference = reduce_stage(
             model,
             order=order,
@@ -151,6 +152,7 @@ def reduce_command(
             data=data,
             passive=passive,
             motion_tol=motion_tol,
+            progress=say,
         )
     against = "the data" if data is not None else "the unreduced model"
     console.print(reduction_table(model, reduced, reference, against))
@@ -242,10 +244,14 @@ def _r2(k, model, reference) -> tuple[float, float]:
 def reduction_table(model, reduced, reference, against: str) -> Table:
     """Per coupling: order before and after, R² of A and B against the reference,
     Glover's bound relative to the coupling's peak |K| (lyapunov), passivity."""
+    method = reduced.attrs.get("reduction_method")
     table = Table(
-        title=f"reduced model ({reduced.attrs.get('reduction_method')}; R² against {against})"
+        title=f"reduced model ({method + '; ' if method else ''}R² against {against})",
+        caption="states: of the coupling's model, or of the block of common poles it belongs to"
+        if reduced.blocks
+        else None,
     )
-    for column in ("coupling", "order", "R² A", "R² B", "bound/max|K|", "passive"):
+    for column in ("coupling", "states", "R² A", "R² B", "bound/max|K|", "passive"):
         table.add_column(column, justify="right")
     before = {(k.influenced, k.radiating): k.order for k in model.modelled}
     w = reference.omega

@@ -289,20 +289,10 @@ def simulate_command(
         title = f"regular waves, amplitude {wave_amplitude:g} m, period {wave_period:g} s"
     else:
         shape = wv.wave_spectrum(spectrum, hs, tp, gamma=gamma if spectrum == "jonswap" else None)
-        lo, hi = wv.energy_range(shape)
-        w_data = ds.omega.values
-        band = (max(lo, float(w_data[0])), min(hi, float(w_data[-1])))
-        if band != (lo, hi):
-            console.print(
-                f"note: wave components limited to the data's frequencies, {band[0]:.4g} to "
-                f"{band[1]:.4g} rad/s (the spectrum's energy lies within {lo:.4g} to "
-                f"{hi:.4g} rad/s)"
-            )
         sea = wv.irregular_waves(
             shape,
             duration=duration,
-            omega_min=band[0],
-            omega_max=band[1],
+            data=ds,  # components within the data's frequencies (a note says so)
             n_components=components,
             direction=direction,
             spreading=spreading,

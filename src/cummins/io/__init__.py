@@ -2,19 +2,19 @@
 
 ``read(path)`` returns a canonical ``HydroDB`` (see :mod:`cummins.hydrodb`) from:
 
-========== ============================================================ ==============
-format     files                                                        module
-========== ============================================================ ==============
-wamit      WAMIT ``.1`` (+ ``.3``, ``.hst``, ``.frc``, ``.out``)         :mod:`.wamit`
-wamit-out  WAMIT ``.out`` log on its own                                :mod:`.wamit`
-hams       HAMS project (``Input/ControlFile.in`` + ``Output*/Wamit_format``) :mod:`.hams`
-nemoh      NEMOH v2/v3 ``RadiationCoefficients.tec`` … (file or folder)  :mod:`.nemoh`
-aqwa       ANSYS AQWA ``.LIS`` (or ``.AH1``)                            :mod:`.aqwa`
-veres      ShipX/VERES ``.re7`` (+ ``.re8``, ``.re1``)                  :mod:`.veres`
-netcdf     Capytaine NetCDF (and cummins' own, which is the same layout) :mod:`.netcdf`
-bemio      WEC-Sim's BEMIO ``.h5`` (MATLAB and 2015 Python layouts)     :mod:`.bemio`
-mss        Marine Systems Simulator ``vessel`` struct (``.mat``)        :mod:`.mss`
-========== ============================================================ ==============
+========= ================================================================== ==============
+format    files                                                              module
+========= ================================================================== ==============
+wamit     WAMIT ``.1`` (+ ``.3``, ``.hst``, ``.frc``, ``.out``)              :mod:`.wamit`
+wamit-out WAMIT ``.out`` log on its own                                      :mod:`.wamit`
+hams      HAMS project (``Input/ControlFile.in`` + ``Output*/Wamit_format``) :mod:`.hams`
+nemoh     NEMOH v2/v3 ``RadiationCoefficients.tec`` … (file or folder)       :mod:`.nemoh`
+aqwa      ANSYS AQWA ``.LIS`` (or ``.AH1``)                                  :mod:`.aqwa`
+veres     ShipX/VERES ``.re7`` (+ ``.re8``, ``.re1``)                        :mod:`.veres`
+netcdf    Capytaine NetCDF (and cummins' own, which is the same layout)      :mod:`.netcdf`
+bemio     WEC-Sim's BEMIO ``.h5`` (MATLAB and 2015 Python layouts)           :mod:`.bemio`
+mss       Marine Systems Simulator ``vessel`` struct (``.mat``)              :mod:`.mss`
+========= ================================================================== ==============
 
 ``write(ds, path)`` writes canonical NetCDF (``.nc``), a BEMIO ``.h5`` for WEC-Sim, or
 an MSS ``vessel`` ``.mat``.
@@ -27,10 +27,12 @@ import os
 from collections.abc import Callable
 from dataclasses import dataclass
 from pathlib import Path
-
-import xarray as xr
+from typing import TYPE_CHECKING
 
 from cummins.errors import HydroDataError, check_writable
+
+if TYPE_CHECKING:
+    import xarray as xr
 
 
 @dataclass(frozen=True)

@@ -666,7 +666,13 @@ def save_rao(rao: xr.DataArray, path, *, force: bool = False, pto: xr.Dataset | 
             else:
                 out[name] = (("omega", "wave_direction", "pto"), values, dict(var.attrs))
         out = out.assign_coords(pto=("pto", [str(p) for p in pto.pto.values], dict(pto.pto.attrs)))
-    out.attrs = encode_attributes({"title": "cummins motion RAO", **_version_attr()})
+    out.attrs = encode_attributes(
+        {
+            "title": "cummins motion RAO",
+            "time_convention": FILE_TIME_CONVENTION,  # the file's, said on the file too
+            **_version_attr(),
+        }
+    )
     return save_netcdf(out, path)
 
 

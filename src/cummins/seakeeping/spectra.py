@@ -27,13 +27,14 @@ from __future__ import annotations
 
 import functools
 import math
+import warnings
 from collections.abc import Callable
 
 import numpy as np
 from numpy.typing import ArrayLike, NDArray
 from scipy import integrate
 
-from cummins.errors import ArgumentError
+from cummins.errors import ArgumentError, CumminsWarning
 from cummins.validation import non_negative, positive
 
 __all__ = [
@@ -41,6 +42,7 @@ __all__ = [
     "energy_range",
     "jonswap",
     "pierson_moskowitz",
+    "range_within_data",
     "torsethaugen",
     "torsethaugen_parameters",
     "wave_spectrum",
@@ -329,3 +331,43 @@ def energy_range(
     lo = float(np.interp(fraction / 2 * total, cumulative, w))
     hi = float(np.interp((1 - fraction / 2) * total, cumulative, w))
     return lo, hi
+
+
+def range_within_data(spectrum: Spectrum, omega_data: ArrayLike) -> tuple[float, float]:
+    """The range of :func:`energy_range`, limited to the frequencies a database holds
+    (``omega_data``, rad/s): wave components beyond them could not be given a force (the
+    excitation is not extrapolated). A warning says so, with the share of the spectrum's
+    energy left out, when the limit cuts the range (a :class:`~cummins.errors.
+    CumminsWarning` from 1 % of the energy, a note below).
+
+    Examples
+    --------
+    >>> import warnings
+    >>> with warnings.catch_warnings(record=True) as caught:
+    ...     warnings.simplefilter("always")
+    ...     lo, hi = range_within_data(wave_spectrum("pm", 4.0, 10.0), [0.3, 2.0])
+    >>> round(lo, 3), hi, "1.3 % of the spectrum's energy" in str(caught[0].message)
+    (0.4, 2.0, True)
+    """
+    lo, hi = energy_range(spectrum)
+    w = np.asarray(omega_data, dtype=float).reshape(-1)
+    band = (max(lo, float(w.min())), min(hi, float(w.max())))
+    if band[0] >= band[1]:
+        raise ArgumentError(
+            f"the spectrum's energy ({lo:.4g} to {hi:.4g} rad/s) lies outside the data's "
+            f"frequencies, {w.min():.4g} to {w.max():.4g} rad/s: no wave component can be "
+            "given a force"
+        )
+    if band != (lo, hi):
+        grid = np.geomspace(1e-3, 1e3, 8000)
+        s = np.asarray(spectrum(grid), dtype=float)
+        inside = (grid >= band[0]) & (grid <= band[1])
+        left_out = 1.0 - np.trapezoid(s[inside], grid[inside]) / np.trapezoid(s, grid)
+        warnings.warn(
+            f"wave components limited to the data's frequencies, {band[0]:.4g} to "
+            f"{band[1]:.4g} rad/s (the spectrum's energy lies within {lo:.4g} to "
+            f"{hi:.4g} rad/s; {100 * left_out:.2g} % of the spectrum's energy left out)",
+            CumminsWarning if left_out >= 0.01 else UserWarning,  # a note below 1 %
+            stacklevel=3,
+        )
+    return band

@@ -48,6 +48,7 @@ from cummins.seakeeping.spectra import (
     energy_range,
     jonswap,
     pierson_moskowitz,
+    range_within_data,
     torsethaugen,
     torsethaugen_parameters,
     wave_spectrum,
@@ -458,6 +459,7 @@ def irregular_waves(
     spreading: float | None = None,
     n_directions: int = 1,
     seed: int | np.random.Generator | None = None,
+    data=None,
 ) -> WaveComponents:
     """Realise a wave spectrum as random-phase harmonic components.
 
@@ -492,7 +494,7 @@ def irregular_waves(
         Number of frequency bins.
     omega_min, omega_max
         Frequency range, rad/s. Default: :func:`energy_range` (all but 0.1 % of the
-        energy, 0.05 % left out at each end).
+        energy, 0.05 % left out at each end), within the frequencies of ``data``.
     direction
         Mean direction of travel, rad (0: along +x; π: head seas).
     spreading
@@ -504,6 +506,12 @@ def irregular_waves(
         that it fits an int64 in a run file), recorded in ``WaveComponents.seed`` so that
         the sea can be made again. The frequencies
         are drawn first, then the phases.
+    data
+        The ``HydroDB`` the waves will drive (or its frequencies, rad/s): the default
+        range is limited to its frequencies, whose excitation is not extrapolated, with
+        a :class:`~cummins.errors.CumminsWarning` when that cuts the spectrum
+        (:func:`~cummins.seakeeping.spectra.range_within_data`; ``cummins simulate`` does
+        the same).
 
     Returns
     -------
@@ -526,7 +534,11 @@ def irregular_waves(
         hint="Ask for fewer components (--components) or directions (--directions)",
     )
     if omega_min is None or omega_max is None:
-        lo, hi = energy_range(spectrum)
+        if data is None:
+            lo, hi = energy_range(spectrum)
+        else:
+            omega = data.omega.values if hasattr(data, "omega") else data
+            lo, hi = range_within_data(spectrum, omega)
         omega_min = lo if omega_min is None else omega_min
         omega_max = hi if omega_max is None else omega_max
     lo, hi = float(omega_min), float(omega_max)

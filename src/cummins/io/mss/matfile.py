@@ -13,7 +13,6 @@ from pathlib import Path
 from typing import Any
 
 import numpy as np
-import scipy.io
 from numpy.typing import NDArray
 
 from cummins.errors import HydroDataError
@@ -42,6 +41,8 @@ def sniff(path: Path) -> bool:
     path = Path(path)
     if not path.is_file() or not _is_mat_v5(path):
         return False
+    import scipy.io  # here, not above: sniffing a file of another format need not load it
+
     try:
         variables = scipy.io.whosmat(str(path))
     except Exception:  # scipy raises many kinds on foreign content
@@ -71,6 +72,8 @@ def load_mat_struct(path: Path, name: str, missing_hint: str) -> np.void:
             hint=f"in MATLAB, save the struct again with save(file, '{name}', '-v7')",
         )
     try:
+        import scipy.io
+
         content = scipy.io.loadmat(str(path), squeeze_me=False, struct_as_record=True)
     except Exception as exc:  # scipy raises ValueError, TypeError, OSError … on damage
         raise HydroDataError(

@@ -10,7 +10,6 @@ import os
 from pathlib import Path
 
 import numpy as np
-import scipy.io
 import xarray as xr
 
 from cummins.errors import HydroDataError
@@ -19,6 +18,8 @@ from cummins.io.mss.matfile import _cells, _field, _numeric, load_mat_struct
 
 
 def _holds_rao_struct(path: Path) -> bool:
+    import scipy.io  # here: reading a file of another format need not load it
+
     try:
         variables = scipy.io.whosmat(str(path))
     except Exception:

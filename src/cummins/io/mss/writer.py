@@ -13,7 +13,6 @@ from pathlib import Path
 from typing import Any
 
 import numpy as np
-import scipy.io
 import xarray as xr
 from numpy.typing import NDArray
 
@@ -211,6 +210,8 @@ def write_mss(ds: xr.Dataset, path: str | os.PathLike[str]) -> Path:
         extras["additional_stiffness"] = first["additional_stiffness"].values
     vessel["cummins"] = extras
     try:
+        import scipy.io  # here: reading files of other formats need not load it
+
         scipy.io.savemat(str(path), {"vessel": vessel}, do_compression=True, oned_as="row")
     except OSError as exc:
         raise HydroDataError(f"cannot write the file ({exc.strerror or exc})", path=path) from None

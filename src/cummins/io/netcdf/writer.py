@@ -103,7 +103,7 @@ def save_netcdf(ds: xr.Dataset, path: str | os.PathLike[str], *, checksum: bool 
     try:
         with warnings.catch_warnings():
             warnings.simplefilter("ignore", category=FutureWarning)
-            ds.to_netcdf(tmp, engine="h5netcdf", encoding=encoding)
+            _to_h5netcdf(ds, tmp, encoding)
         os.replace(tmp, path)
     except OSError as exc:
         raise HydroDataError(f"cannot write the file ({exc})", path=path) from None
@@ -111,6 +111,29 @@ def save_netcdf(ds: xr.Dataset, path: str | os.PathLike[str], *, checksum: bool 
         if tmp.exists():
             tmp.unlink()
     return path
+
+
+def _to_h5netcdf(ds: xr.Dataset, path: Path, encoding: dict | None) -> None:
+    """``ds.to_netcdf(path, engine="h5netcdf", encoding=encoding)``. An in-memory dataset
+    (no dask chunks) goes to xarray's h5netcdf store directly (``Dataset.dump_to_store``,
+    what ``to_netcdf`` does for it): ``to_netcdf`` first asks dask which scheduler runs,
+    which imports dask.distributed — a quarter of a second of every command that writes
+    a file, when dask is installed."""
+    if any(v.chunks is not None for v in ds.variables.values()):
+        ds.to_netcdf(path, engine="h5netcdf", encoding=encoding)
+        return
+    from xarray.backends import H5NetCDFStore
+
+    unlimited = ds.encoding.get("unlimited_dims")
+    store = H5NetCDFStore.open(path, mode="w")
+    try:
+        ds.dump_to_store(
+            store,
+            encoding=encoding or {},
+            unlimited_dims={unlimited} if isinstance(unlimited, str) else unlimited,
+        )
+    finally:
+        store.close()
 
 
 def _checksum_encoding(ds: xr.Dataset) -> dict[str, dict[str, Any]]:

@@ -11,7 +11,7 @@
    A_ij − A_ji constant over frequency (a panel mesh's) is kept in A∞
    (:func:`antisymmetric_added_mass`).
 2. **Couplings**: the significant ones
-(:func:`cummins.radiation.retardation.significant_couplings`);
+   (:func:`cummins.radiation.retardation.significant_couplings`);
    negligible couplings (relative threshold) are left out and reported; a symmetric
    pair K_ij = K_ji is fitted once, to the symmetric part of the data, and used twice.
 3. **A∞**: the solver's ω = ∞ row when present and consistent with the finite
@@ -33,8 +33,7 @@
    per rank of each residue matrix. With ``method="fd"``, ``"realization"`` or
    ``"prony"`` each coupling gets its own model instead
    (:mod:`cummins.radiation.fit.frequency`, :mod:`cummins.radiation.fit.realization`), at the
-   smallest
-   order whose R² reaches the target and whose share of the motion error is within its
+   smallest order whose R² reaches the target and whose share of the motion error is within its
    budget, up to ``max_order``; diagonal models are positive real.
 6. **MIMO** (per-coupling methods): the assembled model made passive
    (:func:`make_passive`), then up to three rounds refit the couplings that carry the
@@ -46,11 +45,10 @@ The stages are modules, and functions a user can call: the options
 (:mod:`cummins.radiation.fit.options`, :class:`FitOptions` and its presets), the data selection
 (:mod:`cummins.radiation.fit.data`, :func:`prepare_fit`), the common-pole identification
 (:mod:`cummins.radiation.fit.blocks`, :func:`fit_blocks`, on :mod:`cummins.radiation.fit.vector`),
-the
-per-coupling identification (:mod:`cummins.radiation.fit.couplings`, :func:`fit_per_coupling`,
-on :mod:`cummins.radiation.fit.frequency` and :mod:`cummins.radiation.fit.realization`) and its
-MIMO stage
-(:mod:`cummins.radiation.fit.mimo`).
+the per-coupling identification (:mod:`cummins.radiation.fit.couplings`,
+:func:`fit_per_coupling`, on :mod:`cummins.radiation.fit.frequency` and
+:mod:`cummins.radiation.fit.realization`) and its MIMO stage (:mod:`cummins.radiation.fit.mimo`).
+
 7. **Metrics** per coupling (:mod:`cummins.radiation.fit.metrics`); the scoreboard of a model
    against its data, independent of the fit: :mod:`cummins.radiation.fit.scorecard`.
 """

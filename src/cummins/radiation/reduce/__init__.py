@@ -13,10 +13,9 @@ A_r = Ā₁₁, B_r = B̄₁, C_r = C̄₁, D_r = D (eq. 5.13). The choice of (M
     ‖G − G_r‖∞ ≤ 2 Σ σ_k over the *distinct* discarded values (Glover 1984). The bound
     printed in Unneland (2007) eq. 5.22 lacks the factor 2: that is an erratum (MATLAB's
     ``imp2ss`` reports 2 Σ too), and :func:`glover_bound` has the 2.
-``"riccati"`` (positive-real or phase-system balancing, Desai & Pal 1984, Green 1988;
-Unneland (2007) §5.2.2)
-    M = R_min and N = O_min, the minimal solutions of the positive-real (PR) Riccati
-    equations
+``"riccati"`` (positive-real balancing: Desai & Pal 1984, Green 1988, Unneland (2007) §5.2.2)
+    Positive-real (or phase-system) balancing. M = R_min and N = O_min, the minimal
+    solutions of the positive-real (PR) Riccati equations
     A R + R Aᵀ + (R Cᵀ − B)(D + Dᵀ)⁻¹(C R − Bᵀ) = 0 (eq. 5.43) and
     Aᵀ O + O A + (O B − Cᵀ)(D + Dᵀ)⁻¹(Bᵀ O − C) = 0 (eq. 5.44).
     For a PR G, Σ ≤ I (eq. 5.47) and every truncation is PR (Def. 5.2).

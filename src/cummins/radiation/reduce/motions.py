@@ -12,6 +12,7 @@ headings, each DOF's peak) is within ``motion_tol`` is kept.
 
 from __future__ import annotations
 
+from collections.abc import Callable
 from dataclasses import replace
 
 import xarray as xr
@@ -31,6 +32,7 @@ def reduce_to_motion_tolerance(
     motion_tol: float = 0.01,
     *,
     method: str = "lyapunov",
+    progress: Callable[[str], object] | None = None,
 ) -> RadiationModel:
     """The reduced model with the fewest states whose motions are within ``motion_tol``.
 
@@ -44,6 +46,8 @@ def reduce_to_motion_tolerance(
         Largest motion-RAO error, a fraction of each DOF's peak motion (0.01: 1 %).
     method
         Balanced truncation method of the blocks.
+    progress
+        Called with a short message at each tolerance tried and each block reduced.
 
     Returns
     -------
@@ -88,8 +92,11 @@ def reduce_to_motion_tolerance(
         )
         return _noted(model, {**base, "motion_error": unreduced}, failure=failure)
 
+    say = progress or (lambda message: None)
+
     def within(tol: float) -> RadiationModel | None:
-        reduced = reduce_radiation_model(model, tol=tol, method=method, data=data)
+        say(f"trying tol {tol:g}")
+        reduced = reduce_radiation_model(model, tol=tol, method=method, data=data, progress=say)
         if set(reduced.attrs.get("failures", [])) - known:
             return None
         error = motion_rao_error(data, reduced).error

@@ -15,7 +15,7 @@ Balanced truncation: Unneland (2007) Ch. 5.
 from __future__ import annotations
 
 import math
-from collections.abc import Mapping
+from collections.abc import Callable, Mapping
 from dataclasses import replace
 from typing import TYPE_CHECKING, Any
 
@@ -71,6 +71,7 @@ def reduce_radiation_model(
     method: str = "lyapunov",
     regularization: float = DEFAULT_REGULARIZATION,
     data: xr.Dataset | None = None,
+    progress: Callable[[str], object] | None = None,
 ) -> RadiationModel:
     """Reduce a radiation model coupling by coupling (balanced truncation of each K_ij), or
     block by block for a model of common-pole blocks.
@@ -161,6 +162,9 @@ def reduce_radiation_model(
         ε for the PR methods.
     data
         The data of the fit, to recompute the measures of fit.
+    progress
+        Called with a short message as each block or coupling is reduced (the command
+        line shows it).
 
     Returns
     -------
@@ -188,16 +192,19 @@ def reduce_radiation_model(
     guard_radiation_model(model)  # FitError naming the coupling, before LAPACK sees it
     if data is not None:
         guard_hydro_data(data, what="reduction")
+    say = progress or (lambda message: None)
     fitted = None if data is None else model_fit_data(model, data)
     if model.blocks:
-        result = _reduced_blocks(model, order, tol, method, regularization, fitted)
+        result = _reduced_blocks(model, order, tol, method, regularization, fitted, say)
         return _recorded(model, result, method, tol)
+    say(f"balancing {len(model.couplings)} couplings ({method})")
     units = _prepared(model, method, regularization, None if fitted is None else fitted.omega)
     chosen = _requested(model, units, order, tol)
     couplings = list(model.couplings)
     for u, candidate in zip(units, chosen, strict=True):
         if candidate is None:
             continue
+        say(f"truncating coupling {u.entries[0] + 1} of {len(couplings)}")
         reduced = _reduced_coupling(u, candidate)
         for index in u.entries:
             old = model.couplings[index]
@@ -235,6 +242,7 @@ def _reduced_blocks(
     method: str,
     regularization: float,
     fitted: FitData | None,
+    say: Callable[[str], object] = lambda message: None,
 ) -> RadiationModel:
     """A model of common-pole blocks reduced block by block (:mod:`~cummins.radiation.
     reduce.blocks`): each chosen truncation passive, with K(0) = 0, in its own states."""
@@ -243,14 +251,17 @@ def _reduced_blocks(
             "the model holds both common-pole blocks and single couplings: reduce it "
             "with a tolerance (tol=..., cummins reduce --tol)"
         )
-    units = [
-        prepared_block(block, index, method, regularization, _block_grid(model, block, fitted))
-        for index, block in enumerate(model.blocks)
-    ]
+    n = len(model.blocks)
+    units = []
+    for index, block in enumerate(model.blocks):
+        say(f"block {index + 1} of {n} ({block.order} states): balanced truncations")
+        grid = _block_grid(model, block, fitted)
+        units.append(prepared_block(block, index, method, regularization, grid))
     chosen = _requested_blocks(units, order, tol)
     blocks = list(model.blocks)
     for unit, candidate in zip(units, chosen, strict=True):
         if candidate is not None:
+            say(f"block {unit.index + 1} of {n}: K(0) = 0 and passivity in its states")
             blocks[unit.index] = _reduced_block(unit, candidate, fitted, model)
         elif unit.notes:
             blocks[unit.index] = replace(

@@ -213,7 +213,7 @@ def wind_gust(
     mean_speed
         Mean wind speed at 10 m, m/s.
     spectrum
-        ``"harris"``, ``"norsok"`` or a function S(ω, mean_speed, **options).
+        ``"harris"``, ``"norsok"`` or a function ``S(ω, mean_speed, **options)``.
     n_components
         Number of harmonics.
     omega_min, omega_max

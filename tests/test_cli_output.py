@@ -1,0 +1,167 @@
+"""What the commands print reads right anywhere: in a pipe, a log or CI (no terminal)
+the tables show every number in full, the help lists every format read, and the symbols
+and column names say what the result is."""
+
+from __future__ import annotations
+
+import json
+import os
+import re
+import shutil
+import subprocess
+import sys
+
+import numpy as np
+import pytest
+import xarray as xr
+
+import cummins
+
+
+def _run(*args: str, cwd) -> str:
+    """``python -m cummins ARGS`` with its output in a pipe (not a terminal), as a log or CI
+    gets it: no COLUMNS, no terminal size to take."""
+    env = {k: v for k, v in os.environ.items() if k not in ("COLUMNS", "LINES")}
+    run = subprocess.run(
+        [sys.executable, "-m", "cummins", *args],
+        capture_output=True,
+        text=True,
+        cwd=cwd,
+        env=env,
+        stdin=subprocess.DEVNULL,
+    )
+    assert run.returncode == 0, run.stdout + run.stderr
+    return run.stdout
+
+
+@pytest.fixture
+def tanker_deep(tmp_path):
+    """The bundled tanker in a folder whose path is wider than 80 columns."""
+    folder = tmp_path / ("a_folder_with_a_long_name_" * 3) / "tanker"
+    folder.mkdir(parents=True)
+    for f in cummins.demo_files().glob("tanker.*"):
+        shutil.copy(f, folder / f.name)
+    return folder / "tanker.1"
+
+
+def test_info_in_a_pipe_names_the_whole_file(tanker_deep, tmp_path):
+    out = _run("info", str(tanker_deep), cwd=tmp_path)
+    assert "…" not in out
+    row = next(line for line in out.splitlines() if line.startswith("file"))
+    assert str(tanker_deep) in row and "(wamit)" in row
+
+
+def test_kernel_in_a_pipe_prints_every_number_in_full(tanker_deep, tmp_path):
+    out = _run("kernel", str(tanker_deep), "-o", "K.nc", cwd=tmp_path)
+    assert "…" not in out and "\x1b[" not in out  # full numbers, no spinner
+    with xr.open_dataset(tmp_path / "K.nc", engine="h5netcdf") as f:
+        k0 = f.retardation_function.isel(time=0).load()
+    rows = {line.split("│")[1].strip(): line for line in out.splitlines() if "│" in line}
+    for name in ("Surge", "Heave-Pitch", "Roll-Yaw", "Yaw"):
+        a, _, b = name.partition("-")
+        value = float(k0.sel(influenced_dof=a, radiating_dof=b or a))
+        assert f"{value:.4g}" in rows[name], (name, rows[name])
+    # the header too: the column that says how far K has decayed
+    assert "K(t_max)/max|K|" in out
+
+
+def test_fit_in_a_pipe_prints_the_r2_of_the_json_summary(tanker_deep, tmp_path):
+    out = _run("fit", str(tanker_deep), "-o", "m.nc", "--json", "fit.json", cwd=tmp_path)
+    assert "…" not in out
+    summary = json.loads((tmp_path / "fit.json").read_text())
+    labels = list(cummins.DOF_NAMES)
+    rows = [line.split() for line in out.splitlines()]
+    printed = {
+        r[0]: r for r in rows if len(r) >= 7 and r[0].split("-")[0] in labels and r[1].isdigit()
+    }
+    assert len(printed) == sum(c["i"] <= c["j"] for c in summary["couplings"])
+    for c in summary["couplings"]:
+        if c["i"] > c["j"]:
+            continue
+        a, b = labels[c["i"] - 1], labels[c["j"] - 1]
+        row = printed[a if a == b else f"{a}-{b}"]
+        assert row[1] == str(c["order"])  # the poles column
+        assert row[2] == f"{c['r2_added_mass']:.4f}" and row[3] == f"{c['r2_damping']:.4f}"
+    # one meaning per column name: the fit counts poles, the reduction states
+    assert re.search(r"coupling\s+poles\s+R² A", out)
+    assert "\x1b[" not in out and "\r" not in out  # no progress bar in a pipe
+    reduced = _run(
+        "reduce", "m.nc", "-o", "s.nc", "--tol", "0.02", "--data", str(tanker_deep), cwd=tmp_path
+    )
+    assert "\x1b[" not in reduced and "\r" not in reduced  # no spinner in a pipe
+    assert "None" not in reduced and "(lyapunov; R² against the data)" in reduced
+    assert re.search(r"coupling\s*┃\s*states\s*┃", reduced), reduced
+    # a pair of a block shows its block's states (as the model files hold them)
+    states = re.search(r"│\s+Heave\s+│\s+(\d+) → (\d+)\s+│", reduced)
+    heave = cummins.DOF_NAMES.index("Heave")
+    (before,) = [
+        b.order for b in cummins.RadiationModel.load(tmp_path / "m.nc").blocks if heave in b.dofs
+    ]
+    (after,) = [
+        b.order for b in cummins.RadiationModel.load(tmp_path / "s.nc").blocks if heave in b.dofs
+    ]
+    assert states and (int(states[1]), int(states[2])) == (before, after)
+
+
+def test_help_lists_every_format_read():
+    from click.testing import CliRunner
+
+    from cummins.cli import main
+
+    runner = CliRunner()
+    top = " ".join(runner.invoke(main, ["--help"]).output.split())
+    option = " ".join(runner.invoke(main, ["convert", "--help"]).output.split())
+    for name, fmt in cummins.FORMATS.items():
+        assert " ".join(fmt.description.split()) in top, name
+        assert f"{name} (" in option, name
+    for words in ("HAMS", "BEMIO .h5"):
+        assert words in top and words in option
+
+
+def test_help_starts_without_the_library():
+    """``cummins --help`` imports no SciPy, xarray or matplotlib (they take seconds)."""
+    code = (
+        "import sys\n"
+        "from cummins.cli import main\n"
+        "try:\n"
+        "    main(['--help'])\n"
+        "except SystemExit:\n"
+        "    pass\n"
+        "print(sorted(m for m in ('scipy', 'xarray', 'matplotlib', 'pandas') "
+        "if m in sys.modules))"
+    )
+    run = subprocess.run([sys.executable, "-c", code], capture_output=True, text=True)
+    assert run.returncode == 0, run.stderr
+    assert run.stdout.strip().splitlines()[-1] == "[]"
+    assert np  # numpy is fine: the commands' options use it
+
+
+def test_the_demo_marks_a_missed_target_not_with_a_check_mark(monkeypatch, tmp_path):
+    from click.testing import CliRunner
+
+    import cummins.cli.demo as demo
+    from cummins.cli import main
+
+    steps = [
+        demo.DemoStep("fit", "42 states, passive"),
+        demo.DemoStep("reduce", "smallest diagonal R² 0.7862, below the target", ok=False),
+    ]
+    monkeypatch.setattr(demo, "run_demo", lambda *args, **kwargs: steps)
+    out = CliRunner().invoke(main, ["demo", "-o", str(tmp_path / "d")]).output
+    lines = out.splitlines()
+    assert any(line.startswith("✓ fit") for line in lines)
+    assert any(line.startswith("! reduce") for line in lines)
+    assert not any(line.startswith("✓ reduce") for line in lines)
+    assert "1 step(s) did not reach their targets: reduce" in out
+
+
+def test_the_demo_reduction_is_judged_by_its_r2(tmp_path):
+    """The demo's ERA reduction to the fit's order: marked by the R² it reaches."""
+    import cummins.cli.demo as demo
+
+    ds = cummins.demo_dataset()
+    model = cummins.fit_radiation(ds)
+    step = demo._reduce_step(ds, model, tmp_path, False)
+    worst = float(re.search(r"smallest diagonal R² against the data ([-\d.]+)", step.detail)[1])
+    assert step.ok == (worst >= 0.99)
+    assert ("below the fit's target" in step.detail) == (not step.ok)
