@@ -729,9 +729,14 @@ def describe(ds: xr.Dataset) -> dict[str, Any]:
     for key in ("center_of_gravity", "center_of_buoyancy"):
         if key in ds.attrs:
             info[f"{key}_m"] = [float(x) for x in np.ravel(ds.attrs[key])]
+    # one number for one body, a list of one per body for several
     if "displaced_volume" in ds.attrs:
-        info["displaced_volume_m3"] = float(ds.attrs["displaced_volume"])
+        volumes = [float(x) for x in np.ravel(ds.attrs["displaced_volume"])]
+        info["displaced_volume_m3"] = volumes[0] if len(volumes) == 1 else volumes
     if "inertia_matrix" in ds:
-        m = dof_matrix(ds, "inertia_matrix")
-        info["mass_kg"] = float(np.ravel(m)[0])
+        m = np.diag(dof_matrix(ds, "inertia_matrix"))
+        labels = [str(d) for d in ds.influenced_dof.values]
+        masses = [float(m[labels.index(d)]) for d in labels if split_dof(d)[1] == "Surge"]
+        masses = masses or [float(m[0])]
+        info["mass_kg"] = masses[0] if len(masses) == 1 else masses
     return info

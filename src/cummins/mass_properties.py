@@ -158,6 +158,14 @@ def with_inertia(
         m = _matrix_per_body(matrix, labels, groups)
         lines.append("inertia_matrix given as a matrix")
     else:
+        if None in groups and len(groups) > 1:  # DOFs of the system beside named bodies
+            shared = [d for d in labels if split_dof(d)[0] is None]
+            raise ArgumentError(
+                f"{', '.join(shared)} name no body (DOFs of the system, over several bodies): "
+                "mass properties per body cannot give their inertia",
+                hint="give the whole inertia matrix of all the DOFs (matrix=; "
+                "--inertia-matrix FILE)",
+            )
         m, lines, cogs = _matrix_from_properties(
             ds, labels, groups, mass, center_of_gravity, radii_of_gyration
         )

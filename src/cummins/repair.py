@@ -36,8 +36,12 @@ import xarray as xr
 from numpy.typing import ArrayLike, NDArray
 
 from cummins.errors import HydroDataError
-from cummins.hydrodb import add_history, validate
-from cummins.radiation.retardation import added_mass_inf_per_frequency, causal_limits
+from cummins.hydrodb import add_history, dof_matrix, validate
+from cummins.radiation.retardation import (
+    added_mass_inf_per_frequency,
+    bridged_couplings,
+    causal_limits,
+)
 
 #: Negative diagonal damping below this fraction of its peak makes a frequency suspect.
 NEGATIVE_DAMPING = 0.01
@@ -279,21 +283,33 @@ def sharp_features(ds: xr.Dataset, suspects: Sequence[SuspectFrequency]) -> tupl
     """The suspect frequencies of one DOF that are a sharp feature of its data, not an
     error: its A(ω) follows its B(ω) through them (Kramers–Kronig).
 
-    A resonance between the hulls or columns of a platform gives B(ω) a narrow peak and
-    A(ω) the matching swing; sampled at a few per cent of ω they look like spikes
-    (:func:`find_suspect_frequencies`). An irregular frequency of a panel method looks
-    the same but breaks the Kramers–Kronig relation between A and B. Each group of two
-    or more adjacent suspect points of the DOF's own curves (negative damping excepted)
-    is judged by Ogilvie's A∞ estimate at each frequency, A(ω) − (2/π) PV∫ B(ν)/(ν² − ω²)
-    dν, the same constant at every frequency for a causal pair (Hjulstad (2004) eq. 5.23):
-    over the group and a neighbour on each side, its largest departure from its median
-    with the group's points kept against the same with them bridged (linear
-    interpolation; the DOF's other suspect points bridged in both). A group that keeps
-    the estimate flatter by :data:`FEATURE_RATIO` is a feature. The corpus's WAMIT MHK
-    RM1 platform: surge damping peaks at 2.1 rad/s (0.58 of its maximum, five points
-    flagged) and the estimate stays within 4.5 % of its scale through it, 27 % off with
-    the points bridged; the AQWA PEND hull's heave spikes at 10.7–11.3 rad/s (an
-    irregular frequency): 8.5 % off with them, 1.8 % without.
+    A resonance between the hulls or columns of a platform, or of the water in a moonpool
+    or a gap, gives B(ω) a narrow peak and A(ω) the matching swing; sampled at a few per
+    cent of ω they look like spikes (:func:`find_suspect_frequencies`). An irregular
+    frequency of a panel method looks the same but breaks the Kramers–Kronig relation
+    between A and B. Each group of two or more adjacent suspect points of the DOF's own
+    curves (negative damping excepted) is judged by Ogilvie's A∞ estimate at each
+    frequency, A(ω) − (2/π) PV∫ B(ν)/(ν² − ω²) dν, the same constant at every frequency
+    for a causal pair (Hjulstad (2004) eq. 5.23): over the group and a neighbour on each
+    side, its largest departure from its median with the group's points kept against the
+    same with them bridged (linear interpolation; the DOF's other suspect points bridged
+    in both). A group that keeps the estimate flatter by :data:`FEATURE_RATIO` is a
+    feature. The corpus's WAMIT MHK RM1 platform: surge damping peaks at 2.1 rad/s (0.58
+    of its maximum, five points flagged) and the estimate stays within 4.5 % of its scale
+    through it, 27 % off with the points bridged; the AQWA PEND hull's heave spikes at
+    10.7–11.3 rad/s (an irregular frequency): 8.5 % off with them, 1.8 % without.
+
+    A resonance sampled by a few points (a moonpool's piston mode on a 0.1 rad/s grid)
+    fails that test at its own points, where the piecewise-linear B(ω) misses the peak's
+    shape, but its damping still explains A(ω) on its flanks: a group where B(ω) peaks
+    (above the line through its neighbours) and the estimate on the :data:`FLANK` sound
+    points on each side departs by at most :data:`FLANK_RATIO` of its departure with the
+    group bridged, itself above :data:`FLANK_MIN_DEPARTURE` of the scale, is a feature
+    too. Measured: the piston mode of a ring with a moonpool (inner radius 3 m, outer
+    5 m, 1 m draft, Capytaine on 0.1 rad/s; 4 points flagged) 0.6 % of its scale with the
+    points kept, 23 % bridged; of the irregular frequencies in the corpus, none passes
+    (the Capytaine COER's at 33.9 rad/s: 0.7 %, 2.1 %; the WAMIT sphere's surge at
+    6.2 rad/s, a dip of B: 0.6 %, 6 %).
 
     Parameters
     ----------
@@ -307,6 +323,14 @@ def sharp_features(ds: xr.Dataset, suspects: Sequence[SuspectFrequency]) -> tupl
     tuple of float
         The suspect frequencies (rad/s) that belong to a sharp feature.
     """
+    return tuple(x for group in sharp_resonances(ds, suspects) for x in group)
+
+
+def sharp_resonances(
+    ds: xr.Dataset, suspects: Sequence[SuspectFrequency]
+) -> tuple[tuple[float, ...], ...]:
+    """:func:`sharp_features` group by group: the frequencies (rad/s) of each group of
+    adjacent suspect points that is a sharp resonance of the data."""
     w = ds.omega.values
     if w.size < 6 or ds.sizes["influenced_dof"] != 1:
         return ()
@@ -335,16 +359,111 @@ def sharp_features(ds: xr.Dataset, suspects: Sequence[SuspectFrequency]) -> tupl
         return curve - np.median(curve[~suspect])
 
     without = estimate(suspect)
-    features: list[float] = []
+    background = np.interp(w, w[~suspect], b[~suspect])  # B bridged over every suspect point
+    features: list[tuple[float, ...]] = []
     for group in groups:
         window = np.arange(max(group[0] - 1, 0), min(group[-1] + 2, w.size))
         others = suspect.copy()
         others[group] = False
-        kept = float(np.abs(estimate(others)[window]).max())
+        with_group = estimate(others)
+        kept = float(np.abs(with_group[window]).max())
         bridged = float(np.abs(without[window]).max())
         if bridged > FEATURE_MIN_DEPARTURE * scale and kept <= FEATURE_RATIO * bridged:
-            features += [float(x) for x in w[group]]
+            features.append(tuple(float(x) for x in w[group]))
+            continue
+        flanks = _flanks(group, suspect)
+        if not flanks.size or float(np.sum(b[group] - background[group])) <= 0.0:
+            continue  # a dip of B is no resonance's (the WAMIT sphere's surge at 6.2 rad/s)
+        kept = float(np.abs(with_group[flanks]).max())
+        bridged = float(np.abs(without[flanks]).max())
+        if bridged > FLANK_MIN_DEPARTURE * scale and kept <= FLANK_RATIO * bridged:
+            features.append(tuple(float(x) for x in w[group]))
     return tuple(features)
+
+
+#: A group of suspect points that fails the test of its own points is still a resonance
+#: when, on its flanks (the :data:`FLANK` sound points on each side), Ogilvie's estimate
+#: departs by at most FLANK_RATIO of its departure with the group bridged ...
+FLANK_RATIO = 0.25
+#: ... that departure with the group bridged is above this fraction of the DOF's largest
+#: added mass (the peak carries much of the DOF's damping) ...
+FLANK_MIN_DEPARTURE = 0.05
+#: ... and B(ω) peaks there (above the line through the flanks, on the whole).
+FLANK = 2
+
+
+def _flanks(group: NDArray[np.intp], suspect: NDArray[np.bool_]) -> NDArray[np.intp]:
+    """The :data:`FLANK` points on each side of ``group`` that are not suspect."""
+    left = [i for i in range(group[0] - 1, -1, -1) if not suspect[i]][:FLANK]
+    right = [i for i in range(group[-1] + 1, suspect.size) if not suspect[i]][:FLANK]
+    return np.array(left + right, dtype=np.intp)
+
+
+#: A sharp resonance is kept in the fit when the motions depend on it: with its points
+#: bridged (the DOF's couplings there), the motion RAOs of the data move by more than
+#: this fraction of a motion's peak (2 % of critical damping on the DOFs with restoring,
+#: the wave excitation at 4 headings: :func:`cummins.radiation.fit.motion.motion_sensitivity`).
+#: Measured: a moonpool's piston mode (``tests/data/moonpool_capytaine.nc``) 32 %, the
+#: semisubmersible's heave feature at 1.2–1.4 rad/s 0.02 % (left out, as before: putting
+#: it back cost its R² of B 0.995 → 0.991 for no RAO gain).
+RESONANCE_MOTION = 0.005
+#: Without the inertia and the restoring to judge the motions by, a sharp resonance is
+#: kept when its damping peak is at least this fraction of the DOF's largest.
+RESONANCE_PEAK = 0.5
+
+
+@dataclass(frozen=True)
+class SharpResonance:
+    """A group of suspect points of one DOF that is a sharp resonance of the data
+    (:func:`sharp_resonances`), and whether the fit keeps it.
+
+    Attributes
+    ----------
+    omega
+        Its suspect frequencies, rad/s.
+    damping_share
+        Its largest |B_ii| over the DOF's largest.
+    motion_change
+        The largest change of a motion RAO, relative to that motion's peak, when the
+        resonance is bridged (:data:`RESONANCE_MOTION`); None without the inertia and
+        the restoring.
+    kept
+        Whether the fit keeps its points (the motions depend on it; else it stays out
+        of the fit, as a broadband model does not follow a peak of a few points, and
+        in Ogilvie's A∞).
+    """
+
+    omega: tuple[float, ...]
+    damping_share: float
+    motion_change: float | None
+    kept: bool
+
+    def description(self, label: str) -> str:
+        """One sentence: where it is, why it is physics, whether the fit keeps it."""
+        where = f"{min(self.omega):.4g}–{max(self.omega):.4g} rad/s"
+        text = (
+            f"a piston/gap resonance at {where} in {label} (a sharp resonance of the data, "
+            "not an irregular frequency: its points look like spikes, but A(ω) follows B(ω) "
+            "through them, Kramers–Kronig)"
+        )
+        if self.kept and self.motion_change is not None:
+            return text + (
+                f", kept: without it the motions move by {self.motion_change:.1%} of their peak"
+            )
+        if self.kept:
+            return text + (
+                f", kept: its damping peak is {self.damping_share:.2g} of the DOF's largest "
+                "(no inertia and restoring to judge the motions by)"
+            )
+        if self.motion_change is not None:
+            return text + (
+                f"; the motions hardly depend on it ({self.motion_change:.2%} of their peak): "
+                "left out of the fit, kept for A∞'s estimate"
+            )
+        return text + (
+            f"; its damping peak is {self.damping_share:.2g} of the DOF's largest: left out "
+            "of the fit, kept for A∞'s estimate"
+        )
 
 
 @dataclass(frozen=True)
@@ -355,34 +474,82 @@ class DofSuspects:
     ----------
     suspects
         :func:`find_suspect_frequencies` of the DOF alone.
-    features
-        Those of them (rad/s) that are a sharp resonance of the data, not an error
-        (:func:`sharp_features`).
+    resonances
+        Those of them that are a sharp resonance of the data, not an error
+        (:func:`sharp_resonances`), group by group.
     """
 
     suspects: tuple[SuspectFrequency, ...]
-    features: tuple[float, ...]
+    resonances: tuple[SharpResonance, ...] = ()
 
-    def feature_description(self) -> str:
-        """What the features are, in one sentence (without the DOF); "" when none."""
-        if not self.features:
-            return ""
-        return (
-            f"{min(self.features):.4g}–{max(self.features):.4g} rad/s look like spikes, but "
-            "A(ω) follows B(ω) through them (Kramers–Kronig): a sharp resonance of the data, "
-            "not an irregular frequency"
-        )
+    @property
+    def features(self) -> tuple[float, ...]:
+        """The suspect frequencies (rad/s) that belong to a sharp resonance."""
+        return tuple(x for r in self.resonances for x in r.omega)
+
+    @property
+    def kept(self) -> tuple[float, ...]:
+        """The suspect frequencies (rad/s) of the sharp resonances the fit keeps."""
+        return tuple(x for r in self.resonances if r.kept for x in r.omega)
 
 
 def suspects_by_dof(ds: xr.Dataset) -> dict[str, DofSuspects]:
     """Per DOF label, the suspect frequencies of its own curves and those that are a sharp
-    resonance (what the fit leaves out of each DOF's couplings, and ``cummins check``
-    reports)."""
-    out = {}
-    for label in (str(d) for d in ds.influenced_dof.values):
+    resonance, with whether the fit keeps it (what the fit leaves out of each DOF's
+    couplings, and ``cummins check`` reports).
+
+    A sharp resonance is kept when the motions depend on it (:data:`RESONANCE_MOTION`),
+    or, without the inertia and restoring, when its damping peak is a large part of the
+    DOF's (:data:`RESONANCE_PEAK`)."""
+    labels = [str(d) for d in ds.influenced_dof.values]
+    found, groups = {}, {}
+    for label in labels:
         one = ds.sel(influenced_dof=[label], radiating_dof=[label])
-        found = find_suspect_frequencies(one)
-        out[label] = DofSuspects(found, sharp_features(one, found))
+        found[label] = find_suspect_frequencies(one)
+        groups[label] = sharp_resonances(one, found[label])
+    if not any(groups.values()):
+        return {label: DofSuspects(found[label]) for label in labels}
+    motions = _motion_change(ds, groups)
+    w = ds.omega.values
+    b = np.abs(np.diagonal(dof_matrix(ds, "radiation_damping"), axis1=1, axis2=2))
+    out = {}
+    for d, label in enumerate(labels):
+        resonances = []
+        for k, group in enumerate(groups[label]):
+            at = np.isin(w, group)
+            share = float(b[at, d].max() / b[:, d].max()) if b[:, d].max() > 0 else 0.0
+            change = motions.get((label, k))
+            kept = change > RESONANCE_MOTION if change is not None else share >= RESONANCE_PEAK
+            resonances.append(SharpResonance(group, share, change, bool(kept)))
+        out[label] = DofSuspects(found[label], tuple(resonances))
+    return out
+
+
+def _motion_change(ds: xr.Dataset, groups) -> dict[tuple[str, int], float]:
+    """Per (DOF label, group index) of ``groups``, the largest change of the data's
+    motion RAOs, relative to each motion's peak, when that group's points are bridged
+    in the DOF's couplings (A and B; the excitation as it is); empty without the inertia
+    and the restoring."""
+    from cummins.radiation.fit.motion import motion_sensitivity  # the fit imports repair
+
+    if "forward_speed" in ds.dims or "inertia_matrix" not in ds:
+        return {}
+    sensitivity = motion_sensitivity(ds)
+    if sensitivity is None or not np.all(np.isfinite(sensitivity.motions)):
+        return {}
+    labels = [str(d) for d in ds.influenced_dof.values]
+    w = ds.omega.values
+    a, b = dof_matrix(ds, "added_mass"), dof_matrix(ds, "radiation_damping")
+    rows = sensitivity.compared_frequencies()
+    out = {}
+    for label, found in groups.items():
+        d = labels.index(label)
+        for k, group in enumerate(found):
+            keep = np.ones((w.size, len(labels)), dtype=bool)
+            keep[np.isin(w, group), d] = False
+            ab, bb = bridged_couplings(a, w, keep), bridged_couplings(b, w, keep)
+            memory = bb[rows] + 1j * w[rows, None, None] * ab[rows]
+            out[(label, k)] = sensitivity.error_of(memory, np.zeros(a.shape[1:]))[0]
     return out
 
 

@@ -94,47 +94,61 @@ def _check_suspect_frequencies(ds: xr.Dataset) -> list[Finding]:
     out = []
     for sub in _speeds(ds):
         suffix = _speed_suffix(sub)
-        suspects = find_suspect_frequencies(sub)
+        own = suspects_by_dof(sub)
+        # a frequency every DOF that flags it calls a sharp resonance is physics
+        resonant = set().union(*(found.features for found in own.values()))
+        for found in own.values():
+            resonant -= {s.omega for s in found.suspects if s.omega not in found.features}
+        suspects = [s for s in find_suspect_frequencies(sub) if s.omega not in resonant]
         if not suspects:
+            message = "no spikes or clearly negative damping"
+            if resonant:
+                message = "no irregular frequency: the points that look like spikes are sharp "
+                message += "resonances of the data (below)"
+            out.append(Finding("suspect_frequencies", "ok", message + suffix))
+        else:
+            listed = ", ".join(f"{s.omega:.4g}" for s in suspects)
+            worst = max(suspects, key=lambda s: s.score)
             out.append(
                 Finding(
-                    "suspect_frequencies", "ok", f"no spikes or clearly negative damping{suffix}"
+                    "suspect_frequencies",
+                    "warning",
+                    f"{len(suspects)} suspect frequencies{suffix} ({listed} rad/s); worst at "
+                    f"{worst.omega:.4g} rad/s: {worst.quantity}, {worst.reason}",
+                    where=f"{worst.omega:.4g} rad/s",
+                    value=worst.score,
+                    advice="spikes and negative damping are irregular frequencies of panel "
+                    "methods or solver failures; remove them before fitting (cummins kernel "
+                    "--remove-suspect, cummins.repair.remove_suspect_frequencies)",
+                    details={
+                        "omega": [s.omega for s in suspects],
+                        "quantity": [s.quantity for s in suspects],
+                        "reason": [s.reason for s in suspects],
+                    },
                 )
             )
-            continue
-        listed = ", ".join(f"{s.omega:.4g}" for s in suspects)
-        worst = max(suspects, key=lambda s: s.score)
-        out.append(
-            Finding(
-                "suspect_frequencies",
-                "warning",
-                f"{len(suspects)} suspect frequencies{suffix} ({listed} rad/s); worst at "
-                f"{worst.omega:.4g} rad/s: {worst.quantity}, {worst.reason}",
-                where=f"{worst.omega:.4g} rad/s",
-                value=worst.score,
-                advice="spikes and negative damping are irregular frequencies of panel methods or "
-                "solver failures; remove them before fitting (cummins kernel --remove-suspect, "
-                "cummins.repair.remove_suspect_frequencies)",
-                details={
-                    "omega": [s.omega for s in suspects],
-                    "quantity": [s.quantity for s in suspects],
-                    "reason": [s.reason for s in suspects],
-                },
-            )
-        )
-        own = suspects_by_dof(sub)
         for label, found in own.items():
-            if found.features:
+            for resonance in found.resonances:
                 out.append(
                     Finding(
                         "suspect_frequencies",
                         "info",
-                        found.feature_description() + suffix,
+                        resonance.description(label) + suffix,
                         where=label,
-                        advice="keep them (the fit leaves them out of the model, which does "
-                        "not follow a peak of a few points, but keeps them for A∞); a finer "
-                        "frequency grid there resolves the resonance",
-                        details={"omega": list(found.features)},
+                        value=resonance.motion_change,
+                        advice="physics, not an error: keep its points (cummins fit keeps "
+                        "those the motions depend on, and every one for A∞); a finer "
+                        "frequency grid there resolves the resonance"
+                        if resonance.kept
+                        else "keep its points (the fit leaves them out of the model, which "
+                        "does not follow a peak of a few points the motions hardly depend "
+                        "on, but keeps them for A∞); a finer frequency grid there resolves "
+                        "the resonance",
+                        details={
+                            "omega": list(resonance.omega),
+                            "kept": resonance.kept,
+                            "damping_share": resonance.damping_share,
+                        },
                     )
                 )
         for span in irregular_frequency_spans(sub, own):

@@ -57,8 +57,13 @@ def info_command(path, format_, rho, g, ulen, as_json):
     ):
         if key in d:
             table.add_row(label, f"{d[key]} m")
-    if "mass_kg" in d:
-        table.add_row("mass", f"{d['mass_kg']:.6g} kg")
+    for key, label, unit in (
+        ("displaced_volume_m3", "displaced volume", "m³"),
+        ("mass_kg", "mass", "kg"),
+    ):
+        if key in d:
+            values = d[key] if isinstance(d[key], list) else [d[key]]
+            table.add_row(label, ", ".join(f"{v:.6g}" for v in values) + f" {unit}")
     for k, line in enumerate(d["history"]):
         table.add_row("provenance" if k == 0 else "", line)
     console.print(table)

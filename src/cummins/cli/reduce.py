@@ -140,6 +140,9 @@ def reduce_command(
         )
     prepare_outputs(output, json_path, force=force)
     model = RadiationModel.load(model_path)
+    from cummins.cli.failed_model import warn_failed_model
+
+    warn_failed_model(model.attrs, model_path)  # the reduced model keeps its failures
     data = None
     if data_path:
         data = select_speed(read_hydrodb(data_path, format_, rho, g, ulen), speed)

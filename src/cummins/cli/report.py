@@ -52,6 +52,9 @@ def report_command(path, output, kind, format_, rho, g, ulen, force):
     from cummins.cli.html_report import write_report
 
     prepare_outputs(output, force=force)
+    from cummins.cli.failed_model import warn_failed_file
+
+    warn_failed_file(path)
     with console.status("drawing the report"):
         written = write_report(
             path,

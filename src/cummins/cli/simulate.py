@@ -316,6 +316,11 @@ def simulate_command(
             vessel = vessel_from_hydrodb(
                 ds, model, viscous_damping=b_v, system=system, **fit_options
             )
+    from cummins.cli.failed_model import warn_failed_model
+
+    inherited = warn_failed_model(
+        vessel.radiation.attrs, path, "fitted" if model is None else "model"
+    )
     with progress_bar() as bar:
         task = bar.add_task(f"simulating {duration:g} s, {title}, heading {heading:g}°", total=1.0)
         run = simulate_waves(
@@ -336,6 +341,7 @@ def simulate_command(
             "sea": title,
             "source_file": str(ds.attrs.get("source_file", "")),
             "radiation_model_order": vessel.radiation.total_order,
+            **inherited,
             **{f"quadratic_damping_{d}": b for d, b in (b_q or {}).items()},
         }
     )

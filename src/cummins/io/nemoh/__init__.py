@@ -227,6 +227,12 @@ def read_nemoh(
         history.append(
             f"constants, bodies and DOFs from {run.cal.name} (NEMOH {cal.version} layout)"
         )
+        skipped = [f"{b.name} ({b.extra_lines})" for b in cal.bodies if b.extra_lines]
+        if skipped:
+            history.append(
+                f"{run.cal.name}: lines of additional information skipped, as NEMOH does "
+                f"(meant for generalised modes, which NEMOH does not compute): {', '.join(skipped)}"
+            )
         expected = (sum(len(b.dofs) for b in cal.bodies), sum(len(b.forces) for b in cal.bodies))
         if (n_dofs, n_forces) != expected:
             raise tec.text.error(

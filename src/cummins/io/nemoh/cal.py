@@ -41,6 +41,7 @@ class _Body:
     name: str
     dofs: list[_Mode]
     forces: list[_Mode]
+    extra_lines: int = 0  # lines of "additional information", skipped as NEMOH does
 
 
 @dataclass
@@ -198,19 +199,26 @@ def _read_body(cur: _Cursor) -> _Body:
     cur.numbers("the number of points and panels", 2)
     dofs = [_read_mode(cur) for _ in range(cur.count("the number of degrees of freedom", 1000))]
     forces = [_read_mode(cur) for _ in range(cur.count("the number of generalised forces", 1000))]
+    # the lines of "additional information" were meant for generalised modes, which
+    # NEMOH never implemented: v2 skips them, v3 reads the count line only ("reserved");
+    # the DOFs and forces above are all there is, and the results hold those
     n_extra = cur.count("the number of lines of additional information", 1000)
-    if n_extra:
-        raise cur.text.error(
-            f"{n_extra} line(s) of additional information (generalised modes) are not supported",
-            cur.i - 1,
-            hint="cummins reads rigid-body DOFs only",
-        )
-    return _Body(name, dofs, forces)
+    for _ in range(n_extra):
+        cur.line()
+    return _Body(name, dofs, forces, n_extra)
 
 
 def _read_mode(cur: _Cursor) -> _Mode:
     values, i = cur.numbers("a DOF line: type, direction (3), point (3)", 7)
     kind = values[0]
+    if kind == 3.0:
+        raise cur.text.error(
+            "DOF type 3 (a generalised mode): NEMOH does not compute it (its preprocessor "
+            "stops: 'radiation case 3 not implemented yet'), so no results of this run hold it",
+            i,
+            hint="NEMOH computes translations (type 1) and rotations (type 2); for generalised "
+            "modes use WAMIT (NEWMDS) or Capytaine (any DOF field)",
+        )
     if kind not in (0.0, 1.0, 2.0):
         raise cur.text.error(f"unknown DOF type {kind:g} (1 translation, 2 rotation)", i)
     return _Mode(int(kind), values[1:4], values[4:7], i)

@@ -30,11 +30,13 @@ class DofLayout:
     labels
         The canonical labels: ``Surge`` … ``Yaw`` for one body, ``body1__Surge`` … for
         several (positional, see :func:`cummins.hydrodb.dof_labels`); a DOF that is not
-        a rigid-body mode (a hinge, a flexible mode) keeps the name the file gives it.
+        a rigid-body mode (a hinge, a flexible mode) keeps the name the file gives it,
+        and so does a DOF that names no body beside DOFs that do (a DOF of the system,
+        such as WecOptTool's ``Surge`` of a float and spar together), after the bodies'.
     body_names
         The names the file gives the bodies, in order (empty strings when it gives none).
     body_index
-        The body (0-based) of each canonical DOF.
+        The body (0-based) of each canonical DOF; −1 for a DOF of no body.
     """
 
     file_labels: tuple[str, ...]
@@ -89,21 +91,18 @@ def dof_layout(
     for label in influenced:
         body, _ = split_dof(label)
         groups.setdefault(body, []).append(label)
-    if None in groups and len(groups) > 1:
-        raise HydroDataError(
-            "some DOF labels name a body and others do not",
-            path=where,
-            quantity=", ".join(influenced),
-            hint="label every DOF <body>__<DOF> (as Capytaine does for several bodies)",
-        )
-    several = len(groups) > 1
+    # DOFs that name no body beside bodies that are named (WecOptTool's float__Heave,
+    # spar__Heave, Surge, Pitch) are DOFs of the system as the file defines them
+    # (motion fields over several bodies): they keep their labels, after the bodies'
+    shared = groups.pop(None) if None in groups and len(groups) > 1 else []
+    several = len(groups) > 1 or bool(shared)
     if keep:
         index = {body: k for k, body in enumerate(groups)}
         return DofLayout(
             tuple(influenced),
             tuple(influenced),
             tuple(body or "" for body in groups),
-            tuple(index[split_dof(label)[0]] for label in influenced),
+            tuple(index.get(split_dof(label)[0], -1) for label in influenced),
         )
     file_labels: list[str] = []
     labels: list[str] = []
@@ -119,6 +118,9 @@ def dof_layout(
             file_labels.append(member)
             labels.append(f"body{k + 1}__{name}" if several else name)
             body_index.append(k)
+    file_labels += shared
+    labels += shared
+    body_index += [-1] * len(shared)
     names = tuple(body or "" for body in groups)
     if lines is not None:
         if [split_dof(f)[1] for f in file_labels] != [split_dof(f)[1] for f in influenced]:
@@ -127,10 +129,19 @@ def dof_layout(
                 + ", ".join(influenced)
                 + ") to rigid-body modes first, Surge ... Yaw"
             )
-        if several:
+        if len(groups) > 1:
             lines.append(
                 f"{len(groups)} bodies labelled body1 ... body{len(groups)} in the order of "
                 "the file; the file's names (" + ", ".join(names) + ") are kept in body_names"
+            )
+        elif shared:
+            lines.append(f"body {names[0]} labelled body1; its name is kept in body_names")
+        if shared:
+            lines.append(
+                f"DOFs {', '.join(shared)} name no body: DOFs of the system as the file "
+                "defines them (motion fields over the bodies, e.g. both bodies in surge), "
+                "kept under their names after the bodies' DOFs, with the file's rotation "
+                "centre as their reference point"
             )
         custom = sorted({split_dof(f)[1] for f in file_labels} - set(DOF_NAMES))
         if custom:
@@ -189,6 +200,11 @@ def _body_attributes(raw, given, where, lines: list[str], rho: float, layout: Do
         attrs["center_of_buoyancy"] = _vector(raw["center_of_buoyancy"])
     if "disp_mass" in raw.variables and raw["disp_mass"].size == 1:
         attrs["displaced_volume"] = float(raw["disp_mass"].values) / rho
+    elif "disp_mass" in raw.variables and _per_body(raw["disp_mass"], layout.body_names):
+        mass = raw["disp_mass"]  # a multibody's, one per body: in the order of the DOFs
+        attrs["displaced_volume"] = np.array(
+            [float(mass.sel(body=name)) / rho for name in layout.body_names]
+        )
     for name in ("body_name", "body"):
         if name in raw.coords and raw[name].size == 1:
             attrs["body_name"] = str(np.asarray(raw[name].values).reshape(-1)[0])
@@ -246,3 +262,10 @@ def _reference_from_inertia(raw, layout: DofLayout, attrs: dict, point, lines, w
                 "that the rigid-body inertia_matrix gives (its mass-moment coupling)"
             )
     return derived if derived.size > 3 else derived.reshape(3)
+
+
+def _per_body(values: xr.DataArray, names) -> bool:
+    """Whether ``values`` hold one number per body of ``names`` on a ``body`` coordinate."""
+    if values.dims != ("body",) or "body" not in values.coords or len(names) < 2:
+        return False
+    return sorted(str(b) for b in values.body.values) == sorted(str(n) for n in names)

@@ -200,6 +200,7 @@ def _body_attrs(header: _OutHeader, layout: list[int], settings: RunSettings) ->
         cb = [b.center_of_buoyancy for b in bodies]
         if all(c is not None for c in cb):
             attrs["center_of_buoyancy"] = (np.vstack(cb) + origin).reshape(-1)
-        if nb == 1 and bodies[0].volumes is not None:
-            attrs["displaced_volume"] = float(np.mean(bodies[0].volumes))
+        if all(b.volumes is not None for b in bodies):  # VOLX, VOLY, VOLZ: their mean
+            volumes = np.array([float(np.mean(b.volumes)) for b in bodies])
+            attrs["displaced_volume"] = float(volumes[0]) if nb == 1 else volumes
     return attrs

@@ -559,19 +559,19 @@ def _fit_data(
                 f"{min(s.omega for s in suspects):.4g} rad/s left out with it"
             )
     elif exclude_suspect:
-        for s in find_suspect_frequencies(data):
-            notes.append(f"{s.omega:.4g} rad/s left out: {s.quantity}, {s.reason}")
         own = suspects_by_dof(data)
+        resonances = []
         for d, label in enumerate(labels):
-            for s in own[label].suspects:
-                keep[np.isclose(w, s.omega, rtol=1e-12, atol=0.0), d] = False
+            for s in own[label].suspects:  # a sharp resonance the motions depend on stays
+                if s.omega not in own[label].kept:
+                    keep[np.isclose(w, s.omega, rtol=1e-12, atol=0.0), d] = False
             for omega in own[label].features:
                 sound[np.isclose(w, omega, rtol=1e-12, atol=0.0), d] = True
-            if own[label].features:
-                notes.append(
-                    f"{label}: {own[label].feature_description()}; kept for A∞'s estimate and "
-                    "left out of the fit (a broadband model does not follow it)"
-                )
+            resonances += [r.description(label) for r in own[label].resonances]
+        for s in find_suspect_frequencies(data):
+            if not keep[np.isclose(w, s.omega, rtol=1e-12, atol=0.0)].all():
+                notes.append(f"{s.omega:.4g} rad/s left out: {s.quantity}, {s.reason}")
+        notes += resonances
         for span in irregular_frequency_spans(data, own):
             notes.append(
                 f"{span.dof}: {span.description()}; fitted below {span.omega_start:.4g} rad/s "

@@ -1,0 +1,89 @@
+"""A failed model never flows on silently: the one line the commands print when a
+radiation model they use missed its fit targets, and what their result files record.
+
+``cummins fit`` writes what makes a model a failure into the model file
+(``attrs["failures"]``: not passive, a coupling the passivity step took below its
+target, a motion error above twice its target; exit status 3). ``simulate``, ``reduce``
+and ``report`` given such a model, and ``simulate`` fitting one on the fly, say so in one
+line, and ``simulate``'s run file and the reduced model carry the failures
+(``model_failures``; the reduced model in its own ``failures``).
+"""
+
+from __future__ import annotations
+
+from collections.abc import Mapping
+from pathlib import Path
+
+from rich.markup import escape
+
+from cummins.cli.common import err_console
+
+#: The run-file attribute that records the failures of the model a result came from (one
+#: failure per line).
+ATTRIBUTE = "model_failures"
+
+
+def model_failures(attrs: Mapping) -> list[str]:
+    """The failures of a model (its ``failures``) or those a result file records
+    (:data:`ATTRIBUTE`), as a list of sentences."""
+    found = attrs.get("failures") or attrs.get(ATTRIBUTE) or []
+    if isinstance(found, str):
+        found = found.splitlines()
+    return [str(f) for f in found if str(f).strip()]
+
+
+#: The line names this many failures (the motion error first), then how many more.
+SHOWN = 2
+
+#: How the line names the model, by where it comes from.
+_WHOSE = {
+    "model": "this model missed its fit targets",
+    "fitted": "the radiation model fitted to these data missed its targets",
+    "result": "the radiation model this file was made with missed its fit targets",
+}
+
+
+def failed_model_line(failures: list[str], source: str, kind: str = "model") -> str:
+    """The one line: where the model comes from (``kind``: ``"model"`` a model file,
+    ``"fitted"`` fitted on the fly to the data ``source``, ``"result"`` a file made with
+    a model), what it missed (each failure up to its first parenthesis), and that the
+    results inherit it."""
+    short = [f.split(" (")[0].rstrip(":;, ") for f in failures]
+    short.sort(key=lambda f: not f.startswith("motion error"))  # what users check first
+    missed = "; ".join(short[:SHOWN])
+    if len(short) > SHOWN:
+        missed += f" and {len(short) - SHOWN} more"
+    status = "cummins fit would exit 3" if kind == "fitted" else "cummins fit exit 3"
+    return f"{source}: {_WHOSE[kind]}: {missed} ({status}); results inherit it"
+
+
+def warn_failed_model(attrs: Mapping, source, kind: str = "model") -> dict[str, str]:
+    """Print the one line (:func:`failed_model_line`) when ``attrs`` (a model's, or a
+    result file's) hold failures; return the attributes a result made with that model
+    records (empty when none)."""
+    failures = model_failures(attrs)
+    if not failures:
+        return {}
+    name = Path(str(source)).name if source else "the model"
+    err_console.print(f"[yellow]warning:[/] {escape(failed_model_line(failures, name, kind))}")
+    return {ATTRIBUTE: "\n".join(failures)}
+
+
+def warn_failed_file(path) -> None:
+    """:func:`warn_failed_model` of a file's own attributes when it is a NetCDF file made
+    by cummins (a model, a run, an RAO file); other files say nothing."""
+    p = Path(path)
+    if not (p.is_file() and p.suffix.lower() == ".nc"):
+        return
+    import h5py
+
+    from cummins.errors import HydroDataError
+    from cummins.io.netcdf.attributes import decode_attributes
+
+    try:
+        with h5py.File(p, "r") as f:
+            attrs = decode_attributes(dict(f.attrs), p)
+    except (OSError, HydroDataError):
+        return  # not HDF5 (a NetCDF-3 data file), or damaged: the report says so
+    attrs = {k: v.decode() if isinstance(v, bytes) else v for k, v in attrs.items()}
+    warn_failed_model(attrs, p, "model" if attrs.get("failures") else "result")

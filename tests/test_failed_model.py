@@ -1,0 +1,115 @@
+"""A model that missed its fit targets never flows on silently (issue 30, point 6):
+``simulate``, ``reduce`` and ``report`` given such a model, and ``simulate`` fitting one
+on the fly, say so in one line, and the run file and the reduced model record it.
+
+The failed model is the identification of a moonpool's sharp piston mode
+(``tests/data/moonpool_sharp_capytaine.nc``, 5 % of critical damping, at the damping
+floor of the common poles): motion error 4.1 % of the peak, above the 2 % that makes a
+fit a failure (exit status 3).
+"""
+
+from pathlib import Path
+
+import pytest
+import xarray as xr
+from click.testing import CliRunner
+
+import cummins
+from cummins.cli import main
+from cummins.cli.failed_model import failed_model_line
+
+DATA = Path(__file__).parent / "data"
+SHARP = DATA / "moonpool_sharp_capytaine.nc"
+#: a regular wave of the data's heading 0 at the piston mode, short
+WAVE = ["--regular", "--wave-period", "3.5", "--heading", "0", "--duration", "60"]
+
+
+def _run(*args):
+    result = CliRunner().invoke(main, [str(a) for a in args])
+    return result
+
+
+@pytest.fixture(scope="module")
+def failed(tmp_path_factory):
+    """The fit of the sharp piston mode, saved as ``cummins fit`` writes it."""
+    path = tmp_path_factory.mktemp("failed") / "model.nc"
+    result = _run("fit", SHARP, "-o", path)
+    assert result.exit_code == 3, result.output  # a failure: the premise of these tests
+    assert cummins.RadiationModel.load(path).attrs["failures"]
+    return path
+
+
+def _warnings(output: str) -> list[str]:
+    return [line for line in output.splitlines() if "missed its" in line]
+
+
+def test_simulate_a_failed_model_says_so_and_the_run_records_it(failed, tmp_path):
+    run = tmp_path / "run.nc"
+    result = _run("simulate", failed, *WAVE, "-o", run)
+    assert result.exit_code == 0, result.output
+    (line,) = _warnings(result.output)
+    assert line.startswith("warning: model.nc: this model missed its fit targets: motion error")
+    assert "(cummins fit exit 3); results inherit it" in line
+    recorded = xr.open_dataset(run).attrs["model_failures"]
+    assert recorded.splitlines() == cummins.RadiationModel.load(failed).attrs["failures"]
+
+
+def test_simulate_data_whose_fit_fails_says_so(tmp_path):
+    run = tmp_path / "run.nc"
+    result = _run("simulate", SHARP, *WAVE, "-o", run)
+    assert result.exit_code == 0, result.output
+    (line,) = _warnings(result.output)
+    assert "moonpool_sharp_capytaine.nc: the radiation model fitted to these data missed" in line
+    assert "motion error" in line
+    assert "motion error" in xr.open_dataset(run).attrs["model_failures"]
+
+
+def test_reduce_a_failed_model_says_so_and_the_reduced_model_keeps_it(failed, tmp_path):
+    reduced = tmp_path / "small.nc"
+    result = _run("reduce", failed, "-o", reduced, "--tol", "0.05")
+    (line,) = _warnings(result.output)
+    assert line.startswith("warning: model.nc: this model missed its fit targets")
+    kept = cummins.RadiationModel.load(reduced).attrs["failures"]
+    assert set(cummins.RadiationModel.load(failed).attrs["failures"]) <= set(kept)
+    # and the reduced model says so again wherever it goes
+    again = _run("report", reduced, "-o", tmp_path / "small.html")
+    assert again.exit_code == 0, again.output
+    assert _warnings(again.output)[0].startswith("warning: small.nc: this model missed")
+
+
+def test_report_of_a_failed_model_and_of_its_run_say_so(failed, tmp_path):
+    result = _run("report", failed, "-o", tmp_path / "model.html")
+    assert result.exit_code == 0, result.output
+    assert len(_warnings(result.output)) == 1
+    run = tmp_path / "run.nc"
+    assert _run("simulate", failed, *WAVE, "-o", run).exit_code == 0
+    result = _run("report", run, "-o", tmp_path / "run.html")
+    assert result.exit_code == 0, result.output
+    (line,) = _warnings(result.output)
+    assert "run.nc: the radiation model this file was made with missed its fit targets" in line
+
+
+def test_a_model_that_met_its_targets_says_nothing(tmp_path):
+    model = tmp_path / "good.nc"
+    assert _run("fit", DATA / "moonpool_capytaine.nc", "-o", model).exit_code == 0
+    run = tmp_path / "run.nc"
+    result = _run("simulate", model, *WAVE, "-o", run)
+    assert result.exit_code == 0, result.output
+    assert not _warnings(result.output)
+    assert "model_failures" not in xr.open_dataset(run).attrs
+    assert not _warnings(_run("report", run, "-o", tmp_path / "run.html").output)
+
+
+def test_the_line_puts_the_motion_error_first_and_counts_the_rest():
+    failures = [
+        "Surge: passivity took the R² of A from 0.99 to 0.97 (target 0.99)",
+        "Heave: passivity took the R² of B from 0.99 to 0.95 (target 0.99)",
+        "Pitch: passivity took the R² of B from 0.99 to 0.90 (target 0.99)",
+        "motion error 30.56 % of the peak motion (target 1 %, never above 2 %)",
+    ]
+    line = failed_model_line(failures, "rm3.nc")
+    assert line == (
+        "rm3.nc: this model missed its fit targets: motion error 30.56 % of the peak motion; "
+        "Surge: passivity took the R² of A from 0.99 to 0.97 and 2 more (cummins fit exit 3); "
+        "results inherit it"
+    )

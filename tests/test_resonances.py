@@ -1,0 +1,107 @@
+"""Sharp resonances that are physics (a moonpool's piston mode) are told from irregular
+frequencies, named by ``cummins check`` and kept in the fit when the motions depend on
+them (issue 30, point 4).
+
+The moonpool is a floating ring computed with Capytaine (``tests/data/make_moonpool.py``):
+its piston mode at 1.64–1.76 rad/s looks like spikes on the user's 0.12 rad/s grid.
+Before, those points were left out of the fit, whose reference motions (the data bridged
+over them, the excitation keeping the resonance) were then 32 % off the data's, and the
+fit failed (exit 3); now they are kept and the model follows the data's motions.
+"""
+
+from pathlib import Path
+
+import numpy as np
+import pytest
+
+import cummins
+from cummins.check.artefacts import _check_suspect_frequencies
+from cummins.radiation.fit.frequency import r_squared
+from cummins.radiation.fit.scorecard import motion_rao_error
+from cummins.repair import suspects_by_dof
+
+DATA = Path(__file__).parent / "data"
+
+
+@pytest.fixture(scope="module")
+def moonpool():
+    return cummins.read(DATA / "moonpool_capytaine.nc")
+
+
+def _heave_r2_everywhere(ds, model):
+    """R² of A and B of heave over every data frequency (the resonance's points too)."""
+    w = ds.omega.values
+    k = model.response(w)[:, 0, 0]
+    a = ds.added_mass.values.reshape(w.size)
+    b = ds.radiation_damping.values.reshape(w.size)
+    return (
+        r_squared(a, float(model.added_mass_inf[0, 0]) + k.imag / w),
+        r_squared(b, k.real),
+    )
+
+
+def test_the_piston_mode_is_a_resonance_the_motions_depend_on(moonpool):
+    heave = suspects_by_dof(moonpool)["Heave"]
+    assert [s.omega for s in heave.suspects] == pytest.approx([1.64, 1.76])
+    (piston,) = heave.resonances
+    assert piston.omega == pytest.approx((1.64, 1.76)) and piston.kept
+    # bridged over, the heave motions move by 38 % of their peak (measured)
+    assert piston.motion_change > 0.15
+    assert piston.damping_share == pytest.approx(1.0)
+
+
+def test_the_fit_keeps_the_piston_mode_and_meets_its_targets(moonpool):
+    model = cummins.fit_radiation(moonpool)
+    assert not model.attrs.get("failures")
+    assert not np.isclose(model.attrs["excluded_frequencies"], 1.64).any()
+    assert any(
+        "piston/gap resonance at 1.64–1.76" in n and "kept" in n for n in model.attrs["data_notes"]
+    )
+    r2_a, r2_b = _heave_r2_everywhere(moonpool, model)
+    assert r2_a > 0.99 and r2_b > 0.99  # measured 1.0000, 1.0000
+    # the scoreboard's motion-RAO error against the data (target 1 %): measured 0.02 %
+    assert motion_rao_error(moonpool, model).error < 0.005
+
+
+def test_check_names_the_piston_mode_and_calls_nothing_irregular(moonpool):
+    found = _check_suspect_frequencies(moonpool)
+    assert [f.severity for f in found] == ["ok", "info"]
+    assert "no irregular frequency" in found[0].message
+    assert found[1].where == "Heave" and found[1].details["kept"]
+    assert found[1].message.startswith("a piston/gap resonance at 1.64–1.76 rad/s in Heave")
+    assert "kept" in found[1].message
+
+
+def test_a_piston_mode_sampled_by_a_few_points_is_still_a_resonance():
+    """The sharper ring (5 % of critical damping, 0.1 rad/s grid): its four points fail
+    Ogilvie's test at themselves, but its damping explains A(ω) on its flanks."""
+    ds = cummins.read(DATA / "moonpool_sharp_capytaine.nc")
+    (piston,) = suspects_by_dof(ds)["Heave"].resonances
+    assert piston.omega == pytest.approx((1.7, 1.8, 1.9, 2.0)) and piston.kept
+
+
+def test_a_resonance_the_motions_do_not_depend_on_stays_out():
+    """The semisubmersible's heave feature at 1.2–1.4 rad/s: bridged over, the motions
+    move by 0.02 % of their peak: left out of the fit (putting it back cost the R² of B
+    0.995 → 0.991 for no RAO gain), kept for A∞."""
+    ds = cummins.read(DATA / "semisub_capytaine.nc")
+    (feature,) = suspects_by_dof(ds)["Heave"].resonances
+    assert not feature.kept and feature.motion_change < 0.002
+    model = cummins.fit_radiation(ds.sel(influenced_dof=["Heave"], radiating_dof=["Heave"]))
+    assert np.isclose(model.attrs["excluded_frequencies"], feature.omega[0]).any()
+
+
+@pytest.mark.parametrize(
+    "case",
+    ["ROSCO/wamit_ITI_barge_5MW_Baseline/Barge.1", "WEC-Sim/aqwa_19.1_PEND_hull/19_1.AH1"],
+)
+def test_irregular_frequencies_stay_irregular(corpus, case):
+    """The ITI barge's and the PEND hull's irregular-frequency spikes are no resonance:
+    the fit leaves them out and check warns."""
+    ds = cummins.read(corpus / case)
+    own = suspects_by_dof(ds)
+    assert sum(len(found.suspects) for found in own.values()) > 10
+    assert not any(found.resonances for found in own.values())
+    found = _check_suspect_frequencies(ds)
+    assert found[0].severity == "warning"
+    assert not [f for f in found if "resonance" in f.message]
