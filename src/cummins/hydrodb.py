@@ -63,6 +63,7 @@ from cummins.dofs import dof_labels as dof_labels
 from cummins.dofs import is_rotation as is_rotation
 from cummins.errors import HydroDataError
 from cummins.kinematics import Z_UP_TO_Z_DOWN, screw_transform
+from cummins.qtf.data import second_order_summary
 
 AXIS_CONVENTIONS: dict[str, str] = {
     "z-up": "x forward, y to port, z up (WAMIT, NEMOH, AQWA, Capytaine)",
@@ -87,6 +88,13 @@ FORCE_VARIABLES: tuple[str, ...] = (
     "Froude_Krylov_force",
     "diffraction_force",
     "drift_force",
+    # second-order loads (cummins.qtf): the other mean-drift estimates and the QTFs,
+    # forces and moments about the reference point like the first-order forces
+    "drift_force_pressure",
+    "drift_force_momentum",
+    "drift_force_control_surface",
+    "qtf_difference",
+    "qtf_sum",
 )
 #: Variables holding a generalized motion per DOF (radiating_dof).
 MOTION_VARIABLES: tuple[str, ...] = ("rao",)
@@ -690,6 +698,11 @@ def change_axes(ds: xr.Dataset, to: str) -> xr.Dataset:
         beta[np.isclose(beta, 2 * np.pi)] = 0.0
         out = out.assign_coords(wave_direction=("wave_direction", beta, ds.wave_direction.attrs))
         out = out.sortby("wave_direction")
+    for dim in ("qtf_wave_direction", "qtf_wave_direction2"):  # the QTFs' own directions
+        if dim in out.dims:
+            beta = np.mod(-out[dim].values, 2 * np.pi)
+            beta[np.isclose(beta, 2 * np.pi)] = 0.0
+            out = out.assign_coords({dim: (dim, beta, ds[dim].attrs)}).sortby(dim)
     out.attrs["axis_convention"] = to
     add_history(out, f"axes changed from {current} to {to} ({AXIS_CONVENTIONS[to]})")
     return out
@@ -733,4 +746,7 @@ def describe(ds: xr.Dataset) -> dict[str, Any]:
     if "inertia_matrix" in ds:
         m = dof_matrix(ds, "inertia_matrix")
         info["mass_kg"] = float(np.ravel(m)[0])
+    second = second_order_summary(ds)
+    if second:
+        info["second_order"] = second
     return info
