@@ -30,6 +30,7 @@ from cummins.qtf.data import (
 )
 from cummins.qtf.interpolation import (
     Coverage,
+    at_directions,
     coverage,
     direction_weights,
     frequency_weights,
@@ -49,6 +50,7 @@ __all__ = [
     "QTF_VARIABLES",
     "Coverage",
     "QTFTable",
+    "at_directions",
     "complete_square",
     "coverage",
     "direction_weights",

@@ -249,6 +249,13 @@ def with_second_order(
         increasing and positive, two QTFs on different grids.
     """
     out = ds.copy()
+    # the QTF grid of variables since dropped: replaced by the new tables'
+    stale = [
+        c
+        for c in (OMEGA, OMEGA2, DIRECTION, DIRECTION2)
+        if c in out.coords and not any(c in v.dims for v in out.data_vars.values())
+    ]
+    out = out.drop_vars(stale)
     where = ds.attrs.get("source_file") or None
     attrs = attrs or {}
     labels = [str(d) for d in ds.influenced_dof.values]

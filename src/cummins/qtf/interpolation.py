@@ -261,16 +261,17 @@ def pair_matrix(
     members = [np.flatnonzero(group == g) for g in range(unique.size)]
     for g in range(unique.size):
         for h in range(unique.size):
-            q = _at_directions(table, dof, first[g], first[h], max_gap)
+            q = at_directions(table, dof, first[g], first[h], max_gap)
             rows, cols = members[g], members[h]
             out[np.ix_(rows, cols)] = weights[rows] @ q @ weights[cols].T
     return out
 
 
-def _at_directions(
-    table: QTFTable, dof: int, beta1: float, beta2: float, max_gap: float
+def at_directions(
+    table: QTFTable, dof: int, beta1: float, beta2: float, max_gap: float = np.pi / 2
 ) -> NDArray[np.complex128]:
-    """Q_dof(ω_a, ω_b, β₁, β₂) on the frequency grid (n × n), linear in direction."""
+    """Q_dof(ω_a, ω_b, β₁, β₂) on the frequency grid (n × n), linear in direction (a
+    unidirectional QTF at the mean direction of β₁ and β₂)."""
     if table.bidirectional:
         a0, a1, ta = direction_weights(table.directions, np.array([beta1]), max_gap=max_gap)
         c0, c1, tc = direction_weights(table.directions, np.array([beta2]), max_gap=max_gap)
