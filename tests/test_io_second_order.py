@@ -204,3 +204,53 @@ def test_capytaine_far_field_drift_against_wamit(shared_data):
     assert float(surge[peak]) == pytest.approx(float(reference[peak]), rel=0.05)
     band = (ds.omega.values > 3.4) & (ds.omega.values < 4.7)
     assert np.all(np.abs(surge.values[band] / reference.values[band] - 1) < 0.15)
+
+
+@pytest.mark.parametrize("case", [OC4, SPAR], ids=["oc4-wamit", "oc3-spar-nemoh"])
+def test_qtf_round_trip_through_a_wamit_12d_file(shared_data, tmp_path, case):
+    """The QTF written as WAMIT writes it (for OpenFAST HydroDyn) reads back through the
+    WAMIT reader beside the OC4 .1 to 1e-7 of its largest value (9 significant digits of
+    the periods, 8 of the values); the NEMOH spar's too."""
+    import shutil
+
+    ds = cummins.read(shared_data / case)
+    run = tmp_path / "run"
+    run.mkdir()
+    for suffix in (".1", ".hst"):
+        shutil.copy(shared_data / OC4.replace(".1", suffix), run / f"qtf{suffix}")
+    cummins.write(ds, run / "qtf.12d")
+    cummins.write(ds, run / "qtf.12s")
+    back = cummins.read(run / "qtf.1", rho=ds.attrs["rho"], g=ds.attrs["g"])
+    for name in ("qtf_difference", "qtf_sum"):
+        a, b = ds[name].values, back[name].values
+        assert np.abs(a - b).max() < 1e-7 * np.abs(a).max()
+        assert np.allclose(back[name].qtf_omega, ds[name].qtf_omega, rtol=1e-8)
+    with pytest.raises(cummins.HydroDataError, match="no sum-frequency QTF"):
+        cummins.write(cummins.read(shared_data / SPHERE), tmp_path / "sphere.12s")
+
+
+def test_mean_drift_in_the_bemio_h5(shared_data, tmp_path):
+    """Where WEC-Sim reads it: body1/hydro_coeffs/mean_drift/control_surface/val (and
+    momentum_conservation), normalised by rho g, shaped like the excitation."""
+    import h5py
+
+    ds = cummins.read(shared_data / SPHERE)
+    cummins.write(ds, tmp_path / "sphere.h5")
+    with h5py.File(tmp_path / "sphere.h5") as f:
+        group = f["body1/hydro_coeffs/mean_drift"]
+        assert set(group) == {"control_surface", "momentum_conservation", "pressure_integration"}
+        cs = group["control_surface/val"][()]
+        assert cs.shape == f["body1/hydro_coeffs/excitation/re"].shape
+        rho_g = ds.attrs["rho"] * ds.attrs["g"]
+        expected = ds.drift_force.transpose("influenced_dof", "wave_direction", "omega").values
+        assert np.allclose(cs * rho_g, expected)
+    back = cummins.read(tmp_path / "sphere.h5")
+    assert np.array_equal(back.drift_force_momentum.values, ds.drift_force_momentum.values)
+
+
+def test_the_report_draws_the_qtf(shared_data):
+    from cummins.cli.html_report import _second_order_section
+
+    section = _second_order_section(cummins.read(shared_data / OC4))
+    assert section is not None and section.body.count("<img") == 2
+    assert "qtf_sum: 56x56 frequencies" in section.body

@@ -45,6 +45,9 @@ def workdir(tmp_path, shared_data, monkeypatch):
         shutil.copy(f, tmp_path / f.name)
     shutil.copytree(shared_data / "mss" / "supply", tmp_path / "supply")
     shutil.copy(cummins.demo_files().parent / "s175" / "s175.mat", tmp_path / "s175.mat")
+    semi = shared_data / "corpus" / "WEIS" / "ss_fitting_OC4_semi"
+    for suffix in (".1", ".hst", ".12d", ".12s"):  # the OC4 semi's WAMIT run with its QTFs
+        shutil.copy(semi / f"marin_semi{suffix}", tmp_path / f"marin_semi{suffix}")
     monkeypatch.chdir(tmp_path)
     return tmp_path
 

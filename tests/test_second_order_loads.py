@@ -192,9 +192,10 @@ def test_moored_surge_in_3_hour_seas_against_the_frequency_domain(oc4):
     """OC4 surge alone, M = 1.4e7 kg, a mooring of natural period 100 s (k = 8.98e4 N/m
     with A11 at 0.063 rad/s) and 20 % of critical damping (5.7e5 N s/m), full difference
     QTF, JONSWAP Hs 6 m, Tp 10 s, heading 0°, 600 components, 3 hours at 0.1 s: the
-    standard deviation of each run against √∫ H S_F Hᴴ dμ. A single 3-hour record has a
-    sampling scatter of about ±5 % (measured on six seeds: −6.7 … +3.2 %, mean −2.0 %);
-    over three seeds the mean is within 5 %, each run within 12 %."""
+    standard deviation of each run against √∫ H S_F Hᴴ dμ = 0.761 m. A single 3-hour
+    record of this narrow-banded response scatters by about ±5 % (seeds 1–6: +2.2, −5.1,
+    −6.7, +1.0, −6.4, +3.2 %): their mean within 5 % (−2.0 % measured), each run within
+    12 %; the mean offset F̄/k within 3 % (−1.3 … +0.0 % measured)."""
     surge, vessel, k = _moored_surge(oc4)
     shape = wave_spectrum("jonswap", 6.0, 10.0)
     mu = np.linspace(1e-3, 1.0, 1500)
@@ -202,7 +203,7 @@ def test_moored_surge_in_3_hour_seas_against_the_frequency_domain(oc4):
     h = np.linalg.inv(vessel.impedance(mu))
     expected = float(sd.standard_deviation(sd.response_spectrum(spectra, h))[0])
     stds = []
-    for seed in (1, 2, 3):
+    for seed in range(1, 7):
         sea = irregular_waves(shape, duration=10800, n_components=600, seed=seed)
         load = second_order_force(surge, sea, model="full", sum_frequency=False)
         run = simulate_waves(

@@ -15,6 +15,10 @@ variable                    dims                                        unit
 ``diffraction_force``       omega, wave_direction, influenced_dof       N/m, N·m/m (complex)
 ``rao``                     omega, wave_direction, radiating_dof        m/m, rad/m (complex)
 ``drift_force``             omega, wave_direction, influenced_dof       N/m², N·m/m² (mean)
+``drift_force_<method>``    as drift_force: the run's other estimates   N/m², N·m/m²
+``qtf_difference``          qtf_omega, qtf_omega2, qtf_wave_direction,  N/m², N·m/m² (complex)
+                            [qtf_wave_direction2,] influenced_dof
+``qtf_sum``                 as qtf_difference                           N/m², N·m/m² (complex)
 ``hydrostatic_stiffness``   influenced_dof, radiating_dof               N/m, N, N·m/rad
 ``inertia_matrix``          influenced_dof, radiating_dof               kg, kg·m, kg·m²
 ``additional_added_mass``   omega, influenced_dof, radiating_dof        as added mass
@@ -22,7 +26,9 @@ variable                    dims                                        unit
 ``additional_stiffness``    influenced_dof, radiating_dof               as stiffness
 ==========================  ==========================================  ===================
 
-Only ``added_mass`` and ``radiation_damping`` are required. Coordinates: ``omega``
+Only ``added_mass`` and ``radiation_damping`` are required. The second-order variables
+(the QTFs on their own frequency grid, their force convention) are described in
+:mod:`cummins.qtf.data`. Coordinates: ``omega``
 (rad/s, finite, strictly increasing, > 0; the limits ω = 0 and ω = ∞ live in
 ``added_mass_zero`` and ``added_mass_inf``), ``wave_direction`` (rad, direction in
 which the waves travel, measured from +x towards +y: 0 = following seas, π = head seas),

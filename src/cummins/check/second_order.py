@@ -23,8 +23,7 @@ import xarray as xr
 
 from cummins.check.common import _speeds
 from cummins.check.report import Finding
-from cummins.dofs import is_rotation
-from cummins.qtf.data import DRIFT_ALTERNATIVES, QTF_VARIABLES, qtf_table
+from cummins.qtf.data import DRIFT_ALTERNATIVES, QTF_VARIABLES, qtf_table, significant_dofs
 
 #: |Q(ω₂, ω₁) − Q(ω₁, ω₂)*| (or the imaginary part of the mean drift) over max|Q| of a DOF.
 QTF_SYMMETRY_TOL = 0.01
@@ -40,14 +39,7 @@ SIGNIFICANT = 0.01
 
 
 def _significant(peaks: np.ndarray, labels) -> np.ndarray:
-    """Which DOFs carry a value of their own: their peak against the largest force (or
-    moment) peak."""
-    rotation = np.array([is_rotation(str(d)) for d in labels])
-    out = np.zeros(len(labels), dtype=bool)
-    for group in (rotation, ~rotation):
-        if group.any() and peaks[group].max() > 0:
-            out |= group & (peaks >= SIGNIFICANT * peaks[group].max())
-    return out
+    return significant_dofs(peaks, labels, SIGNIFICANT)
 
 
 def _check_second_order(ds: xr.Dataset) -> list[Finding]:

@@ -467,6 +467,20 @@ def _merge_grid(values: NDArray, *, rtol: float, atol: float = 0.0) -> tuple[NDA
     return grid, index
 
 
+def significant_dofs(peaks: ArrayLike, labels: Sequence[str], share: float = 0.01) -> NDArray:
+    """Which DOFs carry a value of their own: a peak of at least ``share`` of the largest
+    force (or moment) peak; the others (sway, roll, yaw in head seas) are round-off."""
+    from cummins.dofs import is_rotation
+
+    peaks = np.asarray(peaks, dtype=float)
+    rotation = np.array([is_rotation(str(d)) for d in labels])
+    out = np.zeros(len(labels), dtype=bool)
+    for group in (rotation, ~rotation):
+        if group.any() and peaks[group].max() > 0:
+            out |= group & (peaks >= share * peaks[group].max())
+    return out
+
+
 def second_order_summary(ds: xr.Dataset) -> dict:
     """What second-order data a ``HydroDB`` holds (``cummins info``): per QTF its grid,
     directions and DOFs, and the mean-drift estimates."""

@@ -12,8 +12,6 @@ warning. AQWA's ``.QTF`` files (the full QTF) are not read: no corpus case has o
 
 from __future__ import annotations
 
-import re
-
 import numpy as np
 
 from cummins.errors import HydroDataError
@@ -24,14 +22,13 @@ _TITLE = "WAVE-DRIFT LOADS FOR UNIT WAVE AMPLITUDE"
 _DOF_LABELS = ("SURGE(X)", "SWAY(Y)", "HEAVE(Z)", "ROLL(RX)", "PITCH(RY)", "YAW(RZ)")
 
 
-def _despace(line: str) -> str:
-    return re.sub(r"\s+", " ", re.sub(r"(?<=\S) (?=\S)", "", line.strip()))
-
-
-def _blocks(text: TextFile) -> list[tuple[int, np.ndarray, int, list[tuple[int, np.ndarray]]]]:
-    """Each table: (DOF index, directions in degrees, header line, rows (line, values))."""
+def _blocks(
+    text: TextFile, titles
+) -> list[tuple[int, np.ndarray, int, list[tuple[int, np.ndarray]]]]:
+    """Each table: (DOF index, directions in degrees, header line, rows (line, values));
+    ``titles`` are the listing's despaced title lines (index, text)."""
     out = []
-    starts = [i for i, line in enumerate(text.lines) if _TITLE in _despace(line)]
+    starts = [i for i, title in titles if _TITLE in title]
     for s, start in enumerate(starts):
         stop = starts[s + 1] if s + 1 < len(starts) else min(len(text.lines), start + 400)
         header = next((k for k in range(start, stop) if "(RADIANS/SEC)" in text.lines[k]), -1)
@@ -76,12 +73,13 @@ def _blocks(text: TextFile) -> list[tuple[int, np.ndarray, int, list[tuple[int, 
 
 
 def lis_mean_drift(
-    text: TextFile, omega: np.ndarray, directions: np.ndarray, notes: list[str]
+    text: TextFile, titles, omega: np.ndarray, directions: np.ndarray, notes: list[str]
 ) -> tuple[np.ndarray | None, list[str]]:
     """The listing's mean drift (nω, nβ, 6) on its frequencies and directions (degrees),
-    or None (no drift tables, or damaged ones: then a warning in ``notes``)."""
+    or None (no drift tables, or damaged ones: then a warning in ``notes``); ``titles``
+    as the listing reader finds them (despaced)."""
     try:
-        blocks = _blocks(text)
+        blocks = _blocks(text, titles)
     except HydroDataError as exc:
         warn_damage(f"mean drift not read: {exc}", path=text.path, notes=notes)
         return None, []

@@ -414,7 +414,7 @@ def _read_lis(path: Path, rho, g) -> xr.Dataset:
             history.append("RAO rotations converted from deg/m to rad/m")
         extra[names[kind]] = _complex(amplitude, phase, omega, directions, cg, depth, g_v)
     notes: list[str] = []
-    drift, drift_history = lis_mean_drift(text, omega, directions, notes)
+    drift, drift_history = lis_mean_drift(text, titles, omega, directions, notes)
     if drift is not None:
         extra["drift_force"] = drift
         history.extend(drift_history)

@@ -65,6 +65,7 @@ from cummins.timedomain.loads.quadratic_form import (
     newman_form,
     time_series,
 )
+from cummins.timedomain.loads.waves import _wave_vectors
 
 #: The second-order models.
 MODELS = ("full", "newman", "mean")
@@ -119,8 +120,7 @@ class SecondOrderWaveLoad:
     def __post_init__(self) -> None:
         if self.wavenumbers is not None:
             k = np.asarray(self.wavenumbers, dtype=float)
-            d = self.waves.direction
-            object.__setattr__(self, "_k", np.stack([k * np.cos(d), k * np.sin(d)]))
+            object.__setattr__(self, "_k", _wave_vectors(k, self.waves.direction))
 
     @classmethod
     def from_hydrodb(
