@@ -174,8 +174,8 @@ def _against_drift(ds: xr.Dataset) -> list[Finding]:
                 where=where,
                 value=worst,
                 advice=(
-                    "a QTF of another run, or another method than that mean drift (WAMIT's "
-                    "QTF diagonal is computed as its pressure-integration drift)"
+                    "a QTF of another run, or a drift of another method than the QTF's: "
+                    "compare with the run's estimate of the same method"
                     if severity == "warning"
                     else None
                 ),
