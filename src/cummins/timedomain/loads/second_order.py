@@ -71,6 +71,9 @@ from cummins.timedomain.loads.waves import _wave_vectors
 MODELS = ("full", "newman", "mean")
 #: Default truncation of the factorised QTF (relative, of the force's standard deviation).
 TOLERANCE = 1e-3
+#: Most components whose pairs the stationary start sums one by one (N² per mode);
+#: above, the run starts from the static offset of the mean force.
+STATIONARY_LIMIT = 600
 
 
 @dataclass(frozen=True, eq=False)
@@ -209,6 +212,15 @@ class SecondOrderWaveLoad:
         f, g = vessel.state_space()
         if self.difference is None:
             x, notes = _static_state(f, g, self.mean)
+        elif len(self.waves) > STATIONARY_LIMIT:
+            x, notes = _static_state(f, g, self.mean)
+            notes = [
+                *notes,
+                f"{len(self.waves)} components: the run starts from the static offset of the "
+                f"mean force (the stationary slow drift is summed over the pairs of at most "
+                f"{STATIONARY_LIMIT}); discard the first few natural periods",
+            ]
+            return x, notes
         else:
             x, notes = self.difference.stationary_state(f, g)
         if self.sum is not None:
