@@ -47,6 +47,9 @@ def workdir(tmp_path, shared_data, monkeypatch):
     shutil.copy(cummins.demo_files().parent / "s175" / "s175.mat", tmp_path / "s175.mat")
     for f in (shared_data / "corpus" / "WEC-Sim" / "wamit_RM3_2body").glob("rm3.*"):
         shutil.copy(f, tmp_path / f.name)  # the README's wave-energy converter
+    semi = shared_data / "corpus" / "WEIS" / "ss_fitting_OC4_semi"
+    for suffix in (".1", ".hst", ".12d", ".12s"):  # the OC4 semi's WAMIT run with its QTFs
+        shutil.copy(semi / f"marin_semi{suffix}", tmp_path / f"marin_semi{suffix}")
     monkeypatch.chdir(tmp_path)
     return tmp_path
 

@@ -15,6 +15,10 @@ variable                    dims                                        unit
 ``diffraction_force``       omega, wave_direction, influenced_dof       N/m, N·m/m (complex)
 ``rao``                     omega, wave_direction, radiating_dof        m/m, rad/m (complex)
 ``drift_force``             omega, wave_direction, influenced_dof       N/m², N·m/m² (mean)
+``drift_force_<method>``    as drift_force: the run's other estimates   N/m², N·m/m²
+``qtf_difference``          qtf_omega, qtf_omega2, qtf_wave_direction,  N/m², N·m/m² (complex)
+                            [qtf_wave_direction2,] influenced_dof
+``qtf_sum``                 as qtf_difference                           N/m², N·m/m² (complex)
 ``hydrostatic_stiffness``   influenced_dof, radiating_dof               N/m, N, N·m/rad
 ``inertia_matrix``          influenced_dof, radiating_dof               kg, kg·m, kg·m²
 ``additional_added_mass``   omega, influenced_dof, radiating_dof        as added mass
@@ -22,7 +26,9 @@ variable                    dims                                        unit
 ``additional_stiffness``    influenced_dof, radiating_dof               as stiffness
 ==========================  ==========================================  ===================
 
-Only ``added_mass`` and ``radiation_damping`` are required. Coordinates: ``omega``
+Only ``added_mass`` and ``radiation_damping`` are required. The second-order variables
+(the QTFs on their own frequency grid, their force convention) are described in
+:mod:`cummins.qtf.data`. Coordinates: ``omega``
 (rad/s, finite, strictly increasing, > 0; the limits ω = 0 and ω = ∞ live in
 ``added_mass_zero`` and ``added_mass_inf``), ``wave_direction`` (rad, direction in
 which the waves travel, measured from +x towards +y: 0 = following seas, π = head seas),
@@ -62,6 +68,7 @@ from cummins.dofs import dof_labels as dof_labels
 from cummins.dofs import is_rotation as is_rotation
 from cummins.errors import HydroDataError
 from cummins.kinematics import Z_UP_TO_Z_DOWN, screw_transform
+from cummins.qtf.data import second_order_summary
 
 AXIS_CONVENTIONS: dict[str, str] = {
     "z-up": "x forward, y to port, z up (WAMIT, NEMOH, AQWA, Capytaine)",
@@ -86,6 +93,13 @@ FORCE_VARIABLES: tuple[str, ...] = (
     "Froude_Krylov_force",
     "diffraction_force",
     "drift_force",
+    # second-order loads (cummins.qtf): the other mean-drift estimates and the QTFs,
+    # forces and moments about the reference point like the first-order forces
+    "drift_force_pressure",
+    "drift_force_momentum",
+    "drift_force_control_surface",
+    "qtf_difference",
+    "qtf_sum",
 )
 #: Variables holding a generalized motion per DOF (radiating_dof).
 MOTION_VARIABLES: tuple[str, ...] = ("rao",)
@@ -691,6 +705,11 @@ def change_axes(ds: xr.Dataset, to: str) -> xr.Dataset:
         beta[np.isclose(beta, 2 * np.pi)] = 0.0
         out = out.assign_coords(wave_direction=("wave_direction", beta, ds.wave_direction.attrs))
         out = out.sortby("wave_direction")
+    for dim in ("qtf_wave_direction", "qtf_wave_direction2"):  # the QTFs' own directions
+        if dim in out.dims:
+            beta = np.mod(-out[dim].values, 2 * np.pi)
+            beta[np.isclose(beta, 2 * np.pi)] = 0.0
+            out = out.assign_coords({dim: (dim, beta, ds[dim].attrs)}).sortby(dim)
     out.attrs["axis_convention"] = to
     add_history(out, f"axes changed from {current} to {to} ({AXIS_CONVENTIONS[to]})")
     return out
@@ -739,4 +758,7 @@ def describe(ds: xr.Dataset) -> dict[str, Any]:
         masses = [float(m[labels.index(d)]) for d in labels if split_dof(d)[1] == "Surge"]
         masses = masses or [float(m[0])]
         info["mass_kg"] = masses[0] if len(masses) == 1 else masses
+    second = second_order_summary(ds)
+    if second:
+        info["second_order"] = second
     return info

@@ -34,6 +34,10 @@ changed in the data. Each finding says what was measured, where, and what to do.
   K(t_max)/max|K|, the tail's share of ∫B dω, the Ogilvie estimate of A∞ and its spread
   over frequency (and its distance from the solver's ω = ∞ row), and the
   Kramers–Kronig error (:func:`cummins.radiation.retardation.retardation_diagnostics`).
+* ``qtf_symmetry``, ``qtf_mean_drift``, ``drift_methods``, ``qtf_grid`` — the second-order
+  data (:mod:`~cummins.check.second_order`): the QTFs' symmetries, their diagonal against
+  the run's mean drift, the mean-drift methods against each other, what the QTF's grid
+  covers and resolves.
 
 The checks live in modules by subject: :mod:`~cummins.check.coefficients` (frequency
 grid, symmetry, damping, A∞, decay), :mod:`~cummins.check.physical`,
@@ -72,6 +76,7 @@ from cummins.check.physical import _check_physical
 from cummins.check.report import SEVERITIES, CheckReport, Finding
 from cummins.check.retardation import _check_retardation
 from cummins.check.rigid_body import _check_rigid_body
+from cummins.check.second_order import _check_second_order
 from cummins.check.waves import _check_wave_parity
 from cummins.hydrodb import validate
 
@@ -139,6 +144,7 @@ def check(ds: xr.Dataset) -> CheckReport:
         _check_suspect_frequencies,
         _check_retardation,
         _check_wave_parity,
+        _check_second_order,
     ):
         findings.extend(part(ds))
     return CheckReport(source=str(source), findings=tuple(findings))

@@ -49,8 +49,8 @@ from cummins.errors import CumminsWarning
 @force_option("Overwrite DESTINATION if it exists.")
 @reports_errors
 def convert_command(source, destination, format_, rho, g, ulen, axes, reference_point, body, force):
-    """Convert SOURCE to canonical NetCDF (.nc), a BEMIO .h5 for WEC-Sim, or an MSS
-    vessel struct (.mat).
+    """Convert SOURCE to canonical NetCDF (.nc), a BEMIO .h5 for WEC-Sim, an MSS vessel
+    struct (.mat), or its difference- or sum-frequency QTF to a WAMIT .12d/.12s file.
 
     SOURCE is any file or folder cummins reads (WAMIT, HAMS, NEMOH, AQWA, VERES, Capytaine,
     BEMIO .h5, MSS .mat: see --format).
@@ -65,15 +65,16 @@ def convert_command(source, destination, format_, rho, g, ulen, axes, reference_
       cummins convert tanker.1 tanker.nc
       cummins convert tanker.1 tanker.h5
       cummins convert input.re7 supply.mat --reference-point 0 0 0
+      cummins convert results/ spar.12d       (a NEMOH QTF as WAMIT's, for OpenFAST)
     """
     from cummins.hydrodb import change_axes, move_reference_point
     from cummins.io import write
 
     to_mat = Path(destination).suffix.lower() == ".mat"
-    if Path(destination).suffix.lower() not in (".nc", ".mat", ".h5"):
+    if Path(destination).suffix.lower() not in (".nc", ".mat", ".h5", ".12d", ".12s"):
         raise click.BadParameter(
-            f"{destination}: write .nc (canonical NetCDF), .h5 (BEMIO, for WEC-Sim) or .mat "
-            "(MSS vessel struct)",
+            f"{destination}: write .nc (canonical NetCDF), .h5 (BEMIO, for WEC-Sim), .mat "
+            "(MSS vessel struct) or .12d/.12s (the QTF as WAMIT writes it, for HydroDyn)",
             param_hint="DESTINATION",
         )
     prepare_outputs(destination, force=force)

@@ -16,6 +16,7 @@ from cummins.cli.common import (
     progress_bar,
     reports_errors,
 )
+from cummins.cli.second_order import second_order_option
 from cummins.validation import check_simulation_size
 
 
@@ -71,6 +72,12 @@ from cummins.validation import check_simulation_size
     default=None,
     help="Another copy of MSS's s175.mat (default: the one bundled with cummins).",
 )
+@second_order_option(
+    "newman",
+    "Wave drift: newman (Newman's approximation at the instantaneous relative heading, "
+    "the paper's), mean, full (a QTF of the data; the bundled S-175 has none: it then "
+    "stops with an error) or none.",
+)
 @force_option("Overwrite the files of an earlier run.")
 @reports_errors
 def dp_demo_command(
@@ -83,6 +90,7 @@ def dp_demo_command(
     wind_speed,
     wind_from,
     data_path,
+    second_order,
     force,
 ):
     """The S-175 container ship on DP in a seaway, a crane load at t = 100 s.
@@ -127,6 +135,7 @@ def dp_demo_command(
             current_from_deg=current_from,
             wind_speed=wind_speed,
             wind_from_deg=wind_from,
+            second_order=second_order,
             progress=lambda fraction: bar.update(task, completed=fraction),
         )
     save_netcdf(scenario.run, out / "run.nc")

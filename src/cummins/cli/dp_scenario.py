@@ -83,10 +83,15 @@ def build_scenario(
     crane: bool = True,
     bandwidth: float = 0.1,
     filter_cutoff: float = 0.3,
+    second_order: str = "newman",
 ):
     """The unified model, loads and controller of the scenario (module docstring);
     ``bandwidth`` (rad/s) of the position loop and ``filter_cutoff`` (rad/s) of the
-    wave filter (keep it ≈ 4 × the bandwidth and well below the waves' 0.6 rad/s).
+    wave filter (keep it ≈ 4 × the bandwidth and well below the waves' 0.6 rad/s);
+    ``second_order``: the wave drift, ``"newman"`` (the paper's, at the instantaneous
+    relative heading), ``"mean"``, ``"full"`` (a QTF of the data:
+    :class:`cummins.timedomain.loads.SecondOrderWaveLoad`, the S-175 of MSS has none) or
+    ``"none"``.
 
     Returns (model, loads, controller, sea).
     """
@@ -122,7 +127,7 @@ def build_scenario(
     )
     loads = [
         ld.FirstOrderWaveLoad.from_hydrodb(ds, sea),
-        ld.WaveDriftLoad.from_hydrodb(ds, sea, extrapolate="zero"),
+        *_drift_load(ds, sea, second_order),
         ld.SurgeResistance.from_main_particulars(length, breadth, draught, block, current=current),
         ld.CrossFlowDrag.from_main_particulars(length, breadth, draught, current=current),
     ]
@@ -152,6 +157,18 @@ def build_scenario(
         gains, thrusters, wave_filter=WaveFilter(cutoff=filter_cutoff), setpoint=(0.0, 0.0, 0.0)
     )
     return model, tuple(loads), controller, sea
+
+
+def _drift_load(ds, sea, second_order: str) -> list:
+    """The wave-drift load of ``--second-order`` (none: no load)."""
+    from cummins.timedomain import loads as ld
+
+    if second_order == "none":
+        return []
+    if second_order == "full":
+        return [ld.SecondOrderWaveLoad.from_hydrodb(ds, sea, model="full", name="wave drift")]
+    slowly = second_order == "newman"
+    return [ld.WaveDriftLoad.from_hydrodb(ds, sea, extrapolate="zero", slowly_varying=slowly)]
 
 
 def run_scenario(

@@ -190,7 +190,26 @@ def data_sections(ds: xr.Dataset) -> list[Section]:
         )
     )
     sections.append(_rao_data_section(one))
+    second = _second_order_section(one)
+    if second is not None:
+        sections.append(second)
     return sections
+
+
+def _second_order_section(ds: xr.Dataset) -> Section | None:
+    """|Q(ω₁, ω₂)| of the QTFs and what the data hold (None without second-order data)."""
+    from cummins.cli.info import second_order_lines
+    from cummins.qtf import QTF_VARIABLES, second_order_summary
+    from cummins.qtf.figures import plot_qtf
+
+    summary = second_order_summary(ds)
+    if not summary:
+        return None
+    body = table_html(["second-order data"], [[line] for line in second_order_lines(summary)])
+    for kind, name in QTF_VARIABLES.items():
+        if name in ds:
+            body += figure_html(plot_qtf(ds, kind), f"{kind}-frequency QTF |Q(ω₁, ω₂)|")
+    return Section("Second-order wave loads", body)
 
 
 def _rao_data_section(ds: xr.Dataset) -> Section:

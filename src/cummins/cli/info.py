@@ -10,6 +10,29 @@ from rich.table import Table
 from cummins.cli.common import console, read_hydrodb, read_options, reports_errors
 
 
+def second_order_lines(summary: dict) -> list[str]:
+    """One line per QTF and mean-drift estimate of :func:`cummins.qtf.second_order_summary`."""
+    lines = []
+    for name, part in summary.items():
+        if name.startswith("qtf_"):
+            lo, hi = part["omega_range_rad_s"]
+            step = part["omega_spacing_rad_s"]
+            spacing = f", dw {step[0]:.3g}" + (
+                f"–{step[1]:.3g}" if step[1] > 1.01 * step[0] else ""
+            )
+            lines.append(
+                f"{name}: {part['n_omega']}x{part['n_omega']} frequencies {lo:.3g}–{hi:.3g} rad/s"
+                f"{spacing if step else ''}, directions "
+                + ", ".join(f"{b:g}" for b in part["wave_directions_deg"])
+                + " deg"
+                + (" (bi-directional)" if part["bidirectional"] else "")
+                + (f" [{part['source']}]" if part["source"] else "")
+            )
+        else:
+            lines.append(f"{name}: mean drift, {part['method'] or 'method not recorded'}")
+    return lines
+
+
 @click.command(name="info")
 @click.argument("path", type=click.Path(exists=True))
 @read_options
@@ -64,6 +87,8 @@ def info_command(path, format_, rho, g, ulen, as_json):
         if key in d:
             values = d[key] if isinstance(d[key], list) else [d[key]]
             table.add_row(label, ", ".join(f"{v:.6g}" for v in values) + f" {unit}")
+    for k, line in enumerate(second_order_lines(d.get("second_order", {}))):
+        table.add_row("second order" if k == 0 else "", line)
     for k, line in enumerate(d["history"]):
         table.add_row("provenance" if k == 0 else "", line)
     console.print(table)

@@ -25,6 +25,11 @@ from cummins.cli.common import (
     viscous_damping_option,
     viscous_damping_values,
 )
+from cummins.cli.second_order import (
+    build_second_order,
+    second_order_option,
+    sum_frequency_option,
+)
 from cummins.cli.system_options import SystemCommand, system_from_options, system_options
 from cummins.validation import check_simulation_size
 
@@ -151,6 +156,8 @@ from cummins.validation import check_simulation_size
     default=None,
     help="PNGs: time series and response spectra against the frequency domain.",
 )
+@second_order_option()
+@sum_frequency_option
 @force_option()
 @reports_errors
 def simulate_command(
@@ -183,6 +190,8 @@ def simulate_command(
     soft_springs,
     system_options,
     plot_dir,
+    second_order,
+    sum_frequency,
     force,
 ):
     """Simulate the vessel in waves: the Cummins equation with a state-space fluid memory.
@@ -209,6 +218,14 @@ def simulate_command(
       cummins simulate rm3.out --rho 1000 --mass 725833 --mass 886687 ... --joint
           translational body2 ground --joint translational body1 body2 --pto-damping 1.2e6
           --no-body-coupling --regular --wave-period 8 --wave-amplitude 1.25 -o rm3.nc
+      cummins simulate marin_semi.1 --dof Surge --mass 1.4e7 --external-stiffness Surge
+        Surge 9e4 --external-damping Surge Surge 5.7e5 --second-order full --hs 6 --tp 10
+        -o slow_drift.nc
+
+    \b
+    --second-order adds the second-order force of the same sea (docs/second_order.md);
+    data without first-order excitation (the OC4 semi's WAMIT files) then run with the
+    second-order force alone.
     """
     from cummins.seakeeping import waves as wv
     from cummins.timedomain.simulate import quadratic_damping_force, simulate_waves
@@ -321,6 +338,10 @@ def simulate_command(
     inherited = warn_failed_model(
         vessel.radiation.attrs, path, "fitted" if model is None else "model"
     )
+    second = build_second_order(ds, sea, second_order, sum_frequency=sum_frequency)
+    first_order = "excitation_force" in ds or second is None
+    if not first_order:
+        console.print("note: the data have no first-order excitation: second-order force only")
     with progress_bar() as bar:
         task = bar.add_task(f"simulating {duration:g} s, {title}, heading {heading:g}°", total=1.0)
         run = simulate_waves(
@@ -332,6 +353,8 @@ def simulate_command(
             initial=start,
             nonlinear_force=quadratic_damping_force(vessel.dofs, b_q) if b_q else None,
             progress=lambda fraction: bar.update(task, completed=fraction),
+            second_order=second,
+            first_order=first_order,
         )
     if sea.seed is not None:
         run.attrs["seed"] = int(sea.seed)  # an int64: HDF5 stores it; --seed repeats the run
@@ -369,7 +392,9 @@ def _summary(run, regular: bool = False) -> None:
 
     table = Table(title=f"{run.attrs.get('sea', '')}: {run.time.values[-1]:g} s")
     first = "amplitude" if regular else "significant amplitude (2σ)"
-    for column in ("DOF", first, "max |ξ|", "unit"):
+    mean = "second_order" in run.attrs  # the mean drift offsets the body
+    columns = ("DOF", *(("mean",) if mean else ()), first, "max |ξ|", "unit")
+    for column in columns:
         table.add_column(column, justify="right")
     units = run.motion.attrs.get("units", "").split(" | ")
     t = run.time.values
@@ -380,6 +405,7 @@ def _summary(run, regular: bool = False) -> None:
         size = 0.5 * np.ptp(xi[last]) if regular else 2 * xi.std()
         table.add_row(
             str(dof),
+            *((f"{xi.mean():.4g}",) if mean else ()),
             f"{size:.4g}",
             f"{np.abs(xi).max():.4g}",
             units[k] if k < len(units) else "",

@@ -246,7 +246,8 @@ def read(
 
 def write(ds: xr.Dataset, path: str | os.PathLike[str], *, force: bool = False, model=None) -> Path:
     """Write a ``HydroDB`` to ``.nc`` (Capytaine-compatible NetCDF), ``.h5`` (BEMIO, the
-    layout WEC-Sim reads) or ``.mat`` (MSS).
+    layout WEC-Sim reads), ``.mat`` (MSS) or, of its QTFs, ``.12d``/``.12s`` (WAMIT's
+    second-order files, which OpenFAST HydroDyn reads: :mod:`cummins.io.wamit.qtf_writer`).
 
     Refuses to overwrite an existing file unless ``force=True``. ``model`` (a fitted
     :class:`~cummins.radiation.model.RadiationModel`) goes into a ``.h5`` file's state-space
@@ -273,12 +274,16 @@ def write(ds: xr.Dataset, path: str | os.PathLike[str], *, force: bool = False, 
         from cummins.io.mss import write_mss
 
         write_mss(ds, p)
+    elif suffix in (".12d", ".12s"):
+        from cummins.io.wamit.qtf_writer import write_wamit_qtf
+
+        write_wamit_qtf(ds, p, force=True)  # the overwrite check is above
     else:
         raise HydroDataError(
             f"cannot write {suffix or 'files without an extension'}",
             path=p,
-            hint="use .nc (NetCDF, Capytaine layout), .h5 (BEMIO, for WEC-Sim) or .mat "
-            "(MSS vessel struct)",
+            hint="use .nc (NetCDF, Capytaine layout), .h5 (BEMIO, for WEC-Sim), .mat "
+            "(MSS vessel struct) or .12d/.12s (a WAMIT QTF file, for OpenFAST HydroDyn)",
         )
     return p
 

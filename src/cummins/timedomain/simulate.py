@@ -182,6 +182,8 @@ def simulate_waves(
     initial: str = "steady",
     nonlinear_force: NonlinearForce | None = None,
     progress: Progress | None = None,
+    second_order=None,
+    first_order: bool = True,
     **excitation_options,
 ) -> xr.Dataset:
     """Simulate the vessel in a sea of wave components (regular or irregular).
@@ -205,6 +207,15 @@ def simulate_waves(
         As :func:`simulate`.
     progress
         Called with the fraction done, 0 to 1 (the wave force takes the first fifth).
+    second_order
+        A second-order force of the same sea
+        (:func:`cummins.timedomain.loads.second_order.second_order_force`), added to the
+        first-order one; the steady start includes its stationary response (a DOF
+        without restoring starts at rest and drifts under the mean force). Zero speed
+        only.
+    first_order
+        Include the first-order wave force (False: a run of the second-order force alone,
+        for data without ``excitation_force``).
     **excitation_options
         Passed to :func:`cummins.seakeeping.excitation.excitation_transfer`.
 
@@ -226,11 +237,25 @@ def simulate_waves(
     duration, dt = float(duration), float(dt)
     ds = _on_vessel_dofs(ds, vessel)
     t = np.arange(0.0, duration + 0.5 * dt, dt)
-    omega_e, coefficients = encounter_coefficients(ds, waves, **excitation_options)
     report = progress or _no_progress
-    force = harmonic_sum(t, omega_e, coefficients)
+    if first_order:
+        omega_e, coefficients = encounter_coefficients(ds, waves, **excitation_options)
+        force = harmonic_sum(t, omega_e, coefficients)
+        x0 = steady_state(vessel, omega_e, coefficients) if initial == "steady" else None
+    else:
+        omega_e = waves.omega
+        force = np.zeros((t.size, len(vessel.dofs)))
+        x0 = np.zeros(vessel.n_states) if initial == "steady" else None
+    notes: list[str] = []
+    if second_order is not None:
+        if forward_speed(ds):
+            raise ArgumentError("second-order wave loads are modelled at zero speed only")
+        force = force + second_order.time_series(t)
+        notes = list(second_order.notes)
+        if initial == "steady":
+            x2, more = second_order.stationary_state(vessel)
+            x0, notes = x0 + x2, notes + more
     report(0.2)
-    x0 = steady_state(vessel, omega_e, coefficients) if initial == "steady" else None
     result = simulate(
         vessel,
         t,
@@ -257,6 +282,11 @@ def simulate_waves(
         value = getattr(waves, key, None)
         if value is not None:
             attrs[key] = value
+    attrs["first_order"] = int(bool(first_order))
+    if second_order is not None:
+        attrs["second_order"] = second_order.model
+        attrs["second_order_mean_force"] = np.asarray(second_order.mean, dtype=float)
+        attrs["second_order_notes"] = "\n".join(notes)
     result.attrs.update(attrs)
     return result
 

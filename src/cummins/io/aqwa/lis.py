@@ -11,6 +11,8 @@
   (amplitude with 3 significant digits, phase in degrees) and "R.A.O.S" (motion RAOs,
   rotations in degrees per metre, converted to rad/m).
 * "MASS AND INERTIA PROPERTIES": mass, centre of gravity and inertia matrix.
+* "WAVE-DRIFT LOADS FOR UNIT WAVE AMPLITUDE**2": the mean drift
+  (:mod:`cummins.io.aqwa.drift`).
 * With the LHFR option, "HYDRODYNAMIC PARAMETERS AT LOW & HIGH FREQUENCIES".
 
 The listing must be in the "Metric: kg, m [N]" unit system that its header states.
@@ -35,6 +37,7 @@ from cummins.io.aqwa.conventions import (
     _limits_history,
 )
 from cummins.io.aqwa.detection import _is_lis
+from cummins.io.aqwa.drift import lis_mean_drift
 
 _ROW_LABELS = ("X", "Y", "Z", "RX", "RY", "RZ")
 
@@ -410,7 +413,12 @@ def _read_lis(path: Path, rho, g) -> xr.Dataset:
             amplitude[..., 3:] = np.radians(amplitude[..., 3:])
             history.append("RAO rotations converted from deg/m to rad/m")
         extra[names[kind]] = _complex(amplitude, phase, omega, directions, cg, depth, g_v)
-    if tables:
+    notes: list[str] = []
+    drift, drift_history = lis_mean_drift(text, titles, omega, directions, notes)
+    if drift is not None:
+        extra["drift_force"] = drift
+        history.extend(drift_history)
+    if tables or drift is not None:
         extra["wave_direction"] = np.radians(directions)
         history.append(
             "AQWA phase lags converted: X = |X| exp(-i(phase + k(xG cos b + yG sin b))), "
@@ -429,7 +437,6 @@ def _read_lis(path: Path, rho, g) -> xr.Dataset:
         )
     else:
         history.append("no MASS AND INERTIA PROPERTIES in the listing: no inertia_matrix")
-    notes: list[str] = []
     _lis_completeness(text, tables, a_inf is not None or high is not None, notes)
     cb = np.array([_value_after(text, key)[0] for key in ("BX", "BY", "BZ")])
     volume, _ = _value_after(text, "MESH BASED DISPLACEMENT")

@@ -26,6 +26,7 @@ from cummins.hydrodb import (
     validate,
 )
 from cummins.io.bemio.files import COPY_GROUP
+from cummins.io.bemio.second_order import write_mean_drift
 from cummins.io.bemio.state_space import _state_space
 
 
@@ -219,6 +220,7 @@ def write_bemio(ds: xr.Dataset, path: str | os.PathLike[str], *, model=None) -> 
                             f"{key} of {what} force (normalized by rho*g)",
                             unit,
                         )
+                write_mean_drift(number, hc, ds, rows, rho, g)
                 irf = f"{hc}/radiation_damping/impulse_response_fun"
                 number(
                     f"{irf}/K",

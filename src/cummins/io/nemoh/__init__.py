@@ -39,7 +39,9 @@ Files and what cummins takes from them (all dimensional, SI):
   of another mesh (the corpus Cubes and bemio two-body runs) are not read, with a
   warning.
 * ``Nemoh.cal`` edited after the run (other frequency or direction counts than the
-  results): the results are read, ``history`` says so. QTF output is not read.
+  results): the results are read, ``history`` says so.
+* ``results/QTF/OUT_QTFM_N.dat``, ``OUT_QTFP_N.dat`` (v3): the difference- and
+  sum-frequency QTFs (:mod:`cummins.io.nemoh.qtf`), as ``qtf_difference``, ``qtf_sum``.
 * ``IRF.tec`` (if the post-processor was run with IRF on): NEMOH's own A(∞), column
   "AddedMass k" of zone "DoF j" being ``added_mass_inf[influenced=k, radiating=j]``.
   It is only used after checking that the file belongs to the run: its K(t) must be the
@@ -93,6 +95,7 @@ from cummins.io.nemoh.files import (
 )
 from cummins.io.nemoh.hydrostatics import HYDROSTATIC_TOLERANCE as HYDROSTATIC_TOLERANCE
 from cummins.io.nemoh.hydrostatics import _BodyInfo, _hydrostatics
+from cummins.io.nemoh.qtf import nemoh_second_order
 from cummins.io.nemoh.tecplot import IRF_TOLERANCE as IRF_TOLERANCE
 from cummins.io.nemoh.tecplot import (
     _Forces,
@@ -101,6 +104,7 @@ from cummins.io.nemoh.tecplot import (
     _read_forces,
     _read_tecplot,
 )
+from cummins.qtf.data import with_second_order
 
 __all__ = ["read_nemoh", "sniff", "sniff_dir"]
 
@@ -250,11 +254,8 @@ def read_nemoh(
     if unit != "rad/s":
         history.append(f"frequency column of {run.radiation.name} in {unit}, converted to rad/s")
     qtf = _subfolder(run.results, "qtf")
-    if qtf is not None or (cal is not None and cal.qtf):
-        history.append(
-            "second-order QTFs of the run (results/QTF) not read: cummins reads the "
-            "first-order coefficients"
-        )
+    if qtf is None and cal is not None and cal.qtf:
+        history.append("Nemoh.cal asks for QTFs, but there is no results/QTF folder")
     cal_text = TextFile.read(run.cal) if cal is not None else None
     dofs, force_labels, points, body_names = _labels(cal_text, cal, n_dofs, n_forces, notes)
     missing = [d for d in dofs if d not in force_labels]
@@ -311,7 +312,10 @@ def read_nemoh(
     extra.update(_hydrostatics(run, bodies, omega, extra, (rho_v, g_v, depth), history, notes))
     n_bodies = points.shape[0]
     reference = points.reshape(-1) if n_bodies > 1 else points[0]
-    return make_hydrodb(
+    second = nemoh_second_order(
+        run.results, qtf, dofs=list(dofs), pick=pick, rho=rho_v, g=g_v, notes=notes
+    )
+    ds = make_hydrodb(
         omega,
         added_mass,
         damping,
@@ -329,6 +333,9 @@ def read_nemoh(
         body_names="\n".join(body_names) if n_bodies > 1 and body_names else None,
         **extra,
     )
+    if not second["tables"]:
+        return ds
+    return with_second_order(ds, second["tables"], history=second["history"], attrs=second["attrs"])
 
 
 def _force_arrays(read: dict[str, _Forces], omega, pick, n_forces, cal, history) -> dict:

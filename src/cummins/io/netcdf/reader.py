@@ -45,6 +45,7 @@ from cummins.io.netcdf.layout import (
     dof_layout,
 )
 from cummins.io.netcdf.legacy import LegacyExport, _legacy_exporter_files
+from cummins.io.netcdf.second_order import capytaine_drift, restore_second_order
 
 _FREQUENCY_DIMS = ("omega", "freq", "period", "wavenumber", "wavelength")
 
@@ -301,10 +302,13 @@ def from_capytaine_dataset(
         )
     if ours:
         out = _restore_extra_variables(out, raw)
+        out = restore_second_order(out, raw, where)
         kept = {k: out.attrs[k] for k in ("read_warnings",) if k in out.attrs}
         _restore_attributes(out, raw)
         for key, value in kept.items():
             out.attrs.setdefault(key, value)
+    elif "forward_speed" not in out.dims:
+        out = capytaine_drift(out, raw, where)
     return out
 
 

@@ -15,11 +15,15 @@ from cummins.io.wamit.text import _head_lines
 
 
 def numeric_kind(path: str | os.PathLike[str]) -> str | None:
-    """Which WAMIT numeric file ``path`` is by its content: ``".1"``, ``".3"``, ``".hst"``.
+    """Which WAMIT numeric file ``path`` is by its content: ``".1"``, ``".3"``, ``".hst"``,
+    or a second-order file: ``".8"`` (mean drift, also ``.7``/``.9``) or ``".12"`` (a QTF,
+    ``.10d`` … ``.12s``).
 
     ``.1`` rows are ``PER I J A [B]``, ``.3`` (and ``.4``) rows ``PER BETA I Mod Pha Re
-    Im`` and ``.hst`` rows ``I J C``; the integer columns must hold DOF indices. A first
-    line of text (a title) is allowed.
+    Im``, ``.hst`` rows ``I J C``, mean-drift rows ``PER BETA1 BETA2 I Mod Pha Re Im`` and
+    QTF rows ``PER1 PER2 BETA1 BETA2 I Mod Pha Re Im`` (I negative for moments in body
+    axes); the integer columns must hold DOF indices. A first line of text (a title) is
+    allowed; a QTF's must be WAMIT's (NEMOH writes rows of the same width).
     """
     try:
         head = _head_lines(Path(path))[:6]
@@ -44,6 +48,11 @@ def numeric_kind(path: str | os.PathLike[str]) -> str | None:
         return ".3"
     if widths == {3} and all(is_dof(r[0]) and is_dof(r[1]) for r in rows):
         return ".hst"
+    if widths == {8} and all(is_dof(abs(r[3])) for r in rows):
+        return ".8"
+    titled = parse_numbers(first) is None
+    if widths == {9} and all(is_dof(abs(r[4])) for r in rows) and (not titled or "WAMIT" in first):
+        return ".12"
     return None
 
 

@@ -38,6 +38,7 @@ from cummins.io.wamit.numeric import (
 )
 from cummins.io.wamit.out import read_wamit_out
 from cummins.io.wamit.out_header import _hydrostatics_matrix, _out_header, _OutHeader
+from cummins.io.wamit.second_order import attach_wamit_second_order, wamit_second_order
 from cummins.io.wamit.settings import RunSettings
 from cummins.io.wamit.text import _read_text
 
@@ -108,7 +109,8 @@ def read_wamit(
     kind = numeric_kind(path)
     if kind is None:
         raise HydroDataError(
-            "not a WAMIT .1, .3, .hst or .out file (unrecognised content)", path=path
+            "not a WAMIT .1, .3, .hst, second-order or .out file (unrecognised content)",
+            path=path,
         )
     dot1 = path if kind == ".1" else _sibling(path, ".1")
     if dot1 is None:
@@ -330,7 +332,23 @@ def read_wamit_run(
         omega.size,
     )
     names = header.body_names if len(header.body_names) == len(layout) else (pot_names or [])
-    return make_hydrodb(
+    labels = dof_labels(len(layout) if len(layout) > 1 else None, layout)
+    second = None
+    if siblings:
+        second = wamit_second_order(
+            dot1,
+            omega=omega,
+            directions=extra.get("wave_direction"),
+            dofs=labels,
+            layout=layout,
+            rho=rho_v,
+            g=g_v,
+            ulen=L,
+            first_column=column,
+            depth=depth,
+            notes=notes,
+        )
+    ds = make_hydrodb(
         omega,
         extra.pop("added_mass"),
         extra.pop("radiation_damping"),
@@ -339,7 +357,7 @@ def read_wamit_run(
         water_depth=depth,
         source_format=settings.source_format,
         source_file=str(dot1),
-        dofs=dof_labels(len(layout) if len(layout) > 1 else None, layout),
+        dofs=labels,
         history=history,
         read_warnings=notes,
         ulen=L,
@@ -347,6 +365,7 @@ def read_wamit_run(
         **extra,
         **_body_attrs(header, layout, settings),
     )
+    return ds if second is None else attach_wamit_second_order(ds, second)
 
 
 def _excitation_from_out(out_path, omega, layout, rho_v, g_v, L, extra, history) -> None:

@@ -41,6 +41,7 @@ class                          model                                           S
 :class:`Current`               current velocity, relative velocity (no load)   eqs. 40, 49
 :class:`FirstOrderWaveLoad`    first-order wave excitation                     eq. 46
 :class:`WaveDriftLoad`         mean and slowly varying drift (Newman)          eqs. 47–48
+:class:`SecondOrderWaveLoad`   mean, slow drift (Newman or full QTF), sum-freq.
 :class:`SurgeResistance`       ITTC 1957 friction line resistance              eqs. 50–51, 54
 :class:`CrossFlowDrag`         cross-flow drag in sway and yaw (strips)        eqs. 52–54
 :class:`WindLoad`              wind with gusts (Harris, NORSOK)                eq. 55, §4.2
@@ -54,6 +55,8 @@ Modules
 * :mod:`~cummins.timedomain.loads.base`: the :class:`Load` protocol and shared helpers;
 * :mod:`~cummins.timedomain.loads.current`: :class:`Current` and the relative velocity;
 * :mod:`~cummins.timedomain.loads.waves`: first-order wave excitation and wave drift;
+* :mod:`~cummins.timedomain.loads.second_order`: the second-order wave force from QTFs
+  (:mod:`~cummins.timedomain.loads.quadratic_form`: its factorised double sum);
 * :mod:`~cummins.timedomain.loads.viscous`: surge resistance and cross-flow drag;
 * :mod:`~cummins.timedomain.loads.wind`: gust spectra, wind, wind coefficients, wind load;
 * :mod:`~cummins.timedomain.loads.external`: point, constant and function loads, and sums.
@@ -72,6 +75,7 @@ from cummins.timedomain.loads.external import (
     load_forces,
     total_force,
 )
+from cummins.timedomain.loads.second_order import SecondOrderWaveLoad, second_order_force
 from cummins.timedomain.loads.viscous import (
     HOERNER_DRAG,
     CrossFlowDrag,
@@ -109,6 +113,7 @@ __all__ = [
     "Load",
     "ParametricWindCoefficients",
     "PointLoad",
+    "SecondOrderWaveLoad",
     "SurgeResistance",
     "WaveDriftLoad",
     "Wind",
@@ -123,6 +128,7 @@ __all__ = [
     "load_forces",
     "norsok",
     "norsok_variance",
+    "second_order_force",
     "total_force",
     "wind_gust",
 ]

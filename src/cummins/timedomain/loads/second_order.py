@@ -1,0 +1,394 @@
+"""Second-order wave loads in the time domain: the mean drift, the slowly varying force
+(Newman's approximation or the full difference-frequency QTF) and the sum-frequency force.
+
+:class:`SecondOrderWaveLoad` realises the force of :mod:`cummins.qtf.data` for a sea of
+:class:`~cummins.seakeeping.waves.WaveComponents`,
+
+    F(t) = Re Σ_i Σ_j c_i c_j* Q⁻(ω_i, ω_j, β_i, β_j) e^{i(ω_i − ω_j)t}
+         + Re Σ_i Σ_j c_i c_j Q⁺(ω_i, ω_j, β_i, β_j) e^{i(ω_i + ω_j)t},
+
+(the same components, phases and directions as the first-order force, so the slow drift
+follows the wave groups of the simulated sea), with
+
+* ``model="full"``: Q⁻ the dataset's ``qtf_difference`` interpolated over the
+  components' pairs (bilinear in (ω₁, ω₂), linear in direction:
+  :mod:`cummins.qtf.interpolation`), and Q⁺ its ``qtf_sum`` when it has one
+  (``sum_frequency``);
+* ``model="newman"``: Q⁻(ω_i, ω_j) ≈ ½(T_i + T_j), T_i the mean drift of component i
+  (Newman (1974)): the QTF's diagonal when the dataset has a QTF, else ``drift_force``
+  (linear in ω, linear in direction); no sum-frequency force;
+* ``model="mean"``: only the mean Σ_i a_i² T_i.
+
+Pairs of components with a frequency outside the QTF's (or the drift's) grid have no
+second-order force; the load's ``notes`` say which share of the sea's variance that is.
+A unidirectional QTF gives a pair of components of different directions its value at
+their mean direction (short-crested seas; a note says so).
+
+The double sums are factorised once (:mod:`cummins.timedomain.loads.quadratic_form`):
+:meth:`time_series` gives F on a simulation's time grid (a 3-hour record of 200
+components at 0.05 s in about a second), :meth:`force` the load of the nonlinear model
+(``force(t, η, ν)``, with the phase of the vessel's horizontal position, as
+:class:`~cummins.timedomain.loads.WaveDriftLoad`), :meth:`stationary_state` the state a
+linear simulation starts from to be stationary at once.
+
+Axes: :meth:`from_hydrodb` builds the load of the nonlinear DP model — z-down body axes,
+directions relative to the heading ψ₀ the vessel holds (the QTF is looked up there; a DP
+vessel keeps its heading) — and :func:`second_order_force` the force of a linear
+simulation in the dataset's own axes, without position phase.
+"""
+
+from __future__ import annotations
+
+from dataclasses import dataclass, field
+
+import numpy as np
+import xarray as xr
+from numpy.typing import NDArray
+
+from cummins.errors import ArgumentError, HydroDataError
+from cummins.hydrodb import bodies, change_axes, dof_index, single_speed
+from cummins.qtf.data import has_qtf, qtf_table
+from cummins.qtf.interpolation import (
+    at_directions,
+    coverage,
+    direction_weights,
+    frequency_weights,
+    interpolate,
+    pair_matrix,
+    weight_matrix,
+)
+from cummins.seakeeping.waves import WaveComponents, wavenumber
+from cummins.timedomain.loads.quadratic_form import (
+    QuadraticForm,
+    full_form,
+    grid_form,
+    newman_form,
+    time_series,
+)
+from cummins.timedomain.loads.waves import _wave_vectors
+
+#: The second-order models.
+MODELS = ("full", "newman", "mean")
+#: Default truncation of the factorised QTF (relative, of the force's standard deviation).
+TOLERANCE = 1e-3
+#: Most components whose pairs the stationary start sums one by one (N² per mode);
+#: above, the run starts from the static offset of the mean force.
+STATIONARY_LIMIT = 600
+
+
+@dataclass(frozen=True, eq=False)
+class SecondOrderWaveLoad:
+    """The second-order wave force of a sea (module docstring).
+
+    Attributes
+    ----------
+    waves
+        The sea.
+    dofs
+        DOF labels of the force's columns.
+    model
+        ``"full"``, ``"newman"`` or ``"mean"``.
+    difference
+        The factorised difference-frequency force (mean included); None for the mean
+        drift alone.
+    sum
+        The factorised sum-frequency force, or None.
+    mean
+        The mean force Σ_i a_i² Re Q⁻(ω_i, ω_i), shape (n_dofs,), N and N·m.
+    index
+        Position of each DOF in the 6-vector of the nonlinear model (``from_hydrodb``).
+    wavenumbers
+        k_i, rad/m (for the position phase).
+    position_phase
+        Include the phase of the vessel's horizontal position in :meth:`force`.
+    notes
+        What the load assumes or leaves out (one line each).
+    name
+        Name of the load.
+    """
+
+    waves: WaveComponents
+    dofs: tuple[str, ...]
+    model: str
+    difference: QuadraticForm | None
+    sum: QuadraticForm | None
+    mean: NDArray[np.float64]
+    index: NDArray[np.intp] | None = None
+    wavenumbers: NDArray[np.float64] | None = None
+    position_phase: bool = False
+    notes: tuple[str, ...] = ()
+    name: str = "second-order wave force"
+    _k: NDArray | None = field(default=None, init=False, repr=False)
+
+    def __post_init__(self) -> None:
+        if self.wavenumbers is not None:
+            k = np.asarray(self.wavenumbers, dtype=float)
+            object.__setattr__(self, "_k", _wave_vectors(k, self.waves.direction))
+
+    @classmethod
+    def from_hydrodb(
+        cls,
+        ds: xr.Dataset,
+        waves: WaveComponents,
+        *,
+        model: str = "full",
+        sum_frequency: bool | None = None,
+        heading: float = 0.0,
+        position_phase: bool = True,
+        tol: float = TOLERANCE,
+        max_gap: float = np.pi / 2,
+        name: str = "second-order wave force",
+    ) -> SecondOrderWaveLoad:
+        """The load of the nonlinear DP model (z-down axes, b-frame about O).
+
+        Parameters
+        ----------
+        ds
+            A ``HydroDB`` of one body, with ``qtf_difference`` (``model="full"``) or a
+            QTF or ``drift_force`` (``"newman"``, ``"mean"``).
+        waves
+            The sea (directions in the n-frame).
+        model
+            ``"full"``, ``"newman"`` or ``"mean"`` (module docstring).
+        sum_frequency
+            Include the sum-frequency force (``"full"`` only; default: when the data
+            have ``qtf_sum``).
+        heading
+            ψ₀, rad: the heading at which the QTF is looked up (β_i − ψ₀).
+        position_phase
+            Include the phase of the vessel's horizontal position.
+        tol
+            Truncation of the factorised QTF (:mod:`~cummins.timedomain.loads.quadratic_form`).
+        max_gap
+            Widest gap between data directions to interpolate across, rad.
+        name
+            Name of the load.
+        """
+        ds = single_speed(ds)
+        if len(bodies(ds)) != 1:
+            raise HydroDataError(
+                f"the dataset holds {len(bodies(ds))} bodies; a vessel load needs one",
+                path=ds.attrs.get("source_file"),
+            )
+        if ds.attrs.get("axis_convention", "z-up") != "z-down":
+            ds = change_axes(ds, "z-down")
+        relative = WaveComponents(
+            waves.omega, waves.amplitude, waves.phase, waves.direction - float(heading)
+        )
+        parts = _build(ds, relative, model, sum_frequency, tol, max_gap)
+        index = np.array([dof_index(str(d)) for d in ds.influenced_dof.values], dtype=np.intp)
+        k = wavenumber(
+            waves.omega, float(ds.attrs.get("water_depth", np.inf)), float(ds.attrs.get("g", 9.81))
+        )
+        notes = parts["notes"] + [
+            f"QTF looked up at the heading {np.degrees(heading):.4g} deg (held by DP)"
+        ]
+        return cls(
+            waves,
+            parts["dofs"],
+            model,
+            parts["difference"],
+            parts["sum"],
+            parts["mean"],
+            index,
+            k,
+            position_phase,
+            tuple(notes),
+            name,
+        )
+
+    def time_series(self, t) -> NDArray[np.float64]:
+        """F(t) at uniform times ``t`` (s), shape (nt, n_dofs), N and N·m."""
+        t = np.asarray(t, dtype=float).reshape(-1)
+        forms = [f for f in (self.difference, self.sum) if f is not None]
+        out = time_series(forms, t) if forms else np.zeros((t.size, self.mean.size))
+        if self.difference is None:
+            out += self.mean
+        return out
+
+    def stationary_state(self, vessel) -> tuple[NDArray[np.float64], list[str]]:
+        """The state of a :class:`~cummins.vessel.Vessel` that makes its response to this
+        force stationary from t = 0 (QuadraticForm.stationary_state), and notes."""
+        f, g = vessel.state_space()
+        if self.difference is None:
+            x, notes = _static_state(f, g, self.mean)
+        elif len(self.waves) > STATIONARY_LIMIT:
+            x, notes = _static_state(f, g, self.mean)
+            notes = [
+                *notes,
+                f"{len(self.waves)} components: the run starts from the static offset of the "
+                f"mean force (the stationary slow drift is summed over the pairs of at most "
+                f"{STATIONARY_LIMIT}); discard the first few natural periods",
+            ]
+            return x, notes
+        else:
+            x, notes = self.difference.stationary_state(f, g)
+        if self.sum is not None:
+            xs, more = self.sum.stationary_state(f, g)
+            x, notes = x + xs, notes + more
+        return x, notes
+
+    def force(self, t: float, eta: NDArray[np.float64], nu: NDArray[np.float64]) -> NDArray:
+        """The 6-vector of the nonlinear model, b-frame about O, N and N·m."""
+        shift = None
+        if self.position_phase and self._k is not None:
+            shift = np.asarray(eta, dtype=float)[:2] @ self._k
+        value = self.mean if self.difference is None else self.difference.at(t, shift)
+        if self.sum is not None:
+            value = value + self.sum.at(t, shift)
+        out = np.zeros(6)
+        index = self.index if self.index is not None else np.arange(min(6, value.size))
+        out[index] = value[: index.size]
+        return out
+
+
+def _static_state(f: NDArray, g: NDArray, force: NDArray) -> tuple[NDArray, list[str]]:
+    """x with F x + G τ̄ = 0 in the modes that have restoring (the others left at rest)."""
+    lam, vec = np.linalg.eig(f)
+    q = np.linalg.solve(vec, g @ force)
+    scale = max(float(np.abs(lam).max()), 1e-12)
+    free = np.abs(lam) <= 1e-9 * scale
+    q = np.where(free, 0.0, q / np.where(free, 1.0, -lam))
+    notes = ["a DOF without restoring starts at rest and drifts"] if (free & (q != 0)).any() else []
+    return (vec @ q).real, notes
+
+
+def second_order_force(
+    ds: xr.Dataset,
+    waves: WaveComponents,
+    *,
+    model: str = "full",
+    sum_frequency: bool | None = None,
+    tol: float = TOLERANCE,
+    max_gap: float = np.pi / 2,
+) -> SecondOrderWaveLoad:
+    """The second-order force of a linear simulation (:func:`cummins.simulate_waves`), in
+    the dataset's axes and DOFs, without position phase (module docstring)."""
+    ds = single_speed(ds)
+    parts = _build(ds, waves, model, sum_frequency, tol, max_gap)
+    return SecondOrderWaveLoad(
+        waves,
+        parts["dofs"],
+        model,
+        parts["difference"],
+        parts["sum"],
+        parts["mean"],
+        notes=tuple(parts["notes"]),
+    )
+
+
+def _build(ds, waves: WaveComponents, model, sum_frequency, tol, max_gap) -> dict:
+    if model not in MODELS:
+        raise ArgumentError(f"second-order model must be one of {', '.join(MODELS)}, not {model!r}")
+    if not 0 < tol < 1:
+        raise ArgumentError(f"tol must be between 0 and 1, got {tol!r}")
+    dofs = tuple(str(d) for d in ds.influenced_dof.values)
+    notes: list[str] = []
+    a = waves.amplitude
+    have_qtf = has_qtf(ds, "difference")
+    if model == "full" and not have_qtf:
+        raise HydroDataError(
+            "the data have no difference-frequency QTF for the full second-order force",
+            path=ds.attrs.get("source_file"),
+            hint="read the solver's QTF output with the run (WAMIT .12d, NEMOH "
+            "results/QTF) or use Newman's approximation (it needs the mean drift)",
+        )
+    if have_qtf:
+        table = qtf_table(ds, "difference")
+        cover = coverage(table, waves.omega, a)
+        inside = cover.inside
+        if cover.note():
+            notes.append(cover.note())
+        diag = interpolate(
+            table, waves.omega, waves.omega, waves.direction, waves.direction, max_gap=max_gap
+        ).real
+        source = f"the QTF's diagonal ({table.omega.size} frequencies)"
+        if np.unique(np.round(waves.direction, 9)).size > 1 and not table.bidirectional:
+            notes.append(
+                "unidirectional QTF in a short-crested sea: a pair of components of two "
+                "directions takes the QTF at their mean direction"
+            )
+    else:
+        diag, inside, source = _drift_diagonal(ds, waves, max_gap, notes)
+    diag = np.where(inside[:, None], diag, 0.0)
+    mean = (a**2) @ diag
+    if model == "full":
+        difference = _full(table, waves, tol, max_gap)
+        notes.append(
+            f"full difference-frequency QTF ({table.omega.size} x {table.omega.size} "
+            f"frequencies) over the pairs of {len(waves)} components: " + _describe(difference, tol)
+        )
+    elif model == "newman":
+        difference = newman_form(waves.omega, waves.phase, a, diag)
+        notes.append(f"Newman's approximation from {source}")
+    else:
+        difference = None
+        notes.append(f"mean drift only, from {source}")
+    total_sum = None
+    want_sum = has_qtf(ds, "sum") if sum_frequency is None else bool(sum_frequency)
+    if want_sum and model == "full":
+        if not has_qtf(ds, "sum"):
+            raise HydroDataError(
+                "the data have no sum-frequency QTF", path=ds.attrs.get("source_file")
+            )
+        total_sum = _full(qtf_table(ds, "sum"), waves, tol, max_gap)
+        notes.append("sum-frequency QTF: " + _describe(total_sum, tol))
+    return {"dofs": dofs, "difference": difference, "sum": total_sum, "mean": mean, "notes": notes}
+
+
+def _full(table, waves: WaveComponents, tol: float, max_gap: float) -> QuadraticForm:
+    """The factorised double sum of one QTF over the components' pairs: exact on the QTF's
+    grid when the sea has one direction, truncated eigen (or singular value) terms of the
+    pair matrices otherwise (:mod:`~cummins.timedomain.loads.quadratic_form`)."""
+    a = waves.amplitude
+    difference = table.kind == "difference"
+    directions = np.unique(np.round(np.mod(waves.direction, 2 * np.pi), 12))
+    if directions.size == 1:
+        beta = float(waves.direction[0])
+        values = [at_directions(table, d, beta, beta, max_gap) for d in range(len(table.dofs))]
+        weights = weight_matrix(table.omega, waves.omega)
+        return grid_form(waves.omega, waves.phase, a, weights, values, difference=difference)
+    matrices = [
+        a[:, None]
+        * pair_matrix(table, d, waves.omega, waves.direction, max_gap=max_gap)
+        * a[None, :]
+        for d in range(len(table.dofs))
+    ]
+    return full_form(waves.omega, waves.phase, matrices, difference=difference, tol=tol)
+
+
+def _describe(form: QuadraticForm, tol: float) -> str:
+    sizes = [cols.size for cols, _ in form.blocks]
+    if len(set(sizes)) == 1 and form.columns.shape[1] == sizes[0]:
+        return f"exact on the {sizes[0]} QTF frequencies the sea uses"
+    return f"{sum(sizes)} terms over the DOFs (truncated at {tol:g} of each DOF's weight)"
+
+
+def _drift_diagonal(ds, waves: WaveComponents, max_gap, notes) -> tuple[NDArray, NDArray, str]:
+    """T_i of every component from ``drift_force``: linear in ω (zero outside the data's
+    frequencies) and in direction."""
+    if "drift_force" not in ds:
+        raise HydroDataError(
+            "the data have neither a QTF nor a mean drift (drift_force)",
+            path=ds.attrs.get("source_file"),
+            hint="read a run that holds one (WAMIT .7/.8/.9 or .12d, NEMOH QTF, AQWA .LIS, "
+            "MSS .mat with driftfrc)",
+        )
+    drift = ds.drift_force.transpose("omega", "wave_direction", "influenced_dof").values
+    w = ds.omega.values
+    i, t, inside = frequency_weights(w, waves.omega)
+    hi = np.minimum(i + 1, w.size - 1)
+    a0, a1, ta = direction_weights(
+        ds.wave_direction.values, waves.direction, max_gap=max_gap, what="mean drift"
+    )
+    value = (1 - t)[:, None] * ((1 - ta)[:, None] * drift[i, a0] + ta[:, None] * drift[i, a1])
+    value += t[:, None] * ((1 - ta)[:, None] * drift[hi, a0] + ta[:, None] * drift[hi, a1])
+    if not inside.all():
+        a2 = waves.amplitude**2
+        share = a2[~inside].sum() / a2.sum()
+        notes.append(
+            f"{int((~inside).sum())} wave components ({100 * share:.2g} % of the variance) "
+            f"outside the mean drift's frequencies {w[0]:.4g}–{w[-1]:.4g} rad/s: no drift "
+            "from them"
+        )
+    return value, inside, f"drift_force ({ds.drift_force.attrs.get('method', 'mean drift')})"
