@@ -28,8 +28,7 @@ from cummins.cli.system_options import (
     system_from_options,
     system_options,
 )
-from cummins.dofs import is_rotation
-from cummins.hydrodb import bodies
+from cummins.dofs import bodies, is_rotation
 
 #: Options that take a list of numbers: ``--headings 0 45 90`` (as well as repeated).
 _LIST_OPTIONS = ("--headings",)

@@ -22,13 +22,18 @@ from __future__ import annotations
 
 import functools
 from collections.abc import Sequence
+from typing import TYPE_CHECKING
 
 import click
 
 from cummins.cli.common import finite, non_negative
 from cummins.dofs import DOF_NAMES, split_dof
 from cummins.errors import ArgumentError
-from cummins.mechanics import JOINT_KINDS, PTO, Joint, MechanicalSystem
+from cummins.mechanics.joints import JOINT_KINDS, Joint
+
+if TYPE_CHECKING:
+    from cummins.mechanics.pto import PTO
+    from cummins.mechanics.system import MechanicalSystem
 
 #: Options that belong to the --joint or --pto before them.
 ATTACHED = ("--axis", "--point", "--pto-damping", "--pto-stiffness")
@@ -206,6 +211,9 @@ def system_from_options(options: dict, dofs: Sequence[str] = ()) -> MechanicalSy
             if option in attached[k]:
                 raise click.BadParameter(f"given twice for {order[k - 1][1]}", param_hint=option)
             attached[k][option] = rest if len(rest) > 1 else rest[0]
+    from cummins.mechanics.pto import PTO
+    from cummins.mechanics.system import MechanicalSystem
+
     joints: list[Joint] = []
     ptos: list[PTO] = []
     for k, (kind, text, values) in enumerate(order, start=1):

@@ -14,18 +14,62 @@ module              concept
 See ``docs/wec.md``.
 """
 
-from cummins.mechanics.bodies import GROUND, BodyFrame, body_frame
-from cummins.mechanics.constraints import null_space_basis
-from cummins.mechanics.coupling import without_body_coupling
-from cummins.mechanics.joints import JOINT_KINDS, Joint, joint_rows
-from cummins.mechanics.pto import (
-    PTO,
-    PTOLine,
-    pto_frequency_response,
-    pto_matrices,
-    pto_time_series,
-)
-from cummins.mechanics.system import Assembly, MechanicalSystem, assemble, system_from_mapping
+import importlib
+from typing import TYPE_CHECKING
+
+#: Where each public name lives; imported on first use (PEP 562), so that a command's
+#: options (``cli/system_options``) can name the joint kinds without importing xarray.
+_LAZY = {
+    "GROUND": "bodies",
+    "BodyFrame": "bodies",
+    "body_frame": "bodies",
+    "null_space_basis": "constraints",
+    "without_body_coupling": "coupling",
+    "JOINT_KINDS": "joints",
+    "Joint": "joints",
+    "joint_rows": "joints",
+    "PTO": "pto",
+    "PTOLine": "pto",
+    "pto_frequency_response": "pto",
+    "pto_matrices": "pto",
+    "pto_time_series": "pto",
+    "Assembly": "system",
+    "MechanicalSystem": "system",
+    "assemble": "system",
+    "system_from_mapping": "system",
+}
+
+if TYPE_CHECKING:  # pragma: no cover
+    from cummins.mechanics.bodies import GROUND, BodyFrame, body_frame
+    from cummins.mechanics.constraints import null_space_basis
+    from cummins.mechanics.coupling import without_body_coupling
+    from cummins.mechanics.joints import JOINT_KINDS, Joint, joint_rows
+    from cummins.mechanics.pto import (
+        PTO,
+        PTOLine,
+        pto_frequency_response,
+        pto_matrices,
+        pto_time_series,
+    )
+    from cummins.mechanics.system import (
+        Assembly,
+        MechanicalSystem,
+        assemble,
+        system_from_mapping,
+    )
+
+
+def __getattr__(name: str):
+    if name not in _LAZY:
+        raise AttributeError(f"module {__name__!r} has no attribute {name!r}")
+    value = getattr(importlib.import_module(f"{__name__}.{_LAZY[name]}"), name)
+    globals()[name] = value
+    return value
+
+
+def __dir__() -> list[str]:
+    return sorted([*globals(), *_LAZY])
+
 
 __all__ = [
     "GROUND",

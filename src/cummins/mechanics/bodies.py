@@ -16,14 +16,17 @@ body that does not move (P = 0). Joints and PTOs are written with these matrices
 from __future__ import annotations
 
 from dataclasses import dataclass
+from typing import TYPE_CHECKING
 
 import numpy as np
-import xarray as xr
 from numpy.typing import ArrayLike, NDArray
 
 from cummins.dofs import DOF_NAMES, bodies, body_names
 from cummins.errors import ArgumentError, HydroDataError
 from cummins.kinematics import screw_transform
+
+if TYPE_CHECKING:
+    import xarray as xr
 
 #: The name of the ground (a body that does not move) in joints and PTOs.
 GROUND = "ground"
