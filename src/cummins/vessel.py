@@ -33,6 +33,7 @@ from numpy.typing import ArrayLike, NDArray
 from cummins.errors import HydroDataError, SimulationError
 from cummins.hydrodb import dof_matrix, single_speed
 from cummins.radiation.model import RadiationModel
+from cummins.restoring import INSTABILITY_HINT, instability_message, static_instability
 
 
 @dataclass(frozen=True, eq=False)
@@ -112,7 +113,12 @@ class Vessel:
 
     def stability(self) -> NDArray[np.complex128]:
         """Eigenvalues of F; raises :class:`SimulationError` when one is in the right
-        half-plane (naming the DOF that dominates its mode)."""
+        half-plane (naming the DOF that dominates its mode), first of all for a restoring
+        with a negative eigenvalue (:func:`cummins.restoring.static_instability`, the
+        sentence :func:`cummins.motion_rao` warns with)."""
+        unstable = static_instability(self.stiffness, self.dofs)
+        if unstable:
+            raise SimulationError(instability_message(unstable), hint=INSTABILITY_HINT)
         f, _ = self.state_space()
         lam, vec = np.linalg.eig(f)
         scale = max(float(np.abs(lam).max()), 1e-12)

@@ -189,7 +189,10 @@ def simulate_command(
     fitted on the fly, passive) or MODEL a model file from `cummins fit` (its data are
     read from the file it was fitted to). The excitation is the first-order wave force
     of the database; the run holds motion and velocity (time, dof) about the database's
-    reference point and axes, and the wave elevation at the origin.
+    reference point and axes, and the wave elevation at the origin. A statically
+    unstable body (a negative eigenvalue of the restoring with moorings and
+    --external-stiffness, named by its DOF: the check `cummins rao` warns with) is
+    refused.
 
     \b
     Examples:

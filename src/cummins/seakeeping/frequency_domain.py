@@ -52,6 +52,7 @@ significant double amplitude 4√m₀.
 
 from __future__ import annotations
 
+import warnings
 from collections.abc import Callable
 from typing import Any
 
@@ -59,8 +60,14 @@ import numpy as np
 import xarray as xr
 from numpy.typing import ArrayLike, NDArray
 
-from cummins.errors import ArgumentError, HydroDataError
+from cummins.errors import ArgumentError, HydroDataError, StaticInstabilityWarning
 from cummins.hydrodb import dof_matrix, single_speed
+from cummins.restoring import (
+    INSTABILITY_HINT,
+    instability_message,
+    restoring_matrix,
+    static_instability,
+)
 from cummins.seakeeping.excitation import (
     INTERPOLATION_METHODS,
     _interpolate_frequency,
@@ -292,6 +299,14 @@ def motion_rao(
         x(t) = Re{X e^{iω_e t}} at the origin moving with the ship, and the attributes
         ``forward_speed`` and ``encounter_outside_data`` (module docstring).
 
+    Warns
+    -----
+    StaticInstabilityWarning
+        The restoring (with the additional stiffness) has a negative eigenvalue: the body
+        has no equilibrium, its RAOs mean nothing; the RAO's attribute
+        ``static_stability`` says it too (:func:`cummins.restoring.static_instability`,
+        the check the time domain refuses such a body with).
+
     Raises
     ------
     HydroDataError
@@ -353,6 +368,13 @@ def motion_rao(
     if viscous_damping is not None:
         included.append("viscous_damping (given)")
     attrs = {}
+    unstable = static_instability(restoring_matrix(ds, additional), labels)
+    if unstable:  # the same sentence the time domain refuses with (Vessel.stability)
+        attrs["static_stability"] = instability_message(unstable)
+        warnings.warn(
+            StaticInstabilityWarning(f"{attrs['static_stability']}. {INSTABILITY_HINT}"),
+            stacklevel=2,
+        )
     coords = {}
     if speed != 0.0:
         data_w = ds.omega.values
