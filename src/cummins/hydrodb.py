@@ -680,7 +680,12 @@ def change_axes(ds: xr.Dataset, to: str) -> xr.Dataset:
     t = _per_body_transform(ds, lambda k: np.diag(Z_UP_TO_Z_DOWN))
     out = _apply(ds, t, t, t)
     flip = np.array([1.0, -1.0, -1.0])
-    for key in ("reference_point", "center_of_gravity", "center_of_buoyancy"):
+    for key in (
+        "reference_point",
+        "center_of_gravity",
+        "center_of_buoyancy",
+        "restoring_weight_center",
+    ):
         if key in out.attrs:
             out.attrs[key] = (
                 np.asarray(out.attrs[key], dtype=float).reshape(-1, 3) * flip
@@ -733,4 +738,8 @@ def describe(ds: xr.Dataset) -> dict[str, Any]:
     if "inertia_matrix" in ds:
         m = dof_matrix(ds, "inertia_matrix")
         info["mass_kg"] = float(np.ravel(m)[0])
+    if "hydrostatic_stiffness" in ds:
+        from cummins.restoring import describe_restoring
+
+        info["restoring"] = describe_restoring(ds)
     return info

@@ -10,8 +10,8 @@ weight's part of C = −∂M/∂θ is therefore
     C₄₄ = C₅₅ = −m g z,    C₄₆ = m g x,    C₅₆ = m g y,
 
 and nothing else: the weight does not change with the motion, so it adds nothing to the
-heave force or to the C₃₄, C₃₅ waterplane terms (WAMIT (2020) §3.1, Newman (1977) §6.16,
-Faltinsen (1990) §2.5). The buoyancy part, ρ g (∫y² dA + ∇ z_B) in C₄₄,
+heave force or to the C₃₄, C₃₅ waterplane terms (WAMIT (2020) §3.1, Newman (1977) ch. 6,
+Faltinsen (1990) ch. 2). The buoyancy part, ρ g (∫y² dA + ∇ z_B) in C₄₄,
 −ρ g ∇ x_B in C₄₆ …, depends on the hull alone. A solver's restoring holds the weight's
 part for the mass and centre of gravity its input gave (WAMIT's ``.hst`` for XCG/VCG and
 m = ρ∇, NEMOH's ``KH`` and Capytaine's ``hydrostatic_stiffness`` for their centre of
@@ -146,12 +146,12 @@ def describe_restoring(ds: xr.Dataset) -> str:
         holds = "hydrostatics only (no weight terms)"
     else:
         holds = "hydrostatics and the weight of " + "; ".join(_weight_text(w) for w in weights)
-    if source and holds.split(" (")[0] in source:
-        return source
     return f"{source}: {holds}" if source else holds
 
 
 def _weight_text(w: BodyWeight) -> str:
+    if w.mass == 0:
+        return "no weight"
     mass = "its own mass (rho V)" if np.isnan(w.mass) else f"{w.mass:.6g} kg"
     return f"{mass} at {np.round(w.center, 6).tolist()} m"
 
@@ -264,13 +264,14 @@ def with_weight(
     out["hydrostatic_stiffness"] = ds["hydrostatic_stiffness"].copy(
         data=c if ds["hydrostatic_stiffness"].dims == ("influenced_dof", "radiating_dof") else c.T
     )
-    before = str(ds.attrs.get(SOURCE, "")).split(";")[0].strip() or "the data's restoring"
+    before = str(ds.attrs.get(SOURCE, "")).split(" [")[0].strip() or "the data's restoring"
     weights = "; ".join(_weight_text(w) for w in new)
     out.attrs.update(
         weight_record(
             [w.mass for w in new],
             np.concatenate([w.center for w in new]),
-            f"{before}; the weight's terms of {weights} ({why}; the file's {stated})",
+            f"{before} [weight terms made those of the mass and centre of gravity {why}, in "
+            f"place of the file's ({stated}: {'; '.join(_weight_text(w) for w in old)})]",
         )
     )
     add_history(

@@ -218,6 +218,7 @@ _EOM_OPTIONS = (
     "inertia_matrix",
     "external_stiffness",
     "external_damping",
+    "restoring_includes_weight",
 )
 
 
@@ -308,6 +309,15 @@ def read_options(func):
             "point (kg, kg m, kg m^2).",
         ),
         click.option(
+            "--restoring-includes-weight",
+            type=click.Choice(["yes", "no"]),
+            default=None,
+            help="Whether the files' restoring holds the weight's terms (C44, C55 -m g z_G; "
+            "C46, C56 m g x_G, m g y_G), when they do not say (OpenFAST's WAMIT files: no; "
+            "`cummins info` tells what was detected). The restoring is then made that of "
+            "the mass and centre of gravity of the inertia (given or the files').",
+        ),
+        click.option(
             "--external-stiffness",
             type=(str, str, finite()),
             multiple=True,
@@ -359,29 +369,46 @@ def complete_equation_of_motion(
     inertia_matrix=None,
     external_stiffness=(),
     external_damping=(),
+    restoring_includes_weight=None,
 ):
-    """``ds`` with the inertia and external terms of the command-line options."""
-    from cummins.mass_properties import read_matrix_file, with_external_terms, with_inertia
+    """``ds`` with the inertia and external terms of the command-line options, its
+    restoring holding the weight of that inertia."""
+    from cummins.mass_properties import (
+        complete_restoring,
+        read_matrix_file,
+        with_external_terms,
+        with_inertia,
+    )
 
+    restoring = {"yes": "total", "no": "hydrostatic", None: None}[restoring_includes_weight]
+    if inertia_matrix is None and not radii_of_gyration and (mass or center_of_gravity):
+        raise click.UsageError(
+            "--mass and --center-of-gravity build the inertia matrix together with "
+            "--radii-of-gyration RXX RYY RZZ: give the radii too"
+        )
     if inertia_matrix is not None:
         if mass or radii_of_gyration or center_of_gravity:
             raise click.UsageError(
                 "give either --inertia-matrix or --mass/--center-of-gravity/"
                 "--radii-of-gyration, not both"
             )
-        ds = with_inertia(ds, matrix=read_matrix_file(inertia_matrix))
+        ds = with_inertia(ds, matrix=read_matrix_file(inertia_matrix), restoring=restoring)
     elif radii_of_gyration:
         ds = with_inertia(
             ds,
             mass=list(mass) if mass else None,
             center_of_gravity=[list(c) for c in center_of_gravity] or None,
             radii_of_gyration=[list(r) for r in radii_of_gyration],
+            restoring=restoring,
         )
-    elif mass or center_of_gravity:
-        raise click.UsageError(
-            "--mass and --center-of-gravity build the inertia matrix together with "
-            "--radii-of-gyration RXX RYY RZZ: give the radii too"
-        )
+    elif restoring is not None:
+        if "inertia_matrix" not in ds:
+            raise click.UsageError(
+                "--restoring-includes-weight completes the restoring with the weight of the "
+                "body's inertia, and the data hold none: give --mass, --center-of-gravity "
+                "and --radii-of-gyration (or --inertia-matrix)"
+            )
+        ds = complete_restoring(ds, restoring=restoring, why="the files' inertia")
     labels = [str(d) for d in ds.influenced_dof.values]
     terms = {}
     for name, given in (("stiffness", external_stiffness), ("damping", external_damping)):
@@ -533,11 +560,20 @@ def select_body(ds, body: str, option: str = "--body"):
     out = out.assign_coords(
         {dim: list(DOF_NAMES) for dim in ("influenced_dof", "radiating_dof") if dim in out.coords}
     )
-    for key in ("reference_point", "center_of_gravity", "center_of_buoyancy"):
+    for key in (
+        "reference_point",
+        "center_of_gravity",
+        "center_of_buoyancy",
+        "restoring_weight_center",
+    ):
         if key in out.attrs:
             values = np.asarray(out.attrs[key], dtype=float).reshape(-1)
             if values.size == 3 * len(groups):
                 out.attrs[key] = values[3 * k : 3 * k + 3]
+    for key in ("restoring_weight_mass", "displaced_volume"):
+        values = np.atleast_1d(np.asarray(out.attrs.get(key, []), dtype=float)).reshape(-1)
+        if values.size == len(groups) > 1:
+            out.attrs[key] = float(values[k])
     name = names[k] if len(names) == len(groups) else prefix
     out.attrs["body_name"] = name
     out.attrs.pop("body_names", None)

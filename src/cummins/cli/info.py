@@ -16,7 +16,9 @@ from cummins.cli.common import console, read_hydrodb, read_options, reports_erro
 @click.option("--json", "as_json", is_flag=True, help="Print the description as JSON.")
 @reports_errors
 def info_command(path, format_, rho, g, ulen, as_json):
-    """Describe what PATH holds: format, DOFs, frequencies, headings, constants used.
+    """Describe what PATH holds: format, DOFs, frequencies, headings, constants used,
+    and where the restoring came from (whether it holds the weight's terms, for which
+    mass and centre of gravity).
 
     \b
     Example:
@@ -59,6 +61,8 @@ def info_command(path, format_, rho, g, ulen, as_json):
             table.add_row(label, f"{d[key]} m")
     if "mass_kg" in d:
         table.add_row("mass", f"{d['mass_kg']:.6g} kg")
+    if "restoring" in d:
+        table.add_row("restoring", d["restoring"])
     for k, line in enumerate(d["history"]):
         table.add_row("provenance" if k == 0 else "", line)
     console.print(table)

@@ -72,6 +72,7 @@ from cummins.hydrodb import (
 from cummins.io._common import resolve_rho_g
 from cummins.io._text import TextFile, check_cut_numbers
 from cummins.kinematics import X_AFT_TO_X_FORWARD
+from cummins.restoring import weight_record
 
 __all__ = ["read_veres", "read_veres_transfer_function", "sniff", "sniff_dir"]
 
@@ -697,6 +698,11 @@ def _speed_dataset(
         reference_point=(-sp.xmtn, 0.0, sp.zmtn - head.draught),
         history=history,
         center_of_gravity=np.array([-head.lcg, 0.0, head.vcg - head.draught]),
+        **weight_record(  # VERES's restoring is rho g V GM: the weight at LCG, VCG
+            [float(re7.mass[0, 0])],
+            [-head.lcg, 0.0, head.vcg - head.draught],
+            f"{path.name} restoring (VERES: rho g V GM, the weight at LCG, VCG)",
+        ),
         ship_length=head.lpp,
         ship_breadth=head.breadth,
         ship_draught=head.draught,

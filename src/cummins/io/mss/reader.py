@@ -37,6 +37,7 @@ from cummins.io.mss.matfile import (
 )
 from cummins.io.mss.points import _points, _rigid_body_cg
 from cummins.io.mss.rao import _holds_rao_struct, read_force_rao
+from cummins.restoring import weight_record
 
 
 def _select_speed(velocities: NDArray, speed: float | None, path: Path) -> list[int]:
@@ -272,6 +273,16 @@ def _read_mss(path, rho, g, speed, rao_reference) -> xr.Dataset:
             "ship_breadth": _scalar(main, "B", path, "vessel.main"),
             "ship_draught": _scalar(main, "T", path, "vessel.main"),
         }
+        if c_all is not None and points.center_of_gravity is not None:
+            # Fossen's G is rho g V GM: the hydrostatics and the weight at main.CG
+            mass = mrb[0, 0] if mrb is not None else _scalar(main, "m", path, "vessel.main")
+            attrs.update(
+                weight_record(
+                    [np.nan if mass is None else float(mass)],
+                    points.center_of_gravity,
+                    "vessel.C (MSS: Fossen's G = rho g V GM, the weight at main.CG)",
+                )
+            )
         ds = make_hydrodb(
             omega,
             np.moveaxis(a_all[:, :, sl, s], 2, 0),

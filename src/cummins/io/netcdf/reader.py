@@ -43,6 +43,7 @@ from cummins.io.netcdf.layout import (
     _body_attributes,
     _reference_from_inertia,
     dof_layout,
+    restoring_attributes,
 )
 from cummins.io.netcdf.legacy import LegacyExport, _legacy_exporter_files
 
@@ -579,6 +580,7 @@ def _one_speed(
     if point.size > 3:  # several bodies: one point per body (make_hydrodb takes one)
         ds.attrs["reference_point"] = point
     ds.attrs.update({k: v for k, v in attrs.items() if v is not None})
+    ds.attrs.update(restoring_attributes(extra, attrs, rho))
     return ds
 
 

@@ -33,7 +33,7 @@ from cummins.io._text import (
 from cummins.io.wamit.detect import _sibling, is_out_file
 from cummins.io.wamit.frc import _read_frc
 from cummins.io.wamit.input_files import _Config, _Mmx, _read_cfg
-from cummins.io.wamit.mass import _body_attrs, _mass_matrices
+from cummins.io.wamit.mass import _body_attrs, _mass_matrices, _restoring_weight
 from cummins.io.wamit.modes import _check_memory, _mode_layout
 from cummins.io.wamit.out_header import _FLOAT, _hydrostatics_matrix, _out_header
 from cummins.io.wamit.settings import RunSettings
@@ -420,6 +420,8 @@ def read_wamit_out(
         notes,
         omega.size,
     )
+    if "hydrostatic_stiffness" in extra:
+        extra.update(_restoring_weight(path.name, header, layout, frc, rho_v, RunSettings(), path))
     names = header.body_names
     return make_hydrodb(
         omega[order],

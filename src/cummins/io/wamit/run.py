@@ -27,7 +27,7 @@ from cummins.io._common import (
 from cummins.io.wamit.detect import _sibling, is_out_file, numeric_kind
 from cummins.io.wamit.frc import _read_frc
 from cummins.io.wamit.input_files import _Config, _Mmx, _read_cfg, _read_mmx, _read_pot_bodies
-from cummins.io.wamit.mass import _body_attrs, _mass_matrices
+from cummins.io.wamit.mass import _body_attrs, _mass_matrices, _restoring_weight
 from cummins.io.wamit.modes import _check_memory, _mode_layout
 from cummins.io.wamit.numeric import (
     FIRST_COLUMNS,
@@ -300,12 +300,14 @@ def read_wamit_run(
             history.append(f"motion RAOs from {dot4.name} (the solver's own)")
         except HydroDataError as exc:
             warn_damage(f"RAOs not read: {exc}", path=dot4, notes=notes)
+    restoring_from = None
     if hst is not None:
         try:
             extra["hydrostatic_stiffness"] = _read_hst(hst, n) * (
                 rho_v * g_v * L ** length_exponents(n, 2, layout)
             )
             history.append(f"hydrostatics from {hst.name}")
+            restoring_from = hst.name
         except HydroDataError as exc:
             warn_damage(f"hydrostatics not read: {exc}", path=hst, notes=notes)
     elif header.bodies and all(b.hydrostatics for b in header.bodies) and n == 6 * len(layout):
@@ -313,6 +315,11 @@ def read_wamit_run(
             rho_v * g_v * L ** length_exponents(n, 2, layout)
         )
         history.append(f"hydrostatics from {out_path.name} (no .hst file)")
+        restoring_from = out_path.name
+    if restoring_from is not None:
+        extra.update(
+            _restoring_weight(restoring_from, header, layout, frc, rho_v, settings, out_path)
+        )
 
     _mass_matrices(
         extra,
