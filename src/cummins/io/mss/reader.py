@@ -273,7 +273,9 @@ def _read_mss(path, rho, g, speed, rao_reference) -> xr.Dataset:
             "ship_breadth": _scalar(main, "B", path, "vessel.main"),
             "ship_draught": _scalar(main, "T", path, "vessel.main"),
         }
-        if c_all is not None and points.center_of_gravity is not None:
+        if c_all is not None and "restoring" in extra_attrs:
+            attrs.update(extra_attrs["restoring"])
+        elif c_all is not None and points.center_of_gravity is not None:
             # Fossen's G is rho g V GM: the hydrostatics and the weight at main.CG
             mass = mrb[0, 0] if mrb is not None else _scalar(main, "m", path, "vessel.main")
             attrs.update(
@@ -345,6 +347,17 @@ def _extras(extras: np.void | None, path: Path, history: list[str]) -> dict[str,
     depth = _scalar(extras, "water_depth", path, "vessel.cummins")
     if depth is not None and depth > 0:
         out["water_depth"] = depth
+    if _has(extras, "restoring_source"):  # what C holds, as cummins recorded it
+        out["restoring"] = {"restoring_source": _text(extras, "restoring_source")}
+        if _has(extras, "restoring_weight_mass") and _has(extras, "restoring_weight_center"):
+            out["restoring"].update(
+                restoring_weight_mass=float(
+                    _numeric(extras["restoring_weight_mass"], path, "vessel.cummins").ravel()[0]
+                ),
+                restoring_weight_center=_numeric(
+                    extras["restoring_weight_center"], path, "vessel.cummins"
+                ).reshape(-1)[:3],
+            )
     for name in ("added_mass_inf", "added_mass_zero", "additional_stiffness"):
         if _has(extras, name):
             value = _numeric(extras[name], path, f"vessel.cummins.{name}")
