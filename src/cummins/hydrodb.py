@@ -700,6 +700,28 @@ def change_axes(ds: xr.Dataset, to: str) -> xr.Dataset:
     return out
 
 
+def water_depth(ds: xr.Dataset, use: str = "the wave numbers") -> float:
+    """The data's water depth, m (``inf``: deep water). When the files did not record it
+    (the attribute ``water_depth_assumed``), an :class:`~cummins.errors.AssumptionWarning`
+    says that ``use`` takes deep water, and how to give the depth."""
+    depth = float(ds.attrs.get("water_depth", np.inf))
+    if ds.attrs.get("water_depth_assumed"):
+        import warnings
+
+        from cummins.errors import AssumptionWarning
+
+        source = str(ds.attrs.get("source_file", "") or "")
+        name = source.replace("\\", "/").rsplit("/", 1)[-1] + ": " if source else ""
+        warnings.warn(
+            AssumptionWarning(
+                f"{name}the water depth is not recorded in the files: deep water assumed for "
+                f"{use}; give --water-depth M (water_depth=) if the run had a finite depth"
+            ),
+            stacklevel=3,
+        )
+    return depth
+
+
 def describe(ds: xr.Dataset) -> dict[str, Any]:
     """A short, JSON-ready description of a ``HydroDB`` (what ``cummins info`` prints)."""
     w = ds.omega.values
@@ -726,6 +748,7 @@ def describe(ds: xr.Dataset) -> dict[str, Any]:
         "rho_kg_m3": float(ds.attrs["rho"]),
         "g_m_s2": float(ds.attrs["g"]),
         "water_depth_m": float(ds.attrs.get("water_depth", np.inf)),
+        "water_depth_assumed": bool(ds.attrs.get("water_depth_assumed", False)),
         "axis_convention": ds.attrs.get("axis_convention"),
         "reference_point_m": [float(x) for x in np.ravel(ds.attrs.get("reference_point", []))],
         "history": [line for line in str(ds.attrs.get("history", "")).splitlines() if line],

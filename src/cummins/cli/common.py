@@ -211,6 +211,8 @@ def viscous_damping_values(
 
 #: Where :func:`read_options` leaves the mass-property options for :func:`read_hydrodb`.
 _EOM_KEY = "cummins.equation_of_motion"
+#: … and ``--water-depth``.
+_DEPTH_KEY = "cummins.water_depth"
 _EOM_OPTIONS = (
     "mass",
     "center_of_gravity",
@@ -235,7 +237,7 @@ def _check_format(ctx, param, value):
 
 
 def read_options(func):
-    """--format, --rho, --g, --ulen: how to read solver files; --mass,
+    """--format, --rho, --g, --ulen, --water-depth: how to read solver files; --mass,
     --center-of-gravity, --radii-of-gyration, --inertia-matrix, --external-stiffness,
     --external-damping: what to complete them with (the terms of the equation of motion
     that the files lack), applied by :func:`read_hydrodb`."""
@@ -272,6 +274,16 @@ def read_options(func):
             default=None,
             metavar="M",
             help="WAMIT length scale ULEN (default: from the .out, else 1).",
+        ),
+        click.option(
+            "--water-depth",
+            type=Number(0.0, min_open=True, unit="m", infinite=True),
+            default=None,
+            metavar="M",
+            help="Water depth in m (inf for deep water) when the files do not record it "
+            "(WAMIT without its .out, NEMOH without Nemoh.cal, VERES): the depth of the "
+            "wave numbers, the travel phase of the wave force and the wave loads. Default: "
+            "deep water, with a warning where a result depends on it.",
         ),
         click.option(
             "--mass",
@@ -340,6 +352,7 @@ def read_options(func):
     def wrapper(*args, **kwargs):
         context = click.get_current_context()
         context.meta[_EOM_KEY] = {name: kwargs.pop(name) for name in _EOM_OPTIONS}
+        context.meta[_DEPTH_KEY] = kwargs.pop("water_depth")
         return func(*args, **kwargs)
 
     for decorator in reversed(decorators):
@@ -354,8 +367,9 @@ def read_hydrodb(
     mass-property and external-term options of the same command."""
     from cummins.io import read
 
-    ds = read(path, format=format_, rho=rho, g=g, ulen=ulen)
     context = click.get_current_context(silent=True)
+    depth = context.meta.get(_DEPTH_KEY) if context is not None else None
+    ds = read(path, format=format_, rho=rho, g=g, ulen=ulen, water_depth=depth)
     options = context.meta.get(_EOM_KEY) if context is not None else None
     return complete_equation_of_motion(ds, **options) if options else ds
 

@@ -17,7 +17,7 @@ import xarray as xr
 
 from cummins.errors import HydroDataError
 from cummins.hydrodb import dof_labels, make_hydrodb
-from cummins.io._common import warn_damage
+from cummins.io._common import DEPTH_ASSUMED, warn_damage
 from cummins.io.bemio.files import (
     _IMPLAUSIBLE,
     COPY_GROUP,
@@ -135,6 +135,8 @@ def _read_open(f, path: Path, rho, g) -> xr.Dataset:
         raise HydroDataError("a wave direction appears twice", path=path)
     beta_rad = np.radians(beta) if degrees else beta
     depth = _depth(sp, path)
+    if "water_depth" not in sp:
+        lines.append("water depth not recorded in the file: deep water assumed")
 
     modes = []
     for k in range(n_bodies):
@@ -257,6 +259,8 @@ def _read_open(f, path: Path, rho, g) -> xr.Dataset:
         attrs["displaced_volume"] = float(vol[0]) if n_bodies == 1 else vol
     if have_stiffness:
         attrs.update(_restoring_weight(attrs, rho_v, n_bodies))
+    if "water_depth" not in sp:
+        attrs[DEPTH_ASSUMED] = 1
     if "bem_data/code" in f:
         attrs["bem_code"] = _text(f, "bem_data/code")
     elif "bem_code" in sp:

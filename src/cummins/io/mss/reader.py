@@ -233,7 +233,10 @@ def _read_mss(path, rho, g, speed, rao_reference) -> xr.Dataset:
         history.append("additional_damping = vessel.Bv (MSS viscous damping estimate)")
     extra_attrs = _extras(extras, path, history)
     if "water_depth" not in extra_attrs:
-        history.append("water depth not recorded in MSS structs: deep water assumed")
+        history.append(
+            "water depth not recorded in MSS structs: deep water, as MSS's simulators take "
+            "it (k = w^2/g)"
+        )
     datasets = []
     for s in _select_speed(velocities, speed, path):
         sl = grid.finite

@@ -20,7 +20,7 @@ import xarray as xr
 
 from cummins.errors import HydroDataError
 from cummins.hydrodb import make_hydrodb, stack_forward_speeds
-from cummins.io._common import resolve_rho_g, warn_damage
+from cummins.io._common import DEPTH_ASSUMED, resolve_rho_g, warn_damage
 from cummins.io.netcdf.attributes import (
     CANONICAL_TIME_CONVENTION,
     VERSION_ATTR,
@@ -251,6 +251,7 @@ def from_capytaine_dataset(
     if depth is None:
         depth = math.inf
         lines.append("water_depth not recorded in the file: deep water assumed")
+        attrs = {**attrs, DEPTH_ASSUMED: 1}
 
     _check_constants(rho_v, g_v, where, notes)
 

@@ -18,6 +18,7 @@ import xarray as xr
 from cummins.errors import HydroDataError
 from cummins.hydrodb import dof_labels, make_hydrodb
 from cummins.io._common import (
+    DEPTH_ASSUMED,
     force_exponents,
     length_exponents,
     resolve_constant,
@@ -178,8 +179,10 @@ def read_wamit_out(
     g: float | None = None,
     ulen: float | None = None,
     modes: int | Sequence[int] | None = None,
+    water_depth: float | None = None,
 ) -> xr.Dataset:
-    """Read a WAMIT ``.out`` log on its own.
+    """Read a WAMIT ``.out`` log on its own (``water_depth``, m, only for a log that does
+    not print it: see :func:`cummins.io.wamit.read_wamit`).
 
     The log prints the same nondimensional quantities as the numeric files, to
     fewer digits (phases in whole degrees), plus motion RAOs and mean drift forces:
@@ -429,7 +432,10 @@ def read_wamit_out(
         b,
         rho=rho_v,
         g=g_v,
-        water_depth=header.water_depth if header.water_depth is not None else np.inf,
+        water_depth=header.water_depth
+        if header.water_depth is not None
+        else (np.inf if water_depth is None else water_depth),
+        **{DEPTH_ASSUMED: 1 if header.water_depth is None and water_depth is None else None},
         source_format="wamit-out",
         source_file=str(path),
         dofs=dof_labels(len(layout) if len(layout) > 1 else None, layout),

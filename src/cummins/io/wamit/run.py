@@ -17,6 +17,7 @@ import xarray as xr
 from cummins.errors import HydroDataError
 from cummins.hydrodb import dof_labels, make_hydrodb
 from cummins.io._common import (
+    DEPTH_ASSUMED,
     force_exponents,
     length_exponents,
     resolve_constant,
@@ -61,6 +62,7 @@ def read_wamit(
     first_column: str | None = None,
     siblings: bool = True,
     modes: int | Sequence[int] | None = None,
+    water_depth: float | None = None,
 ) -> xr.Dataset:
     """Read a WAMIT run into a canonical ``HydroDB``.
 
@@ -87,6 +89,11 @@ def read_wamit(
     modes
         Modes per body (an int for one body, or one per body), when the files do not
         say (a ``.1`` without its ``.out``/``.pot``/``.cfg`` and DOF indices beyond 6).
+    water_depth
+        m (``inf``: deep water), when the ``.out`` does not record it (it converts a
+        wavenumber first column and is the depth of the wave kinematics); default deep
+        water, said by an ``AssumptionWarning`` where a result depends on it. A value
+        that contradicts the ``.out`` is an error.
 
     Returns
     -------
@@ -104,7 +111,7 @@ def read_wamit(
     if not path.exists():
         raise HydroDataError("file not found", path=path)
     if is_out_file(path):
-        return read_wamit_out(path, rho=rho, g=g, ulen=ulen, modes=modes)
+        return read_wamit_out(path, rho=rho, g=g, ulen=ulen, modes=modes, water_depth=water_depth)
     kind = numeric_kind(path)
     if kind is None:
         raise HydroDataError(
@@ -131,6 +138,7 @@ def read_wamit(
         siblings=siblings or kind != ".1",
         modes=modes,
         entry=path,
+        water_depth=water_depth,
     )
 
 
@@ -153,6 +161,7 @@ def read_wamit_run(
     modes: int | Sequence[int] | None = None,
     settings: RunSettings | None = None,
     entry: Path | None = None,
+    water_depth: float | None = None,
 ) -> xr.Dataset:
     """Read the WAMIT-format run of the ``.1`` file ``dot1`` (see :func:`read_wamit`);
     ``settings`` carry what another program's project fixes (HAMS)."""
@@ -197,7 +206,21 @@ def read_wamit_run(
     if column != "period":
         history.append(f"first column of the numeric files: {column}")
     depth = settings.water_depth if settings.water_depth is not None else header.water_depth
-    depth = np.inf if depth is None else depth
+    depth_assumed = depth is None and water_depth is None
+    if depth is not None and water_depth is not None and not _same_depth(depth, water_depth):
+        raise HydroDataError(
+            f"water_depth = {water_depth:g} m was given but the run records {depth:g} m",
+            path=out_path or dot1,
+            hint="the coefficients were computed at the recorded depth: drop --water-depth",
+        )
+    if depth is None and water_depth is not None:
+        history.append(f"water depth = {water_depth:g} m (given)")
+    depth = (np.inf if water_depth is None else float(water_depth)) if depth is None else depth
+    if depth_assumed:
+        history.append(
+            "water depth not recorded (no .out): deep water assumed; pass water_depth= "
+            "(--water-depth) to change"
+        )
     g_guess = g or settings.g or header.g or 9.81
     d = _parse_dot1(dot1, column, depth=depth, g=g_guess)
     history.extend(d.notes)
@@ -351,9 +374,15 @@ def read_wamit_run(
         read_warnings=notes,
         ulen=L,
         body_names="\n".join(names) if len(names) == len(layout) else None,
+        **{DEPTH_ASSUMED: 1 if depth_assumed else None},
         **extra,
         **_body_attrs(header, layout, settings),
     )
+
+
+def _same_depth(a: float, b: float) -> bool:
+    """Two water depths (m, ``inf`` for deep water) that are the same."""
+    return (np.isinf(a) and np.isinf(b)) or bool(np.isclose(a, b, rtol=1e-6))
 
 
 def _excitation_from_out(out_path, omega, layout, rho_v, g_v, L, extra, history) -> None:
