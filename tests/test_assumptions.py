@@ -26,7 +26,7 @@ def _messages(caught) -> list[str]:
     return [str(w.message) for w in caught if issubclass(w.category, AssumptionWarning)]
 
 
-@pytest.fixture()
+@pytest.fixture
 def sphere_without_out(shared_data, tmp_path):
     """The WEC-Sim sphere's WAMIT run without its .out (which records ρ, g, ULEN and the
     50 m depth)."""

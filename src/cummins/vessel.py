@@ -32,6 +32,7 @@ from numpy.typing import ArrayLike, NDArray
 
 from cummins.errors import HydroDataError, SimulationError
 from cummins.hydrodb import dof_matrix, single_speed
+from cummins.radiation.fingerprint import check_model_data
 from cummins.radiation.model import RadiationModel
 from cummins.restoring import INSTABILITY_HINT, instability_message, static_instability
 
@@ -181,6 +182,7 @@ def vessel_from_hydrodb(
     *,
     viscous_damping: ArrayLike | None = None,
     additional: bool = True,
+    allow_other_data: bool = False,
     **fit_options: Any,
 ) -> Vessel:
     """The :class:`Vessel` of a ``HydroDB``, fitting its radiation model when none is given.
@@ -192,7 +194,10 @@ def vessel_from_hydrodb(
         ``additional_stiffness`` (moorings) is added to C when present.
     model
         A radiation model of the same DOFs (default: :func:`cummins.radiation.fit.fit_radiation` of
-        ``ds`` with ``fit_options``).
+        ``ds`` with ``fit_options``), fitted to these data: a model whose data fingerprint
+        differs is refused (:func:`cummins.radiation.fingerprint.check_model_data`).
+    allow_other_data
+        Use ``model`` with data other than its own (what differs is then a warning).
     viscous_damping
         B_v as :func:`viscous_damping_matrix` takes it: an (n, n) matrix, the n diagonal
         values, a DataArray or ``{dof: value}`` (added to the data's own, below).
@@ -229,6 +234,8 @@ def vessel_from_hydrodb(
             sources.append("database additional_damping (frequency-independent entries)")
     if model is None:
         model = fit_radiation(ds, **fit_options)
+    else:
+        check_model_data(model, ds, allow_other_data=allow_other_data)
     if tuple(model.dofs) != dofs:
         raise SimulationError(
             f"the radiation model's DOFs {model.dofs} differ from the data's {dofs}"

@@ -177,6 +177,17 @@ def force_option(help: str = "Overwrite the output files."):
     return click.option("--force", is_flag=True, help=help)
 
 
+def allow_other_data_option(func):
+    """--allow-other-data: use a model with data whose fingerprint differs from those it
+    was fitted to (a warning instead of the refusal), passed as ``allow_other_data``."""
+    return click.option(
+        "--allow-other-data",
+        is_flag=True,
+        help="Use the model with data other than those it was fitted to (their DOFs, rho, "
+        "g, frequencies or A(w), B(w) differ): what differs is then a warning, not an error.",
+    )(func)
+
+
 def viscous_damping_option(func):
     """--viscous-damping DOF VALUE (repeatable), passed as ``viscous_damping``."""
     return click.option(

@@ -13,6 +13,7 @@ from rich.table import Table
 
 from cummins.cli.common import (
     Number,
+    allow_other_data_option,
     console,
     force_option,
     prepare_outputs,
@@ -89,6 +90,7 @@ from cummins.cli.common import (
     default=None,
     help="Write a summary as JSON.",
 )
+@allow_other_data_option
 @force_option()
 @reports_errors
 def reduce_command(
@@ -106,6 +108,7 @@ def reduce_command(
     speed,
     passive,
     json_path,
+    allow_other_data,
     force,
 ):
     """Reduce the order of a radiation model by balanced truncation.
@@ -141,7 +144,12 @@ def reduce_command(
     model = RadiationModel.load(model_path)
     data = None
     if data_path:
+        from cummins.radiation.fingerprint import check_model_data
+
         data = select_speed(read_hydrodb(data_path, format_, rho, g, ulen), speed)
+        check_model_data(
+            model, data, allow_other_data=allow_other_data, model_name=Path(model_path).name
+        )
     with console.status(f"reducing {model.total_order} states ({method})"):
         reduced, corrected, reference = reduce_stage(
             model,

@@ -9,6 +9,7 @@ import numpy as np
 
 from cummins.cli.common import (
     Number,
+    allow_other_data_option,
     console,
     finite,
     force_option,
@@ -149,6 +150,7 @@ from cummins.validation import check_simulation_size
     default=None,
     help="PNGs: time series and response spectra against the frequency domain.",
 )
+@allow_other_data_option
 @force_option()
 @reports_errors
 def simulate_command(
@@ -180,6 +182,7 @@ def simulate_command(
     dofs,
     soft_springs,
     plot_dir,
+    allow_other_data,
     force,
 ):
     """Simulate the vessel in waves: the Cummins equation with a state-space fluid memory.
@@ -187,7 +190,9 @@ def simulate_command(
     \b
     DATA is a hydrodynamic database (any format cummins reads; the radiation model is
     fitted on the fly, passive) or MODEL a model file from `cummins fit` (its data are
-    read from the file it was fitted to). The excitation is the first-order wave force
+    read from the file it was fitted to; data that differ from those the model records —
+    DOFs, rho, g, frequencies, A(w), B(w) — are refused unless --allow-other-data). The
+    excitation is the first-order wave force
     of the database; the run holds motion and velocity (time, dof) about the database's
     reference point and axes, and the wave elevation at the origin. A statically
     unstable body (a negative eigenvalue of the restoring with moorings and
@@ -286,7 +291,9 @@ def simulate_command(
                 data, speed, soft_springs=soft_springs, viscous_damping=b_v, **fit_options
             )
         else:
-            vessel = vessel_from_hydrodb(ds, model, viscous_damping=b_v, **fit_options)
+            vessel = vessel_from_hydrodb(
+                ds, model, viscous_damping=b_v, allow_other_data=allow_other_data, **fit_options
+            )
     with progress_bar() as bar:
         task = bar.add_task(f"simulating {duration:g} s, {title}, heading {heading:g}°", total=1.0)
         run = simulate_waves(
