@@ -36,7 +36,10 @@ in DOF i due to a unit acceleration in DOF j; attributes ``rho`` (kg/m³), ``g``
 ``reference_point`` (m, the point about which moments and rotations are taken),
 ``axis_convention`` (``"z-up"``: x forward, y to port, z up, as WAMIT, NEMOH, AQWA,
 Capytaine; ``"z-down"``: Fossen's body axes x forward, y to starboard, z down, as MSS),
-and ``history`` (one line per conversion applied since the file was read).
+and ``history`` (one line per conversion applied since the file was read); readers add
+``water_depth_assumed`` when the files do not record the depth, and what the restoring
+holds (``restoring_source``, ``restoring_weight_mass``, ``restoring_weight_center``:
+:mod:`cummins.restoring`).
 Positions (``reference_point``, ``center_of_gravity``, ``center_of_buoyancy``) are
 coordinates in the body axes of the dataset, from its coordinate origin.
 """

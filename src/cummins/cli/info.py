@@ -50,7 +50,15 @@ def info_command(path, format_, rho, g, ulen, as_json):
     table.add_row("forward speeds", ", ".join(f"{u:g}" for u in d["forward_speeds_m_s"]) + " m/s")
     table.add_row("variables", ", ".join(d["variables"]))
     table.add_row("rho, g", f"{d['rho_kg_m3']:g} kg/m³, {d['g_m_s2']:g} m/s²")
-    table.add_row("water depth", f"{d['water_depth_m']:g} m")
+    table.add_row(
+        "water depth",
+        f"{d['water_depth_m']:g} m"
+        + (
+            " (not recorded in the files: assumed; --water-depth)"
+            if d["water_depth_assumed"]
+            else ""
+        ),
+    )
     table.add_row("axes", str(d["axis_convention"]))
     table.add_row("reference point", f"{d['reference_point_m']} m")
     for key, label in (
