@@ -173,6 +173,9 @@ def check_model_data(
     model_name
         How to name the model in messages (its file).
 
+    A model that names no source and records no fingerprint (one built in a script, a
+    memoryless placeholder) is not checked.
+
     Raises
     ------
     HydroDataError
@@ -184,6 +187,9 @@ def check_model_data(
         A model file without a fingerprint (written before it existed): only its DOFs and
         A∞ could be compared; or, with ``allow_other_data``, what differs.
     """
+    if "data_fingerprint" not in model.attrs and not model.attrs.get("source_file"):
+        # built in a script, from no file and no fit: its DOFs are checked by its user
+        return
     differences, has_fingerprint = model_data_differences(model, ds)
     where = str(ds.attrs.get("source_file", "") or "") or None
     dofs_differ = bool(differences) and differences[0].startswith("DOFs ")
