@@ -54,6 +54,7 @@ from numpy.typing import ArrayLike
 from cummins.errors import ArgumentError, CumminsError, HydroDataError
 from cummins.io._common import DEFAULT_G, DEFAULT_RHO
 from cummins.kinematics import screw_transform
+from cummins.restoring import weight_record
 
 __all__ = [
     "HULLS",
@@ -478,6 +479,13 @@ def compute_hydrodb(
         displaced_volume=volume,
         n_panels=int(wet.nb_faces),
         capytaine_version=str(cpt.__version__),
+    )
+    ds.attrs.update(
+        weight_record(  # compute_hydrostatic_stiffness adds the weight (mass rho V) at cog
+            [rho * volume],
+            cog,
+            "Capytaine's compute_hydrostatic_stiffness (the displaced mass at the centre of mass)",
+        )
     )
     return ds
 

@@ -120,6 +120,16 @@ class HydroDataWarning(CumminsWarning):
     """
 
 
+class AssumptionWarning(CumminsWarning):
+    """A value the result depends on was assumed, not read (a density, a depth, a length
+    scale, what a restoring matrix holds): the text names it and how to give it."""
+
+
+class StaticInstabilityWarning(CumminsWarning):
+    """The restoring matrix has a negative eigenvalue: the body has no stable equilibrium
+    to oscillate about (:func:`cummins.restoring.static_instability`)."""
+
+
 class OutputExistsError(CumminsError, FileExistsError):
     """Refusing to overwrite an existing file without ``force=True`` / ``--force``."""
 

@@ -42,7 +42,10 @@ in DOF i due to a unit acceleration in DOF j; attributes ``rho`` (kg/m³), ``g``
 ``reference_point`` (m, the point about which moments and rotations are taken),
 ``axis_convention`` (``"z-up"``: x forward, y to port, z up, as WAMIT, NEMOH, AQWA,
 Capytaine; ``"z-down"``: Fossen's body axes x forward, y to starboard, z down, as MSS),
-and ``history`` (one line per conversion applied since the file was read).
+and ``history`` (one line per conversion applied since the file was read); readers add
+``water_depth_assumed`` when the files do not record the depth, and what the restoring
+holds (``restoring_source``, ``restoring_weight_mass``, ``restoring_weight_center``:
+:mod:`cummins.restoring`).
 Positions (``reference_point``, ``center_of_gravity``, ``center_of_buoyancy``) are
 coordinates in the body axes of the dataset, from its coordinate origin.
 """
@@ -695,7 +698,12 @@ def change_axes(ds: xr.Dataset, to: str) -> xr.Dataset:
     t = _per_body_transform(ds, lambda k: np.diag(Z_UP_TO_Z_DOWN))
     out = _apply(ds, t, t, t)
     flip = np.array([1.0, -1.0, -1.0])
-    for key in ("reference_point", "center_of_gravity", "center_of_buoyancy"):
+    for key in (
+        "reference_point",
+        "center_of_gravity",
+        "center_of_buoyancy",
+        "restoring_weight_center",
+    ):
         if key in out.attrs:
             out.attrs[key] = (
                 np.asarray(out.attrs[key], dtype=float).reshape(-1, 3) * flip
@@ -713,6 +721,28 @@ def change_axes(ds: xr.Dataset, to: str) -> xr.Dataset:
     out.attrs["axis_convention"] = to
     add_history(out, f"axes changed from {current} to {to} ({AXIS_CONVENTIONS[to]})")
     return out
+
+
+def water_depth(ds: xr.Dataset, use: str = "the wave numbers") -> float:
+    """The data's water depth, m (``inf``: deep water). When the files did not record it
+    (the attribute ``water_depth_assumed``), an :class:`~cummins.errors.AssumptionWarning`
+    says that ``use`` takes deep water, and how to give the depth."""
+    depth = float(ds.attrs.get("water_depth", np.inf))
+    if ds.attrs.get("water_depth_assumed"):
+        import warnings
+
+        from cummins.errors import AssumptionWarning
+
+        source = str(ds.attrs.get("source_file", "") or "")
+        name = source.replace("\\", "/").rsplit("/", 1)[-1] + ": " if source else ""
+        warnings.warn(
+            AssumptionWarning(
+                f"{name}the water depth is not recorded in the files: deep water assumed for "
+                f"{use}; give --water-depth M (water_depth=) if the run had a finite depth"
+            ),
+            stacklevel=3,
+        )
+    return depth
 
 
 def describe(ds: xr.Dataset) -> dict[str, Any]:
@@ -741,6 +771,7 @@ def describe(ds: xr.Dataset) -> dict[str, Any]:
         "rho_kg_m3": float(ds.attrs["rho"]),
         "g_m_s2": float(ds.attrs["g"]),
         "water_depth_m": float(ds.attrs.get("water_depth", np.inf)),
+        "water_depth_assumed": bool(ds.attrs.get("water_depth_assumed", False)),
         "axis_convention": ds.attrs.get("axis_convention"),
         "reference_point_m": [float(x) for x in np.ravel(ds.attrs.get("reference_point", []))],
         "history": [line for line in str(ds.attrs.get("history", "")).splitlines() if line],
@@ -758,6 +789,10 @@ def describe(ds: xr.Dataset) -> dict[str, Any]:
         masses = [float(m[labels.index(d)]) for d in labels if split_dof(d)[1] == "Surge"]
         masses = masses or [float(m[0])]
         info["mass_kg"] = masses[0] if len(masses) == 1 else masses
+    if "hydrostatic_stiffness" in ds:
+        from cummins.restoring import describe_restoring
+
+        info["restoring"] = describe_restoring(ds)
     second = second_order_summary(ds)
     if second:
         info["second_order"] = second

@@ -10,9 +10,10 @@ and :func:`cummins.vessel_from_hydrodb` have the equation of motion
     [−ω²(M_RB + A(ω)) + iω(B(ω) + B_ext) + C + C_ext] ξ = F(ω, β)
 
 with M_RB built from the mass properties of each body (Smogeli et al. (2004) eq. 25: the
-rigid-body inertia about a point other than the centre of gravity), and external
-stiffness C_ext and damping B_ext per DOF pair (``additional_stiffness``,
-``additional_damping``). Every value given or assumed is written to ``history``.
+rigid-body inertia about a point other than the centre of gravity), the restoring C
+holding the weight of that body (:mod:`cummins.restoring`), and external stiffness C_ext
+and damping B_ext per DOF pair (``additional_stiffness``, ``additional_damping``). Every
+value given or assumed is written to ``history``.
 
 Examples
 --------
@@ -28,6 +29,7 @@ Examples
 
 from __future__ import annotations
 
+import warnings
 from collections.abc import Mapping, Sequence
 from typing import Any
 
@@ -35,9 +37,10 @@ import numpy as np
 import xarray as xr
 from numpy.typing import ArrayLike, NDArray
 
-from cummins.errors import ArgumentError, HydroDataError
+from cummins.errors import ArgumentError, AssumptionWarning, HydroDataError
 from cummins.hydrodb import add_history, bodies, dof_matrix, split_dof
-from cummins.kinematics import rigid_body_inertia
+from cummins.kinematics import center_of_gravity_from_inertia, rigid_body_inertia
+from cummins.restoring import with_weight
 from cummins.validation import MAX_MASS, in_range
 
 #: The heaviest floating structures are of order 10⁹ kg (ULCCs, the largest FPSOs):
@@ -105,8 +108,10 @@ def with_inertia(
     radii_of_gyration: ArrayLike | None = None,
     matrix: ArrayLike | None = None,
     replace: bool = True,
+    restoring: str | None = None,
 ) -> xr.Dataset:
-    """The dataset with its ``inertia_matrix`` built from mass properties, or given.
+    """The dataset with its ``inertia_matrix`` built from mass properties, or given, and
+    its restoring holding the weight of that body.
 
     Parameters
     ----------
@@ -127,14 +132,27 @@ def with_inertia(
     replace
         Replace an ``inertia_matrix`` the data already hold (default); with ``False``
         that is an error.
+    restoring
+        What the data's ``hydrostatic_stiffness`` holds, when the files do not say or
+        say it wrongly: ``"hydrostatic"`` (buoyancy only) or ``"total"`` (with the weight
+        of the body the files describe); default: what the files record
+        (:func:`cummins.restoring.describe_restoring`), else ``"hydrostatic"`` with a
+        warning.
 
     Returns
     -------
     xarray.Dataset
-        A copy with ``inertia_matrix`` (and ``center_of_gravity``) set. The restoring
-        matrix is left as the files give it: if the solver computed it with another
-        centre of gravity, or without the weight's contribution to roll and pitch (as the
-        WAMIT files of OpenFAST models are), correct it with :func:`with_external_terms`.
+        A copy with ``inertia_matrix`` (and ``center_of_gravity``) set, and the weight's
+        part of the restoring made that of this mass and centre of gravity:
+        C₄₄, C₅₅ += −g (m z_G − m_file z_G,file), C₄₆ += g (m x_G − m_file x_G,file),
+        C₅₆ += g (m y_G − m_file y_G,file) about each body's reference point (WAMIT (2020)
+        §3.1; :func:`cummins.restoring.with_weight`), where m_file, G_file are what the
+        files' restoring holds: WAMIT's ``.hst`` the weight of ρ∇ at the ``.out``'s centre
+        of gravity, NEMOH's ``KH`` and Capytaine's ``hydrostatic_stiffness`` that of
+        their centre of mass, OpenFAST's WAMIT files none. Every change is written to
+        ``history`` and ``restoring_source``. A matrix that is not that of a rigid body
+        has no single centre of gravity: its restoring is left as it is (a warning says
+        so).
 
     Raises
     ------
@@ -192,7 +210,53 @@ def with_inertia(
         out.attrs["center_of_gravity"] = np.concatenate(cogs)
     for line in lines:
         add_history(out, line + (" (replaces the file's)" if previous else ""))
-    return out
+    return complete_restoring(
+        out, restoring=restoring, why="given" if matrix is None else "from the matrix given"
+    )
+
+
+def complete_restoring(
+    ds: xr.Dataset, *, restoring: str | None = None, why: str = "from the inertia matrix"
+) -> xr.Dataset:
+    """The dataset whose restoring holds the weight of the body its ``inertia_matrix``
+    describes (mass and centre of gravity of each body's rigid block,
+    :func:`cummins.kinematics.center_of_gravity_from_inertia`), replacing the weight the
+    files' restoring holds (:func:`cummins.restoring.with_weight`; ``restoring`` as
+    :func:`with_inertia` takes it). Without an inertia matrix or a restoring, ``ds``."""
+    if "inertia_matrix" not in ds or "hydrostatic_stiffness" not in ds:
+        return ds
+    labels = [str(d) for d in ds.influenced_dof.values]
+    groups = bodies(ds)
+    m = dof_matrix(ds, "inertia_matrix")
+    refs = np.asarray(ds.attrs.get("reference_point", (0.0, 0.0, 0.0)), dtype=float).reshape(-1, 3)
+    masses, centers = [], []
+    for k, index in enumerate(_body_slices(labels, groups)):
+        rigid = [i for i in index if split_dof(labels[i])[1] in _RIGID]
+        name = groups[k] or "the body"
+        if len(rigid) != 6:
+            warnings.warn(
+                AssumptionWarning(
+                    f"{name} has no six rigid-body modes: the weight's terms of its "
+                    "restoring are left as the files give them"
+                ),
+                stacklevel=3,
+            )
+            return ds
+        mass, r_g, inconsistency = center_of_gravity_from_inertia(m[np.ix_(rigid, rigid)])
+        if inconsistency > 1e-3:
+            warnings.warn(
+                AssumptionWarning(
+                    f"the inertia matrix of {name} is not that of a rigid body (its coupling "
+                    "block is not -m S(r_g)): it gives no single centre of gravity, and the "
+                    "weight's terms of the restoring are left as the files give them"
+                ),
+                stacklevel=3,
+            )
+            return ds
+        ref = refs[k] if len(refs) == len(groups) else refs[0]
+        masses.append(mass)
+        centers.append(ref + r_g)
+    return with_weight(ds, masses, centers, includes=restoring, why=why)
 
 
 def with_external_terms(
@@ -431,6 +495,7 @@ def read_matrix_file(path: str) -> NDArray[np.float64]:
 
 __all__ = [
     "MAX_MASS_KG",
+    "complete_restoring",
     "inertia_from_radii",
     "read_matrix_file",
     "with_external_terms",

@@ -45,7 +45,9 @@ from cummins.errors import ArgumentError, HydroDataError, SimulationError
 from cummins.hydrodb import dof_matrix, single_speed
 from cummins.mechanics import MechanicalSystem, PTOLine, assemble, pto_matrices
 from cummins.mechanics.coupling import cross_body_mask
+from cummins.radiation.fingerprint import check_model_data
 from cummins.radiation.model import RadiationModel
+from cummins.restoring import INSTABILITY_HINT, instability_message, static_instability
 
 
 @dataclass(frozen=True, eq=False)
@@ -194,7 +196,12 @@ class Vessel:
 
     def stability(self) -> NDArray[np.complex128]:
         """Eigenvalues of F; raises :class:`SimulationError` when one is in the right
-        half-plane (naming the DOF that dominates its mode)."""
+        half-plane (naming the DOF that dominates its mode), first of all for a restoring
+        with a negative eigenvalue (:func:`cummins.restoring.static_instability`, the
+        sentence :func:`cummins.motion_rao` warns with)."""
+        unstable = static_instability(self.restoring, self.dofs, self.basis)
+        if unstable:
+            raise SimulationError(instability_message(unstable), hint=INSTABILITY_HINT)
         f, _ = self.state_space()
         lam, vec = np.linalg.eig(f)
         scale = max(float(np.abs(lam).max()), 1e-12)
@@ -267,6 +274,7 @@ def vessel_from_hydrodb(
     viscous_damping: ArrayLike | None = None,
     additional: bool = True,
     system: MechanicalSystem | None = None,
+    allow_other_data: bool = False,
     **fit_options: Any,
 ) -> Vessel:
     """The :class:`Vessel` of a ``HydroDB``, fitting its radiation model when none is given.
@@ -278,7 +286,10 @@ def vessel_from_hydrodb(
         ``additional_stiffness`` (moorings) is added to C when present.
     model
         A radiation model of the same DOFs (default: :func:`cummins.radiation.fit.fit_radiation` of
-        ``ds`` with ``fit_options``).
+        ``ds`` with ``fit_options``), fitted to these data: a model whose data fingerprint
+        differs is refused (:func:`cummins.radiation.fingerprint.check_model_data`).
+    allow_other_data
+        Use ``model`` with data other than its own (what differs is then a warning).
     viscous_damping
         B_v as :func:`viscous_damping_matrix` takes it: an (n, n) matrix, the n diagonal
         values, a DataArray or ``{dof: value}`` (added to the data's own, below).
@@ -327,6 +338,8 @@ def vessel_from_hydrodb(
             sources.append("database additional_damping (frequency-independent entries)")
     if model is None:
         model = fit_radiation(ds, **fit_options)
+    else:
+        check_model_data(model, ds, allow_other_data=allow_other_data)
     if tuple(model.dofs) != dofs:
         raise SimulationError(
             f"the radiation model's DOFs {model.dofs} differ from the data's {dofs}",

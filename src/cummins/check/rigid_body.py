@@ -12,6 +12,7 @@ from cummins.check.common import _diag_scale, _labels
 from cummins.check.report import Finding
 from cummins.hydrodb import DOF_NAMES, dof_matrix, split_dof
 from cummins.kinematics import center_of_gravity_from_inertia
+from cummins.restoring import describe_restoring, recorded_weight, weight_stiffness
 
 
 def _check_rigid_body(ds: xr.Dataset) -> list[Finding]:
@@ -54,7 +55,11 @@ def _check_rigid_body(ds: xr.Dataset) -> list[Finding]:
                             "unstable in this DOF",
                             where=label,
                             value=float(c[k, k]),
-                            advice="check the centre of gravity (negative metacentric height?)",
+                            advice="check the centre of gravity (negative metacentric "
+                            f"height?) and what the restoring holds ({describe_restoring(ds)}): "
+                            "--center-of-gravity with --radii-of-gyration makes its weight "
+                            "terms those of your body; --restoring-includes-weight no when the "
+                            "files hold the hydrostatics alone",
                         )
                     )
                 elif c[k, k] == 0:
@@ -69,6 +74,60 @@ def _check_rigid_body(ds: xr.Dataset) -> list[Finding]:
         if not any(f.check == "hydrostatics" for f in out):
             out.append(
                 Finding("hydrostatics", "ok", "restoring in heave, roll and pitch is positive")
+            )
+        out.extend(_weight_consistency(ds, labels))
+    return out
+
+
+def _weight_consistency(ds: xr.Dataset, labels: list[str]) -> list[Finding]:
+    """The weight the restoring holds against the body the inertia matrix describes: a
+    difference in m·(G − O) changes C44, C55 (and C46, C56) by −g Δ(m z_G) … (WAMIT (2020)
+    §3.1), which the motions feel; said when it is above 1 % of C44 or C55."""
+    weights = recorded_weight(ds)
+    if weights is None or "inertia_matrix" not in ds:
+        return []
+    m = dof_matrix(ds, "inertia_matrix")
+    m = m.reshape(-1, m.shape[-2], m.shape[-1])[0]
+    c = dof_matrix(ds, "hydrostatic_stiffness")
+    c = c.reshape(-1, c.shape[-2], c.shape[-1])[0]
+    refs = np.asarray(ds.attrs.get("reference_point", (0.0, 0.0, 0.0)), dtype=float).reshape(-1, 3)
+    blocks = _rigid_blocks(labels)
+    if len(blocks) != len(weights):
+        return []
+    out = []
+    g = float(ds.attrs["g"])
+    axes = str(ds.attrs.get("axis_convention", "z-up"))
+    for k, (index, held) in enumerate(zip(blocks, weights, strict=True)):
+        mass, r_g, inconsistency = center_of_gravity_from_inertia(m[np.ix_(index, index)])
+        ref = refs[k] if len(refs) == len(blocks) else refs[0]
+        file_mass = mass if np.isnan(held.mass) else held.mass
+        delta = weight_stiffness(mass * r_g, g, axes) - weight_stiffness(
+            file_mass * (held.center - ref), g, axes
+        )
+        if inconsistency > 1e-3:  # no single centre of gravity: compare z alone
+            delta[:, 5] = delta[5, :] = 0.0
+        roll, pitch = index[3], index[4]
+        worst = max(
+            abs(delta[3, 3]) / max(abs(c[roll, roll]), 1e-300),
+            abs(delta[4, 4]) / max(abs(c[pitch, pitch]), 1e-300),
+        )
+        if worst > 0.01:
+            body = labels[index[0]].rpartition("__")[0] or "the body"
+            out.append(
+                Finding(
+                    "hydrostatics",
+                    "warning",
+                    f"the restoring of {body} holds the weight of {file_mass:.6g} kg at "
+                    f"{np.round(held.center, 4).tolist()} m, but the inertia matrix describes "
+                    f"{mass:.6g} kg at {np.round(ref + r_g, 4).tolist()} m: C44 and C55 of "
+                    f"that body would change by {delta[3, 3]:.4g} and {delta[4, 4]:.4g} "
+                    f"({worst:.0%})",
+                    where=labels[index[3]],
+                    value=worst,
+                    advice="give the body's mass properties (--mass, --center-of-gravity, "
+                    "--radii-of-gyration; cummins.with_inertia): the restoring's weight terms "
+                    "then follow them",
+                )
             )
     return out
 

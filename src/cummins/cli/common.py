@@ -228,6 +228,17 @@ def force_option(help: str = "Overwrite the output files."):
     return click.option("--force", is_flag=True, help=help)
 
 
+def allow_other_data_option(func):
+    """--allow-other-data: use a model with data whose fingerprint differs from those it
+    was fitted to (a warning instead of the refusal), passed as ``allow_other_data``."""
+    return click.option(
+        "--allow-other-data",
+        is_flag=True,
+        help="Use the model with data other than those it was fitted to (their DOFs, rho, "
+        "g, frequencies or A(w), B(w) differ): what differs is then a warning, not an error.",
+    )(func)
+
+
 def viscous_damping_option(func):
     """--viscous-damping DOF VALUE (repeatable), passed as ``viscous_damping``."""
     return click.option(
@@ -262,6 +273,8 @@ def viscous_damping_values(
 
 #: Where :func:`read_options` leaves the mass-property options for :func:`read_hydrodb`.
 _EOM_KEY = "cummins.equation_of_motion"
+#: … and ``--water-depth``.
+_DEPTH_KEY = "cummins.water_depth"
 _EOM_OPTIONS = (
     "mass",
     "center_of_gravity",
@@ -269,6 +282,7 @@ _EOM_OPTIONS = (
     "inertia_matrix",
     "external_stiffness",
     "external_damping",
+    "restoring_includes_weight",
 )
 
 
@@ -292,7 +306,7 @@ def format_names() -> str:
 
 
 def read_options(func):
-    """--format, --rho, --g, --ulen: how to read solver files; --mass,
+    """--format, --rho, --g, --ulen, --water-depth: how to read solver files; --mass,
     --center-of-gravity, --radii-of-gyration, --inertia-matrix, --external-stiffness,
     --external-damping: what to complete them with (the terms of the equation of motion
     that the files lack), applied by :func:`read_hydrodb`."""
@@ -330,6 +344,16 @@ def read_options(func):
             help="WAMIT length scale ULEN (default: from the .out, else 1).",
         ),
         click.option(
+            "--water-depth",
+            type=Number(0.0, min_open=True, unit="m", infinite=True),
+            default=None,
+            metavar="M",
+            help="Water depth in m (inf for deep water) when the files do not record it "
+            "(WAMIT without its .out, NEMOH without Nemoh.cal, VERES): the depth of the "
+            "wave numbers, the travel phase of the wave force and the wave loads. Default: "
+            "deep water, with a warning where a result depends on it.",
+        ),
+        click.option(
             "--mass",
             type=positive("kg"),
             multiple=True,
@@ -365,6 +389,15 @@ def read_options(func):
             "point (kg, kg m, kg m^2).",
         ),
         click.option(
+            "--restoring-includes-weight",
+            type=click.Choice(["yes", "no"]),
+            default=None,
+            help="Whether the files' restoring holds the weight's terms (C44, C55 -m g z_G; "
+            "C46, C56 m g x_G, m g y_G), when they do not say (OpenFAST's WAMIT files: no; "
+            "`cummins info` tells what was detected). The restoring is then made that of "
+            "the mass and centre of gravity of the inertia (given or the files').",
+        ),
+        click.option(
             "--external-stiffness",
             type=(str, str, finite()),
             multiple=True,
@@ -387,6 +420,7 @@ def read_options(func):
     def wrapper(*args, **kwargs):
         context = click.get_current_context()
         context.meta[_EOM_KEY] = {name: kwargs.pop(name) for name in _EOM_OPTIONS}
+        context.meta[_DEPTH_KEY] = kwargs.pop("water_depth")
         return func(*args, **kwargs)
 
     for decorator in reversed(decorators):
@@ -401,8 +435,9 @@ def read_hydrodb(
     mass-property and external-term options of the same command."""
     from cummins.io import read
 
-    ds = read(path, format=format_, rho=rho, g=g, ulen=ulen)
     context = click.get_current_context(silent=True)
+    depth = context.meta.get(_DEPTH_KEY) if context is not None else None
+    ds = read(path, format=format_, rho=rho, g=g, ulen=ulen, water_depth=depth)
     options = context.meta.get(_EOM_KEY) if context is not None else None
     return complete_equation_of_motion(ds, **options) if options else ds
 
@@ -416,29 +451,46 @@ def complete_equation_of_motion(
     inertia_matrix=None,
     external_stiffness=(),
     external_damping=(),
+    restoring_includes_weight=None,
 ):
-    """``ds`` with the inertia and external terms of the command-line options."""
-    from cummins.mass_properties import read_matrix_file, with_external_terms, with_inertia
+    """``ds`` with the inertia and external terms of the command-line options, its
+    restoring holding the weight of that inertia."""
+    from cummins.mass_properties import (
+        complete_restoring,
+        read_matrix_file,
+        with_external_terms,
+        with_inertia,
+    )
 
+    restoring = {"yes": "total", "no": "hydrostatic", None: None}[restoring_includes_weight]
+    if inertia_matrix is None and not radii_of_gyration and (mass or center_of_gravity):
+        raise click.UsageError(
+            "--mass and --center-of-gravity build the inertia matrix together with "
+            "--radii-of-gyration RXX RYY RZZ: give the radii too"
+        )
     if inertia_matrix is not None:
         if mass or radii_of_gyration or center_of_gravity:
             raise click.UsageError(
                 "give either --inertia-matrix or --mass/--center-of-gravity/"
                 "--radii-of-gyration, not both"
             )
-        ds = with_inertia(ds, matrix=read_matrix_file(inertia_matrix))
+        ds = with_inertia(ds, matrix=read_matrix_file(inertia_matrix), restoring=restoring)
     elif radii_of_gyration:
         ds = with_inertia(
             ds,
             mass=list(mass) if mass else None,
             center_of_gravity=[list(c) for c in center_of_gravity] or None,
             radii_of_gyration=[list(r) for r in radii_of_gyration],
+            restoring=restoring,
         )
-    elif mass or center_of_gravity:
-        raise click.UsageError(
-            "--mass and --center-of-gravity build the inertia matrix together with "
-            "--radii-of-gyration RXX RYY RZZ: give the radii too"
-        )
+    elif restoring is not None:
+        if "inertia_matrix" not in ds:
+            raise click.UsageError(
+                "--restoring-includes-weight completes the restoring with the weight of the "
+                "body's inertia, and the data hold none: give --mass, --center-of-gravity "
+                "and --radii-of-gyration (or --inertia-matrix)"
+            )
+        ds = complete_restoring(ds, restoring=restoring, why="the files' inertia")
     labels = [str(d) for d in ds.influenced_dof.values]
     terms = {}
     for name, given in (("stiffness", external_stiffness), ("damping", external_damping)):
@@ -590,11 +642,20 @@ def select_body(ds, body: str, option: str = "--body"):
     out = out.assign_coords(
         {dim: list(DOF_NAMES) for dim in ("influenced_dof", "radiating_dof") if dim in out.coords}
     )
-    for key in ("reference_point", "center_of_gravity", "center_of_buoyancy"):
+    for key in (
+        "reference_point",
+        "center_of_gravity",
+        "center_of_buoyancy",
+        "restoring_weight_center",
+    ):
         if key in out.attrs:
             values = np.asarray(out.attrs[key], dtype=float).reshape(-1)
             if values.size == 3 * len(groups):
                 out.attrs[key] = values[3 * k : 3 * k + 3]
+    for key in ("restoring_weight_mass", "displaced_volume"):
+        values = np.atleast_1d(np.asarray(out.attrs.get(key, []), dtype=float)).reshape(-1)
+        if values.size == len(groups) > 1:
+            out.attrs[key] = float(values[k])
     name = names[k] if len(names) == len(groups) else prefix
     out.attrs["body_name"] = name
     out.attrs.pop("body_names", None)

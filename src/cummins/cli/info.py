@@ -39,7 +39,9 @@ def second_order_lines(summary: dict) -> list[str]:
 @click.option("--json", "as_json", is_flag=True, help="Print the description as JSON.")
 @reports_errors
 def info_command(path, format_, rho, g, ulen, as_json):
-    """Describe what PATH holds: format, DOFs, frequencies, headings, constants used.
+    """Describe what PATH holds: format, DOFs, frequencies, headings, constants used,
+    and where the restoring came from (whether it holds the weight's terms, for which
+    mass and centre of gravity).
 
     \b
     Example:
@@ -71,7 +73,15 @@ def info_command(path, format_, rho, g, ulen, as_json):
     table.add_row("forward speeds", ", ".join(f"{u:g}" for u in d["forward_speeds_m_s"]) + " m/s")
     table.add_row("variables", ", ".join(d["variables"]))
     table.add_row("rho, g", f"{d['rho_kg_m3']:g} kg/m³, {d['g_m_s2']:g} m/s²")
-    table.add_row("water depth", f"{d['water_depth_m']:g} m")
+    table.add_row(
+        "water depth",
+        f"{d['water_depth_m']:g} m"
+        + (
+            " (not recorded in the files: assumed; --water-depth)"
+            if d["water_depth_assumed"]
+            else ""
+        ),
+    )
     table.add_row("axes", str(d["axis_convention"]))
     table.add_row("reference point", f"{d['reference_point_m']} m")
     for key, label in (
@@ -87,6 +97,8 @@ def info_command(path, format_, rho, g, ulen, as_json):
         if key in d:
             values = d[key] if isinstance(d[key], list) else [d[key]]
             table.add_row(label, ", ".join(f"{v:.6g}" for v in values) + f" {unit}")
+    if "restoring" in d:
+        table.add_row("restoring", d["restoring"])
     for k, line in enumerate(second_order_lines(d.get("second_order", {}))):
         table.add_row("second order" if k == 0 else "", line)
     for k, line in enumerate(d["history"]):

@@ -181,7 +181,10 @@ def rao_command(
     Between the data frequencies A, B and F are interpolated and the equation is
     solved there (the RAO itself is never interpolated, so sharp resonances are
     resolved). Headings missing on one side of a port/starboard symmetric hull are
-    mirrored.
+    mirrored. A statically unstable body (the restoring, with moorings and
+    --external-stiffness, has a negative eigenvalue) has no equilibrium: the RAOs are
+    written but a warning names the DOF and the file's rao attribute static_stability
+    says it (`cummins simulate` refuses the same body).
 
     \b
     Several bodies: --joint joins them (or a body to the ground) and --pto puts a damper

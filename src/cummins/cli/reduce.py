@@ -13,6 +13,7 @@ from rich.table import Table
 
 from cummins.cli.common import (
     Number,
+    allow_other_data_option,
     console,
     force_option,
     prepare_outputs,
@@ -90,6 +91,7 @@ from cummins.cli.common import (
     default=None,
     help="Write a summary as JSON.",
 )
+@allow_other_data_option
 @force_option()
 @reports_errors
 def reduce_command(
@@ -107,6 +109,7 @@ def reduce_command(
     speed,
     passive,
     json_path,
+    allow_other_data,
     force,
 ):
     """Reduce the order of a radiation model by balanced truncation.
@@ -145,7 +148,12 @@ def reduce_command(
     warn_failed_model(model.attrs, model_path)  # the reduced model keeps its failures
     data = None
     if data_path:
+        from cummins.radiation.fingerprint import check_model_data
+
         data = select_speed(read_hydrodb(data_path, format_, rho, g, ulen), speed)
+        check_model_data(
+            model, data, allow_other_data=allow_other_data, model_name=Path(model_path).name
+        )
     with stage_progress(f"reducing {model.total_order} states ({method})") as say:
         reduced, corrected, reference = reduce_stage(
             model,

@@ -9,6 +9,7 @@ import numpy as np
 
 from cummins.cli.common import (
     Number,
+    allow_other_data_option,
     console,
     finite,
     force_option,
@@ -158,6 +159,7 @@ from cummins.validation import check_simulation_size
 )
 @second_order_option()
 @sum_frequency_option
+@allow_other_data_option
 @force_option()
 @reports_errors
 def simulate_command(
@@ -192,6 +194,7 @@ def simulate_command(
     plot_dir,
     second_order,
     sum_frequency,
+    allow_other_data,
     force,
 ):
     """Simulate the vessel in waves: the Cummins equation with a state-space fluid memory.
@@ -199,9 +202,14 @@ def simulate_command(
     \b
     DATA is a hydrodynamic database (any format cummins reads; the radiation model is
     fitted on the fly, passive) or MODEL a model file from `cummins fit` (its data are
-    read from the file it was fitted to). The excitation is the first-order wave force
+    read from the file it was fitted to; data that differ from those the model records —
+    DOFs, rho, g, frequencies, A(w), B(w) — are refused unless --allow-other-data). The
+    excitation is the first-order wave force
     of the database; the run holds motion and velocity (time, dof) about the database's
-    reference point and axes, and the wave elevation at the origin.
+    reference point and axes, and the wave elevation at the origin. A statically
+    unstable body (a negative eigenvalue of the restoring with moorings and
+    --external-stiffness, named by its DOF: the check `cummins rao` warns with) is
+    refused.
 
     \b
     Several bodies: --joint joins them (or a body to the ground), --pto puts a linear
@@ -331,7 +339,12 @@ def simulate_command(
             )
         else:
             vessel = vessel_from_hydrodb(
-                ds, model, viscous_damping=b_v, system=system, **fit_options
+                ds,
+                model,
+                viscous_damping=b_v,
+                system=system,
+                allow_other_data=allow_other_data,
+                **fit_options,
             )
     from cummins.cli.failed_model import warn_failed_model
 

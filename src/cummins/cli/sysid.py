@@ -11,6 +11,7 @@ import numpy as np
 from rich.markup import escape
 
 from cummins.cli.common import (
+    allow_other_data_option,
     console,
     err_console,
     finite,
@@ -144,6 +145,7 @@ from cummins.cli.common import (
     required=True,
     help="Folder for damping.json and the PNG figures.",
 )
+@allow_other_data_option
 @force_option("Overwrite the report's files.")
 @reports_errors
 def identify_damping_command(
@@ -170,6 +172,7 @@ def identify_damping_command(
     stiffness,
     speed,
     report_dir,
+    allow_other_data,
     force,
 ):
     """Identify the damping potential theory leaves out from motion records.
@@ -223,7 +226,9 @@ def identify_damping_command(
     labels = [str(d) for d in ds.influenced_dof.values]
     b_v = viscous_damping_values(viscous_damping, labels)
     with console.status("preparing the potential-flow model"):
-        vessel = vessel_from_hydrodb(ds, model, viscous_damping=b_v)
+        vessel = vessel_from_hydrodb(
+            ds, model, viscous_damping=b_v, allow_other_data=allow_other_data
+        )
     recs = []
     for path in records:
         rec = read_record(path, heading_deg=heading)

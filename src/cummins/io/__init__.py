@@ -29,7 +29,7 @@ from dataclasses import dataclass
 from pathlib import Path
 from typing import TYPE_CHECKING
 
-from cummins.errors import HydroDataError, check_writable
+from cummins.errors import ArgumentError, HydroDataError, check_writable
 
 if TYPE_CHECKING:
     import xarray as xr
@@ -189,6 +189,7 @@ def read(
     rho: float | None = None,
     g: float | None = None,
     ulen: float | None = None,
+    water_depth: float | None = None,
     **options,
 ) -> xr.Dataset:
     """Read hydrodynamic data into a canonical ``HydroDB`` (an :class:`xarray.Dataset`).
@@ -202,6 +203,15 @@ def read(
     rho, g, ulen
         Water density (kg/m³), gravity (m/s²) and length scale (m) for nondimensional
         formats (WAMIT). For dimensional formats they may only confirm the file's values.
+        A value the files do not record is assumed (1025 kg/m³, 9.81 m/s², 1 m) with an
+        :class:`~cummins.errors.AssumptionWarning`.
+    water_depth
+        m (``inf`` for deep water), for files that do not record it (WAMIT numeric files
+        without their ``.out``, NEMOH without ``Nemoh.cal``, VERES, BEMIO without
+        ``water_depth``): the depth of the wave kinematics (wave numbers, the travel phase
+        of the wave force, encounter frequencies, drift and wave loads). Without it those
+        take deep water, with an ``AssumptionWarning`` where a result depends on it. A
+        value that contradicts the files' is an error.
     **options
         Passed to the format's reader (e.g. ``siblings=False`` for WAMIT).
 
@@ -241,7 +251,39 @@ def read(
     constants = {k: v for k, v in (("rho", rho), ("g", g), ("ulen", ulen)) if v is not None}
     if "ulen" in constants and not fmt.nondimensional:
         constants.pop("ulen")
-    return fmt.read(target, **constants, **options)
+    if water_depth is not None:
+        water_depth = float(water_depth)
+        if not water_depth > 0:  # NaN, zero, negative
+            raise ArgumentError(
+                f"water_depth must be > 0 m (inf for deep water), got {water_depth!r}"
+            )
+        if name in ("wamit", "wamit-out"):  # a wavenumber column is read with it
+            options["water_depth"] = water_depth
+    ds = fmt.read(target, **constants, **options)
+    return ds if water_depth is None else _given_depth(ds, water_depth, target)
+
+
+def _given_depth(ds: xr.Dataset, depth: float, path: Path) -> xr.Dataset:
+    """The data at the water depth the user gives: taken where the files record none, an
+    error where they record another."""
+    from cummins.hydrodb import add_history
+    from cummins.io._common import DEPTH_ASSUMED
+
+    recorded = float(ds.attrs.get("water_depth", float("inf")))
+    if ds.attrs.get(DEPTH_ASSUMED):
+        out = ds.copy()
+        out.attrs["water_depth"] = depth
+        del out.attrs[DEPTH_ASSUMED]
+        add_history(out, f"water depth = {depth:g} m (given)")
+        return out
+    same = recorded == depth or abs(recorded - depth) <= 1e-6 * abs(depth)
+    if not same:
+        raise HydroDataError(
+            f"water_depth = {depth:g} m was given but the files record {recorded:g} m",
+            path=path,
+            hint="the coefficients were computed at the recorded depth: drop --water-depth",
+        )
+    return ds
 
 
 def write(ds: xr.Dataset, path: str | os.PathLike[str], *, force: bool = False, model=None) -> Path:

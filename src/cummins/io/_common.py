@@ -8,7 +8,7 @@ from collections.abc import Sequence
 
 import numpy as np
 
-from cummins.errors import HydroDataError, HydroDataWarning
+from cummins.errors import AssumptionWarning, HydroDataError, HydroDataWarning
 
 #: Sea-water density and gravity used when a nondimensional file does not record them.
 DEFAULT_RHO = 1025.0
@@ -72,7 +72,24 @@ def resolve_constant(
     history.append(
         f"{name} = {default:g} {unit} (not recorded in the file: default; pass {name}= to change)"
     )
+    assume(
+        f"{name} is not recorded in the files read: {default:g} {unit} assumed; give "
+        f"--{name} ({name}=) if the run used another value",
+        path=path,
+    )
     return default
+
+
+#: Attribute of a dataset whose ``water_depth`` was not recorded by its files (deep water
+#: assumed): :func:`cummins.hydrodb.water_depth` warns where a result depends on it.
+DEPTH_ASSUMED = "water_depth_assumed"
+
+
+def assume(message: str, *, path: str | os.PathLike[str] | None) -> None:
+    """An :class:`~cummins.errors.AssumptionWarning` naming the file: a value a result
+    depends on was assumed, not read (the reader also writes it to ``history``)."""
+    where = f"{os.path.basename(os.fspath(path))}: " if path else ""
+    warnings.warn(AssumptionWarning(where + message), stacklevel=3)
 
 
 def resolve_rho_g(

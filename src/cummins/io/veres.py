@@ -69,9 +69,10 @@ from cummins.hydrodb import (
     move_reference_point,
     stack_forward_speeds,
 )
-from cummins.io._common import resolve_rho_g
+from cummins.io._common import DEPTH_ASSUMED, resolve_rho_g
 from cummins.io._text import TextFile, check_cut_numbers
 from cummins.kinematics import X_AFT_TO_X_FORWARD
+from cummins.restoring import weight_record
 
 __all__ = ["read_veres", "read_veres_transfer_function", "sniff", "sniff_dir"]
 
@@ -551,7 +552,10 @@ def read_veres(
             "or motions alone can be read with read_veres_transfer_function",
         )
     re7 = _read_re7(re7_path)
-    history = [f"read {re7_path.name} (.re7 version {re7.version})"]
+    history = [
+        f"read {re7_path.name} (.re7 version {re7.version})",
+        "water depth not recorded in VERES files: deep water assumed",
+    ]
     head = re7.header
     rho_v, g_v = resolve_rho_g(
         rho,
@@ -697,7 +701,13 @@ def _speed_dataset(
         reference_point=(-sp.xmtn, 0.0, sp.zmtn - head.draught),
         history=history,
         center_of_gravity=np.array([-head.lcg, 0.0, head.vcg - head.draught]),
+        **weight_record(  # VERES's restoring is rho g V GM: the weight at LCG, VCG
+            [float(re7.mass[0, 0])],
+            [-head.lcg, 0.0, head.vcg - head.draught],
+            f"{path.name} restoring (VERES: rho g V GM, the weight at LCG, VCG)",
+        ),
         ship_length=head.lpp,
+        **{DEPTH_ASSUMED: 1},
         ship_breadth=head.breadth,
         ship_draught=head.draught,
         **extra,

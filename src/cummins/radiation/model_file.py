@@ -121,7 +121,7 @@ import xarray as xr
 from numpy.typing import NDArray
 
 from cummins._version import __version__
-from cummins.errors import CumminsError, HydroDataError
+from cummins.errors import CumminsError, FitError, HydroDataError
 from cummins.io.netcdf import (
     JSON_ATTRS,
     VERSION_ATTR,
@@ -138,6 +138,7 @@ from cummins.radiation.model import (
     RadiationModel,
     register_file_format,
 )
+from cummins.validation import guard_radiation_model
 
 __all__ = ["FORMAT_NAME", "FORMAT_VERSION", "read_radiation_model", "write_radiation_model"]
 
@@ -394,11 +395,17 @@ def read_radiation_model(path: str | os.PathLike[str]) -> RadiationModel:
     ------
     HydroDataError
         The file is missing, not NetCDF, or not a consistent radiation-model file
-        (the message names what is missing or wrong).
+        (the message names what is missing or wrong), or holds numbers no model of a
+        floating body has (NaN, infinity, an absurd A∞: ``guard_radiation_model``).
     """
     path = Path(path)
     raw = load_netcdf(path)
-    return dataset_to_model(raw, path)
+    model = dataset_to_model(raw, path)
+    try:
+        guard_radiation_model(model)
+    except FitError as exc:
+        raise HydroDataError(str(exc), path=path) from None
+    return model
 
 
 def dataset_to_model(raw: xr.Dataset, path: str | os.PathLike[str] | None = None):

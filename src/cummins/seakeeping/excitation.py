@@ -67,7 +67,7 @@ from scipy.interpolate import (
 )
 
 from cummins.errors import HydroDataError
-from cummins.hydrodb import DOF_NAMES, bodies, single_speed, split_dof
+from cummins.hydrodb import DOF_NAMES, bodies, single_speed, split_dof, water_depth
 from cummins.seakeeping.headings import (
     MIRROR_SIGNS,
     HeadingCoverage,
@@ -274,7 +274,7 @@ def excitation_transfer(
         return out
     coverage = heading_coverage(ds, mirror=mirror)
     g = float(ds.attrs.get("g", 9.81))
-    depth = float(ds.attrs.get("water_depth", np.inf))
+    depth = water_depth(ds, "the travel phase of the wave force between headings")
     centers = _phase_centers(ds, phase_center)  # (n_dofs, 2)
 
     # Forces on the available headings (mirrored where needed), travel phase removed.
@@ -396,7 +396,7 @@ def encounter_frequencies(
     if speed == 0.0:
         return w.copy()
     g = float(ds.attrs.get("g", 9.81))
-    depth = float(ds.attrs.get("water_depth", np.inf))
+    depth = water_depth(ds, "the encounter frequencies")
     return w - wavenumber(w, depth, g) * speed * np.cos(beta)
 
 

@@ -56,6 +56,7 @@ significant double amplitude 4√m₀.
 
 from __future__ import annotations
 
+import warnings
 from collections.abc import Callable
 from typing import Any
 
@@ -63,9 +64,15 @@ import numpy as np
 import xarray as xr
 from numpy.typing import ArrayLike, NDArray
 
-from cummins.errors import ArgumentError, HydroDataError
+from cummins.errors import ArgumentError, HydroDataError, StaticInstabilityWarning
 from cummins.hydrodb import dof_matrix, single_speed
 from cummins.mechanics import MechanicalSystem, assemble
+from cummins.restoring import (
+    INSTABILITY_HINT,
+    instability_message,
+    restoring_matrix,
+    static_instability,
+)
 from cummins.seakeeping.excitation import (
     INTERPOLATION_METHODS,
     _interpolate_frequency,
@@ -306,6 +313,14 @@ def motion_rao(
         x(t) = Re{X e^{iω_e t}} at the origin moving with the ship, and the attributes
         ``forward_speed`` and ``encounter_outside_data`` (module docstring).
 
+    Warns
+    -----
+    StaticInstabilityWarning
+        The restoring (with the additional stiffness) has a negative eigenvalue: the body
+        has no equilibrium, its RAOs mean nothing; the RAO's attribute
+        ``static_stability`` says it too (:func:`cummins.restoring.static_instability`,
+        the check the time domain refuses such a body with).
+
     Raises
     ------
     HydroDataError
@@ -385,6 +400,16 @@ def motion_rao(
         if basis is not None:
             included.append("joints (T^T Z T q = T^T F, X = T q)")
         attrs.update(assembly.attrs())
+    c = restoring_matrix(ds, additional)
+    if assembly is not None and assembly.ptos:
+        c = c + assembly.pto_matrices()[0]
+    unstable = static_instability(c, labels, basis)
+    if unstable:  # the same sentence the time domain refuses with (Vessel.stability)
+        attrs["static_stability"] = instability_message(unstable)
+        warnings.warn(
+            StaticInstabilityWarning(f"{attrs['static_stability']}. {INSTABILITY_HINT}"),
+            stacklevel=2,
+        )
     coords = {}
     if speed != 0.0:
         data_w = ds.omega.values

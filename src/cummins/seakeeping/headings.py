@@ -112,24 +112,26 @@ def symmetry_evidence(ds: xr.Dataset) -> tuple[bool, str]:
                             f"{name}[{labels[a]}, {labels[b]}] couples symmetric and "
                             "antisymmetric motions"
                         )
-    if "excitation_force" in ds:  # a run may hold a mean drift without its excitation
-        f = np.abs(
-            ds["excitation_force"].transpose("omega", "wave_direction", "influenced_dof").values
-        )
-        beta = np.mod(ds.wave_direction.values, _TWO_PI)
-        along = np.flatnonzero(
-            (np.abs(beta) < _ANGLE_TOL)
-            | (np.abs(beta - np.pi) < _ANGLE_TOL)
-            | (np.abs(beta - _TWO_PI) < _ANGLE_TOL)
-        )
-        rotation = np.array([DOF_NAMES.index(d) >= 3 for d in names])
-        for j in anti:
-            peak = f[:, :, rotation == rotation[j]].max()  # largest force (or moment) of its kind
-            if along.size and peak > 0 and f[:, along, j].max() > SYMMETRY_TOLERANCE * peak:
-                return False, (
-                    f"{labels[j]} is excited by waves along the x axis "
-                    f"({f[:, along, j].max() / peak:.2g} of the largest excitation of its kind)"
-                )
+    # without excitation (a drift table alone) the heading test has nothing to look at
+    f = (
+        np.abs(ds["excitation_force"].transpose("omega", "wave_direction", "influenced_dof").values)
+        if "excitation_force" in ds
+        else None
+    )
+    beta = np.mod(ds.wave_direction.values, _TWO_PI) if "wave_direction" in ds.dims else []
+    along = np.flatnonzero(
+        (np.abs(beta) < _ANGLE_TOL)
+        | (np.abs(beta - np.pi) < _ANGLE_TOL)
+        | (np.abs(beta - _TWO_PI) < _ANGLE_TOL)
+    )
+    rotation = np.array([DOF_NAMES.index(d) >= 3 for d in names])
+    for j in anti if f is not None else ():
+        peak = f[:, :, rotation == rotation[j]].max()  # largest force (or moment) of any DOF
+        if along.size and peak > 0 and f[:, along, j].max() > SYMMETRY_TOLERANCE * peak:
+            return False, (
+                f"{labels[j]} is excited by waves along the x axis "
+                f"({f[:, along, j].max() / peak:.2g} of the largest excitation of its kind)"
+            )
     for key in ("center_of_buoyancy", "center_of_gravity"):
         if key in ds.attrs:
             point = np.asarray(ds.attrs[key], dtype=float).reshape(-1)

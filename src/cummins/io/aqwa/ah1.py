@@ -30,6 +30,7 @@ from cummins.io.aqwa.conventions import (
     _depth,
     _limits_history,
 )
+from cummins.restoring import weight_record
 
 
 @dataclass
@@ -394,6 +395,13 @@ def _read_ah1(path: Path, rho, g) -> xr.Dataset:
     def flat(points: np.ndarray | None) -> np.ndarray | None:
         return None if points is None else (points.reshape(-1) if nb > 1 else points[0])
 
+    if cog is not None:  # about each G, where the weight's terms vanish: AQWA's matrices
+        masses = (
+            [float(extra["inertia_matrix"][6 * k, 6 * k]) for k in range(nb)]
+            if "inertia_matrix" in extra
+            else [np.nan] * nb
+        )
+        extra.update(weight_record(masses, cog, "AQWA's HYDSTIFFNESS (about each G)"))
     return make_hydrodb(
         omega,
         a,

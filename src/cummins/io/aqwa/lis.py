@@ -38,6 +38,7 @@ from cummins.io.aqwa.conventions import (
 )
 from cummins.io.aqwa.detection import _is_lis
 from cummins.io.aqwa.drift import lis_mean_drift
+from cummins.restoring import weight_record
 
 _ROW_LABELS = ("X", "Y", "Z", "RX", "RY", "RZ")
 
@@ -440,6 +441,9 @@ def _read_lis(path: Path, rho, g) -> xr.Dataset:
     _lis_completeness(text, tables, a_inf is not None or high is not None, notes)
     cb = np.array([_value_after(text, key)[0] for key in ("BX", "BY", "BZ")])
     volume, _ = _value_after(text, "MESH BASED DISPLACEMENT")
+    if stiffness is not None:  # about G, where the weight's terms vanish: AQWA's matrix
+        weight = mass if mass is not None else (rho_v * volume if volume else np.nan)
+        extra.update(weight_record([weight], cg, "AQWA's hydrostatic stiffness (about G)"))
     return make_hydrodb(
         omega,
         a,

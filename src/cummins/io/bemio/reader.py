@@ -17,7 +17,7 @@ import xarray as xr
 
 from cummins.errors import HydroDataError
 from cummins.hydrodb import dof_labels, make_hydrodb
-from cummins.io._common import warn_damage
+from cummins.io._common import DEPTH_ASSUMED, warn_damage
 from cummins.io.bemio.files import (
     _IMPLAUSIBLE,
     COPY_GROUP,
@@ -29,6 +29,7 @@ from cummins.io.bemio.files import (
     _text_attr,
     _vector,
 )
+from cummins.restoring import SOURCE, weight_record
 
 
 def read_bemio(
@@ -134,6 +135,8 @@ def _read_open(f, path: Path, rho, g) -> xr.Dataset:
         raise HydroDataError("a wave direction appears twice", path=path)
     beta_rad = np.radians(beta) if degrees else beta
     depth = _depth(sp, path)
+    if "water_depth" not in sp:
+        lines.append("water depth not recorded in the file: deep water assumed")
 
     modes = []
     for k in range(n_bodies):
@@ -254,6 +257,10 @@ def _read_open(f, path: Path, rho, g) -> xr.Dataset:
     vol = np.asarray(volume, dtype=float)
     if np.all(np.isfinite(vol)):
         attrs["displaced_volume"] = float(vol[0]) if n_bodies == 1 else vol
+    if have_stiffness:
+        attrs.update(_restoring_weight(attrs, rho_v, n_bodies))
+    if "water_depth" not in sp:
+        attrs[DEPTH_ASSUMED] = 1
     if "bem_data/code" in f:
         attrs["bem_code"] = _text(f, "bem_data/code")
     elif "bem_code" in sp:
@@ -380,3 +387,18 @@ def _check_polar(coeffs, group: str, value: np.ndarray, path, notes) -> None:
             notes=notes,
             hint="the file is damaged; write it again with BEMIO",
         )
+
+
+def _restoring_weight(attrs: dict, rho: float, n_bodies: int) -> dict:
+    """What BEMIO's ``linear_restoring_stiffness`` holds (:mod:`cummins.restoring`): the
+    solver's restoring about each body's centre of gravity (``properties/cg``), where the
+    weight's terms vanish, so it holds the hydrostatics about G and the weight of ρ∇ at G
+    alike; without ``cg`` nothing is recorded."""
+    name = "BEMIO's linear_restoring_stiffness"
+    if "center_of_gravity" not in attrs:
+        return {SOURCE: f"{name} (no centre of gravity in the file)"}
+    volumes = np.atleast_1d(np.asarray(attrs.get("displaced_volume", np.nan), dtype=float))
+    masses = rho * volumes if volumes.size == n_bodies else [np.nan] * n_bodies
+    return weight_record(
+        masses, attrs["center_of_gravity"], f"{name} (about each body's centre of gravity)"
+    )

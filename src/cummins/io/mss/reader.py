@@ -37,6 +37,7 @@ from cummins.io.mss.matfile import (
 )
 from cummins.io.mss.points import _points, _rigid_body_cg
 from cummins.io.mss.rao import _holds_rao_struct, read_force_rao
+from cummins.restoring import weight_record
 
 
 def _select_speed(velocities: NDArray, speed: float | None, path: Path) -> list[int]:
@@ -232,7 +233,10 @@ def _read_mss(path, rho, g, speed, rao_reference) -> xr.Dataset:
         history.append("additional_damping = vessel.Bv (MSS viscous damping estimate)")
     extra_attrs = _extras(extras, path, history)
     if "water_depth" not in extra_attrs:
-        history.append("water depth not recorded in MSS structs: deep water assumed")
+        history.append(
+            "water depth not recorded in MSS structs: deep water, as MSS's simulators take "
+            "it (k = w^2/g)"
+        )
     datasets = []
     for s in _select_speed(velocities, speed, path):
         sl = grid.finite
@@ -272,6 +276,18 @@ def _read_mss(path, rho, g, speed, rao_reference) -> xr.Dataset:
             "ship_breadth": _scalar(main, "B", path, "vessel.main"),
             "ship_draught": _scalar(main, "T", path, "vessel.main"),
         }
+        if c_all is not None and "restoring" in extra_attrs:
+            attrs.update(extra_attrs["restoring"])
+        elif c_all is not None and points.center_of_gravity is not None:
+            # Fossen's G is rho g V GM: the hydrostatics and the weight at main.CG
+            mass = mrb[0, 0] if mrb is not None else _scalar(main, "m", path, "vessel.main")
+            attrs.update(
+                weight_record(
+                    [np.nan if mass is None else float(mass)],
+                    points.center_of_gravity,
+                    "vessel.C (MSS: Fossen's G = rho g V GM, the weight at main.CG)",
+                )
+            )
         ds = make_hydrodb(
             omega,
             np.moveaxis(a_all[:, :, sl, s], 2, 0),
@@ -334,6 +350,17 @@ def _extras(extras: np.void | None, path: Path, history: list[str]) -> dict[str,
     depth = _scalar(extras, "water_depth", path, "vessel.cummins")
     if depth is not None and depth > 0:
         out["water_depth"] = depth
+    if _has(extras, "restoring_source"):  # what C holds, as cummins recorded it
+        out["restoring"] = {"restoring_source": _text(extras, "restoring_source")}
+        if _has(extras, "restoring_weight_mass") and _has(extras, "restoring_weight_center"):
+            out["restoring"].update(
+                restoring_weight_mass=float(
+                    _numeric(extras["restoring_weight_mass"], path, "vessel.cummins").ravel()[0]
+                ),
+                restoring_weight_center=_numeric(
+                    extras["restoring_weight_center"], path, "vessel.cummins"
+                ).reshape(-1)[:3],
+            )
     for name in ("added_mass_inf", "added_mass_zero", "additional_stiffness"):
         if _has(extras, name):
             value = _numeric(extras[name], path, f"vessel.cummins.{name}")

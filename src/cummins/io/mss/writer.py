@@ -208,6 +208,9 @@ def write_mss(ds: xr.Dataset, path: str | os.PathLike[str]) -> Path:
                 extras[name] = first[name].values
     if "additional_stiffness" in first:
         extras["additional_stiffness"] = first["additional_stiffness"].values
+    for key in ("restoring_source", "restoring_weight_mass", "restoring_weight_center"):
+        if key in out.attrs:  # what C holds (cummins.restoring): MSS's G need not
+            extras[key] = out.attrs[key]
     vessel["cummins"] = extras
     try:
         import scipy.io  # here: reading files of other formats need not load it

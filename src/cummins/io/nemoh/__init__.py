@@ -77,7 +77,7 @@ import xarray as xr
 
 from cummins.errors import HydroDataError
 from cummins.hydrodb import DOF_NAMES, dof_labels, make_hydrodb
-from cummins.io._common import resolve_rho_g, warn_damage
+from cummins.io._common import DEPTH_ASSUMED, assume, resolve_rho_g, warn_damage
 from cummins.io._text import TextFile
 from cummins.io.nemoh.cal import _body_point, _mode_name, _NemohCal, _read_cal
 from cummins.io.nemoh.companions import IMPLAUSIBLE as IMPLAUSIBLE
@@ -251,6 +251,12 @@ def read_nemoh(
             "no Nemoh.cal found: DOFs taken as Surge…Yaw about (0, 0, 0), "
             "water depth unknown (recorded as inf)"
         )
+        assume(
+            "no Nemoh.cal beside the results: the DOFs are taken as Surge…Yaw about "
+            "(0, 0, 0) and the depth as deep water; put the run's Nemoh.cal there (or give "
+            "--rho, --g, --water-depth)",
+            path=run.radiation,
+        )
     if unit != "rad/s":
         history.append(f"frequency column of {run.radiation.name} in {unit}, converted to rad/s")
     qtf = _subfolder(run.results, "qtf")
@@ -329,6 +335,7 @@ def read_nemoh(
         history=history,
         read_warnings=notes,
         nemoh_version=cal.version if cal is not None else None,
+        **{DEPTH_ASSUMED: 1 if cal is None else None},
         body_name=body_names[0] if len(body_names) == 1 else None,
         body_names="\n".join(body_names) if n_bodies > 1 and body_names else None,
         **extra,

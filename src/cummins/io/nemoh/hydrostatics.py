@@ -29,6 +29,7 @@ from cummins.io.nemoh.companions import (
     _read_matrix,
 )
 from cummins.io.nemoh.files import _find, _Run, _subfolder
+from cummins.restoring import SOURCE, weight_record
 
 #: Largest relative difference between C33 of KH.dat and the run's own ρ g A_wp, the
 #: ω → 0 limit of its Froude-Krylov heave force (≤ 0.2 % measured on the cylinder, the
@@ -214,6 +215,8 @@ def _hydrostatics(run: _Run, bodies: _BodyInfo, omega, forces: dict, constants, 
         history.append(
             f"centre of buoyancy/gravity, volume from {', '.join(p.name for p in hydro_files)}"
         )
+    if "hydrostatic_stiffness" in out:
+        out.update(_restoring_weight(kh_files, hydro_files, values, rho))
     _inertia(out, mechanics, values, run, bodies, rho, history)
     for key in ("km", "badd"):
         if key not in mechanics:
@@ -385,3 +388,20 @@ def _waterplane_mismatch(c, bodies: _BodyInfo, omega, forces: dict, constants, v
                 f"(ratio {c33 / f3 if f3 else np.inf:.3g})"
             )
     return None
+
+
+def _restoring_weight(kh_files, hydro_files, values, rho) -> dict:
+    """What NEMOH's ``KH`` holds (:mod:`cummins.restoring`): its mesher adds the weight of
+    m = ρ∇ at the centre of gravity of its input to the hydrostatics (C₄₄ = ρg(∫y²dS +
+    ∇z_B) − m g z_G, about that centre), the one its ``Hydrostatics.dat`` prints; without
+    those files nothing is recorded."""
+    names = ", ".join(p.name for p in kh_files)
+    if values and all({"xg", "yg", "zg"} <= v.keys() for v in values):
+        centers = np.array([[v["xg"], v["yg"], v["zg"]] for v in values])
+        return weight_record(
+            [rho * v["volume"] for v in values],
+            centers,
+            f"{names} (NEMOH's hydrostatics and weight: m = rho V at the centre of gravity "
+            f"{', '.join(p.name for p in hydro_files)} prints)",
+        )
+    return {SOURCE: f"{names} (as NEMOH wrote it; no Hydrostatics.dat gives its centre of gravity)"}

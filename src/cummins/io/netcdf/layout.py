@@ -17,6 +17,7 @@ import xarray as xr
 
 from cummins.errors import HydroDataError
 from cummins.hydrodb import DOF_NAMES, split_dof
+from cummins.restoring import SOURCE, weight_record
 
 
 @dataclass(frozen=True)
@@ -269,3 +270,32 @@ def _per_body(values: xr.DataArray, names) -> bool:
     if values.dims != ("body",) or "body" not in values.coords or len(names) < 2:
         return False
     return sorted(str(b) for b in values.body.values) == sorted(str(n) for n in names)
+def restoring_attributes(extra: dict, attrs: dict, rho: float) -> dict:
+    """What Capytaine's ``hydrostatic_stiffness`` holds (:mod:`cummins.restoring`): its
+    ``compute_hydrostatic_stiffness`` adds the weight of the body's mass (its
+    ``inertia_matrix``'s, else the displaced mass ρ∇) at its ``center_of_mass`` to the
+    hydrostatics (C₄₄ = ρg(∫y²dA + ∇z_B) − m g z_G …); a file that does not record the
+    centre of mass (Capytaine 1 and 2 without the legacy exporter's files) says nothing."""
+    if "hydrostatic_stiffness" not in extra:
+        return {}
+    if "center_of_gravity" not in attrs:
+        return {
+            SOURCE: "Capytaine's hydrostatic_stiffness (the file does not record the centre "
+            "of mass it was computed with)"
+        }
+    centers = np.asarray(attrs["center_of_gravity"], dtype=float).reshape(-1, 3)
+    n = len(centers)
+    masses = [np.nan] * n
+    inertia = extra.get("inertia_matrix")
+    if inertia is not None and np.shape(inertia)[0] >= 6 * n:
+        masses = [float(np.asarray(inertia)[6 * k, 6 * k]) for k in range(n)]
+    elif "displaced_volume" in attrs:
+        volumes = np.atleast_1d(np.asarray(attrs["displaced_volume"], dtype=float))
+        if volumes.size == n:
+            masses = list(rho * volumes)
+    return weight_record(
+        masses,
+        centers,
+        "Capytaine's hydrostatic_stiffness (hydrostatics and the weight of the body's mass "
+        "at its center_of_mass)",
+    )

@@ -20,7 +20,7 @@ import xarray as xr
 
 from cummins.errors import HydroDataError
 from cummins.hydrodb import make_hydrodb, stack_forward_speeds
-from cummins.io._common import resolve_rho_g, warn_damage
+from cummins.io._common import DEPTH_ASSUMED, resolve_rho_g, warn_damage
 from cummins.io.netcdf.attributes import (
     CANONICAL_TIME_CONVENTION,
     VERSION_ATTR,
@@ -43,6 +43,7 @@ from cummins.io.netcdf.layout import (
     _body_attributes,
     _reference_from_inertia,
     dof_layout,
+    restoring_attributes,
 )
 from cummins.io.netcdf.legacy import LegacyExport, _legacy_exporter_files
 from cummins.io.netcdf.second_order import capytaine_drift, restore_second_order
@@ -251,6 +252,7 @@ def from_capytaine_dataset(
     if depth is None:
         depth = math.inf
         lines.append("water_depth not recorded in the file: deep water assumed")
+        attrs = {**attrs, DEPTH_ASSUMED: 1}
 
     _check_constants(rho_v, g_v, where, notes)
 
@@ -583,6 +585,7 @@ def _one_speed(
     if point.size > 3:  # several bodies: one point per body (make_hydrodb takes one)
         ds.attrs["reference_point"] = point
     ds.attrs.update({k: v for k, v in attrs.items() if v is not None})
+    ds.attrs.update(restoring_attributes(extra, attrs, rho))
     return ds
 
 

@@ -26,6 +26,7 @@ from cummins.io.wamit.frc import _ForceControl
 from cummins.io.wamit.out_header import _OutBody, _OutHeader
 from cummins.io.wamit.settings import RunSettings
 from cummins.kinematics import skew
+from cummins.restoring import SOURCE, weight_record
 
 
 def _rigid_inertia(mass: float, cg: np.ndarray, radii: np.ndarray) -> np.ndarray:
@@ -204,3 +205,50 @@ def _body_attrs(header: _OutHeader, layout: list[int], settings: RunSettings) ->
             volumes = np.array([float(np.mean(b.volumes)) for b in bodies])
             attrs["displaced_volume"] = float(volumes[0]) if nb == 1 else volumes
     return attrs
+
+
+def _restoring_weight(name, header: _OutHeader, layout, frc, rho, settings, out_path) -> dict:
+    """What WAMIT's restoring holds (:mod:`cummins.restoring`): its "hydrostatic and
+    gravitational restoring" adds the weight of m = ρ∇ at the centre of gravity of the
+    run's input (WAMIT (2020) §3.1: C₄₄ = ρg(∫y²dS + ∇z_B) − m g z_G, C₄₆ = −ρg∇x_B +
+    m g x_G …), which the ``.out`` prints; without the ``.out``, the ``.frc``'s XCG (form 2)
+    or VCG (form 1) with the body's own mass. Without either (OpenFAST's files, another
+    program's typed matrix) nothing is recorded."""
+    nb = len(layout)
+    program = "WAMIT" if settings.source_format == "wamit" else settings.source_format.upper()
+    bodies = header.bodies[:nb]
+    origin = np.zeros((nb, 3))
+    for k, body in enumerate(bodies):
+        origin[k] = body.origin
+    if len(bodies) == nb and all(
+        b.center_of_gravity is not None and b.volumes is not None for b in bodies
+    ):
+        masses = [rho * float(np.mean(b.volumes)) for b in bodies]
+        centers = np.vstack([b.center_of_gravity for b in bodies]) + origin
+        return weight_record(
+            masses,
+            centers,
+            f"{name} ({program}'s hydrostatic and gravitational restoring: m = rho V at the "
+            f"centre of gravity {out_path.name} prints)",
+        )
+    if frc is not None and frc.form == 2 and frc.center_of_gravity is not None and nb == 1:
+        return weight_record(
+            [np.nan],
+            frc.center_of_gravity,
+            f"{name} ({program}'s hydrostatic and gravitational restoring: m = rho V at the "
+            ".frc's XCG)",
+        )
+    if frc is not None and frc.form == 1 and len(frc.vcg) == nb:
+        centers = np.column_stack([np.zeros(nb), np.zeros(nb), frc.vcg])
+        return weight_record(
+            [np.nan] * nb,
+            centers,
+            f"{name} ({program}'s hydrostatic and gravitational restoring: m = rho V at the "
+            ".frc's VCG; no .out, x_G and y_G taken at the origin)",
+        )
+    if settings.source_format == "hams":
+        return {SOURCE: f"{name} (the restoring matrix typed in HAMS's Hydrostatic.in)"}
+    return {
+        SOURCE: f"{name} (no .out or .frc says which centre of gravity {program} used; "
+        "OpenFAST's files hold the hydrostatics alone)"
+    }

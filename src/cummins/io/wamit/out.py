@@ -18,6 +18,7 @@ import xarray as xr
 from cummins.errors import HydroDataError
 from cummins.hydrodb import dof_labels, make_hydrodb
 from cummins.io._common import (
+    DEPTH_ASSUMED,
     force_exponents,
     length_exponents,
     resolve_constant,
@@ -33,7 +34,7 @@ from cummins.io._text import (
 from cummins.io.wamit.detect import _sibling, is_out_file
 from cummins.io.wamit.frc import _read_frc
 from cummins.io.wamit.input_files import _Config, _Mmx, _read_cfg
-from cummins.io.wamit.mass import _body_attrs, _mass_matrices
+from cummins.io.wamit.mass import _body_attrs, _mass_matrices, _restoring_weight
 from cummins.io.wamit.modes import _check_memory, _mode_layout
 from cummins.io.wamit.out_header import _FLOAT, _hydrostatics_matrix, _out_header
 from cummins.io.wamit.settings import RunSettings
@@ -178,8 +179,10 @@ def read_wamit_out(
     g: float | None = None,
     ulen: float | None = None,
     modes: int | Sequence[int] | None = None,
+    water_depth: float | None = None,
 ) -> xr.Dataset:
-    """Read a WAMIT ``.out`` log on its own.
+    """Read a WAMIT ``.out`` log on its own (``water_depth``, m, only for a log that does
+    not print it: see :func:`cummins.io.wamit.read_wamit`).
 
     The log prints the same nondimensional quantities as the numeric files, to
     fewer digits (phases in whole degrees), plus motion RAOs and mean drift forces:
@@ -420,6 +423,8 @@ def read_wamit_out(
         notes,
         omega.size,
     )
+    if "hydrostatic_stiffness" in extra:
+        extra.update(_restoring_weight(path.name, header, layout, frc, rho_v, RunSettings(), path))
     names = header.body_names
     return make_hydrodb(
         omega[order],
@@ -427,7 +432,10 @@ def read_wamit_out(
         b,
         rho=rho_v,
         g=g_v,
-        water_depth=header.water_depth if header.water_depth is not None else np.inf,
+        water_depth=header.water_depth
+        if header.water_depth is not None
+        else (np.inf if water_depth is None else water_depth),
+        **{DEPTH_ASSUMED: 1 if header.water_depth is None and water_depth is None else None},
         source_format="wamit-out",
         source_file=str(path),
         dofs=dof_labels(len(layout) if len(layout) > 1 else None, layout),

@@ -17,6 +17,7 @@ import xarray as xr
 from cummins.errors import HydroDataError
 from cummins.hydrodb import dof_labels, make_hydrodb
 from cummins.io._common import (
+    DEPTH_ASSUMED,
     force_exponents,
     length_exponents,
     resolve_constant,
@@ -27,7 +28,7 @@ from cummins.io._common import (
 from cummins.io.wamit.detect import _sibling, is_out_file, numeric_kind
 from cummins.io.wamit.frc import _read_frc
 from cummins.io.wamit.input_files import _Config, _Mmx, _read_cfg, _read_mmx, _read_pot_bodies
-from cummins.io.wamit.mass import _body_attrs, _mass_matrices
+from cummins.io.wamit.mass import _body_attrs, _mass_matrices, _restoring_weight
 from cummins.io.wamit.modes import _check_memory, _mode_layout
 from cummins.io.wamit.numeric import (
     FIRST_COLUMNS,
@@ -62,6 +63,7 @@ def read_wamit(
     first_column: str | None = None,
     siblings: bool = True,
     modes: int | Sequence[int] | None = None,
+    water_depth: float | None = None,
 ) -> xr.Dataset:
     """Read a WAMIT run into a canonical ``HydroDB``.
 
@@ -88,6 +90,11 @@ def read_wamit(
     modes
         Modes per body (an int for one body, or one per body), when the files do not
         say (a ``.1`` without its ``.out``/``.pot``/``.cfg`` and DOF indices beyond 6).
+    water_depth
+        m (``inf``: deep water), when the ``.out`` does not record it (it converts a
+        wavenumber first column and is the depth of the wave kinematics); default deep
+        water, said by an ``AssumptionWarning`` where a result depends on it. A value
+        that contradicts the ``.out`` is an error.
 
     Returns
     -------
@@ -105,7 +112,7 @@ def read_wamit(
     if not path.exists():
         raise HydroDataError("file not found", path=path)
     if is_out_file(path):
-        return read_wamit_out(path, rho=rho, g=g, ulen=ulen, modes=modes)
+        return read_wamit_out(path, rho=rho, g=g, ulen=ulen, modes=modes, water_depth=water_depth)
     kind = numeric_kind(path)
     if kind is None:
         raise HydroDataError(
@@ -133,6 +140,7 @@ def read_wamit(
         siblings=siblings or kind != ".1",
         modes=modes,
         entry=path,
+        water_depth=water_depth,
     )
 
 
@@ -155,6 +163,7 @@ def read_wamit_run(
     modes: int | Sequence[int] | None = None,
     settings: RunSettings | None = None,
     entry: Path | None = None,
+    water_depth: float | None = None,
 ) -> xr.Dataset:
     """Read the WAMIT-format run of the ``.1`` file ``dot1`` (see :func:`read_wamit`);
     ``settings`` carry what another program's project fixes (HAMS)."""
@@ -199,7 +208,21 @@ def read_wamit_run(
     if column != "period":
         history.append(f"first column of the numeric files: {column}")
     depth = settings.water_depth if settings.water_depth is not None else header.water_depth
-    depth = np.inf if depth is None else depth
+    depth_assumed = depth is None and water_depth is None
+    if depth is not None and water_depth is not None and not _same_depth(depth, water_depth):
+        raise HydroDataError(
+            f"water_depth = {water_depth:g} m was given but the run records {depth:g} m",
+            path=out_path or dot1,
+            hint="the coefficients were computed at the recorded depth: drop --water-depth",
+        )
+    if depth is None and water_depth is not None:
+        history.append(f"water depth = {water_depth:g} m (given)")
+    depth = (np.inf if water_depth is None else float(water_depth)) if depth is None else depth
+    if depth_assumed:
+        history.append(
+            "water depth not recorded (no .out): deep water assumed; pass water_depth= "
+            "(--water-depth) to change"
+        )
     g_guess = g or settings.g or header.g or 9.81
     d = _parse_dot1(dot1, column, depth=depth, g=g_guess)
     history.extend(d.notes)
@@ -302,12 +325,14 @@ def read_wamit_run(
             history.append(f"motion RAOs from {dot4.name} (the solver's own)")
         except HydroDataError as exc:
             warn_damage(f"RAOs not read: {exc}", path=dot4, notes=notes)
+    restoring_from = None
     if hst is not None:
         try:
             extra["hydrostatic_stiffness"] = _read_hst(hst, n) * (
                 rho_v * g_v * L ** length_exponents(n, 2, layout)
             )
             history.append(f"hydrostatics from {hst.name}")
+            restoring_from = hst.name
         except HydroDataError as exc:
             warn_damage(f"hydrostatics not read: {exc}", path=hst, notes=notes)
     elif header.bodies and all(b.hydrostatics for b in header.bodies) and n == 6 * len(layout):
@@ -315,6 +340,11 @@ def read_wamit_run(
             rho_v * g_v * L ** length_exponents(n, 2, layout)
         )
         history.append(f"hydrostatics from {out_path.name} (no .hst file)")
+        restoring_from = out_path.name
+    if restoring_from is not None:
+        extra.update(
+            _restoring_weight(restoring_from, header, layout, frc, rho_v, settings, out_path)
+        )
 
     _mass_matrices(
         extra,
@@ -362,10 +392,16 @@ def read_wamit_run(
         read_warnings=notes,
         ulen=L,
         body_names="\n".join(names) if len(names) == len(layout) else None,
+        **{DEPTH_ASSUMED: 1 if depth_assumed else None},
         **extra,
         **_body_attrs(header, layout, settings),
     )
     return ds if second is None else attach_wamit_second_order(ds, second)
+
+
+def _same_depth(a: float, b: float) -> bool:
+    """Two water depths (m, ``inf`` for deep water) that are the same."""
+    return (np.isinf(a) and np.isinf(b)) or bool(np.isclose(a, b, rtol=1e-6))
 
 
 def _excitation_from_out(out_path, omega, layout, rho_v, g_v, L, extra, history) -> None:

@@ -32,6 +32,7 @@ from numpy.typing import NDArray
 from cummins.check import copied_dofs
 from cummins.errors import CumminsWarning, FitError, HydroDataError
 from cummins.hydrodb import dof_matrix, single_speed
+from cummins.radiation.fingerprint import data_fingerprint
 from cummins.radiation.fit.frequency import r_squared
 from cummins.radiation.fit.motion import MotionSensitivity, motion_sensitivity
 from cummins.radiation.fit.options import FitOptions
@@ -242,6 +243,7 @@ def prepare_fit(ds: xr.Dataset, options: FitOptions) -> FitInput:
     attrs = {
         "source_file": str(ds.attrs.get("source_file", "")),
         "source_format": str(ds.attrs.get("source_format", "")),
+        "data_fingerprint": data_fingerprint(user),
         "history": str(data.attrs.get("history", "")),
         "axis_convention": str(ds.attrs.get("axis_convention", "z-up")),
         "reference_point": np.asarray(

@@ -17,6 +17,7 @@ import xarray as xr
 
 from cummins.errors import SimulationError
 from cummins.hydrodb import split_dof
+from cummins.radiation.fingerprint import data_fingerprint
 from cummins.radiation.speed.errors import SpeedError
 from cummins.radiation.speed.kernels import SPEED_FIT_DEFAULTS, speed_dependent_model
 from cummins.radiation.speed.per_speed import _memory_model_at
@@ -112,6 +113,8 @@ def vessel_at_speed(
     u = float(data.forward_speed)
     base = speed_dependent_model(ds.isel(forward_speed=zero[0]), **options)
     model = _memory_model_at(data, u, base, options)
+    # the memory part of these very data (speed terms taken out): their fingerprint
+    model = replace(model, attrs={**model.attrs, "data_fingerprint": data_fingerprint(data)})
     vessel = vessel_from_hydrodb(
         data, model, viscous_damping=viscous_damping, additional=additional
     )

@@ -18,6 +18,7 @@ from numpy.typing import ArrayLike, NDArray
 
 from cummins.errors import CumminsWarning, HydroDataError
 from cummins.hydrodb import dof_matrix, single_speed
+from cummins.radiation.fingerprint import data_fingerprint
 from cummins.radiation.model import RadiationModel
 from cummins.timedomain.lfmodel.coefficients import _Coefficients, _FromFrequencyData, _FromKernel
 from cummins.timedomain.lfmodel.frequencies import _is_zero_frequency_dof, natural_frequency
@@ -89,9 +90,10 @@ def _build(
     # M_RB, C (with moorings) and the database's constant B_v exactly as the full vessel
     with warnings.catch_warnings(record=True) as caught:
         warnings.simplefilter("always")
-        base = vessel_from_hydrodb(
-            ds, RadiationModel(dofs, (), np.zeros((n, n))), additional=additional
+        no_memory = RadiationModel(
+            dofs, (), np.zeros((n, n)), {"data_fingerprint": data_fingerprint(ds)}
         )
+        base = vessel_from_hydrodb(ds, no_memory, additional=additional)
     for w in caught:  # the vessel's advice, restated for the LF model
         message = str(w.message)
         if issubclass(w.category, UserWarning) and "varies with frequency" in message:

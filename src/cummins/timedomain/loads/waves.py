@@ -20,7 +20,7 @@ import xarray as xr
 from numpy.typing import ArrayLike, NDArray
 
 from cummins.errors import CumminsError, HydroDataError
-from cummins.hydrodb import bodies, change_axes, dof_index, single_speed
+from cummins.hydrodb import bodies, change_axes, dof_index, single_speed, water_depth
 from cummins.kinematics import point_load
 from cummins.seakeeping.excitation import MIRROR_SIGNS, excitation_transfer, heading_coverage
 from cummins.seakeeping.waves import WaveComponents, wavenumber
@@ -255,7 +255,9 @@ class FirstOrderWaveLoad:
         gamma = np.repeat(headings, n)
         t = excitation_transfer(ds, omega, gamma, **options).reshape(m, n, -1)
         k = wavenumber(
-            waves.omega, float(ds.attrs.get("water_depth", np.inf)), float(ds.attrs.get("g", 9.81))
+            waves.omega,
+            water_depth(ds, "the wave numbers of the wave loads"),
+            float(ds.attrs.get("g", 9.81)),
         )
         return cls(waves, _in_six(t, index), k, heading_interpolation, position_phase, name)
 
@@ -458,7 +460,9 @@ class WaveDriftLoad:
             at[~inside] = 0.0
         table = _in_six(np.transpose(at, (1, 0, 2)), index)  # (m, n, 6)
         k = wavenumber(
-            waves.omega, float(ds.attrs.get("water_depth", np.inf)), float(ds.attrs.get("g", 9.81))
+            waves.omega,
+            water_depth(ds, "the wave numbers of the wave loads"),
+            float(ds.attrs.get("g", 9.81)),
         )
         return cls(
             waves, coverage.directions, table, k, slowly_varying, point, position_phase, name

@@ -1,0 +1,431 @@
+"""The restoring matrix C of the equation of motion: its buoyancy and weight parts, which
+of them a file holds, and the static stability they give.
+
+For small rotations θ = (θ₄, θ₅, θ₆) about the reference point O of a body of mass m
+whose centre of gravity is at r = G − O, the weight −m g e_z (z up) keeps its direction
+while its point of application turns with the body: its moment about O changes by
+δM = (θ × r) × (−m g e_z), i.e. δM₄ = m g (z θ₄ − x θ₆), δM₅ = m g (z θ₅ − y θ₆). The
+weight's part of C = −∂M/∂θ is therefore
+
+    C₄₄ = C₅₅ = −m g z,    C₄₆ = m g x,    C₅₆ = m g y,
+
+and nothing else: the weight does not change with the motion, so it adds nothing to the
+heave force or to the C₃₄, C₃₅ waterplane terms (WAMIT (2020) §3.1, Newman (1977) ch. 6,
+Faltinsen (1990) ch. 2). The buoyancy part, ρ g (∫y² dA + ∇ z_B) in C₄₄,
+−ρ g ∇ x_B in C₄₆ …, depends on the hull alone. A solver's restoring holds the weight's
+part for the mass and centre of gravity its input gave (WAMIT's ``.hst`` for XCG/VCG and
+m = ρ∇, NEMOH's ``KH`` and Capytaine's ``hydrostatic_stiffness`` for their centre of
+mass), or none (OpenFAST's WAMIT files, run with the centre of gravity at the origin).
+
+What the data's ``hydrostatic_stiffness`` holds is recorded in the attributes
+
+``restoring_weight_mass``
+    kg per body: the mass whose weight the restoring includes (0: none; NaN: the body's
+    own mass, not recorded — a freely floating body's ρ∇);
+``restoring_weight_center``
+    m, 3 per body, in the dataset's axes: where that weight acts;
+``restoring_source``
+    one line saying where C came from and what it holds;
+
+and no ``restoring_weight_*`` at all when the files do not tell. :func:`with_weight`
+(called by :func:`cummins.with_inertia`) replaces the weight's part by that of the mass
+and centre of gravity of the equation of motion, ΔC = W(m, G) − W(m_file, G_file).
+"""
+
+from __future__ import annotations
+
+import warnings
+from collections.abc import Sequence
+from dataclasses import dataclass
+from typing import Any
+
+import numpy as np
+import xarray as xr
+from numpy.typing import ArrayLike, NDArray
+
+from cummins.dofs import DOF_NAMES, bodies, is_rigid_body_dof, is_rotation
+from cummins.errors import ArgumentError, AssumptionWarning
+from cummins.hydrodb import add_history
+
+#: The attributes of a dataset that say what its restoring holds (module docstring).
+WEIGHT_MASS = "restoring_weight_mass"
+WEIGHT_CENTER = "restoring_weight_center"
+SOURCE = "restoring_source"
+
+#: ``with_weight(includes=…)``: what the data's restoring holds, when the user says so.
+INCLUDES = {"hydrostatic": False, "total": True}
+
+
+# --------------------------------------------------------------------------- the weight
+
+
+def weight_stiffness(
+    first_moment: ArrayLike, g: float, axis_convention: str = "z-up"
+) -> NDArray[np.float64]:
+    """The weight's part of the 6×6 restoring matrix about the reference point O.
+
+    Parameters
+    ----------
+    first_moment
+        m (G − O), kg·m, in the dataset's axes.
+    g
+        m/s².
+    axis_convention
+        ``"z-up"`` (gravity along −z) or ``"z-down"`` (Fossen's axes, gravity along +z).
+
+    Returns
+    -------
+    (6, 6) ndarray
+        C₄₄ = C₅₅ = −m g z, C₄₆ = m g x, C₅₆ = m g y in z-up axes (module docstring;
+        WAMIT (2020) §3.1); in z-down axes the same matrix turned by T = diag(1, −1, −1,
+        1, −1, −1): C₄₄ = C₅₅ = m g z, C₄₆ = −m g x, C₅₆ = m g y.
+
+    Examples
+    --------
+    >>> w = weight_stiffness([0.0, 0.0, 1.0e6], 9.81)   # 1000 t, G 1 m above O
+    >>> float(w[3, 3]), float(w[4, 4]), float(w[3, 5])
+    (-9810000.0, -9810000.0, 0.0)
+    """
+    r = np.asarray(first_moment, dtype=float).reshape(3)
+    if axis_convention == "z-down":
+        r = r * np.array([1.0, -1.0, -1.0])
+    w = np.zeros((6, 6))
+    w[3, 3] = w[4, 4] = -g * r[2]
+    w[3, 5] = g * r[0]
+    w[4, 5] = g * r[1]
+    if axis_convention == "z-down":
+        t = np.diag([1.0, -1.0, -1.0, 1.0, -1.0, -1.0])
+        w = t @ w @ t
+    return w
+
+
+@dataclass(frozen=True)
+class BodyWeight:
+    """The weight a restoring holds for one body: ``mass`` kg (NaN: the body's own,
+    not recorded), ``center`` m in the dataset's axes."""
+
+    mass: float
+    center: NDArray[np.float64]
+
+
+def weight_record(masses: ArrayLike, centers: ArrayLike, source: str) -> dict[str, Any]:
+    """The attributes a reader gives ``make_hydrodb`` when the files say which weight
+    their restoring holds (module docstring): one mass (kg, NaN when the files imply the
+    body's own without recording it, 0 for none) and one centre (m) per body."""
+    m = np.atleast_1d(np.asarray(masses, dtype=float)).reshape(-1)
+    c = np.asarray(centers, dtype=float).reshape(-1)
+    if c.size != 3 * m.size:
+        raise ValueError(f"{m.size} masses but {c.size} coordinates of centres")
+    return {
+        WEIGHT_MASS: float(m[0]) if m.size == 1 else m,
+        WEIGHT_CENTER: c,
+        SOURCE: source,
+    }
+
+
+def recorded_weight(ds: xr.Dataset) -> list[BodyWeight] | None:
+    """The weight the data's restoring holds, per body; None when the files do not say."""
+    if WEIGHT_MASS not in ds.attrs or WEIGHT_CENTER not in ds.attrs:
+        return None
+    m = np.atleast_1d(np.asarray(ds.attrs[WEIGHT_MASS], dtype=float)).reshape(-1)
+    c = np.asarray(ds.attrs[WEIGHT_CENTER], dtype=float).reshape(-1, 3)
+    if len(c) != len(m):
+        return None
+    return [BodyWeight(float(mk), ck.copy()) for mk, ck in zip(m, c, strict=True)]
+
+
+def describe_restoring(ds: xr.Dataset) -> str:
+    """One line: where the data's restoring came from and whether it holds the weight."""
+    if "hydrostatic_stiffness" not in ds:
+        return "no restoring matrix"
+    source = str(ds.attrs.get(SOURCE, "")).strip()
+    weights = recorded_weight(ds)
+    if weights is None:
+        holds = "whether it holds the weight's terms is not recorded"
+    elif all(w.mass == 0 for w in weights):
+        holds = "hydrostatics only (no weight terms)"
+    else:
+        holds = "hydrostatics and the weight of " + "; ".join(_weight_text(w) for w in weights)
+    return f"{source}: {holds}" if source else holds
+
+
+def _weight_text(w: BodyWeight) -> str:
+    if w.mass == 0:
+        return "no weight"
+    mass = "its own mass (rho V)" if np.isnan(w.mass) else f"{w.mass:.6g} kg"
+    return f"{mass} at {np.round(w.center, 6).tolist()} m"
+
+
+def with_weight(
+    ds: xr.Dataset,
+    masses: Sequence[float],
+    centers: Sequence[ArrayLike],
+    *,
+    includes: str | None = None,
+    why: str = "given",
+) -> xr.Dataset:
+    """The dataset whose restoring holds the weight of ``masses`` at ``centers``.
+
+    ΔC = W(m, G) − W(m_file, G_file) on each body's rotations (:func:`weight_stiffness`,
+    about the body's reference point), with m_file, G_file what the files' restoring
+    holds (:func:`recorded_weight`).
+
+    Parameters
+    ----------
+    ds
+        A ``HydroDB``; without ``hydrostatic_stiffness`` it is returned as it is.
+    masses, centers
+        kg and m (dataset axes), one per body.
+    includes
+        What the data's restoring holds, when the user says so: ``"hydrostatic"`` (no
+        weight terms) or ``"total"`` (the weight of the body the files describe: their
+        ``center_of_gravity`` and mass, else the one given here). By default what the
+        files record; when they record nothing, ``"hydrostatic"`` is assumed (OpenFAST's
+        convention) with an :class:`~cummins.errors.AssumptionWarning`.
+    why
+        How the mass and centre were obtained, for ``history``.
+
+    Raises
+    ------
+    ArgumentError
+        ``includes="hydrostatic"`` for files that record a weight term, an unknown
+        ``includes``, a count of masses or centres that is not one per body.
+    """
+    if "hydrostatic_stiffness" not in ds:
+        return ds
+    if includes is not None and includes not in INCLUDES:
+        raise ArgumentError(f"includes must be one of {', '.join(INCLUDES)}, not {includes!r}")
+    groups = bodies(ds)
+    if len(masses) != len(groups) or len(centers) != len(groups):
+        raise ArgumentError(
+            f"{len(masses)} masses and {len(centers)} centres of gravity for {len(groups)} bodies"
+        )
+    labels = [str(d) for d in ds.influenced_dof.values]
+    axes = str(ds.attrs.get("axis_convention", "z-up"))
+    g = float(ds.attrs["g"])
+    refs = np.asarray(ds.attrs.get("reference_point", (0.0, 0.0, 0.0)), dtype=float).reshape(-1, 3)
+    recorded = recorded_weight(ds)
+    where = _file_name(ds)
+    if recorded is not None and len(recorded) != len(groups):
+        recorded = None
+    if includes == "hydrostatic" and recorded is not None:
+        held = [
+            k
+            for k, w in enumerate(recorded)
+            if w.mass != 0 and np.any(np.abs(w.center - refs[min(k, len(refs) - 1)]) > 1e-9)
+        ]
+        if held:
+            raise ArgumentError(
+                f"{where} records the weight terms of its restoring "
+                f"({_weight_text(recorded[held[0]])}): it is not hydrostatic only",
+                hint="Leave the statement of what the restoring holds out "
+                "(--restoring-includes-weight)",
+            )
+    if recorded is None:
+        if includes is None:
+            warnings.warn(
+                AssumptionWarning(
+                    f"{where}: the files do not say whether the restoring holds the weight's "
+                    "terms; taken as hydrostatic only (OpenFAST's convention) and the weight "
+                    "of the mass and centre of gravity given is added (C44, C55 -m g z_G). "
+                    "If the solver included it, say --restoring-includes-weight yes "
+                    "(includes='total')"
+                ),
+                stacklevel=3,
+            )
+        old = _file_weights(ds, groups, masses, centers, includes == "total")
+        stated = "assumed" if includes is None else "stated"
+    else:
+        old = recorded
+        stated = "recorded"
+    c = np.array(
+        ds["hydrostatic_stiffness"].transpose("influenced_dof", "radiating_dof").values,
+        dtype=float,
+    )
+    changes: list[str] = []
+    new: list[BodyWeight] = []
+    for k, body in enumerate(groups):
+        ref = refs[k] if len(refs) == len(groups) else refs[0]
+        mass = float(masses[k])
+        center = np.asarray(centers[k], dtype=float).reshape(3)
+        file_mass = mass if np.isnan(old[k].mass) else old[k].mass
+        delta = weight_stiffness(mass * (center - ref), g, axes) - weight_stiffness(
+            file_mass * (old[k].center - ref), g, axes
+        )
+        index = _rigid_index(labels, body)
+        for a, i in index.items():
+            for b, j in index.items():
+                if delta[a, b] != 0.0 and j is not None and i is not None:
+                    c[i, j] += delta[a, b]
+                    if abs(delta[a, b]) > 1e-9 * max(abs(c[i, j]), 1.0):
+                        changes.append(f"C[{labels[i]}, {labels[j]}] {delta[a, b]:+.6g}")
+        new.append(BodyWeight(mass, center))
+    out = ds.copy()
+    out["hydrostatic_stiffness"] = ds["hydrostatic_stiffness"].copy(
+        data=c if ds["hydrostatic_stiffness"].dims == ("influenced_dof", "radiating_dof") else c.T
+    )
+    before = str(ds.attrs.get(SOURCE, "")).split(" [")[0].strip() or "the data's restoring"
+    weights = "; ".join(_weight_text(w) for w in new)
+    out.attrs.update(
+        weight_record(
+            [w.mass for w in new],
+            np.concatenate([w.center for w in new]),
+            f"{before} [weight terms made those of the mass and centre of gravity {why}, in "
+            f"place of the file's ({stated}: {'; '.join(_weight_text(w) for w in old)})]",
+        )
+    )
+    add_history(
+        out,
+        f"restoring: weight terms for {weights} ({why}) in place of the file's "
+        f"({stated}: {'; '.join(_weight_text(w) for w in old) or 'none'}): "
+        + (", ".join(changes) if changes else "no change"),
+    )
+    return out
+
+
+def _file_weights(ds, groups, masses, centers, total: bool) -> list[BodyWeight]:
+    """The weight an unrecorded restoring holds: none, or (``total``) that of the body the
+    files describe (their centre of gravity and mass), else the one given."""
+    if not total:
+        return [BodyWeight(0.0, np.zeros(3)) for _ in groups]
+    cogs = ds.attrs.get("center_of_gravity")
+    cogs = None if cogs is None else np.asarray(cogs, dtype=float).reshape(-1, 3)
+    out = []
+    for k in range(len(groups)):
+        center = cogs[k] if cogs is not None and len(cogs) == len(groups) else centers[k]
+        out.append(BodyWeight(float("nan"), np.asarray(center, dtype=float).reshape(3)))
+    del masses
+    return out
+
+
+def _rigid_index(labels: list[str], body: str | None) -> dict[int, int | None]:
+    """Position in the dataset of each of the body's six rigid DOFs (None if absent)."""
+    out: dict[int, int | None] = {}
+    for a, name in enumerate(DOF_NAMES):
+        label = f"{body}__{name}" if body else name
+        out[a] = labels.index(label) if label in labels else None
+    return out
+
+
+def _file_name(ds: xr.Dataset) -> str:
+    from pathlib import Path
+
+    source = str(ds.attrs.get("source_file", "") or "")
+    return Path(source).name if source else "the data"
+
+
+# --------------------------------------------------------------------------- stability
+
+
+@dataclass(frozen=True)
+class StaticInstability:
+    """A negative eigenvalue of the restoring on the DOFs that have restoring: the DOF
+    that dominates its mode, and that DOF's own restoring coefficient."""
+
+    dof: str
+    stiffness: float
+
+
+def static_instability(
+    stiffness: ArrayLike, dofs: Sequence[str], basis: ArrayLike | None = None
+) -> list[StaticInstability]:
+    """The statically unstable modes of a restoring matrix C (hydrostatics, weight,
+    moorings): the negative eigenvalues of its symmetric part on the DOFs whose own
+    restoring is not zero (surge, sway and yaw of a free body drift, they are not
+    unstable). The count of negative eigenvalues does not depend on the units of the DOFs
+    (Sylvester's law of inertia), so C is scaled by its diagonal first.
+
+    Parameters
+    ----------
+    stiffness
+        C (n, n) of the DOFs ``dofs``.
+    dofs
+        Their labels.
+    basis
+        For bodies joined by joints, the basis T (n, m) of the motions they allow
+        (ξ = T q, :mod:`cummins.mechanics`): the test is then on Tᵀ C T, and a mode is
+        named by the DOF with the largest share of T v.
+
+    Returns
+    -------
+    list of StaticInstability
+        One per negative eigenvalue, naming the DOF with the largest share of its mode;
+        empty for a stable body.
+    """
+    c = np.asarray(stiffness, dtype=float)
+    labels = [str(d) for d in dofs]
+    if not np.all(np.isfinite(c)):
+        return []
+    t = np.eye(c.shape[0]) if basis is None else np.asarray(basis, dtype=float)
+    cq = t.T @ c @ t
+    diagonal = np.abs(np.diag(cq))
+    if not diagonal.size or diagonal.max() == 0:
+        return []
+    # a diagonal of round-off (1e-12 in surge) is no restoring: judged against the largest
+    # of its kind (translations N/m, rotations N m/rad, generalized modes), not of all;
+    # a coordinate's kind is that of the DOF that carries most of it
+    lead = np.argmax(np.abs(t), axis=0)
+    kinds = np.array(
+        [2 if not is_rigid_body_dof(labels[i]) else int(is_rotation(labels[i])) for i in lead]
+    )
+    largest = np.array([diagonal[kinds == k].max() for k in kinds])
+    active = np.flatnonzero(diagonal > 1e-9 * largest)
+    if not active.size:
+        return []
+    sub = 0.5 * (cq + cq.T)[np.ix_(active, active)]
+    scale = 1.0 / np.sqrt(diagonal[active])
+    lam, vec = np.linalg.eigh(sub * scale[:, None] * scale[None, :])
+    found = set()
+    for k in np.flatnonzero(lam < -1e-9):
+        v = np.zeros(cq.shape[0])
+        v[active] = scale * vec[:, k]
+        found.add(int(np.argmax(np.abs(t @ v))))
+    return [StaticInstability(labels[i], float(c[i, i])) for i in sorted(found)]
+
+
+def instability_message(unstable: Sequence[StaticInstability]) -> str:
+    """The sentence :func:`cummins.motion_rao` warns with and the time domain refuses
+    with."""
+    listed = ", ".join(f"{u.dof} (C = {u.stiffness:.4g})" for u in unstable)
+    return (
+        f"the body is statically unstable in {listed}: the restoring matrix (hydrostatics, "
+        "weight, moorings) has a negative eigenvalue there, so the body has no equilibrium "
+        "to oscillate about"
+    )
+
+
+#: What to do about a statically unstable body.
+INSTABILITY_HINT = (
+    "Check the centre of gravity and whether the restoring holds the weight's terms "
+    "(cummins info says where C came from; --center-of-gravity, "
+    "--restoring-includes-weight), or give the hinge or mooring that holds the body "
+    "(--external-stiffness)"
+)
+
+
+def restoring_matrix(ds: xr.Dataset, additional: bool = True) -> NDArray[np.float64]:
+    """C of the equation of motion: ``hydrostatic_stiffness`` plus, with ``additional``,
+    the data's ``additional_stiffness`` (moorings, external springs)."""
+    c = np.array(
+        ds["hydrostatic_stiffness"].transpose("influenced_dof", "radiating_dof").values,
+        dtype=float,
+    )
+    if additional and "additional_stiffness" in ds:
+        c = c + ds["additional_stiffness"].transpose("influenced_dof", "radiating_dof").values
+    return c
+
+
+__all__ = [
+    "INCLUDES",
+    "INSTABILITY_HINT",
+    "BodyWeight",
+    "StaticInstability",
+    "describe_restoring",
+    "instability_message",
+    "recorded_weight",
+    "restoring_matrix",
+    "static_instability",
+    "weight_record",
+    "weight_stiffness",
+    "with_weight",
+]
