@@ -42,6 +42,7 @@ from cummins.hydrodb import (
     select_dofs,
     validate,
 )
+from cummins.excitation_model import ExcitationModel, excitation_irf, fit_excitation
 from cummins.io import FORMATS, detect_format, read, write
 from cummins.mass_properties import with_external_terms, with_inertia
 from cummins.radiation import passivity, reduce
@@ -78,6 +79,7 @@ __all__ = [
     "CouplingModel",
     "CumminsError",
     "CumminsWarning",
+    "ExcitationModel",
     "Finding",
     "FitError",
     "HydroDataError",
@@ -94,6 +96,8 @@ __all__ = [
     "demo_files",
     "detect_format",
     "dof_labels",
+    "excitation_irf",
+    "fit_excitation",
     "fit_radiation",
     "frequency_domain",
     "kramers_kronig_error",

@@ -19,6 +19,7 @@ from cummins.cli.convert import convert_command
 from cummins.cli.demo import demo_command
 from cummins.cli.dp import dp_demo_command
 from cummins.cli.fit import fit_command
+from cummins.cli.fit_excitation import fit_excitation_command
 from cummins.cli.info import info_command
 from cummins.cli.kernel import kernel_command
 from cummins.cli.lfmodel import lf_model_command
@@ -44,6 +45,8 @@ def main() -> None:
       cummins bem MESH         compute a database with Capytaine (pip install cummins[bem])
       cummins kernel FILE      retardation functions K(t), A-infinity, causality diagnostics
       cummins fit FILE         stable, passive state-space models of the fluid memory
+      cummins fit-excitation FILE
+                               causal state-space models of the wave excitation (OpenFAST)
       cummins reduce MODEL     fewer states by balanced truncation, passive again
       cummins rao DATA         coupled motion RAOs, frequency domain (the reference)
       cummins simulate DATA    the vessel in regular or irregular waves, time domain
@@ -71,6 +74,7 @@ main.add_command(demo_command)
 main.add_command(bem_command)  # works without Capytaine: it then says how to install it
 main.add_command(kernel_command)
 main.add_command(fit_command)
+main.add_command(fit_excitation_command)
 main.add_command(reduce_command)
 main.add_command(rao_command)
 main.add_command(simulate_command)
