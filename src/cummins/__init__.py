@@ -33,6 +33,7 @@ from cummins.errors import (
     OutputExistsError,
     SimulationError,
 )
+from cummins.excitation_model import ExcitationModel, excitation_irf, fit_excitation
 from cummins.hydrodb import (
     DOF_NAMES,
     change_axes,
@@ -42,7 +43,6 @@ from cummins.hydrodb import (
     select_dofs,
     validate,
 )
-from cummins.excitation_model import ExcitationModel, excitation_irf, fit_excitation
 from cummins.io import FORMATS, detect_format, read, write
 from cummins.mass_properties import with_external_terms, with_inertia
 from cummins.radiation import passivity, reduce
