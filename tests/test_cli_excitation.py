@@ -68,3 +68,18 @@ def test_given_delay_and_order(corpus, tmp_path):
 def test_bad_options_are_refused(corpus, tmp_path, args, text):
     result = run("fit-excitation", corpus / SPAR / "spar.1", "-o", tmp_path / "x.nc", *args)
     assert result.exit_code == 2 and text in result.output
+
+
+def test_openfast_ssexctn_needs_one_heading(corpus, tmp_path):
+    from cummins.io.openfast import read_openfast_ssexctn
+
+    out, ss = tmp_path / "exc.nc", tmp_path / "spar.ssexctn"
+    result = run("fit-excitation", corpus / SPAR / "spar.1", "-o", out, "--openfast", ss)
+    assert result.exit_code == 2 and "one heading" in result.output and not out.exists()
+    result = run(
+        "fit-excitation", corpus / SPAR / "spar.1", "-o", out, "--heading", 0, "--openfast", ss
+    )
+    assert result.exit_code == 0, result.output
+    content = read_openfast_ssexctn(ss)
+    assert content.n_states == ExcitationModel.load(out).total_order
+    assert f"{content.n_states} states" in result.output

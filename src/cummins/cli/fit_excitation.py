@@ -110,6 +110,13 @@ FIT_FAILED = 3
     default=None,
     help="Write one PNG per heading: |F| and phase, data against the model, and K_ex(t).",
 )
+@click.option(
+    "--openfast",
+    type=click.Path(dir_okay=False),
+    default=None,
+    help="Also write the model as an OpenFAST HydroDyn .ssexctn file (ExctnMod = 2; one "
+    "heading: give --heading DEG, HydroDyn's WaveDir).",
+)
 @speed_option()
 @force_option()
 @reports_errors
@@ -129,6 +136,7 @@ def fit_excitation_command(
     method,
     json_path,
     plot_dir,
+    openfast,
     speed,
     force,
 ):
@@ -147,13 +155,16 @@ def fit_excitation_command(
 
     \b
     Examples:
-      cummins fit-excitation spar.1 -o spar_excitation.nc --heading 0 --plot exc-plots
+      cummins fit-excitation spar.1 -o spar_excitation.nc --heading 0 --openfast spar.ssexctn
+      cummins fit-excitation spar.1 -o spar_excitation.nc --plot exc-plots
       cummins fit-excitation tanker.1 -o exc.nc --heading 180 --delay 40 --max-order 80
     """
     from cummins.excitation_model import fit_excitation
 
-    prepare_outputs(output, json_path, force=force, folders=[plot_dir])
+    prepare_outputs(output, json_path, openfast, force=force, folders=[plot_dir])
     ds = select_speed(read_hydrodb(path, format_, rho, g, ulen), speed)
+    if openfast:
+        check_openfast_output(ds, headings)
     directions = None if not headings else np.radians(np.asarray(headings, dtype=float))
     total = len(headings) if headings else (ds.sizes.get("wave_direction", 0) or 1)
     start = time.perf_counter()
@@ -199,6 +210,14 @@ def fit_excitation_command(
         summary = excitation_summary(model, elapsed)
         Path(json_path).write_text(json.dumps(summary, indent=2) + "\n", encoding="utf-8")
         console.print(f"wrote {json_path}")
+    if openfast:
+        from cummins.io.openfast_excitation import write_openfast_ssexctn
+
+        write_openfast_ssexctn(model, openfast, force=force)
+        console.print(
+            f"wrote {openfast} (HydroDyn ExctnMod = 2: WaveDir {np.degrees(model.headings[0]):g} "
+            f"deg, t_c {model.delays[0]:.4g} s, {int(model.orders[0].sum())} states)"
+        )
     if plot_dir:
         from cummins.excitation_model.figures import plot_excitation_fit
         from cummins.plots import save_figure
@@ -214,6 +233,25 @@ def fit_excitation_command(
         console.print(f"[bold red]failure:[/bold red] {escape(failure)}", highlight=False)
     if failures:
         sys.exit(FIT_FAILED)
+
+
+def check_openfast_output(ds, headings) -> None:
+    """Before the fit: a .ssexctn holds one heading and the six DOFs of each body."""
+    from cummins.hydrodb import DOF_NAMES, split_dof
+
+    names = [split_dof(str(d))[1] for d in ds.influenced_dof.values]
+    if not names or len(names) % 6 or names != list(DOF_NAMES) * (len(names) // 6):
+        raise click.BadParameter(
+            f"HydroDyn's .ssexctn holds the six DOFs of each body; the data have {len(names)} DOFs",
+            param_hint="--openfast",
+        )
+    count = len(headings) if headings else ds.sizes.get("wave_direction", 1)
+    if count != 1:
+        raise click.BadParameter(
+            "HydroDyn reads one heading per .ssexctn (it must equal its WaveDir): give one "
+            "--heading DEG",
+            param_hint="--openfast",
+        )
 
 
 def excitation_table(model) -> Table:
