@@ -151,3 +151,27 @@ def test_what_cannot_be_written_is_refused(spar, tmp_path):
     heave = fit_excitation(cummins.select_dofs(spar, ["Surge", "Heave"]), [0.0], max_order=6)
     with pytest.raises(HydroDataError, match="six rigid-body DOFs"):
         write_openfast_ssexctn(heave, tmp_path / "c.ssexctn")
+
+
+def test_fit_says_why_the_ss_holds_more_states(corpus, tmp_path):
+    """`cummins fit --openfast`: the .ss repeats a block's shared states for each coupling
+    (one model per coupling, grouped by radiating DOF); a DOF with no memory keeps its
+    flag 1, as HydroDyn requires of every DOF (SS_Fitting's spar.ss: yaw, 0 states)."""
+    from click.testing import CliRunner
+
+    from cummins.cli import main
+    from cummins.io.openfast import read_openfast_ss
+
+    ss = tmp_path / "spar.ss"
+    args = ["fit", corpus / SPAR / "spar.1", "-o", tmp_path / "m.nc", "--openfast", ss]
+    result = CliRunner().invoke(main, [str(a) for a in args])
+    assert result.exit_code in (0, 3), result.output
+    content = read_openfast_ss(ss)
+    model = cummins.RadiationModel.load(tmp_path / "m.nc")
+    text = " ".join(result.output.split())
+    assert f"{content.n_states} states (the model has {model.total_order}:" in text
+    assert content.n_states > model.total_order
+    assert content.dof_flags.tolist() == [1] * 6
+    assert content.states_per_dof[5] == 0 and "no states for Yaw" in text
+    reference = read_openfast_ss(corpus / SPAR / "spar.ss")
+    assert reference.dof_flags[5] == 1 and reference.states_per_dof[5] == 0

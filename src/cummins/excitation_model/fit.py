@@ -103,6 +103,9 @@ FAR = 3.0
 #: the t_c of causality/10, then /100 (up to this many times), and the first t_c that
 #: meets every target (else the one closest to them) is kept.
 LONGER_DELAYS = 2
+#: K_ex(t) for the automatic t_c is sampled at at most this many times (t_c to 1/2000 of
+#: the span ±2π/ω_min).
+DELAY_POINTS = 4000
 #: The fitting grid: at most π/(PHASE_STEPS t_c) between two frequencies (45°).
 PHASE_STEPS = 4
 
@@ -422,7 +425,7 @@ def fit_excitation(
     excited = excited_dofs(force, labels)
     zero = zero_frequency_force(ds)
     if delay is None:
-        irf = excitation_irf(ds, wave_direction=directions)
+        irf = excitation_irf(ds, wave_direction=directions, max_points=DELAY_POINTS)
         fractions = [causality / 10**k for k in range(LONGER_DELAYS + 1)]
         candidates = np.stack([causal_delay(irf, f, excited) for f in fractions], axis=1)
         delay_rule = (

@@ -244,7 +244,9 @@ def read(
 
 def write(ds: xr.Dataset, path: str | os.PathLike[str], *, force: bool = False, model=None) -> Path:
     """Write a ``HydroDB`` to ``.nc`` (Capytaine-compatible NetCDF), ``.h5`` (BEMIO, the
-    layout WEC-Sim reads) or ``.mat`` (MSS).
+    layout WEC-Sim reads), ``.1`` (WAMIT ``.1``/``.3``/``.hst``, nondimensional with the
+    data's ``ulen`` or 1 m: :func:`cummins.io.wamit.numeric_writer.write_wamit`) or
+    ``.mat`` (MSS).
 
     Refuses to overwrite an existing file unless ``force=True``. ``model`` (a fitted
     :class:`~cummins.radiation.model.RadiationModel`) goes into a ``.h5`` file's state-space
@@ -271,12 +273,16 @@ def write(ds: xr.Dataset, path: str | os.PathLike[str], *, force: bool = False, 
         from cummins.io.mss import write_mss
 
         write_mss(ds, p)
+    elif suffix == ".1":
+        from cummins.io.wamit.numeric_writer import write_wamit
+
+        write_wamit(ds, p, ulen=float(ds.attrs.get("ulen", 1.0)), force=force)
     else:
         raise HydroDataError(
             f"cannot write {suffix or 'files without an extension'}",
             path=p,
-            hint="use .nc (NetCDF, Capytaine layout), .h5 (BEMIO, for WEC-Sim) or .mat "
-            "(MSS vessel struct)",
+            hint="use .nc (NetCDF, Capytaine layout), .h5 (BEMIO, for WEC-Sim), .1 (WAMIT "
+            ".1/.3/.hst, for HydroDyn) or .mat (MSS vessel struct)",
         )
     return p
 
