@@ -2,9 +2,10 @@
 
 Per heading β the time advance t_c comes from the excitation impulse response
 (:func:`~cummins.excitation_model.impulse.causal_delay`: the energy of K_ex before −t_c
-at most ``causality`` of its total; where a DOF then misses its target, the heading is
-fitted again with the t_c of ``causality``/10 and /100, and the first that meets every
-target is kept), or is given. Per DOF the causal response
+at most ``causality`` of its total for every DOF; where a DOF then misses its target,
+the heading is fitted again with the t_c of each DOF alone and those of 1/10 and 1/100
+of ``causality`` (:func:`delay_candidates`), and the first that meets every target is
+kept, else the closest), or is given. Per DOF the causal response
 
     H(jω) = F(ω, β) e^{−jω t_c} ≈ c (jωI − a)⁻¹ b
 
@@ -68,6 +69,7 @@ from cummins.excitation_model.impulse import (
     _check_zero_speed,
     _directions,
     causal_delay,
+    causal_delays,
     excitation_irf,
     excited_dofs,
     force_on_grid,
@@ -99,10 +101,10 @@ RELOCATION_POINTS = 300
 STALL = 4
 #: Far from the target (error above FAR times it) the order grows by 4, else by 2.
 FAR = 3.0
-#: With the automatic t_c, a heading where a DOF misses its target is fitted again with
-#: the t_c of causality/10, then /100 (up to this many times), and the first t_c that
-#: meets every target (else the one closest to them) is kept.
-LONGER_DELAYS = 2
+#: With the automatic t_c, a heading where a DOF misses its target is fitted again at
+#: up to this many other advances (:func:`delay_candidates`).
+MORE_DELAYS = 4
+
 #: K_ex(t) for the automatic t_c is sampled at at most this many times (t_c to 1/2000 of
 #: the span ±2π/ω_min).
 DELAY_POINTS = 4000
@@ -324,6 +326,23 @@ def fit_response(
     return chosen.a, chosen.b, chosen.c, metrics, note
 
 
+def delay_candidates(irf, causality: float, excited) -> list[list[float]]:
+    """The advances t_c tried per heading, in order: the rule's (every DOF's energy
+    before −t_c at most ``causality``), then the advance of each DOF alone below it (a DOF
+    whose K_ex reaches far back need not set every DOF's t_c), then those of
+    ``causality``/10 and /100; at most 1 + :data:`MORE_DELAYS`."""
+    per_dof = causal_delays(irf, causality, excited)
+    longer = [causal_delay(irf, causality / f, excited) for f in (10.0, 100.0)]
+    out = []
+    for h in range(per_dof.shape[0]):
+        values = per_dof[h][~np.isnan(per_dof[h])]
+        first = float(values.max()) if values.size else 0.0
+        shorter = sorted({float(v) for v in values if v < first}, reverse=True)
+        order = [first, *shorter[:2], *(float(x[h]) for x in longer)]
+        out.append(list(dict.fromkeys(order))[: 1 + MORE_DELAYS])
+    return out
+
+
 def _fit_heading(ds, beta, heading, excited, zero, delay, options) -> list[DofExcitation]:
     """The models of every DOF at one heading, for one t_c."""
     data_w = np.asarray(ds.omega.values, dtype=float)
@@ -426,19 +445,20 @@ def fit_excitation(
     zero = zero_frequency_force(ds)
     if delay is None:
         irf = excitation_irf(ds, wave_direction=directions, max_points=DELAY_POINTS)
-        fractions = [causality / 10**k for k in range(LONGER_DELAYS + 1)]
-        candidates = np.stack([causal_delay(irf, f, excited) for f in fractions], axis=1)
+        candidates = delay_candidates(irf, causality, excited)
         delay_rule = (
             f"automatic: the energy of K_ex(t) before -t_c is at most {causality:g} of its "
-            f"total (or {', '.join(f'{f:g}' for f in fractions[1:])} where a DOF misses the "
-            "NRMSE target)"
+            "total for every DOF; where a DOF then misses the NRMSE target, the t_c of each "
+            f"DOF alone and those of {causality / 10:g} and {causality / 100:g} are tried: "
+            "the first that meets every target is kept, else the closest (then the fewest "
+            "states)"
         )
         low_note = irf.attrs["low_frequency"]
     else:
         given = np.broadcast_to(np.asarray(delay, dtype=float), directions.shape).copy()
         if not np.all(np.isfinite(given)) or np.any(given < 0):
             raise FitError(f"the time advance t_c must be >= 0 s, not {delay!r}")
-        candidates = given[:, None]
+        candidates = [[float(x)] for x in given]
         delay_rule = "given"
         low_note = ""
     models: list[DofExcitation] = []
@@ -458,8 +478,9 @@ def fit_excitation(
         for tc in dict.fromkeys(float(x) for x in candidates[h]):
             fits = _fit_heading(ds, beta, h, excited[h], zero, tc, options)
             worst = max((m.metrics["nrmse"] / nrmse_target for m in fits if m.order), default=0.0)
-            if best is None or worst < best[0]:
-                best = (worst, tc, fits)
+            score = (max(worst, 1.0), sum(m.order for m in fits))
+            if best is None or score < best[0]:
+                best = (score, tc, fits)
             if worst <= 1.0:
                 break
         _, chosen[h], fits = best

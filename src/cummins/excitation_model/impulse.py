@@ -59,6 +59,7 @@ from cummins.radiation.transforms import fourier_transform
 __all__ = [
     "CAUSALITY",
     "causal_delay",
+    "causal_delays",
     "default_irf_times",
     "excitation_irf",
     "excited_dofs",
@@ -327,7 +328,7 @@ def causal_delay(
 
     The smallest t_c ≥ 0 on the grid of ``irf`` with ∫_{−∞}^{−t_c} K_ex² dt ≤
     ``fraction`` · ∫ K_ex² dt for every excited DOF (``excited`` (nβ, n): default all
-    with a nonzero K_ex).
+    with a nonzero K_ex): the largest of :func:`causal_delays`.
 
     Parameters
     ----------
@@ -353,6 +354,17 @@ def causal_delay(
     >>> round(float(causal_delay(k, 1e-3)[0]), 2)  # a Gaussian centred at t = -3 s
     4.55
     """
+    per_dof = causal_delays(irf, fraction, excited)
+    return np.max(np.where(np.isnan(per_dof), 0.0, per_dof), axis=1, initial=0.0)
+
+
+def causal_delays(
+    irf: xr.DataArray,
+    fraction: float = CAUSALITY,
+    excited: NDArray[np.bool_] | None = None,
+) -> NDArray[np.float64]:
+    """The time advance of each DOF on its own, (nβ, n), s; NaN where not excited
+    (:func:`causal_delay` takes the largest per heading)."""
     if not 0 < fraction < 1:
         raise ValueError(f"fraction must be in (0, 1), not {fraction!r}")
     k = np.asarray(irf.transpose("time", "wave_direction", "influenced_dof").values, dtype=float)
@@ -361,10 +373,10 @@ def causal_delay(
     total = energy[-1]  # (nβ, n)
     if excited is None:
         excited = total > 0
-    out = np.zeros(k.shape[1])
+    out = np.full(total.shape, np.nan)
     for b in range(k.shape[1]):
         for d in np.flatnonzero(excited[b] & (total[b] > 0)):
             share = energy[:, b, d] / total[b, d]
             first = int(np.searchsorted(share, fraction, side="right"))
-            out[b] = max(out[b], -t[min(first, t.size - 1)])
-    return np.maximum(out, 0.0)
+            out[b, d] = max(-t[min(first, t.size - 1)], 0.0)
+    return out
