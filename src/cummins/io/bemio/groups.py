@@ -21,6 +21,7 @@ from collections.abc import Callable
 from dataclasses import dataclass, field
 
 import numpy as np
+import xarray as xr
 
 __all__ = ["BODY_GROUPS", "BemioData", "BodyRows", "H5Out"]
 
@@ -82,7 +83,8 @@ class BemioData:
     ``excitation/scattering``) to F (nω, nβ, n); ``radiation_irf`` is (t, K (nt, n, n));
     ``excitation_irf`` (t, K_ex (nt, nβ, n)) or None; ``state_space`` the per-coupling
     arrays of :func:`cummins.io.bemio.state_space._state_space` or None; ``volume`` per
-    body, NaN where the data do not know it.
+    body, NaN where the data do not know it; ``ds`` the dataset they come from (z-up,
+    about each body's centre of gravity), for a group writer that needs more of it.
     """
 
     rho: float
@@ -103,6 +105,7 @@ class BemioData:
     excitation_irf: tuple[np.ndarray, np.ndarray] | None = None
     state_space: dict | None = None
     notes: list[str] = field(default_factory=list)
+    ds: xr.Dataset | None = field(default=None, repr=False)
 
     @property
     def periods(self) -> np.ndarray:

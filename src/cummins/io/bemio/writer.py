@@ -218,6 +218,7 @@ def bemio_data(
         radiation_irf=(t, np.asarray(kernel.values, dtype=float)),
         excitation_irf=exc,
         state_space=_state_space(model, labels, t, rho, path) if model is not None else None,
+        ds=ds,
     )
 
 
