@@ -160,6 +160,38 @@ CASES: dict[str, tuple[list[str], int, str]] = {
     "fit-mss-exists": (["fit", T, "-o", "m.nc", "--mss", "old.mat"], 2, "refusing"),
     "fit-absurd-data": (["fit", "absurd.nc", "-o", "m.nc"], 1, "beyond any floating body"),
     "fit-speed": (["fit", T, "-o", "m.nc", "--speed", "5"], 2, "one forward speed"),
+    # fit-excitation
+    "fit-excitation-nrmse-nan": (
+        ["fit-excitation", T, "-o", "e.nc", "--nrmse", "nan"],
+        2,
+        "--nrmse",
+    ),
+    "fit-excitation-causality-one": (
+        ["fit-excitation", T, "-o", "e.nc", "--causality", "1"],
+        2,
+        "--causality",
+    ),
+    "fit-excitation-delay-negative": (
+        ["fit-excitation", T, "-o", "e.nc", "--delay", "-3"],
+        2,
+        "--delay",
+    ),
+    "fit-excitation-exists": (["fit-excitation", T, "-o", "old.nc"], 2, "refusing to overwrite"),
+    "fit-excitation-openfast-headings": (
+        ["fit-excitation", T, "-o", "e.nc", "--openfast", "t.ssexctn"],
+        2,
+        "one heading",
+    ),
+    "fit-excitation-plot-is-file": (
+        ["fit-excitation", T, "-o", "e.nc", "--plot", "afile"],
+        2,
+        "afile",
+    ),
+    "simulate-wave-record-missing": (
+        ["simulate", T, "--wave-elevation", "nothere.csv", "-o", "r.nc"],
+        2,
+        "does not exist",
+    ),
     # reduce
     "reduce-no-order": (["reduce", "tanker.nc", "-o", "r.nc"], 2, "exactly one"),
     "reduce-order-zero": (["reduce", "tanker.nc", "-o", "r.nc", "--order", "0"], 2, "--order"),

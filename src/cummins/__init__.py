@@ -40,6 +40,7 @@ if TYPE_CHECKING:  # what the names below are; imported on first use (``__getatt
 
     from cummins import repair
     from cummins.check import CheckReport, Finding, check
+    from cummins.excitation_model import ExcitationModel, excitation_irf, fit_excitation
     from cummins.hydrodb import (
         DOF_NAMES,
         change_axes,
@@ -68,6 +69,9 @@ if TYPE_CHECKING:  # what the names below are; imported on first use (``__getatt
 #: so that ``import cummins`` (and ``cummins --help``) does not load SciPy, xarray or
 #: matplotlib before a command needs them; ``from cummins import read`` works as before.
 _LAZY: dict[str, str] = {
+    **dict.fromkeys(
+        ("ExcitationModel", "excitation_irf", "fit_excitation"), "cummins.excitation_model"
+    ),
     **dict.fromkeys(("CheckReport", "Finding", "check"), "cummins.check"),
     **dict.fromkeys(
         (
@@ -154,6 +158,7 @@ __all__ = [
     "CouplingModel",
     "CumminsError",
     "CumminsWarning",
+    "ExcitationModel",
     "Finding",
     "FitError",
     "HydroDataError",
@@ -170,6 +175,8 @@ __all__ = [
     "demo_files",
     "detect_format",
     "dof_labels",
+    "excitation_irf",
+    "fit_excitation",
     "fit_radiation",
     "frequency_domain",
     "kramers_kronig_error",

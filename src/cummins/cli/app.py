@@ -27,6 +27,7 @@ COMMANDS: dict[str, str] = {
     "bem": "cummins.cli.bem:bem_command",
     "kernel": "cummins.cli.kernel:kernel_command",
     "fit": "cummins.cli.fit:fit_command",
+    "fit-excitation": "cummins.cli.fit_excitation:fit_excitation_command",
     "reduce": "cummins.cli.reduce:reduce_command",
     "rao": "cummins.cli.rao:rao_command",
     "simulate": "cummins.cli.simulate:simulate_command",
@@ -88,6 +89,8 @@ def main() -> None:
       cummins bem MESH         compute a database with Capytaine (pip install cummins[bem])
       cummins kernel FILE      retardation functions K(t), A-infinity, causality diagnostics
       cummins fit FILE         stable, passive state-space models of the fluid memory
+      cummins fit-excitation FILE
+                               causal state-space models of the wave excitation (OpenFAST)
       cummins reduce MODEL     fewer states by balanced truncation, passive again
       cummins rao DATA         coupled motion RAOs, frequency domain (the reference)
       cummins simulate DATA    the vessel in regular or irregular waves, time domain

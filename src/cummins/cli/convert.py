@@ -11,6 +11,7 @@ from cummins.cli.common import (
     console,
     finite,
     force_option,
+    positive,
     prepare_outputs,
     read_hydrodb,
     read_options,
@@ -46,11 +47,23 @@ from cummins.errors import CumminsWarning
     help="Of several bodies, write only this one (1-based number or name): its six DOFs "
     "as Surge … Yaw, e.g. for an MSS .mat, which holds one body.",
 )
+@click.option(
+    "--displaced-volume",
+    "volumes",
+    type=positive("m^3"),
+    multiple=True,
+    metavar="M3",
+    help="Displaced volume of the body (once per body) when the files do not give it "
+    "(WAMIT .1/.3 without the .out, HAMS): WEC-Sim's readBEMIOH5 needs it in the .h5.",
+)
 @force_option("Overwrite DESTINATION if it exists.")
 @reports_errors
-def convert_command(source, destination, format_, rho, g, ulen, axes, reference_point, body, force):
-    """Convert SOURCE to canonical NetCDF (.nc), a BEMIO .h5 for WEC-Sim, an MSS vessel
-    struct (.mat), or its difference- or sum-frequency QTF to a WAMIT .12d/.12s file.
+def convert_command(
+    source, destination, format_, rho, g, ulen, axes, reference_point, body, volumes, force
+):
+    """Convert SOURCE to canonical NetCDF (.nc), a BEMIO .h5 for WEC-Sim, WAMIT numeric
+    files (.1, with .3 and .hst) for OpenFAST's HydroDyn, an MSS vessel struct (.mat), or
+    its difference- or sum-frequency QTF to a WAMIT .12d/.12s file.
 
     SOURCE is any file or folder cummins reads (WAMIT, HAMS, NEMOH, AQWA, VERES, Capytaine,
     BEMIO .h5, MSS .mat: see --format).
@@ -58,12 +71,16 @@ def convert_command(source, destination, format_, rho, g, ulen, axes, reference_
     \b
     The NetCDF has Capytaine's layout (complex values on a re/im dimension) plus
     cummins' variables (added_mass_inf, ...), in SI units. The .h5 has the layout
-    WEC-Sim's readBEMIOH5 reads (normalised coefficients, z-up axes, K(t)).
+    WEC-Sim's readBEMIOH5 reads (normalised coefficients, z-up axes, K(t), K_ex(t)).
+    The .1/.3/.hst are nondimensional as WAMIT writes them (rho, g, ULEN: --ulen of a
+    WAMIT source, else 1 m).
 
     \b
     Examples:
       cummins convert tanker.1 tanker.nc
       cummins convert tanker.1 tanker.h5
+      cummins convert spar.1 spar.h5 --displaced-volume 8029
+      cummins convert semisub.nc semisub.1
       cummins convert input.re7 supply.mat --reference-point 0 0 0
       cummins convert results/ spar.12d       (a NEMOH QTF as WAMIT's, for OpenFAST)
     """
@@ -71,16 +88,19 @@ def convert_command(source, destination, format_, rho, g, ulen, axes, reference_
     from cummins.io import write
 
     to_mat = Path(destination).suffix.lower() == ".mat"
-    if Path(destination).suffix.lower() not in (".nc", ".mat", ".h5", ".12d", ".12s"):
+    if Path(destination).suffix.lower() not in (".nc", ".mat", ".h5", ".1", ".12d", ".12s"):
         raise click.BadParameter(
-            f"{destination}: write .nc (canonical NetCDF), .h5 (BEMIO, for WEC-Sim), .mat "
-            "(MSS vessel struct) or .12d/.12s (the QTF as WAMIT writes it, for HydroDyn)",
+            f"{destination}: write .nc (canonical NetCDF), .h5 (BEMIO, for WEC-Sim), .1 "
+            "(WAMIT .1/.3/.hst, for HydroDyn), .mat (MSS vessel struct) or .12d/.12s (the QTF "
+            "as WAMIT writes it, for HydroDyn)",
             param_hint="DESTINATION",
         )
     prepare_outputs(destination, force=force)
     ds = read_hydrodb(source, format_, rho, g, ulen)
     if body is not None:
         ds = select_body(ds, body)
+    if volumes:
+        ds = _with_volumes(ds, volumes)
     if to_mat:
         _check_mss_body(ds)
     if axes is None and to_mat:
@@ -94,6 +114,22 @@ def convert_command(source, destination, format_, rho, g, ulen, axes, reference_
         f"wrote {destination} ({ds.attrs.get('axis_convention')} axes, reference point "
         f"{[float(x) for x in ds.attrs['reference_point']]} m)"
     )
+
+
+def _with_volumes(ds, volumes):
+    """The data with ``displaced_volume`` given on the command line (one per body)."""
+    from cummins.hydrodb import add_history, bodies
+
+    count = len(bodies(ds))
+    if len(volumes) != count:
+        raise click.BadParameter(
+            f"give one volume per body: the data hold {count}, {len(volumes)} given",
+            param_hint="--displaced-volume",
+        )
+    out = ds.copy()
+    out.attrs["displaced_volume"] = float(volumes[0]) if count == 1 else [float(v) for v in volumes]
+    add_history(out, f"displaced volume given: {', '.join(f'{v:g}' for v in volumes)} m^3")
+    return out
 
 
 def _check_mss_body(ds) -> None:

@@ -275,7 +275,7 @@ def fit_command(
         from cummins.io.openfast import write_openfast_ss
 
         write_openfast_ss(model, openfast, force=force)
-        console.print(f"wrote {openfast}")
+        console.print(f"wrote {openfast}: {openfast_states_note(model, openfast)}")
     if mss_path:
         from cummins.cli.pipeline import write_model_mss_abc
 
@@ -297,6 +297,29 @@ def fit_command(
 #: Exit status of ``cummins fit`` when the model was written but misses a target
 #: (``model.attrs["failures"]``: not passive, a coupling degraded, motion error).
 FIT_FAILED = 3
+
+
+def openfast_states_note(model, path) -> str:
+    """What the ``.ss`` holds against the model: its states, and why they are more (one
+    model per coupling, grouped by radiating DOF) and which DOFs have none (enabled, as
+    HydroDyn requires of every DOF, with no memory)."""
+    from cummins.io.openfast import read_openfast_ss
+
+    content = read_openfast_ss(path)
+    text = f"{content.n_states} states"
+    if content.n_states > model.total_order:
+        text += (
+            f" (the model has {model.total_order}: HydroDyn's format stores one model per "
+            "coupling, grouped by the radiating DOF, so the states a common-pole block shares "
+            "are repeated for each of its couplings)"
+        )
+    empty = [model.dofs[k] for k, count in enumerate(content.states_per_dof) if count == 0]
+    if empty:
+        text += (
+            f"; no states for {', '.join(empty)}: no fluid memory (flagged enabled, as "
+            "HydroDyn requires of every DOF)"
+        )
+    return text
 
 
 def check_model_outputs(labels, *, mss_path=None, openfast=None) -> None:

@@ -98,6 +98,16 @@ from cummins.validation import check_simulation_size
 @click.option(
     "--regular", is_flag=True, help="Regular waves instead (--wave-period, --wave-amplitude)."
 )
+@click.option(
+    "--wave-elevation",
+    "wave_record",
+    type=click.Path(exists=True, dir_okay=False),
+    default=None,
+    metavar="FILE",
+    help="A record of the wave elevation at the origin instead of a sea state: CSV with "
+    "units in the header ('time [s], wave elevation [m]') or a run.nc, travelling towards "
+    "--heading; the force is the causal excitation model's (fit-excitation), from rest.",
+)
 @click.option("--wave-period", type=positive("s"), default=None, metavar="S")
 @click.option(
     "--wave-amplitude", type=non_negative("m"), default=1.0, show_default=True, metavar="M"
@@ -181,6 +191,7 @@ def simulate_command(
     dt,
     seed,
     regular,
+    wave_record,
     wave_period,
     wave_amplitude,
     viscous_damping,
@@ -239,7 +250,10 @@ def simulate_command(
     from cummins.timedomain.simulate import quadratic_damping_force, simulate_waves
     from cummins.vessel import vessel_from_hydrodb
 
-    if regular:
+    if wave_record:
+        if regular or hs is not None or tp is not None or speed:
+            raise click.UsageError("--wave-elevation replaces --hs/--tp/--regular (zero speed)")
+    elif regular:
         if wave_period is None:
             raise click.UsageError("--regular needs --wave-period")
     elif hs is None or tp is None:
@@ -309,7 +323,10 @@ def simulate_command(
             if abs(heading - 180.0) > 1e-9:
                 console.print(f"heading {heading:g}°: the data's only one (--heading)")
     direction = np.radians(heading)
-    if regular:
+    sea = None
+    if wave_record:
+        title = f"wave elevation record {wave_record}"
+    elif regular:
         sea = wv.regular_wave(wave_amplitude, wave_period, direction)
         title = f"regular waves, amplitude {wave_amplitude:g} m, period {wave_period:g} s"
     else:
@@ -351,25 +368,33 @@ def simulate_command(
     inherited = warn_failed_model(
         vessel.radiation.attrs, path, "fitted" if model is None else "model"
     )
-    second = build_second_order(ds, sea, second_order, sum_frequency=sum_frequency)
-    first_order = "excitation_force" in ds or second is None
-    if not first_order:
-        console.print("note: the data have no first-order excitation: second-order force only")
-    with progress_bar() as bar:
-        task = bar.add_task(f"simulating {duration:g} s, {title}, heading {heading:g}°", total=1.0)
-        run = simulate_waves(
-            vessel,
-            ds,
-            sea,
-            duration=duration,
-            dt=dt,
-            initial=start,
-            nonlinear_force=quadratic_damping_force(vessel.dofs, b_q) if b_q else None,
-            progress=lambda fraction: bar.update(task, completed=fraction),
-            second_order=second,
-            first_order=first_order,
-        )
-    if sea.seed is not None:
+    nonlinear = quadratic_damping_force(vessel.dofs, b_q) if b_q else None
+    if wave_record:
+        from cummins.cli.wave_record import run_wave_record
+
+        run, title = run_wave_record(vessel, ds, wave_record, heading, nonlinear)
+    else:
+        second = build_second_order(ds, sea, second_order, sum_frequency=sum_frequency)
+        first_order = "excitation_force" in ds or second is None
+        if not first_order:
+            console.print("note: the data have no first-order excitation: second-order force only")
+        with progress_bar() as bar:
+            task = bar.add_task(
+                f"simulating {duration:g} s, {title}, heading {heading:g}°", total=1.0
+            )
+            run = simulate_waves(
+                vessel,
+                ds,
+                sea,
+                duration=duration,
+                dt=dt,
+                initial=start,
+                nonlinear_force=nonlinear,
+                progress=lambda fraction: bar.update(task, completed=fraction),
+                second_order=second,
+                first_order=first_order,
+            )
+    if sea is not None and sea.seed is not None:
         run.attrs["seed"] = int(sea.seed)  # an int64: HDF5 stores it; --seed repeats the run
     run.attrs.update(
         {
@@ -393,7 +418,8 @@ def simulate_command(
     if plot_dir:
         from cummins.cli.pipeline import write_simulation_plots
 
-        for file in write_simulation_plots(run, vessel, ds, sea, Path(plot_dir), force=force):
+        waves = sea if sea is not None else wv.regular_wave(0.0, 10.0, direction)  # no spectra
+        for file in write_simulation_plots(run, vessel, ds, waves, Path(plot_dir), force=force):
             console.print(f"wrote {file}")
 
 

@@ -288,8 +288,10 @@ def _given_depth(ds: xr.Dataset, depth: float, path: Path) -> xr.Dataset:
 
 def write(ds: xr.Dataset, path: str | os.PathLike[str], *, force: bool = False, model=None) -> Path:
     """Write a ``HydroDB`` to ``.nc`` (Capytaine-compatible NetCDF), ``.h5`` (BEMIO, the
-    layout WEC-Sim reads), ``.mat`` (MSS) or, of its QTFs, ``.12d``/``.12s`` (WAMIT's
-    second-order files, which OpenFAST HydroDyn reads: :mod:`cummins.io.wamit.qtf_writer`).
+    layout WEC-Sim reads), ``.1`` (WAMIT ``.1``/``.3``/``.hst``, nondimensional with the
+    data's ``ulen`` or 1 m: :func:`cummins.io.wamit.numeric_writer.write_wamit`), ``.mat``
+    (MSS) or, of its QTFs, ``.12d``/``.12s`` (WAMIT's second-order files, which OpenFAST
+    HydroDyn reads: :mod:`cummins.io.wamit.qtf_writer`).
 
     Refuses to overwrite an existing file unless ``force=True``. ``model`` (a fitted
     :class:`~cummins.radiation.model.RadiationModel`) goes into a ``.h5`` file's state-space
@@ -320,12 +322,17 @@ def write(ds: xr.Dataset, path: str | os.PathLike[str], *, force: bool = False, 
         from cummins.io.wamit.qtf_writer import write_wamit_qtf
 
         write_wamit_qtf(ds, p, force=True)  # the overwrite check is above
+    elif suffix == ".1":
+        from cummins.io.wamit.numeric_writer import write_wamit
+
+        write_wamit(ds, p, ulen=float(ds.attrs.get("ulen", 1.0)), force=force)
     else:
         raise HydroDataError(
             f"cannot write {suffix or 'files without an extension'}",
             path=p,
-            hint="use .nc (NetCDF, Capytaine layout), .h5 (BEMIO, for WEC-Sim), .mat "
-            "(MSS vessel struct) or .12d/.12s (a WAMIT QTF file, for OpenFAST HydroDyn)",
+            hint="use .nc (NetCDF, Capytaine layout), .h5 (BEMIO, for WEC-Sim), .1 (WAMIT "
+            ".1/.3/.hst, for HydroDyn), .mat (MSS vessel struct) or .12d/.12s (a WAMIT QTF "
+            "file, for OpenFAST HydroDyn)",
         )
     return p
 

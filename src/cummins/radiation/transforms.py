@@ -100,6 +100,43 @@ def sine_transform(x: ArrayLike, f: ArrayLike, y: ArrayLike) -> NDArray[np.float
     return out.reshape((y.size, *shape))
 
 
+def fourier_transform(x: ArrayLike, f: ArrayLike, y: ArrayLike) -> NDArray[np.complex128]:
+    """∫_{x₀}^{x_N} f(x) e^{i x y} dx for the piecewise-linear (complex) f through (x, f).
+
+    :func:`cosine_transform` + i :func:`sine_transform` of the real and imaginary parts,
+    with the kernels computed once. Same arguments and shapes; complex result.
+
+    Examples
+    --------
+    >>> x = np.linspace(0.0, 1.0, 3)
+    >>> z = fourier_transform(x, x + 0j, [2.0])[0]  # ∫₀¹ x e^{2ix} dx
+    >>> round(float(z.real), 6), round(float(z.imag), 6)
+    (0.100612, 0.435398)
+    """
+    x = np.asarray(x, dtype=float)
+    f = np.asarray(f, dtype=complex)
+    m, h, f_mean, f_half, shape = _segments_complex(x, f)
+    y = np.asarray(y, dtype=float).reshape(-1, 1)
+    hy = h[None, :] * y
+    phase = np.exp(1j * m[None, :] * y)
+    even = 2 * h[None, :] * phase * np.sinc(hy / np.pi)
+    odd = 2j * h[None, :] * phase * _j1(hy)
+    out = even @ f_mean + odd @ f_half
+    return out.reshape((y.size, *shape))
+
+
+def _segments_complex(x: NDArray, f: NDArray):
+    if x.ndim != 1 or f.shape[0] != x.size:
+        raise ValueError(f"f must have {x.size} rows like x, got shape {f.shape}")
+    if x.size < 2 or np.any(np.diff(x) <= 0):
+        raise ValueError("x must be strictly increasing with at least two points")
+    m = 0.5 * (x[1:] + x[:-1])
+    h = 0.5 * (x[1:] - x[:-1])
+    f_mean = 0.5 * (f[1:] + f[:-1]).reshape(m.size, -1)
+    f_half = 0.5 * (f[1:] - f[:-1]).reshape(m.size, -1)
+    return m, h, f_mean, f_half, f.shape[1:]
+
+
 def _log_abs(z: NDArray) -> NDArray:
     """ln|z| with ln 0 := 0 (the principal-value cancellation, see module docstring)."""
     a = np.abs(z)

@@ -152,6 +152,75 @@ def read_record(path: str | os.PathLike[str], *, heading_deg: float | None = Non
     return validate_record(record, path=p)
 
 
+def read_wave_elevation(path: str | os.PathLike[str]) -> xr.DataArray:
+    """A record of the wave elevation at the origin: η(t), m, on uniform times.
+
+    Parameters
+    ----------
+    path
+        ``.csv`` (or ``.txt``) with a header naming the columns with their units, as
+        :func:`read_record` reads them: ``time [s], wave elevation [m]`` (``eta``,
+        ``wave``, ``elevation`` also name it; cm and mm are converted; other record
+        columns may be present and are ignored); or ``.nc``: a run of ``cummins
+        simulate`` (its ``wave_elevation``).
+
+    Returns
+    -------
+    xarray.DataArray
+        ``wave_elevation`` (time), m; attribute ``source_file``.
+
+    Raises
+    ------
+    HydroDataError
+        No wave-elevation column, a malformed line (naming file and line), NaN,
+        non-uniform time.
+
+    Examples
+    --------
+    >>> import tempfile, pathlib
+    >>> f = pathlib.Path(tempfile.mkdtemp()) / "eta.csv"
+    >>> _ = f.write_text("time [s], wave elevation [cm]\\n0, 10\\n0.5, 12\\n1, 7\\n")
+    >>> read_wave_elevation(f).values.tolist()
+    [0.1, 0.12, 0.07]
+    """
+    p = Path(path)
+    if not p.is_file():
+        raise HydroDataError("no such file", path=p)
+    if p.suffix.lower() in (".nc", ".nc4", ".netcdf"):
+        try:
+            with xr.open_dataset(p, engine="h5netcdf") as f:
+                ds = f.load()
+        except (OSError, ValueError) as exc:
+            raise HydroDataError(f"not a readable NetCDF file ({exc})", path=p) from None
+        if "wave_elevation" not in ds or ds.wave_elevation.dims != ("time",):
+            raise HydroDataError("the file has no wave_elevation(time)", path=p)
+        t = np.asarray(ds.time.values, dtype=float)
+        eta = np.asarray(ds.wave_elevation.values, dtype=float)
+        _check_time(t, p)
+    else:
+        columns, values, t = _parse_csv(p)
+        kinds = [c.variable for c in columns]
+        if "wave_elevation" not in kinds:
+            raise HydroDataError(
+                "the file has no wave elevation column",
+                path=p,
+                line=1,
+                hint="name it 'wave elevation [m]' next to 'time [s]'",
+            )
+        eta = values[:, kinds.index("wave_elevation")]
+    if not np.all(np.isfinite(eta)):
+        k = int(np.flatnonzero(~np.isfinite(eta))[0])
+        raise HydroDataError(f"the wave elevation is not finite at t = {t[k]:.6g} s", path=p)
+    uniform = t[0] + (t[1] - t[0]) * np.arange(t.size)
+    return xr.DataArray(
+        eta,
+        dims=("time",),
+        coords={"time": uniform},
+        name="wave_elevation",
+        attrs={"units": "m", "source_file": str(p)},
+    )
+
+
 def _read_netcdf(p: Path) -> xr.Dataset:
     try:
         with xr.open_dataset(p, engine="h5netcdf") as f:
@@ -173,7 +242,9 @@ def _read_netcdf(p: Path) -> xr.Dataset:
     return out
 
 
-def _read_csv(p: Path) -> xr.Dataset:
+def _parse_csv(p: Path) -> tuple[list[_Column], NDArray, NDArray]:
+    """The columns, the values in SI units (rows × columns) and the checked times of a
+    CSV record (units in the header, see :func:`read_record`)."""
     try:
         text = p.read_text(encoding="utf-8", errors="strict")
     except (OSError, UnicodeDecodeError) as exc:
@@ -226,6 +297,11 @@ def _read_csv(p: Path) -> xr.Dataset:
     k_time = [c.variable for c in columns].index("time")
     t = values[:, k_time]
     _check_time(t, p, [n for n, _ in lines[1:]])
+    return columns, values, t
+
+
+def _read_csv(p: Path) -> xr.Dataset:
+    columns, values, t = _parse_csv(p)
     dofs = [d for d in DOF_NAMES if any(c.dof == d for c in columns if c.variable == "motion")]
     if not dofs:
         raise HydroDataError("the record has no motion column (e.g. 'Roll [deg]')", path=p)

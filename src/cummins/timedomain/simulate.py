@@ -86,8 +86,17 @@ def discretize(vessel: Vessel, dt: float) -> Discretization:
     The exponential of [[F Δt, G Δt, 0], [0, 0, I], [0, 0, 0]] holds Φ, ∫₀^Δt e^{F(Δt−s)} G ds
     and Γ₁ = ∫₀^Δt e^{F(Δt−s)} G s/Δt ds (Van Loan 1978) in its first block row.
     """
-    dt = positive(dt, "the time step dt", "s")
     f, g = vessel.state_space()
+    return first_order_hold(f, g, dt)
+
+
+def first_order_hold(f: ArrayLike, g: ArrayLike, dt: float) -> Discretization:
+    """Φ, Γ₀, Γ₁ of x_{k+1} = Φ x_k + Γ₀ u_k + Γ₁ u_{k+1} for ẋ = F x + G u with u linear
+    between the samples (first-order hold), exact: one matrix exponential (Van Loan 1978),
+    as :func:`discretize`."""
+    dt = positive(dt, "the time step dt", "s")
+    f = np.asarray(f, dtype=float)
+    g = np.asarray(g, dtype=float).reshape(f.shape[0], -1)
     ns, n = g.shape
     z = np.zeros((ns + 2 * n, ns + 2 * n))
     z[:ns, :ns] = f * dt
@@ -163,7 +172,7 @@ def simulate(
     h = vessel.output_matrix()
     report = progress or _no_progress
     if nonlinear_force is None:
-        y = _exact(discretize(vessel, dt), tau, x0, h, report)
+        y = propagate(discretize(vessel, dt), tau, x0, h, report)
         method = "state space, exact (first-order hold)"
     else:
         y = _runge_kutta(vessel, t, tau, x0, nonlinear_force, report, h) @ h.T
@@ -514,7 +523,7 @@ def _convolution_weights(k: NDArray, dt: float, m: int) -> NDArray:
     return out
 
 
-def _exact(
+def propagate(
     disc: Discretization, tau: NDArray, x0: NDArray, h: NDArray, report: Progress = _no_progress
 ) -> NDArray:
     """Outputs y_k = H x_k of the first-order-hold recursion, computed modally: with

@@ -2,7 +2,8 @@
 
 Every numeric dataset carries HDF5's Fletcher-32 checksum; the coefficients are written
 normalised and about each body's centre of gravity, as WEC-Sim's ``bodyClass`` takes
-them; the group ``cummins`` holds the dataset in cummins' NetCDF layout.
+them, one group per function of :mod:`cummins.io.bemio.groups`; the group ``cummins``
+holds the dataset in cummins' NetCDF layout.
 """
 
 from __future__ import annotations
@@ -14,8 +15,7 @@ from pathlib import Path
 import numpy as np
 import xarray as xr
 
-from cummins._version import __version__
-from cummins.errors import HydroDataError
+from cummins.errors import CumminsWarning, HydroDataError
 from cummins.hydrodb import (
     DOF_NAMES,
     bodies,
@@ -26,24 +26,42 @@ from cummins.hydrodb import (
     validate,
 )
 from cummins.io.bemio.files import COPY_GROUP
-from cummins.io.bemio.second_order import write_mean_drift
+from cummins.io.bemio.groups import (
+    BODY_GROUPS,
+    BemioData,
+    BodyRows,
+    H5Out,
+    write_simulation_parameters,
+)
 from cummins.io.bemio.state_space import _state_space
 
 
-def write_bemio(ds: xr.Dataset, path: str | os.PathLike[str], *, model=None) -> Path:
+def write_bemio(
+    ds: xr.Dataset,
+    path: str | os.PathLike[str],
+    *,
+    model=None,
+    excitation_irf: bool = True,
+) -> Path:
     """Write ``ds`` as a BEMIO ``.h5`` file in the MATLAB layout WEC-Sim reads.
 
     What is written, per body, is what WEC-Sim's ``readBEMIOH5.m`` and ``bodyClass``
-    read (module docstring): normalised coefficients, A∞ (Ogilvie's estimate from A(ω),
-    B(ω) when the data have none, said in the dataset's description), the radiation
-    impulse response K(t) (cummins' exact integral of B(ω), on
-    :func:`cummins.radiation.retardation.default_time_grid`), and with ``model`` its state space.
-    Not written: the excitation impulse response (WEC-Sim needs it only for
-    ``nonlinearHydro``/``yawNonLin``), QTFs, mean drift (its method — momentum or
-    control surface — is not known here) and the generalized-mode matrices ``gbm``.
-    The coefficients are written about each body's centre of gravity, as WEC-Sim takes
-    them (:func:`cummins.move_reference_point`, when the data know it). The whole
-    dataset, as given, also goes exactly into the ``cummins`` group.
+    read (:mod:`cummins.io.bemio.groups`, one function per group; the list is in
+    ``docs/openfast_wecsim.md``): normalised coefficients, A∞ (Ogilvie's estimate from
+    A(ω), B(ω) when the data have none, said in the dataset's description), the
+    displaced volume (``properties/disp_vol``, which WEC-Sim's "equilibrium" mass is
+    ρ times) **where the data know it** — elsewhere the dataset is left out and a
+    warning says so (WEC-Sim's reader then stops at it rather than taking NaN) —, the
+    Froude–Krylov and scattering forces where the data hold them, the radiation impulse
+    response K(t) (cummins' exact integral of B(ω), on
+    :func:`cummins.radiation.retardation.default_time_grid`), the excitation impulse
+    response K_ex(t) (:func:`cummins.excitation_model.excitation_irf`, on its symmetric
+    default grid), the ``components`` copies of the older MATLAB writer, and with
+    ``model`` its state space. Not written: QTFs, mean drift (its method — momentum or
+    control surface — is not known here) and the generalized-mode matrices ``gbm``. The
+    coefficients are written about each body's centre of gravity, as WEC-Sim takes them
+    (:func:`cummins.move_reference_point`, when the data know it). The whole dataset, as
+    given, also goes exactly into the ``cummins`` group.
 
     Parameters
     ----------
@@ -61,6 +79,8 @@ def write_bemio(ds: xr.Dataset, path: str | os.PathLike[str], *, model=None) -> 
         model gets one stable state with C = 0 (A = −1, B = 1, ``conv`` 0), which adds
         nothing, so that WEC-Sim can assemble the matrices. WEC-Sim itself uses only the
         couplings within each body.
+    excitation_irf
+        Write ``excitation/impulse_response_fun`` (default).
 
     Returns
     -------
@@ -94,157 +114,29 @@ def write_bemio(ds: xr.Dataset, path: str | os.PathLike[str], *, model=None) -> 
         )
     modes = _modes_per_body(ds, path)
     copy = ds
-    ds = _about_centre_of_gravity(ds, len(modes))
-    rho, g = float(ds.attrs["rho"]), float(ds.attrs["g"])
-    omega = ds.omega.values
-    labels = [str(d) for d in ds.influenced_dof.values]
-    added = dof_matrix(ds, "added_mass")
-    damping = dof_matrix(ds, "radiation_damping")
-    stiffness = dof_matrix(ds, "hydrostatic_stiffness")
-    inf_note = "Infinite frequency added mass (normalized by rho)"
-    if "added_mass_inf" in ds:
-        inf = dof_matrix(ds, "added_mass_inf")
-    else:
-        from cummins.radiation.retardation import added_mass_inf
-
-        inf = np.asarray(
-            added_mass_inf(ds).transpose("influenced_dof", "radiating_dof").values, dtype=float
-        )
-        inf_note += "; estimated by cummins from A(w), B(w) (Ogilvie), not computed by the solver"
-    forces = {
-        "excitation": ds.excitation_force.transpose(
-            "omega", "wave_direction", "influenced_dof"
-        ).values
-    }
-    if "Froude_Krylov_force" in ds:
-        forces["excitation/froude-krylov"] = ds.Froude_Krylov_force.transpose(
-            "omega", "wave_direction", "influenced_dof"
-        ).values
-    if "diffraction_force" in ds:
-        forces["excitation/scattering"] = ds.diffraction_force.transpose(
-            "omega", "wave_direction", "influenced_dof"
-        ).values
-    from cummins.radiation.retardation import default_time_grid, retardation_function
-
-    t = default_time_grid(ds)
-    kernel = retardation_function(ds, t).transpose("time", "influenced_dof", "radiating_dof")
-    kernel = np.asarray(kernel.values, dtype=float) / rho
-    n_bodies = len(modes)
-    names = _body_names(ds, n_bodies)
-    cg = _per_body(ds, "center_of_gravity", n_bodies)
-    cb = _per_body(ds, "center_of_buoyancy", n_bodies)
-    volume = np.asarray(ds.attrs.get("displaced_volume", np.full(n_bodies, np.nan)), dtype=float)
-    volume = (
-        np.broadcast_to(volume.reshape(-1), (n_bodies,))
-        if volume.size in (1, n_bodies)
-        else np.full(n_bodies, np.nan)
-    )
-    ss = _state_space(model, labels, t, rho, path) if model is not None else None
-
+    data = bemio_data(_about_centre_of_gravity(ds, len(modes)), modes, model, path, excitation_irf)
+    for k, volume in enumerate(data.volume):
+        if not np.isfinite(volume):
+            warnings.warn(
+                CumminsWarning(
+                    f"{path}: the displaced volume of body {k + 1} is not in the data: "
+                    f"body{k + 1}/properties/disp_vol is left out, and WEC-Sim's readBEMIOH5 "
+                    "stops there; give it (cummins convert --displaced-volume M3, or the "
+                    "solver's .out with the run)"
+                ),
+                stacklevel=2,
+            )
     tmp = path.with_name(f".{path.name}.tmp")
     try:
         with h5py.File(tmp, "w") as f:
-            text = _text_writer(f)
-            number = _number_writer(f)
-            text("bem_data/code", str(ds.attrs.get("bem_code", ds.attrs.get("source_format", ""))))
-            text("cummins_version", __version__)
-            depth = float(ds.attrs.get("water_depth", np.inf))
-            if np.isinf(depth):
-                text("simulation_parameters/water_depth", "infinite")
-            else:
-                number("simulation_parameters/water_depth", [[depth]], "Water depth", "m")
-            number("simulation_parameters/scaled", [[0.0]], "", "")
-            number("simulation_parameters/g", [[g]], "Gravitational acceleration", "m/s^2")
-            number("simulation_parameters/rho", [[rho]], "Water density", "kg/m^3")
-            number("simulation_parameters/T", (2 * np.pi / omega)[:, None], "Wave periods", "s")
-            number("simulation_parameters/w", omega[:, None], "Wave frequencies", "rad/s")
-            number(
-                "simulation_parameters/wave_dir",
-                np.degrees(ds.wave_direction.values)[:, None],
-                "Wave direction",
-                "deg",
-            )
+            out = H5Out(f)
+            code = str(ds.attrs.get("bem_code", ds.attrs.get("source_format", "")))
+            write_simulation_parameters(out, data, float(ds.attrs.get("water_depth", np.inf)), code)
             start = 0
             for k, m in enumerate(modes):
-                rows = slice(start, start + m)
-                body = f"body{k + 1}"
-                text(f"{body}/properties/name", names[k])
-                number(
-                    f"{body}/properties/body_number",
-                    [[k + 1.0]],
-                    "Number of rigid body from the BEM simulation",
-                    "",
-                )
-                number(f"{body}/properties/cb", cb[k][:, None], "Center of buoyancy", "m")
-                number(f"{body}/properties/cg", cg[k][:, None], "Center of gravity", "m")
-                number(f"{body}/properties/disp_vol", [[volume[k]]], "Displaced volume", "m^3")
-                number(f"{body}/properties/dof", [[float(m)]], "Degrees of freedom", "")
-                number(f"{body}/properties/dof_start", [[start + 1.0]], "Degrees of freedom", "")
-                number(f"{body}/properties/dof_end", [[start + float(m)]], "Degrees of freedom", "")
-                hc = f"{body}/hydro_coeffs"
-                number(
-                    f"{hc}/linear_restoring_stiffness",
-                    stiffness[rows, rows] / (rho * g),
-                    "Hydrostatic stiffness matrix (normalized by rho*g)",
-                    "N/m",
-                )
-                number(f"{hc}/added_mass/inf_freq", inf[rows, :] / rho, inf_note, "kg")
-                number(
-                    f"{hc}/added_mass/all",
-                    np.transpose(added[:, rows, :], (1, 2, 0)) / rho,
-                    "Added mass (normalized by rho)",
-                    "kg",
-                )
-                number(
-                    f"{hc}/radiation_damping/all",
-                    np.transpose(damping[:, rows, :] / omega[:, None, None], (1, 2, 0)) / rho,
-                    "Radiation damping (normalized by rho*w)",
-                    "N-s/m",
-                )
-                for group, values in forces.items():
-                    part = np.transpose(values[:, :, rows], (2, 1, 0)) / (rho * g)
-                    what = {
-                        "excitation": "excitation",
-                        "excitation/froude-krylov": "Froude-Krylov",
-                        "excitation/scattering": "scattering",
-                    }[group]
-                    for key, data, unit in (
-                        ("re", part.real, "N"),
-                        ("im", part.imag, "N"),
-                        ("mag", np.abs(part), "N"),
-                        ("phase", np.angle(part), "rad"),
-                    ):
-                        number(
-                            f"{hc}/{group}/{key}",
-                            data,
-                            f"{key} of {what} force (normalized by rho*g)",
-                            unit,
-                        )
-                write_mean_drift(number, hc, ds, rows, rho, g)
-                irf = f"{hc}/radiation_damping/impulse_response_fun"
-                number(
-                    f"{irf}/K",
-                    np.transpose(kernel[:, rows, :], (1, 2, 0)),
-                    "Impulse response function (normalized by rho)",
-                    "",
-                )
-                number(f"{irf}/t", t[:, None], "Time vector for the impulse resonse function", "s")
-                number(
-                    f"{irf}/w",
-                    omega[:, None],
-                    "Frequencies of the data the impulse response function integrates",
-                    "rad/s",
-                )
-                if ss is not None:
-                    sg = f"{hc}/radiation_damping/state_space"
-                    for key in ("A", "B", "C", "K"):
-                        number(
-                            f"{sg}/{key}/all", ss[key][rows], f"State Space {key} Coefficient", ""
-                        )
-                    number(f"{sg}/D/all", ss["D"][rows], "State Space D Coefficient", "")
-                    number(f"{sg}/it", ss["it"][rows], "Order of state space realization", "")
-                    number(f"{sg}/r2t", ss["r2t"][rows], "State space curve fitting R**2 value", "")
-                    number(f"{sg}/conv", ss["conv"][rows], "State space conversion status", "")
+                body = BodyRows(k + 1, start, m)
+                for group in BODY_GROUPS:
+                    group(out, data, body)
                 start += m
         layout = to_capytaine_layout(copy)
         with warnings.catch_warnings():
@@ -265,6 +157,80 @@ def write_bemio(ds: xr.Dataset, path: str | os.PathLike[str], *, model=None) -> 
     return path
 
 
+#: At most this many times of the excitation impulse response written (BEMIO's
+#: ``excitationIRF`` writes 1001 by default); the values at them are exact whatever the step.
+IRF_POINTS = 2001
+
+
+def bemio_data(
+    ds: xr.Dataset, modes: list[int], model, path: Path, excitation_irf: bool = True
+) -> BemioData:
+    """The :class:`~cummins.io.bemio.groups.BemioData` of ``ds`` (z-up, about each
+    body's centre of gravity): matrices, forces, impulse responses, state space."""
+    from cummins.radiation.retardation import (
+        added_mass_inf,
+        default_time_grid,
+        retardation_function,
+    )
+
+    n_bodies = len(modes)
+    labels = [str(d) for d in ds.influenced_dof.values]
+    inf_note = "Infinite frequency added mass (normalized by rho)"
+    if "added_mass_inf" in ds:
+        inf = dof_matrix(ds, "added_mass_inf")
+    else:
+        inf = np.asarray(
+            added_mass_inf(ds).transpose("influenced_dof", "radiating_dof").values, dtype=float
+        )
+        inf_note += "; estimated by cummins from A(w), B(w) (Ogilvie), not computed by the solver"
+    forces = {}
+    for group, name in (
+        ("excitation", "excitation_force"),
+        ("excitation/froude-krylov", "Froude_Krylov_force"),
+        ("excitation/scattering", "diffraction_force"),
+    ):
+        if name in ds:
+            forces[group] = ds[name].transpose("omega", "wave_direction", "influenced_dof").values
+    t = default_time_grid(ds)
+    kernel = retardation_function(ds, t).transpose("time", "influenced_dof", "radiating_dof")
+    exc = None
+    if excitation_irf:
+        from cummins.excitation_model import excitation_irf as irf
+
+        k_ex = irf(ds, max_points=IRF_POINTS).transpose("time", "wave_direction", "influenced_dof")
+        exc = (k_ex.time.values, np.asarray(k_ex.values, dtype=float))
+    rho = float(ds.attrs["rho"])
+    return BemioData(
+        rho=rho,
+        g=float(ds.attrs["g"]),
+        omega=ds.omega.values,
+        directions=ds.wave_direction.values,
+        names=_body_names(ds, n_bodies),
+        cg=_per_body(ds, "center_of_gravity", n_bodies),
+        cb=_per_body(ds, "center_of_buoyancy", n_bodies),
+        volume=_volumes(ds, n_bodies),
+        added=dof_matrix(ds, "added_mass"),
+        damping=dof_matrix(ds, "radiation_damping"),
+        stiffness=dof_matrix(ds, "hydrostatic_stiffness"),
+        added_inf=inf,
+        added_inf_note=inf_note,
+        forces=forces,
+        radiation_irf=(t, np.asarray(kernel.values, dtype=float)),
+        excitation_irf=exc,
+        state_space=_state_space(model, labels, t, rho, path) if model is not None else None,
+        ds=ds,
+    )
+
+
+def _volumes(ds: xr.Dataset, n_bodies: int) -> np.ndarray:
+    """The displaced volume of each body, m³, NaN where the data do not know it."""
+    volume = np.asarray(ds.attrs.get("displaced_volume", np.full(n_bodies, np.nan)), dtype=float)
+    volume = volume.reshape(-1)
+    if volume.size == n_bodies:
+        return np.where(volume > 0, volume, np.nan)
+    return np.full(n_bodies, np.nan)
+
+
 def _about_centre_of_gravity(ds: xr.Dataset, n_bodies: int) -> xr.Dataset:
     """The data about each body's centre of gravity, as WEC-Sim takes them (when it is
     known and not already the reference point)."""
@@ -275,24 +241,6 @@ def _about_centre_of_gravity(ds: xr.Dataset, n_bodies: int) -> xr.Dataset:
     if not np.all(np.isfinite(cg)) or (point.size == cg.size and np.allclose(point, cg)):
         return ds
     return move_reference_point(ds, cg.reshape(n_bodies, 3) if n_bodies > 1 else cg)
-
-
-def _text_writer(f):
-    def write(name: str, value: str) -> None:
-        data = (value or " ").encode("utf-8")
-        f.create_dataset(name, data=np.bytes_(data))
-
-    return write
-
-
-def _number_writer(f):
-    def write(name: str, values, description: str, units: str) -> None:
-        data = np.asarray(values, dtype=float)
-        dset = f.create_dataset(name, data=data, fletcher32=data.size > 0)
-        dset.attrs["description"] = np.bytes_(description or " ")
-        dset.attrs["units"] = np.bytes_(units or " ")
-
-    return write
 
 
 def _modes_per_body(ds: xr.Dataset, path: Path) -> list[int]:

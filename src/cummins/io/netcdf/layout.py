@@ -270,6 +270,8 @@ def _per_body(values: xr.DataArray, names) -> bool:
     if values.dims != ("body",) or "body" not in values.coords or len(names) < 2:
         return False
     return sorted(str(b) for b in values.body.values) == sorted(str(n) for n in names)
+
+
 def restoring_attributes(extra: dict, attrs: dict, rho: float) -> dict:
     """What Capytaine's ``hydrostatic_stiffness`` holds (:mod:`cummins.restoring`): its
     ``compute_hydrostatic_stiffness`` adds the weight of the body's mass (its

@@ -1,0 +1,174 @@
+"""Writing WAMIT numeric files ``.1``, ``.3`` and ``.hst`` from any ``HydroDB``.
+
+So that a Capytaine, NEMOH, AQWA or HAMS run can feed the tools that read WAMIT's
+files — OpenFAST's HydroDyn above all (``PotFile``), and SS_Fitting. The files are
+nondimensional as WAMIT writes them (WAMIT User Manual v7 §4.1; the scales of
+:mod:`cummins.io.wamit`), with ρ, g and ULEN = L given:
+
+* ``.1``   ``PER  I  J  Ā(I,J)  B̄(I,J)``, Ā = A/(ρ L^(3+k_i+k_j)), B̄ = B/(ρ ω L^(3+k_i+k_j)),
+  and the limits without B̄: PER = −1 for ω = 0 (``added_mass_zero``), PER = 0 for ω = ∞
+  (``added_mass_inf``), when the data hold them; the entries nonzero at some frequency
+  (WAMIT leaves structural zeros out), the same in every block;
+* ``.3``   ``PER  β  I  |X̄|  arg X̄  Re X̄  Im X̄``, X̄ = X/(ρ g L^(2+k_i)), β and the phase
+  in degrees, every DOF of every heading;
+* ``.hst`` ``I  J  C̄(I,J)``, C̄ = C/(ρ g L^(2+k_i+k_j)), every entry;
+
+k = 1 for rotations, 0 for translations and generalized modes; PER the period 2π/ω, s.
+Numbers are written as WAMIT prints them, with 7 significant digits (``E14.6``), so a
+file read back gives the data to that precision. Axes are WAMIT's (z up; a ``z-down``
+dataset is converted), moments about the data's ``reference_point`` (WAMIT's body
+origin XBODY), time dependence Re{X e^{iωt}} and the heading the direction of travel,
+as WAMIT's. Not written: the ``.4`` RAOs and the mass properties (``.frc``), which
+HydroDyn does not read.
+"""
+
+from __future__ import annotations
+
+import os
+from pathlib import Path
+
+import numpy as np
+import xarray as xr
+
+from cummins.errors import HydroDataError, check_writable
+from cummins.hydrodb import change_axes, dof_matrix, single_speed
+from cummins.io._common import force_exponents, length_exponents
+
+__all__ = ["write_wamit"]
+
+_NUMBER = "{:14.6E}"
+
+
+def _modes(ds: xr.Dataset) -> list[int]:
+    from cummins.hydrodb import bodies, split_dof
+
+    labels = [str(d) for d in ds.influenced_dof.values]
+    return [sum(1 for lab in labels if split_dof(lab)[0] == body) for body in bodies(ds)]
+
+
+def _periods(omega: np.ndarray) -> np.ndarray:
+    return 2 * np.pi / omega
+
+
+def format_dot1(ds: xr.Dataset, rho: float, length: float) -> str:
+    """The text of the ``.1`` file (module docstring)."""
+    n = ds.sizes["influenced_dof"]
+    scale = rho * length ** length_exponents(n, 3, _modes(ds))
+    w = np.asarray(ds.omega.values, dtype=float)
+    a = dof_matrix(ds, "added_mass") / scale
+    b = dof_matrix(ds, "radiation_damping") / (scale * w[:, None, None])
+    limits = []
+    for mark, name in ((-1.0, "added_mass_zero"), (0.0, "added_mass_inf")):
+        if name in ds:
+            limits.append((mark, dof_matrix(ds, name) / scale))
+    used = np.any(a != 0, axis=0) | np.any(b != 0, axis=0)
+    for _, matrix in limits:
+        used |= matrix != 0
+    pairs = np.argwhere(used)
+    lines = []
+    for mark, matrix in limits:
+        lines += [
+            f"{_NUMBER.format(mark)} {i + 1:5d} {j + 1:5d} {_NUMBER.format(matrix[i, j])}"
+            for i, j in pairs
+        ]
+    order = np.argsort(_periods(w))
+    for k in order:
+        per = _NUMBER.format(_periods(w)[k])
+        lines += [
+            f"{per} {i + 1:5d} {j + 1:5d} {_NUMBER.format(a[k, i, j])} {_NUMBER.format(b[k, i, j])}"
+            for i, j in pairs
+        ]
+    return "\n".join(lines) + "\n"
+
+
+def format_dot3(ds: xr.Dataset, rho: float, g: float, length: float) -> str:
+    """The text of the ``.3`` file (module docstring)."""
+    n = ds.sizes["influenced_dof"]
+    scale = rho * g * length ** force_exponents(n, 2, _modes(ds))
+    w = np.asarray(ds.omega.values, dtype=float)
+    x = ds.excitation_force.transpose("omega", "wave_direction", "influenced_dof").values / scale
+    beta = np.degrees(np.asarray(ds.wave_direction.values, dtype=float))
+    lines = []
+    for k in np.argsort(_periods(w)):
+        per = _NUMBER.format(_periods(w)[k])
+        for h, heading in enumerate(beta):
+            for i in range(n):
+                z = x[k, h, i]
+                values = (abs(z), np.degrees(np.angle(z)), z.real, z.imag)
+                numbers = " ".join(_NUMBER.format(v) for v in values)
+                lines.append(f"{per} {_NUMBER.format(heading)} {i + 1:5d} {numbers}")
+    return "\n".join(lines) + "\n"
+
+
+def format_hst(ds: xr.Dataset, rho: float, g: float, length: float) -> str:
+    """The text of the ``.hst`` file (module docstring)."""
+    n = ds.sizes["influenced_dof"]
+    c = dof_matrix(ds, "hydrostatic_stiffness") / (
+        rho * g * length ** length_exponents(n, 2, _modes(ds))
+    )
+    return (
+        "\n".join(
+            f"{i + 1:6d} {j + 1:5d} {_NUMBER.format(c[i, j])}" for i in range(n) for j in range(n)
+        )
+        + "\n"
+    )
+
+
+def write_wamit(
+    ds: xr.Dataset,
+    path: str | os.PathLike[str],
+    *,
+    ulen: float = 1.0,
+    force: bool = False,
+) -> list[Path]:
+    """Write ``ds`` as WAMIT numeric files: ``<stem>.1``, and ``<stem>.3`` and
+    ``<stem>.hst`` when the data hold the excitation and the hydrostatics.
+
+    Parameters
+    ----------
+    ds
+        A ``HydroDB`` at zero forward speed.
+    path
+        The ``.1`` file (the others take its stem).
+    ulen
+        WAMIT's length scale ULEN, m (HydroDyn's ``WAMITULEN``).
+    force
+        Overwrite existing files.
+
+    Returns
+    -------
+    list of Path
+        The files written.
+
+    Raises
+    ------
+    HydroDataError
+        Forward speed (WAMIT's numeric files hold zero-speed data), a path that is not a
+        ``.1``, a ULEN that is not positive.
+    """
+    path = Path(path)
+    if path.suffix != ".1":
+        raise HydroDataError("a WAMIT run is written as <stem>.1 (with .3 and .hst)", path=path)
+    if not (np.isfinite(ulen) and ulen > 0):
+        raise HydroDataError(f"ULEN must be a positive length, not {ulen!r}", path=path)
+    ds = single_speed(ds)
+    speed = float(ds.forward_speed) if "forward_speed" in ds.coords else 0.0
+    if speed != 0.0:
+        raise HydroDataError(
+            f"the data are at forward speed {speed:g} m/s; WAMIT's numeric files hold "
+            "zero-speed data",
+            path=path,
+        )
+    if ds.attrs.get("axis_convention", "z-up") != "z-up":
+        ds = change_axes(ds, "z-up")
+    rho, g = float(ds.attrs["rho"]), float(ds.attrs["g"])
+    texts = {path: format_dot1(ds, rho, ulen)}
+    if "excitation_force" in ds:
+        texts[path.with_suffix(".3")] = format_dot3(ds, rho, g, ulen)
+    if "hydrostatic_stiffness" in ds:
+        texts[path.with_suffix(".hst")] = format_hst(ds, rho, g, ulen)
+    for target in texts:
+        check_writable(target, force)
+    for target, text in texts.items():
+        target.write_text(text, encoding="utf-8")
+    return list(texts)
