@@ -279,6 +279,33 @@ CASES: dict[str, tuple[list[str], int, str]] = {
     "report-g-negative": (["report", T, "-o", "r.html", "--g", "-9.81"], 2, "--g"),
     "report-rho-nan": (["report", T, "-o", "r.html", "--rho", "nan"], 2, "--rho"),
     "report-ulen-zero": (["report", T, "-o", "r.html", "--ulen", "0"], 2, "--ulen"),
+    # an output over a file the command reads, or two outputs on one file: refused with
+    # --force too (issue 31: --force replaces an earlier output, never the input)
+    **{
+        f"{args[0]}-over-{args[-2]}": (args, 2, "reads")
+        for args in (
+            ["fit", T, "-o", T, "--force"],
+            ["fit", T, "-o", "tanker.hst", "--force"],
+            ["fit", T, "-o", "m.nc", "--openfast", "tanker.frc", "--force"],
+            ["kernel", T, "-o", "tanker.out", "--force"],
+            ["report", T, "-o", "tanker.3", "--force"],
+            ["report", T, "-o", T, "--force"],
+            ["rao", T, "-o", "tanker.3", "--force"],
+            ["simulate", "tanker.nc", "-o", "tanker.nc", "--hs", "2", "--tp", "9", "--force"],
+            ["convert", "tanker.nc", "tanker.nc", "--force"],
+            ["check", T, "--json", "tanker.hst", "--force"],
+        )
+    },
+    "fit-json-on-output": (
+        ["fit", T, "-o", "old.nc", "--json", "./old.nc", "--force"],
+        2,
+        "--output old.nc and --json old.nc name one file",
+    ),
+    "reduce-json-on-output": (
+        ["reduce", "tanker.nc", "-o", "old.json", "--json", "old.json", "--order", "9", "--force"],
+        2,
+        "one file",
+    ),
 }
 
 

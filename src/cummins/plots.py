@@ -15,6 +15,7 @@ import xarray as xr
 from matplotlib.figure import Figure
 
 from cummins.errors import check_writable
+from cummins.files import replacing
 from cummins.hydrodb import is_rotation
 
 
@@ -185,7 +186,8 @@ def save_figure(
     p = Path(path)
     check_writable(p, force)
     p.parent.mkdir(parents=True, exist_ok=True)
-    fig.savefig(p, dpi=dpi)
+    with replacing(p) as tmp:
+        fig.savefig(tmp, dpi=dpi, format=p.suffix.lstrip(".").lower() or "png")
     return p
 
 

@@ -12,6 +12,7 @@ from rich.table import Table
 from cummins.cli.common import (
     console,
     force_option,
+    note_inputs,
     prepare_outputs,
     progress_bar,
     reports_errors,
@@ -97,6 +98,7 @@ def batch_command(study_file, output, scheduler, workers, example, force):
         raise click.BadParameter(f"{study_path} does not exist", param_hint="STUDY")
     study = load_study(study_path)
     _require_dask()
+    note_inputs(study_path, study.data, study.model)
     prepare_outputs(output, force=force)
     n = len(study.all_cases)
     console.print(

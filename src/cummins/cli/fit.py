@@ -27,6 +27,7 @@ from cummins.cli.common import (
     speed_option,
 )
 from cummins.dofs import split_dof
+from cummins.files import write_text
 
 
 @click.command(name="fit")
@@ -267,7 +268,7 @@ def fit_command(
     model.save(output, force=force)
     console.print(f"wrote {output}")
     if json_path:
-        Path(json_path).write_text(json.dumps(summary, indent=2) + "\n", encoding="utf-8")
+        write_text(json_path, json.dumps(summary, indent=2) + "\n")
         console.print(f"wrote {json_path}")
     if openfast:
         from cummins.io.openfast import write_openfast_ss

@@ -19,6 +19,7 @@ from cummins.cli.common import (
     select_speed,
     speed_option,
 )
+from cummins.files import replacing
 
 
 @click.command(name="kernel")
@@ -144,7 +145,8 @@ def kernel_command(
         say=console.print,
     )
     console.print(kernel_table(result))
-    result.to_netcdf(output, engine="h5netcdf")
+    with replacing(output) as tmp:
+        result.to_netcdf(tmp, engine="h5netcdf")
     console.print(f"wrote {output}")
     if plot_dir:
         for file in write_kernel_plots(result, ds, Path(plot_dir), force=force):

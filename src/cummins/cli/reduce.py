@@ -4,7 +4,6 @@ from __future__ import annotations
 
 import json
 import sys
-from pathlib import Path
 
 import click
 import numpy as np
@@ -22,6 +21,7 @@ from cummins.cli.common import (
     select_speed,
     speed_option,
 )
+from cummins.files import write_text
 
 
 @click.command(name="reduce")
@@ -164,7 +164,7 @@ def reduce_command(
     reduced.save(output, force=force)
     console.print(f"wrote {output}")
     if json_path:
-        Path(json_path).write_text(json.dumps(summary, indent=2) + "\n", encoding="utf-8")
+        write_text(json_path, json.dumps(summary, indent=2) + "\n")
         console.print(f"wrote {json_path}")
     failures = [
         f for f in reduced.attrs.get("failures", []) if f not in model.attrs.get("failures", [])

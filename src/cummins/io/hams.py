@@ -47,6 +47,7 @@ import numpy as np
 import xarray as xr
 
 from cummins.errors import HydroDataError
+from cummins.files import note_read
 from cummins.io._common import warn_damage
 from cummins.io._text import check_cut_numbers, parse_numbers
 from cummins.io.wamit import RunSettings, _parse_dot1, _read_text, numeric_kind, read_wamit_run
@@ -347,6 +348,7 @@ def _constants(output: Path) -> tuple[float | None, float | None, str | None, di
     """ρ, g, the file they come from, and the depth, reference length and centre the run
     used, as printed in the Hydrostar_format headers of an output."""
     for f in sorted((output / "Hydrostar_format").glob("*.rao"))[:1]:
+        note_read(f)
         head = f.read_text(errors="replace").splitlines()[:16]
         found: dict = {}
         for line in head:

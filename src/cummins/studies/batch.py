@@ -56,6 +56,7 @@ import numpy as np
 import xarray as xr
 
 from cummins.errors import CumminsError, check_writable
+from cummins.files import replacing
 from cummins.studies.study import (
     _BLAS_ENV,
     _RESULT_KIND,
@@ -328,9 +329,8 @@ def _save_part(folder: Path, case_id: str, case: Case, values: dict[str, Any]) -
         "values": values,
         "cummins_version": __version__,
     }
-    tmp = folder / f".{case_id}.tmp"
-    tmp.write_text(json.dumps(record), encoding="utf-8")
-    os.replace(tmp, folder / f"{case_id}.json")
+    with replacing(folder / f"{case_id}.json") as tmp:
+        tmp.write_text(json.dumps(record), encoding="utf-8")
 
 
 def _load_parts(folder: Path, wanted: dict[str, Case]) -> tuple[dict[str, dict], int]:

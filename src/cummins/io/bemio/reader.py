@@ -16,6 +16,7 @@ import numpy as np
 import xarray as xr
 
 from cummins.errors import HydroDataError
+from cummins.files import note_read
 from cummins.hydrodb import dof_labels, make_hydrodb
 from cummins.io._common import warn_damage
 from cummins.io.bemio.files import (
@@ -63,6 +64,7 @@ def read_bemio(
     path = Path(path)
     if not path.is_file():
         raise HydroDataError("file not found", path=path)
+    note_read(path)
     try:
         with h5py.File(path, "r") as f:
             ds = _read_open(f, path, rho, g)

@@ -16,6 +16,7 @@ import xarray as xr
 
 from cummins._version import __version__
 from cummins.errors import HydroDataError
+from cummins.files import replacing
 from cummins.hydrodb import (
     DOF_NAMES,
     bodies,
@@ -140,126 +141,136 @@ def write_bemio(ds: xr.Dataset, path: str | os.PathLike[str], *, model=None) -> 
     )
     ss = _state_space(model, labels, t, rho, path) if model is not None else None
 
-    tmp = path.with_name(f".{path.name}.tmp")
     try:
-        with h5py.File(tmp, "w") as f:
-            text = _text_writer(f)
-            number = _number_writer(f)
-            text("bem_data/code", str(ds.attrs.get("bem_code", ds.attrs.get("source_format", ""))))
-            text("cummins_version", __version__)
-            depth = float(ds.attrs.get("water_depth", np.inf))
-            if np.isinf(depth):
-                text("simulation_parameters/water_depth", "infinite")
-            else:
-                number("simulation_parameters/water_depth", [[depth]], "Water depth", "m")
-            number("simulation_parameters/scaled", [[0.0]], "", "")
-            number("simulation_parameters/g", [[g]], "Gravitational acceleration", "m/s^2")
-            number("simulation_parameters/rho", [[rho]], "Water density", "kg/m^3")
-            number("simulation_parameters/T", (2 * np.pi / omega)[:, None], "Wave periods", "s")
-            number("simulation_parameters/w", omega[:, None], "Wave frequencies", "rad/s")
-            number(
-                "simulation_parameters/wave_dir",
-                np.degrees(ds.wave_direction.values)[:, None],
-                "Wave direction",
-                "deg",
-            )
-            start = 0
-            for k, m in enumerate(modes):
-                rows = slice(start, start + m)
-                body = f"body{k + 1}"
-                text(f"{body}/properties/name", names[k])
-                number(
-                    f"{body}/properties/body_number",
-                    [[k + 1.0]],
-                    "Number of rigid body from the BEM simulation",
-                    "",
+        with replacing(path) as tmp:
+            with h5py.File(tmp, "w") as f:
+                text = _text_writer(f)
+                number = _number_writer(f)
+                text(
+                    "bem_data/code",
+                    str(ds.attrs.get("bem_code", ds.attrs.get("source_format", ""))),
                 )
-                number(f"{body}/properties/cb", cb[k][:, None], "Center of buoyancy", "m")
-                number(f"{body}/properties/cg", cg[k][:, None], "Center of gravity", "m")
-                number(f"{body}/properties/disp_vol", [[volume[k]]], "Displaced volume", "m^3")
-                number(f"{body}/properties/dof", [[float(m)]], "Degrees of freedom", "")
-                number(f"{body}/properties/dof_start", [[start + 1.0]], "Degrees of freedom", "")
-                number(f"{body}/properties/dof_end", [[start + float(m)]], "Degrees of freedom", "")
-                hc = f"{body}/hydro_coeffs"
+                text("cummins_version", __version__)
+                depth = float(ds.attrs.get("water_depth", np.inf))
+                if np.isinf(depth):
+                    text("simulation_parameters/water_depth", "infinite")
+                else:
+                    number("simulation_parameters/water_depth", [[depth]], "Water depth", "m")
+                number("simulation_parameters/scaled", [[0.0]], "", "")
+                number("simulation_parameters/g", [[g]], "Gravitational acceleration", "m/s^2")
+                number("simulation_parameters/rho", [[rho]], "Water density", "kg/m^3")
+                number("simulation_parameters/T", (2 * np.pi / omega)[:, None], "Wave periods", "s")
+                number("simulation_parameters/w", omega[:, None], "Wave frequencies", "rad/s")
                 number(
-                    f"{hc}/linear_restoring_stiffness",
-                    stiffness[rows, rows] / (rho * g),
-                    "Hydrostatic stiffness matrix (normalized by rho*g)",
-                    "N/m",
+                    "simulation_parameters/wave_dir",
+                    np.degrees(ds.wave_direction.values)[:, None],
+                    "Wave direction",
+                    "deg",
                 )
-                number(f"{hc}/added_mass/inf_freq", inf[rows, :] / rho, inf_note, "kg")
-                number(
-                    f"{hc}/added_mass/all",
-                    np.transpose(added[:, rows, :], (1, 2, 0)) / rho,
-                    "Added mass (normalized by rho)",
-                    "kg",
-                )
-                number(
-                    f"{hc}/radiation_damping/all",
-                    np.transpose(damping[:, rows, :] / omega[:, None, None], (1, 2, 0)) / rho,
-                    "Radiation damping (normalized by rho*w)",
-                    "N-s/m",
-                )
-                for group, values in forces.items():
-                    part = np.transpose(values[:, :, rows], (2, 1, 0)) / (rho * g)
-                    what = {
-                        "excitation": "excitation",
-                        "excitation/froude-krylov": "Froude-Krylov",
-                        "excitation/scattering": "scattering",
-                    }[group]
-                    for key, data, unit in (
-                        ("re", part.real, "N"),
-                        ("im", part.imag, "N"),
-                        ("mag", np.abs(part), "N"),
-                        ("phase", np.angle(part), "rad"),
-                    ):
+                start = 0
+                for k, m in enumerate(modes):
+                    rows = slice(start, start + m)
+                    body = f"body{k + 1}"
+                    text(f"{body}/properties/name", names[k])
+                    number(
+                        f"{body}/properties/body_number",
+                        [[k + 1.0]],
+                        "Number of rigid body from the BEM simulation",
+                        "",
+                    )
+                    number(f"{body}/properties/cb", cb[k][:, None], "Center of buoyancy", "m")
+                    number(f"{body}/properties/cg", cg[k][:, None], "Center of gravity", "m")
+                    number(f"{body}/properties/disp_vol", [[volume[k]]], "Displaced volume", "m^3")
+                    number(f"{body}/properties/dof", [[float(m)]], "Degrees of freedom", "")
+                    number(
+                        f"{body}/properties/dof_start", [[start + 1.0]], "Degrees of freedom", ""
+                    )
+                    number(
+                        f"{body}/properties/dof_end", [[start + float(m)]], "Degrees of freedom", ""
+                    )
+                    hc = f"{body}/hydro_coeffs"
+                    number(
+                        f"{hc}/linear_restoring_stiffness",
+                        stiffness[rows, rows] / (rho * g),
+                        "Hydrostatic stiffness matrix (normalized by rho*g)",
+                        "N/m",
+                    )
+                    number(f"{hc}/added_mass/inf_freq", inf[rows, :] / rho, inf_note, "kg")
+                    number(
+                        f"{hc}/added_mass/all",
+                        np.transpose(added[:, rows, :], (1, 2, 0)) / rho,
+                        "Added mass (normalized by rho)",
+                        "kg",
+                    )
+                    number(
+                        f"{hc}/radiation_damping/all",
+                        np.transpose(damping[:, rows, :] / omega[:, None, None], (1, 2, 0)) / rho,
+                        "Radiation damping (normalized by rho*w)",
+                        "N-s/m",
+                    )
+                    for group, values in forces.items():
+                        part = np.transpose(values[:, :, rows], (2, 1, 0)) / (rho * g)
+                        what = {
+                            "excitation": "excitation",
+                            "excitation/froude-krylov": "Froude-Krylov",
+                            "excitation/scattering": "scattering",
+                        }[group]
+                        for key, data, unit in (
+                            ("re", part.real, "N"),
+                            ("im", part.imag, "N"),
+                            ("mag", np.abs(part), "N"),
+                            ("phase", np.angle(part), "rad"),
+                        ):
+                            number(
+                                f"{hc}/{group}/{key}",
+                                data,
+                                f"{key} of {what} force (normalized by rho*g)",
+                                unit,
+                            )
+                    irf = f"{hc}/radiation_damping/impulse_response_fun"
+                    number(
+                        f"{irf}/K",
+                        np.transpose(kernel[:, rows, :], (1, 2, 0)),
+                        "Impulse response function (normalized by rho)",
+                        "",
+                    )
+                    number(
+                        f"{irf}/t", t[:, None], "Time vector for the impulse resonse function", "s"
+                    )
+                    number(
+                        f"{irf}/w",
+                        omega[:, None],
+                        "Frequencies of the data the impulse response function integrates",
+                        "rad/s",
+                    )
+                    if ss is not None:
+                        sg = f"{hc}/radiation_damping/state_space"
+                        for key in ("A", "B", "C", "K"):
+                            number(
+                                f"{sg}/{key}/all",
+                                ss[key][rows],
+                                f"State Space {key} Coefficient",
+                                "",
+                            )
+                        number(f"{sg}/D/all", ss["D"][rows], "State Space D Coefficient", "")
+                        number(f"{sg}/it", ss["it"][rows], "Order of state space realization", "")
                         number(
-                            f"{hc}/{group}/{key}",
-                            data,
-                            f"{key} of {what} force (normalized by rho*g)",
-                            unit,
+                            f"{sg}/r2t", ss["r2t"][rows], "State space curve fitting R**2 value", ""
                         )
-                irf = f"{hc}/radiation_damping/impulse_response_fun"
-                number(
-                    f"{irf}/K",
-                    np.transpose(kernel[:, rows, :], (1, 2, 0)),
-                    "Impulse response function (normalized by rho)",
-                    "",
+                        number(f"{sg}/conv", ss["conv"][rows], "State space conversion status", "")
+                    start += m
+            layout = to_capytaine_layout(copy)
+            with warnings.catch_warnings():
+                warnings.simplefilter("ignore", category=FutureWarning)
+                layout.to_netcdf(
+                    tmp,
+                    mode="a",
+                    group=COPY_GROUP,
+                    engine="h5netcdf",
+                    encoding=_checksum_encoding(layout),
                 )
-                number(f"{irf}/t", t[:, None], "Time vector for the impulse resonse function", "s")
-                number(
-                    f"{irf}/w",
-                    omega[:, None],
-                    "Frequencies of the data the impulse response function integrates",
-                    "rad/s",
-                )
-                if ss is not None:
-                    sg = f"{hc}/radiation_damping/state_space"
-                    for key in ("A", "B", "C", "K"):
-                        number(
-                            f"{sg}/{key}/all", ss[key][rows], f"State Space {key} Coefficient", ""
-                        )
-                    number(f"{sg}/D/all", ss["D"][rows], "State Space D Coefficient", "")
-                    number(f"{sg}/it", ss["it"][rows], "Order of state space realization", "")
-                    number(f"{sg}/r2t", ss["r2t"][rows], "State space curve fitting R**2 value", "")
-                    number(f"{sg}/conv", ss["conv"][rows], "State space conversion status", "")
-                start += m
-        layout = to_capytaine_layout(copy)
-        with warnings.catch_warnings():
-            warnings.simplefilter("ignore", category=FutureWarning)
-            layout.to_netcdf(
-                tmp,
-                mode="a",
-                group=COPY_GROUP,
-                engine="h5netcdf",
-                encoding=_checksum_encoding(layout),
-            )
-        os.replace(tmp, path)
     except OSError as exc:
         raise HydroDataError(f"cannot write the file ({exc})", path=path) from None
-    finally:
-        if tmp.exists():
-            tmp.unlink()
     return path
 
 
