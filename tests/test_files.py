@@ -41,16 +41,21 @@ def test_an_output_on_an_input_is_refused_through_a_hard_link(tmp_path):
 
 
 def test_two_outputs_on_one_file_are_refused(tmp_path):
-    with pytest.raises(ArgumentError, match="--output m.nc and --json m.nc name one file"):
+    with pytest.raises(ArgumentError, match=r"--output m\.nc and --json m\.nc name one file"):
         refuse_overwriting_inputs(["m.nc", "./m.nc"], [], labels=["--output", "--json"])
 
 
 def test_a_failed_write_leaves_the_earlier_file_and_no_temporary(tmp_path):
     target = tmp_path / "model.nc"
     target.write_text("earlier result")
-    with pytest.raises(RuntimeError), replacing(target) as tmp:
-        tmp.write_text("half")
-        raise RuntimeError("the fit failed")
+
+    def fail() -> None:
+        with replacing(target) as tmp:
+            tmp.write_text("half")
+            raise RuntimeError("the fit failed")
+
+    with pytest.raises(RuntimeError):
+        fail()
     assert target.read_text() == "earlier result"
     assert sorted(p.name for p in tmp_path.iterdir()) == ["model.nc"]
 
