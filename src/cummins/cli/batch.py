@@ -18,9 +18,10 @@ from cummins.cli.common import (
     reports_errors,
     run_reporting_errors,
 )
+from cummins.cli.option_rules import Command
 
 
-@click.command(name="batch")
+@click.command(name="batch", cls=Command)
 @click.argument("study_file", metavar="STUDY", type=click.Path(dir_okay=False))
 @click.option(
     "-o",

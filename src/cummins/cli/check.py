@@ -15,10 +15,11 @@ from cummins.cli.common import (
     read_options,
     reports_errors,
 )
+from cummins.cli.option_rules import Command
 from cummins.files import write_text
 
 
-@click.command(name="check")
+@click.command(name="check", cls=Command)
 @click.argument("path", type=click.Path(exists=True))
 @read_options
 @click.option(

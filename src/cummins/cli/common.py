@@ -1,11 +1,11 @@
-"""Pieces shared by the ``cummins`` commands: consoles, error reporting, read options."""
+"""Pieces shared by the ``cummins`` commands: consoles, error reporting, read options;
+:func:`prepare_outputs` and :func:`note_inputs` (from :mod:`cummins.cli.outputs`)."""
 
 from __future__ import annotations
 
 import contextlib
 import functools
 import math
-import os
 import sys
 import warnings
 from collections.abc import Iterator
@@ -18,14 +18,16 @@ from rich.console import Console
 from rich.markup import escape
 from rich.progress import BarColumn, Progress, TaskProgressColumn, TextColumn, TimeElapsedColumn
 
+from cummins.cli.option_rules import refuse_repeated
+from cummins.cli.outputs import note_inputs
+from cummins.cli.outputs import prepare_outputs as prepare_outputs  # for the commands
 from cummins.errors import (
     ArgumentError,
     CumminsError,
     CumminsWarning,
     OutputExistsError,
-    check_writable,
 )
-from cummins.files import files_read, refuse_overwriting_inputs
+from cummins.files import files_read
 
 console = Console(highlight=False, soft_wrap=True)
 err_console = Console(stderr=True, highlight=False, soft_wrap=True)
@@ -168,6 +170,52 @@ def finite(unit: str = "") -> Number:
     return Number(unit=unit)
 
 
+#: Headings, wave and wind directions: degrees in one turn either way (a larger value is
+#: a typing error, not a direction).
+HEADING_RANGE = (-360.0, 360.0)
+
+
+def heading_degrees(unit: str = "deg") -> Number:
+    """A direction in degrees within ±360 (:data:`HEADING_RANGE`)."""
+    return Number(*HEADING_RANGE, unit=unit)
+
+
+def headings_list(values, option: str = "--headings") -> list[float]:
+    """Directions in degrees from a repeatable option (``--headings 0 --headings 90,180``:
+    commas or spaces), each finite and within one turn (:data:`HEADING_RANGE`), none twice
+    (0 and 360 are one direction)."""
+    out: list[float] = []
+    for value in values:
+        for part in str(value).replace(",", " ").split():
+            try:
+                x = float(part)
+            except ValueError:
+                x = math.nan
+            if not math.isfinite(x):
+                raise click.BadParameter(
+                    f"{part!r} is not a finite number of degrees", param_hint=option
+                )
+            if not HEADING_RANGE[0] <= x <= HEADING_RANGE[1]:
+                raise click.BadParameter(
+                    f"{part} deg is beyond one turn ({HEADING_RANGE[0]:g} to "
+                    f"{HEADING_RANGE[1]:g} deg)",
+                    param_hint=option,
+                )
+            twin = [
+                y
+                for y in out
+                if math.isclose((x - y) % 360.0, 0.0, abs_tol=1e-9)
+                or math.isclose((x - y) % 360.0, 360.0, abs_tol=1e-9)
+            ]
+            if twin:
+                raise click.BadParameter(
+                    f"{twin[0]:g} and {x:g} deg are one direction; give each once",
+                    param_hint=option,
+                )
+            out.append(x)
+    return out
+
+
 def speed_option(help: str = "Forward speed to use when the data hold several."):
     """--speed M/S (a finite number of m/s), passed as ``speed``."""
     return click.option("--speed", type=finite("m/s"), default=None, metavar="M/S", help=help)
@@ -187,7 +235,7 @@ def viscous_damping_option(func):
         multiple=True,
         metavar="DOF VALUE",
         help="Linear viscous damping B_v on a DOF, e.g. --viscous-damping Roll 5e8 (kg/s, "
-        "kg m^2/s; repeatable, repeated values add up). Surge, sway and yaw have no "
+        "kg m^2/s; repeatable, once per DOF). Surge, sway and yaw have no "
         "restoring: without it they drift in a simulation.",
     )(func)
 
@@ -199,6 +247,7 @@ def viscous_damping_values(
     none)."""
     if not pairs:
         return None
+    refuse_repeated(pairs, option, key=lambda pair: pair[0])
     values: dict[str, float] = {}
     for dof, value in pairs:
         if dof not in labels:
@@ -206,7 +255,7 @@ def viscous_damping_values(
                 f"unknown DOF {dof!r}; the data have {', '.join(labels)}",
                 param_hint=option,
             )
-        values[dof] = values.get(dof, 0.0) + value
+        values[dof] = value
     return values
 
 
@@ -390,6 +439,7 @@ def complete_equation_of_motion(
     terms = {}
     for name, given in (("stiffness", external_stiffness), ("damping", external_damping)):
         if given:
+            refuse_repeated(given, f"--external-{name}", key=lambda t: (t[0], t[1]), what="pair")
             values: dict[tuple[str, str], float] = {}
             for i, j, value in given:
                 for dof in (i, j):
@@ -398,151 +448,9 @@ def complete_equation_of_motion(
                             f"unknown DOF {dof!r}; the data have {', '.join(labels)}",
                             param_hint=f"--external-{name}",
                         )
-                values[(i, j)] = values.get((i, j), 0.0) + value
+                values[(i, j)] = value
             terms[name] = values
     return with_external_terms(ds, **terms) if terms else ds
-
-
-#: Where the files a command reads and writes are kept (``click.Context.meta``).
-_FILES_KEY = "cummins.files"
-
-
-def _command_files() -> dict[str, list[Path]] | None:
-    context = click.get_current_context(silent=True)
-    if context is None:
-        return None
-    return context.meta.setdefault(_FILES_KEY, {"inputs": [], "outputs": []})
-
-
-def _parameters() -> list[tuple[click.Parameter, str, list]]:
-    """The command's parameters with a label (the longest option name, or the argument's
-    name) and the paths among their values."""
-    context = click.get_current_context(silent=True)
-    if context is None:
-        return []
-    out = []
-    for param in context.command.params:
-        value = context.params.get(param.name or "")
-        values = list(value) if isinstance(value, (list, tuple)) else [value]
-        if isinstance(param, click.Option):
-            label = max(param.opts, key=len)
-        else:
-            label = param.human_readable_name
-        out.append((param, label, [v for v in values if isinstance(v, (str, os.PathLike))]))
-    return out
-
-
-def _output_labels(outputs: list[Path]) -> list[str | None]:
-    """The option (or argument) each output was given as, in order: options first, then
-    arguments from the last (outputs follow inputs on a command line)."""
-    params = _parameters()
-    ordered = [p for p in params if isinstance(p[0], click.Option)]
-    ordered += [p for p in reversed(params) if not isinstance(p[0], click.Option)]
-    used: set[tuple[int, int]] = set()
-    labels: list[str | None] = []
-    for path in outputs:
-        label = None
-        for k, (_, name, values) in enumerate(ordered):
-            for m, value in enumerate(values):
-                if (k, m) not in used and Path(value) == Path(path):
-                    used.add((k, m))
-                    label = name
-                    break
-            if label:
-                break
-        labels.append(label)
-    return labels
-
-
-def _argument_inputs(outputs: list[Path]) -> list[Path]:
-    """The command's positional arguments that name existing files (DATA, MODEL, PATH …):
-    inputs known before anything is read. An argument is an output (``convert``'s
-    DESTINATION) when its value is an output that no option gives."""
-    params = _parameters()
-    by_options = {
-        os.fspath(v)
-        for param, _, values in params
-        if isinstance(param, click.Option)
-        for v in values
-    }
-    wanted = {os.fspath(o) for o in outputs}
-    found = []
-    for param, _, values in params:
-        if isinstance(param, click.Option):
-            continue
-        for value in values:
-            path = Path(value)
-            is_output = os.fspath(path) in wanted and os.fspath(path) not in by_options
-            if path.is_file() and not is_output:
-                found.append(path)
-    return found
-
-
-def note_inputs(*paths) -> None:
-    """Record files the command reads (:func:`read_hydrodb` adds a run's companion files:
-    :func:`cummins.files.files_read`); an output of the same command that is one of them
-    is refused (:func:`cummins.files.refuse_overwriting_inputs`), ``--force`` or not."""
-    files = _command_files()
-    if files is None:
-        return
-    files["inputs"].extend(Path(p) for p in paths if p)
-    refuse_overwriting_inputs(
-        files["outputs"], files["inputs"], labels=_output_labels(files["outputs"])
-    )
-
-
-def prepare_outputs(*paths, force: bool, folders=()) -> None:
-    """Before any work: refuse to overwrite without ``--force``, refuse a path under an
-    existing file (or a folder where a file is to be written), two outputs on one file,
-    and an output over a file the command reads (:func:`note_inputs`: whichever of the
-    two is called first, the second refuses), create missing folders.
-
-    ``folders`` are output folders (``--plot DIR``): checked the same way, not created.
-    """
-    files = [Path(p) for p in paths if p]
-    dirs = [Path(p) for p in folders if p]
-    known = _command_files()
-    if known is not None:
-        known["inputs"].extend(_argument_inputs(files))
-        known["outputs"].extend(files)
-        refuse_overwriting_inputs(
-            known["outputs"], known["inputs"], labels=_output_labels(known["outputs"])
-        )
-    else:
-        refuse_overwriting_inputs(files, ())
-    for path in files:
-        if path.is_dir() and path.suffix.lower() != ".zarr":  # a Zarr store is a folder
-            raise ArgumentError(
-                f"{path} is a folder: cannot write a file there",
-                hint="Give the name of a file",
-            )
-        check_writable(path, force)
-    for path in [*files, *dirs]:
-        _check_parents(path)
-    for path in dirs:
-        if path.exists() and not path.is_dir():
-            raise ArgumentError(
-                f"{path} is a file, not a folder", hint="Give the name of a folder for the output"
-            )
-    for path in files:
-        path.parent.mkdir(parents=True, exist_ok=True)
-
-
-def _check_parents(path: Path) -> None:
-    """ArgumentError when a folder above ``path`` exists as a file or is not writable."""
-    for parent in path.parents:
-        if parent.exists():
-            if not parent.is_dir():
-                raise ArgumentError(
-                    f"cannot write {path}: {parent} is a file, not a folder",
-                    hint="Choose an output path in a folder",
-                )
-            if not os.access(parent, os.W_OK | os.X_OK):
-                raise ArgumentError(
-                    f"cannot write {path}: the folder {parent} is not writable",
-                    hint="Choose an output path in a folder you may write to",
-                )
-            return
 
 
 def select_speed(ds, speed: float | None):

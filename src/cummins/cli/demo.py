@@ -18,6 +18,7 @@ import numpy as np
 
 from cummins.check import check
 from cummins.cli.common import console, force_option, prepare_outputs, reports_errors
+from cummins.cli.option_rules import Command
 from cummins.cli.pipeline import kernel_stage, write_kernel_plots
 from cummins.errors import check_writable
 from cummins.hydrodb import change_axes, describe, move_reference_point
@@ -339,7 +340,7 @@ def _dp_step(out: Path, force: bool) -> DemoStep:
     )
 
 
-@click.command(name="demo")
+@click.command(name="demo", cls=Command)
 @click.option(
     "-o",
     "--output",

@@ -8,18 +8,19 @@ import click
 
 from cummins.cli.common import (
     console,
-    finite,
     force_option,
+    heading_degrees,
     non_negative,
     positive,
     prepare_outputs,
     progress_bar,
     reports_errors,
 )
+from cummins.cli.option_rules import Command, option_rules
 from cummins.validation import check_simulation_size
 
 
-@click.command(name="dp-demo")
+@click.command(name="dp-demo", cls=Command)
 @click.option(
     "-o",
     "--output",
@@ -53,7 +54,9 @@ from cummins.validation import check_simulation_size
     metavar="M/S",
     help="Current speed (from --current-from).",
 )
-@click.option("--current-from", type=finite("deg"), default=0.0, show_default=True, metavar="DEG")
+@click.option(
+    "--current-from", type=heading_degrees(), default=0.0, show_default=True, metavar="DEG"
+)
 @click.option(
     "--wind",
     "wind_speed",
@@ -63,7 +66,7 @@ from cummins.validation import check_simulation_size
     metavar="M/S",
     help="Mean wind speed at 10 m, with NORSOK gusts.",
 )
-@click.option("--wind-from", type=finite("deg"), default=30.0, show_default=True, metavar="DEG")
+@click.option("--wind-from", type=heading_degrees(), default=30.0, show_default=True, metavar="DEG")
 @click.option(
     "--data",
     "data_path",
@@ -72,6 +75,12 @@ from cummins.validation import check_simulation_size
     help="Another copy of MSS's s175.mat (default: the one bundled with cummins).",
 )
 @force_option("Overwrite the files of an earlier run.")
+@option_rules(
+    needs={
+        "current_from": ("current_speed", lambda v: v > 0, "above 0"),
+        "wind_from": ("wind_speed", lambda v: v > 0, "above 0"),
+    }
+)
 @reports_errors
 def dp_demo_command(
     folder,

@@ -8,9 +8,10 @@ import click
 from rich.table import Table
 
 from cummins.cli.common import console, read_hydrodb, read_options, reports_errors
+from cummins.cli.option_rules import Command
 
 
-@click.command(name="info")
+@click.command(name="info", cls=Command)
 @click.argument("path", type=click.Path(exists=True))
 @read_options
 @click.option("--json", "as_json", is_flag=True, help="Print the description as JSON.")

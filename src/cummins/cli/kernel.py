@@ -19,10 +19,11 @@ from cummins.cli.common import (
     select_speed,
     speed_option,
 )
+from cummins.cli.option_rules import Command, option_rules
 from cummins.files import replacing
 
 
-@click.command(name="kernel")
+@click.command(name="kernel", cls=Command)
 @click.argument("path", type=click.Path(exists=True))
 @read_options
 @click.option(
@@ -93,6 +94,7 @@ from cummins.files import replacing
 )
 @speed_option()
 @force_option()
+@option_rules(needs={"above_first": "remove_suspect"})
 @reports_errors
 def kernel_command(
     path,

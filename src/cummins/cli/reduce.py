@@ -21,10 +21,11 @@ from cummins.cli.common import (
     select_speed,
     speed_option,
 )
+from cummins.cli.option_rules import Command, option_rules
 from cummins.files import write_text
 
 
-@click.command(name="reduce")
+@click.command(name="reduce", cls=Command)
 @click.argument("model_path", metavar="MODEL", type=click.Path(exists=True, dir_okay=False))
 @click.option(
     "-o",
@@ -90,6 +91,7 @@ from cummins.files import write_text
     help="Write a summary as JSON.",
 )
 @force_option()
+@option_rules(needs={"speed": "data_path"})
 @reports_errors
 def reduce_command(
     model_path,

@@ -10,8 +10,8 @@ import numpy as np
 from cummins.cli.common import (
     Number,
     console,
-    finite,
     force_option,
+    heading_degrees,
     model_and_data,
     non_negative,
     positive,
@@ -25,10 +25,11 @@ from cummins.cli.common import (
     viscous_damping_option,
     viscous_damping_values,
 )
+from cummins.cli.option_rules import Command, option_rules
 from cummins.validation import check_simulation_size
 
 
-@click.command(name="simulate")
+@click.command(name="simulate", cls=Command)
 @click.argument("path", metavar="DATA|MODEL", type=click.Path(exists=True))
 @read_options
 @click.option(
@@ -50,7 +51,7 @@ from cummins.validation import check_simulation_size
 )
 @click.option(
     "--heading",
-    type=finite("deg"),
+    type=heading_degrees(),
     default=180.0,
     show_default=True,
     metavar="DEG",
@@ -150,6 +151,19 @@ from cummins.validation import check_simulation_size
     help="PNGs: time series and response spectra against the frequency domain.",
 )
 @force_option()
+@option_rules(
+    needs={
+        "wave_period": "regular",
+        "wave_amplitude": "regular",
+        "directions": "spreading",
+        "gamma": ("spectrum", "jonswap"),
+        "soft_springs": "speed",
+    },
+    excludes=tuple(
+        ("regular", name)
+        for name in ("hs", "tp", "spectrum", "gamma", "spreading", "components", "seed")
+    ),
+)
 @reports_errors
 def simulate_command(
     path,

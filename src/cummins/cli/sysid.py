@@ -13,8 +13,8 @@ from rich.markup import escape
 from cummins.cli.common import (
     console,
     err_console,
-    finite,
     force_option,
+    heading_degrees,
     model_and_data,
     non_negative,
     positive,
@@ -27,9 +27,10 @@ from cummins.cli.common import (
     viscous_damping_option,
     viscous_damping_values,
 )
+from cummins.cli.option_rules import Command, option_rules
 
 
-@click.command(name="identify-damping")
+@click.command(name="identify-damping", cls=Command)
 @click.argument("records", nargs=-1, required=True, type=click.Path(exists=True, dir_okay=False))
 @click.option(
     "--model",
@@ -95,7 +96,7 @@ from cummins.cli.common import (
 )
 @click.option(
     "--heading",
-    type=finite("deg"),
+    type=heading_degrees(),
     default=None,
     metavar="DEG",
     help="Wave direction, for records holding a wave elevation instead of forces.",
@@ -145,6 +146,7 @@ from cummins.cli.common import (
     help="Folder for damping.json and the PNG figures.",
 )
 @force_option("Overwrite the report's files.")
+@option_rules(needs={"inertia": "decay", "stiffness": "decay", "max_lag": "align"})
 @reports_errors
 def identify_damping_command(
     records,

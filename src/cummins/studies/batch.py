@@ -71,6 +71,7 @@ from cummins.studies.study import (
     load_study,
     parse_limit_value,
 )
+from cummins.validation import check_memory, simulation_memory, time_steps
 
 __all__ = [
     "ANALYSES",
@@ -130,6 +131,7 @@ def prepare_study(study: Study) -> tuple[StudyContext, str]:
                 f"{at_key(study.source, f'viscous_damping.{dof}')}: the data have no DOF {dof!r}",
                 hint=f"DOFs: {', '.join(labels)}",
             )
+    check_study_size(study, len(labels))
     digest = hashlib.sha256(_dataset_digest(ds).encode())
     damping = dict(study.viscous_damping) or None
     if study.analysis == "rao":
@@ -190,6 +192,36 @@ def _derived_seed(case: Case) -> int:
     """A seed from the case's parameters: the same case gets the same sea anywhere."""
     text = json.dumps(case.parameters(), sort_keys=True)
     return int(hashlib.sha256(text.encode()).hexdigest()[:8], 16)
+
+
+def check_study_size(study: Study, n_dofs: int) -> None:
+    """Refuse a study whose cases need more memory than :func:`cummins.validation.memory_limit`
+    before anything is allocated (an :class:`~cummins.errors.ArgumentError` naming the
+    study's key): the RAO frequency grid and the coupled solve per heading
+    (``n_omega`` × n² complex matrices), or a run (``duration``/``dt`` samples of the
+    states) and its wave components (``components`` × ``directions``)."""
+    n = int(n_dofs)
+    if study.analysis == "rao":
+        check_memory(
+            float(study.n_omega) * (n * n * 16 * 4 + n * 16 * 4 + 8 * 4),
+            f"{at_key(study.source, 'n_omega')}: RAOs at {study.n_omega} frequencies "
+            f"({n} DOFs) per case",
+            hint="lower n_omega",
+        )
+        return
+    steps = time_steps(study.duration, study.dt)
+    check_memory(
+        simulation_memory(steps, 2 * n, n),
+        f"{at_key(study.source, 'duration')}: a run of {steps:.4g} time steps ({n} DOFs) per case",
+        hint="shorten duration or lengthen dt",
+    )
+    components = float(study.components) * float(study.directions)
+    check_memory(
+        components * (8 * 6 + n * 16 * 2),
+        f"{at_key(study.source, 'components')}: {study.components} wave components x "
+        f"{study.directions} directions ({n} DOFs) per case",
+        hint="lower components (or directions)",
+    )
 
 
 def case_statistics(context: StudyContext, case: Case) -> dict[str, Any]:
