@@ -729,7 +729,8 @@ def describe(ds: xr.Dataset) -> dict[str, Any]:
         if key in ds.attrs:
             info[f"{key}_m"] = [float(x) for x in np.ravel(ds.attrs[key])]
     if "displaced_volume" in ds.attrs:
-        info["displaced_volume_m3"] = float(ds.attrs["displaced_volume"])
+        volumes = [float(x) for x in np.ravel(ds.attrs["displaced_volume"])]
+        info["displaced_volume_m3"] = volumes[0] if len(volumes) == 1 else volumes  # per body
     if "inertia_matrix" in ds:
         m = dof_matrix(ds, "inertia_matrix")
         info["mass_kg"] = float(np.ravel(m)[0])

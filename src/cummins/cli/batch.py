@@ -19,6 +19,7 @@ from cummins.cli.common import (
     run_reporting_errors,
 )
 from cummins.cli.option_rules import Command
+from cummins.cli.outputs import output_written
 
 
 @click.command(name="batch", cls=Command)
@@ -90,6 +91,7 @@ def batch_command(study_file, output, scheduler, workers, example, force):
 
         data = "tanker.1" if here else str(demo_files() / "tanker.1")
         study_path.write_text(example_study_text(data), encoding="utf-8")
+        output_written(study_path)
         console.print(f"wrote {study_path} (an example study: edit it, then run it with -o)")
         if output is None:
             return

@@ -154,3 +154,11 @@ def _check_parents(path: Path) -> None:
                     hint="Choose an output path in a folder you may write to",
                 )
             return
+
+
+def output_written(path) -> None:
+    """``path`` is written: from now on the command may read it (``batch --example``
+    writes the study, then runs it), so it is no longer guarded as an output."""
+    files = _command_files()
+    if files is not None:
+        files["outputs"] = [p for p in files["outputs"] if Path(p) != Path(path)]

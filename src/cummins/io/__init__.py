@@ -239,7 +239,14 @@ def read(
     constants = {k: v for k, v in (("rho", rho), ("g", g), ("ulen", ulen)) if v is not None}
     if "ulen" in constants and not fmt.nondimensional:
         constants.pop("ulen")
-    return fmt.read(target, **constants, **options)
+    ds = fmt.read(target, **constants, **options)
+    # numbers no floating body has (a quantity scaled by 10^3, a flipped sign) warn here,
+    # for the commands that do not run cummins check (deferred: check imports radiation,
+    # whose model file imports io)
+    from cummins.check.plausibility import warn_implausible
+
+    warn_implausible(ds)
+    return ds
 
 
 def write(ds: xr.Dataset, path: str | os.PathLike[str], *, force: bool = False, model=None) -> Path:

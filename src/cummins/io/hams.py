@@ -505,6 +505,15 @@ def read_hams(
             )
             matrices = {}
     else:
+        # HAMS reads it for every run: without it the run's mass and external matrices
+        # are lost, as when it is damaged
+        warn_damage(
+            f"{'empty' if hydrostatic.is_file() else 'missing'}: HAMS reads it for every "
+            "run, so the run's mass, external damping and external restoring are unknown "
+            "(no inertia_matrix, additional_damping, additional_stiffness)",
+            path=hydrostatic,
+            notes=settings.notes,
+        )
         matrices = {}
     if matrices:
         if np.any(matrices["mass"]):
