@@ -350,27 +350,67 @@ def _significant(b: np.ndarray, labels: list[str]) -> np.ndarray:
     return out
 
 
-def _kramers_kronig_findings(ds: xr.Dataset) -> list[Finding]:
+def kramers_kronig_scale(ds: xr.Dataset) -> xr.Dataset:
+    """Per DOF, the least-squares factor s and the correlation r between the variation
+    of A_ii(ω) over the trusted frequencies and the one B_ii(ω) implies, (2/π) PV∫
+    B(ν)/(ν² − ω²) dν (Kramers–Kronig, Hjulstad (2004) eq. 5.23; the means removed, so
+    A∞ does not enter): s = r = 1 for consistent data.
+
+    Parameters
+    ----------
+    ds
+        A ``HydroDB`` at one forward speed.
+
+    Returns
+    -------
+    xarray.Dataset
+        ``scale`` and ``correlation`` (influenced_dof); NaN where A or the implied
+        variation is constant.
+
+    Examples
+    --------
+    >>> import cummins
+    >>> kk = kramers_kronig_scale(cummins.demo_dataset())
+    >>> round(float(kk.scale.sel(influenced_dof="Heave")), 2)
+    1.0
+    """
     from cummins.radiation.retardation import kramers_kronig_added_mass, trusted_frequencies
+
+    keep = trusted_frequencies(ds)
+    n = ds.sizes["influenced_dof"]
+    a = np.diagonal(dof_matrix(ds, "added_mass"), axis1=1, axis2=2)[keep]
+    implied = kramers_kronig_added_mass(ds, added_mass_inf=np.zeros((n, n))).values
+    implied = np.diagonal(implied, axis1=1, axis2=2)[keep]
+    da, di = a - a.mean(axis=0), implied - implied.mean(axis=0)
+    cross = np.sum(da * di, axis=0)
+    with np.errstate(invalid="ignore", divide="ignore"):
+        scale = cross / np.sum(di * di, axis=0)
+        correlation = cross / np.sqrt(np.sum(da * da, axis=0) * np.sum(di * di, axis=0))
+    coords = {"influenced_dof": ds.influenced_dof.values}
+    return xr.Dataset(
+        {
+            "scale": ("influenced_dof", scale),
+            "correlation": ("influenced_dof", correlation),
+        },
+        coords=coords,
+    )
+
+
+def _kramers_kronig_findings(ds: xr.Dataset) -> list[Finding]:
+    from cummins.radiation.retardation import trusted_frequencies
 
     w = ds.omega.values
     keep = trusted_frequencies(ds)
     if keep.sum() < KK_MIN_FREQUENCIES or w[keep][-1] < KK_MIN_SPAN * w[keep][0]:
         return []
     labels = [str(d) for d in ds.influenced_dof.values]
-    n = len(labels)
-    a = dof_matrix(ds, "added_mass")
-    b = dof_matrix(ds, "radiation_damping")
-    implied = kramers_kronig_added_mass(ds, added_mass_inf=np.zeros((n, n))).values
+    kk = kramers_kronig_scale(ds)
     out = []
-    for i in np.flatnonzero(_significant(b, labels)):
-        da = a[keep, i, i] - a[keep, i, i].mean()
-        di = implied[keep, i, i] - implied[keep, i, i].mean()
-        norm = float(np.sqrt((da @ da) * (di @ di)))
-        if not norm > 0:
+    for i in np.flatnonzero(_significant(dof_matrix(ds, "radiation_damping"), labels)):
+        scale = float(kk.scale.values[i])
+        correlation = float(kk.correlation.values[i])
+        if not (np.isfinite(scale) and np.isfinite(correlation)):
             continue
-        correlation = float(da @ di) / norm
-        scale = float(da @ di) / float(di @ di)
         low, high = KK_SCALE_RANGE
         if correlation <= -KK_CORRELATION:
             message = (
@@ -398,12 +438,31 @@ def _kramers_kronig_findings(ds: xr.Dataset) -> list[Finding]:
     return out
 
 
-def _haskind_findings(ds: xr.Dataset) -> list[Finding]:
+def haskind_ratio(ds: xr.Dataset) -> xr.DataArray:
+    """k/(8πρ g c_g) · 2π ⟨|X_i(β)|²⟩_β / B_ii(ω) per frequency and DOF: 1 when the data's
+    headings sample the whole circle evenly and the excitation and damping are
+    consistent (the energy a body radiates, Newman (1977) ch. 6; k and c_g of the water
+    depth); the mean over fewer headings tilts it by the directivity of X_i.
+
+    Parameters
+    ----------
+    ds
+        A ``HydroDB`` at one forward speed with ``excitation_force``.
+
+    Returns
+    -------
+    xarray.DataArray
+        (omega, influenced_dof); NaN where B_ii = 0.
+
+    Examples
+    --------
+    >>> import cummins, numpy as np
+    >>> r = haskind_ratio(cummins.demo_dataset())  # 19 headings over half the circle
+    >>> round(float(np.nanmedian(r.sel(influenced_dof="Heave"))), 1)
+    1.0
+    """
     from cummins.seakeeping.waves import wavenumber
 
-    if "excitation_force" not in ds or "wave_direction" not in ds.dims:
-        return []
-    labels = [str(d) for d in ds.influenced_dof.values]
     rho, g = float(ds.attrs["rho"]), float(ds.attrs["g"])
     depth = float(ds.attrs.get("water_depth", np.inf))
     w = ds.omega.values
@@ -415,9 +474,23 @@ def _haskind_findings(ds: xr.Dataset) -> list[Finding]:
         factor = k / (8.0 * np.pi * rho * g * group)
         force = ds.excitation_force.transpose("omega", "wave_direction", "influenced_dof").values
         energy = 2.0 * np.pi * np.mean(np.abs(force) ** 2, axis=1)  # (omega, dof)
-        b = dof_matrix(ds, "radiation_damping")
-        diagonal = np.diagonal(b, axis1=1, axis2=2)
-        ratio = factor[:, None] * energy / diagonal
+        diagonal = np.diagonal(dof_matrix(ds, "radiation_damping"), axis1=1, axis2=2)
+        ratio = np.where(diagonal != 0, factor[:, None] * energy / diagonal, np.nan)
+    return xr.DataArray(
+        ratio,
+        dims=("omega", "influenced_dof"),
+        coords={"omega": ds.omega, "influenced_dof": ds.influenced_dof.values},
+        name="haskind_ratio",
+    )
+
+
+def _haskind_findings(ds: xr.Dataset) -> list[Finding]:
+    if "excitation_force" not in ds or "wave_direction" not in ds.dims:
+        return []
+    labels = [str(d) for d in ds.influenced_dof.values]
+    ratio = haskind_ratio(ds).values
+    b = dof_matrix(ds, "radiation_damping")
+    diagonal = np.diagonal(b, axis1=1, axis2=2)
     significant = _significant(b, labels)
     out = []
     for body, dofs in _body_index(labels).items():
@@ -427,7 +500,7 @@ def _haskind_findings(ds: xr.Dataset) -> list[Finding]:
                 continue
             strong = diagonal[:, i] >= 0.1 * diagonal[:, i].max()
             values = ratio[strong, i]
-            values = values[np.isfinite(values) & (values > 0)] if values.size else values
+            values = values[np.isfinite(values) & (values > 0)]
             if values.size < 3:
                 continue
             r = float(np.median(values))
