@@ -474,6 +474,35 @@ CASES: dict[str, tuple[list[str], int, str]] = {
                     ],
                     "--inertia applies only with --decay",
                 ),
+                (
+                    [
+                        "identify-damping",
+                        "tanker.hst",
+                        "--decay",
+                        "--terms",
+                        "linear",
+                        "--report",
+                        "rep",
+                    ],
+                    "--decay and --terms exclude each other",
+                ),
+                (
+                    [
+                        "identify-damping",
+                        "tanker.hst",
+                        "--model",
+                        T,
+                        "--max-lag",
+                        "5",
+                        "--report",
+                        "rep",
+                    ],
+                    "--max-lag applies only with --align",
+                ),
+                (
+                    ["batch", "--example", "s.yaml", "--workers", "2"],
+                    "--workers applies only with --output",
+                ),
             )
         )
     },

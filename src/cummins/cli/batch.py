@@ -18,7 +18,7 @@ from cummins.cli.common import (
     reports_errors,
     run_reporting_errors,
 )
-from cummins.cli.option_rules import Command
+from cummins.cli.option_rules import Command, option_rules
 from cummins.cli.outputs import output_written
 
 
@@ -52,6 +52,7 @@ from cummins.cli.outputs import output_written
     help="First write an example study (the bundled tanker) to STUDY; with -o, then run it.",
 )
 @force_option("Overwrite OUTPUT (and STUDY with --example).")
+@option_rules(needs={"workers": "output", "scheduler": "output"})
 @reports_errors
 def batch_command(study_file, output, scheduler, workers, example, force):
     """Run a study of many cases (headings x sea states x seeds) on a Dask cluster.

@@ -146,7 +146,26 @@ from cummins.cli.option_rules import Command, option_rules
     help="Folder for damping.json and the PNG figures.",
 )
 @force_option("Overwrite the report's files.")
-@option_rules(needs={"inertia": "decay", "stiffness": "decay", "max_lag": "align"})
+@option_rules(
+    needs={"inertia": "decay", "stiffness": "decay", "max_lag": "align_dof"},
+    # a decay analysis fits the roll decay alone: the regression's options do not apply
+    excludes=tuple(
+        ("decay", name)
+        for name in (
+            "dofs",
+            "terms",
+            "couplings",
+            "offset",
+            "method",
+            "cutoff",
+            "burn_in",
+            "segment",
+            "heading",
+            "align_dof",
+            "viscous_damping",
+        )
+    ),
+)
 @reports_errors
 def identify_damping_command(
     records,
