@@ -53,7 +53,7 @@ MASS_RATIO_ERROR = 30.0
 #: damaged (the corpus: equal to the printed digits).
 TRANSLATION_MASS_SPREAD = 1.01
 #: m / (ρ A_wp^{3/2}): outside these bounds, the mass or the restoring is scaled.
-WATERPLANE_MASS_RANGE = (1e-3, 2e3)
+WATERPLANE_MASS_RANGE = (5e-3, 2e3)
 #: Least-squares factor between A(ω)'s variation and the one B(ω) implies, where the two
 #: shapes correlate by at least KK_CORRELATION: outside this range, A or B is scaled.
 KK_SCALE_RANGE = (0.05, 20.0)

@@ -11,6 +11,7 @@ from cummins.cli.common import (
     force_option,
     heading_degrees,
     non_negative,
+    note_inputs,
     positive,
     prepare_outputs,
     progress_bar,
@@ -121,6 +122,7 @@ def dp_demo_command(
 
     out = Path(folder)
     names = ["run.nc", "pose.png", "wave_and_radiation_forces.png", "loads.png", "watch_circle.png"]
+    note_inputs(data_path)
     prepare_outputs(*(out / n for n in names), force=force)
     # before the model is built: the run's size (the S-175 model has about 60 states)
     check_simulation_size(duration, dt, 60, 54, option="--duration")
