@@ -9,7 +9,10 @@ structs), Capytaine and BEMIO files, OpenFAST SS_Fitting ``.ss``/``.ssexctn``. C
 read by another function than :func:`cummins.read` name it (``FuzzCase.reader``). The
 rule each outcome is judged by is in ``tests/_mutate.py``: a damaged file must raise
 ``HydroDataError``, warn (``HydroDataWarning``) or read exactly the undamaged data;
-re-encodings (BOM, CRLF, CR, tabs) must read identically. Prints one line per case and
+re-encodings (BOM, CRLF, CR, tabs) must read identically. Besides N seeded damaged
+copies per case, every declared quantity of the case (``FuzzCase.quantities``) is scaled
+by 10^3 and 10^-3 and negated, every target emptied and every removable companion file
+removed (``Damager.quantity_cases``). Prints one line per case and
 every failure, then the totals (with ``--markdown``, a table for BENCHMARKS.md); exit
 status 1 when there is any failure.
 """
@@ -57,35 +60,50 @@ def main() -> int:
         with Damager(SHARED, case) as damager:
             damaged = list(damager.cases(n, seed))
             encoded = list(damager.encodings())
-        outcomes = damaged + encoded
+            quantities = list(damager.quantity_cases())
+        outcomes = damaged + encoded + quantities
         counts = collections.Counter(o.kind for _, _, o in damaged)
+        q_counts = collections.Counter(o.kind for _, _, o in quantities)
         wrong = failures(outcomes)
         bad += len(wrong)
         elapsed = time.perf_counter() - t0
         summary = ", ".join(f"{k} {counts[k]}" for k in KINDS if counts[k])
+        q_summary = ", ".join(f"{k} {q_counts[k]}" for k in KINDS if q_counts[k])
         print(
             f"{case.name:40s} {len(damaged):5d} damaged + {len(encoded):2d} re-encoded "
-            f"{elapsed:6.1f} s  {summary}",
+            f"{elapsed:6.1f} s  {summary}; {len(quantities)} quantities: {q_summary}",
             flush=True,
         )
         for line in wrong:
             print("   ", line, flush=True)
-        rows.append((group, case.name, len(damaged), len(encoded), counts, len(wrong), elapsed))
+        rows.append(
+            (group, case.name, len(damaged), len(encoded), counts, len(wrong), elapsed, q_counts)
+        )
     total = collections.Counter()
-    for *_, counts, _, _ in rows:
+    q_total = collections.Counter()
+    for *_, counts, _, _, q_counts in rows:
         total.update(counts)
+        q_total.update(q_counts)
     print(
         f"total: {sum(r[2] for r in rows)} damaged copies of {len(rows)} cases, "
         + ", ".join(f"{k} {total[k]}" for k in KINDS)
+        + f"; {sum(q_total.values())} damaged quantities and emptied or removed files, "
+        + ", ".join(f"{k} {q_total[k]}" for k in KINDS)
         + f"; failures: {bad}"
     )
     if markdown:
         print()
-        print("| reader | case | damaged | error | warned | same | blind | failures | s |")
-        print("|---|---|---:|---:|---:|---:|---:|---:|---:|")
-        for group, name, count, _, counts, wrong, elapsed in rows:
+        print(
+            "| reader | case | damaged | error | warned | same | blind | quantities "
+            "(error/warned/same) | failures | s |"
+        )
+        print("|---|---|---:|---:|---:|---:|---:|---:|---:|---:|")
+        for group, name, count, _, counts, wrong, elapsed, q_counts in rows:
             values = " | ".join(str(counts[k]) for k in ("error", "warned", "same", "blind"))
-            print(f"| {group} | {name} | {count} | {values} | {wrong} | {elapsed:.0f} |")
+            q_values = "/".join(str(q_counts[k]) for k in ("error", "warned", "same"))
+            print(
+                f"| {group} | {name} | {count} | {values} | {q_values} | {wrong} | {elapsed:.0f} |"
+            )
     return 1 if bad else 0
 
 

@@ -11,6 +11,16 @@ Anything else is a defect: another exception, or *different numbers read silentl
 Changes of encoding (UTF-8 byte-order mark, CRLF or CR-only line ends, tabs for spaces)
 are not damage: the data must read identically, without a warning.
 
+Besides damage to the text or the bytes (:meth:`Damager.cases`), a file may be damaged
+in its *quantities* (:meth:`Damager.quantity_cases`, issue 31): a quantity scaled by 10³
+or 10⁻³ or of the wrong sign (a column of a table in every row, as a unit or a sign lost
+by a program would do it; a numeric array of a binary file), a companion file emptied,
+or one the run always has (:attr:`FuzzCase.removable`) removed. Each number of such a
+file still looks like a number: the physics of a floating body has to tell
+(:mod:`cummins.check.plausibility`, whose errors :func:`cummins.read` warns about). The
+quantities are declared per case (:attr:`FuzzCase.quantities`): those a relation ties to
+the others; the test files say which they leave out and why.
+
 Used by the ``test_fuzz_*.py`` files (a few hundred seeded cases per format in CI) and
 by ``benchmarks/fuzz_readers.py`` (as many as you like).
 """
@@ -38,6 +48,11 @@ TEXT_OPS = ("delete", "duplicate", "swap", "truncate", "garble", "insert", "blan
 JUNK = ("1.2.3", "abc", "NaN", "-inf", "1e999", "***", "", "-9.99e99x", "nan nan")
 #: Encodings that are not damage.
 ENCODINGS = ("bom", "crlf", "cr", "tabs")
+#: Damage to a quantity: a column or array scaled by 10^3, 10^-3, or negated.
+NUMERIC_OPS = ("scale_up", "scale_down", "negate")
+FACTORS = {"scale_up": 1e3, "scale_down": 1e-3, "negate": -1.0}
+#: Damage to a companion file: emptied (every target), removed (``FuzzCase.removable``).
+FILE_OPS = ("empty", "remove")
 
 
 @dataclasses.dataclass(frozen=True)
@@ -68,6 +83,18 @@ class FuzzCase:
         label (the same leading integers, e.g. DOF index I or I J, and as many fields)
         in blocks told apart only by a header line: the rest of the file is judged as
         usual.
+    removable
+        Companion files the run always has (the solver or its mesher writes them each
+        time: HAMS's ``Input/Hydrostatic.in``, NEMOH's ``KH.dat``): removed, the reader
+        must warn, as for a damaged one (:data:`FILE_OPS`).
+    quantities
+        Quantities of the targets that physics ties to the others (so that a factor of
+        10³ or a sign in them must be seen): ``"file:fields"`` for a column of a text
+        file (fields 1-based: ``"4"``, ``"4+6+7"`` for |F|, Re F, Im F together,
+        ``"2::2"`` for every second field from the second), ``"file:array"`` for a
+        binary file (an HDF5 dataset, a MATLAB struct field ``"vessel.A"``); a third
+        part ``":scale"`` or ``":negate"`` limits the operations (the sign of a complex
+        force is only a phase: no relation sees it).
     reader
         The public function that reads ``entry`` when it is not :func:`cummins.read`
         (an OpenFAST ``.ss`` file, an MSS ``RAO`` struct): called with the path, it
@@ -83,6 +110,8 @@ class FuzzCase:
     options: tuple[tuple[str, object], ...] = ()
     swap_blind: tuple[str, ...] = ()
     reader: Callable[[Path], xr.Dataset | xr.DataArray] | None = None
+    removable: tuple[str, ...] = ()
+    quantities: tuple[str, ...] = ()
 
 
 @dataclasses.dataclass(frozen=True)
@@ -121,6 +150,85 @@ def mutate_text(text: str, op: str, rng: random.Random) -> str:
     else:
         raise ValueError(op)
     return "\n".join(lines) + "\n"
+
+
+def _quantity(entry: str) -> tuple[str, str, tuple[str, ...]]:
+    """(target, selector, operations) of a :attr:`FuzzCase.quantities` entry."""
+    target, _, selector = entry.partition(":")
+    for suffix, ops in ((":scale", ("scale_up", "scale_down")), (":negate", ("negate",))):
+        if selector.endswith(suffix):
+            return target, selector.removesuffix(suffix), ops
+    return target, selector, NUMERIC_OPS
+
+
+def _real(field: str) -> float | None:
+    """The value of a field written as a real number (a point or an exponent: integers
+    are indices and flags, not quantities), else None."""
+    if not any(c in field for c in ".eEdD") or field.lstrip("+-")[:1].isalpha():
+        return None
+    try:
+        value = float(field.replace("D", "E").replace("d", "e"))
+    except ValueError:
+        return None
+    return value if np.isfinite(value) else None
+
+
+def _fields(selector: str, count: int) -> list[int]:
+    """0-based field indices of ``"4"``, ``"4+6+7"`` or ``"2::2"`` (every second from 2)
+    in a row of ``count`` fields (1-based in the selector, as an editor counts)."""
+    if "::" in selector:
+        start, step = (int(v) for v in selector.split("::"))
+        return list(range(start - 1, count, step))
+    return [int(v) - 1 for v in selector.split("+")]
+
+
+def scale_column(text: str, selector: str, op: str) -> str:
+    """``text`` with the fields of ``selector`` (:func:`_fields`) scaled (:data:`FACTORS`)
+    in every row where they all are real numbers (a point or an exponent: integers are
+    indices and flags): a column of a table, as a unit or a sign lost by a program would
+    change it."""
+    lines = text.splitlines()
+    factor = FACTORS[op]
+    for j, line in enumerate(lines):
+        fields = line.split()
+        index = _fields(selector, len(fields))
+        if not index or max(index) >= len(fields):
+            continue
+        values = [_real(fields[k]) for k in index]
+        if any(v is None for v in values):
+            continue
+        for k, value in zip(index, values, strict=True):
+            fields[k] = f"{value * factor:.6E}"
+        indent = line[: len(line) - len(line.lstrip())]
+        lines[j] = indent + "  ".join(fields)
+    return "\n".join(lines) + "\n"
+
+
+def scale_array(path: Path, name: str, op: str) -> None:
+    """Scale (:data:`FACTORS`) the numeric array ``name`` of a binary file in place: an
+    HDF5 dataset (NetCDF-4, BEMIO; ``"a+b"`` for several), or a field of a MATLAB struct
+    (``"vessel.A"``; every cell of a cell array: ``"vessel.forceRAO.amp"``)."""
+    factor = FACTORS[op]
+    if path.read_bytes()[:4] == b"\x89HDF":
+        import h5py
+
+        with h5py.File(path, "r+") as f:
+            for part in name.split("+"):
+                f[part][...] = f[part][()] * factor
+        return
+    import scipy.io
+
+    content = scipy.io.loadmat(path, squeeze_me=False, struct_as_record=True)
+    keys = name.split(".")
+    holder, value = None, content[keys[0]]
+    for key in keys[1:]:
+        holder, value = value.flat[0], value.flat[0][key]
+    if value.dtype == object:
+        for k in range(value.size):
+            value.flat[k] = value.flat[k] * factor
+    else:
+        holder[keys[-1]] = value * factor
+    scipy.io.savemat(path, {k: v for k, v in content.items() if not k.startswith("__")})
 
 
 def encode_text(text: str, encoding: str) -> bytes:
@@ -204,11 +312,15 @@ class Damager:
     def _restore(self, target: str) -> None:
         shutil.copy(self.source / target, self.work / target)
 
-    def judge(self, target: str, content: bytes, *, encoding_only: bool = False) -> Outcome:
-        """Write ``content`` over ``target``, read the case, and say what the reader did."""
+    def judge(self, target: str, content: bytes | None, *, encoding_only: bool = False) -> Outcome:
+        """Write ``content`` over ``target`` (None: remove it; the file as it is when the
+        caller damaged it in place: ``...``), read the case, and say what the reader did."""
         path = self.work / target
-        path.chmod(0o644)
-        path.write_bytes(content)
+        if content is None:
+            path.unlink()
+        elif content is not ...:
+            path.chmod(0o644)
+            path.write_bytes(content)
         try:
             ds, damage = _read(self.work / self.case.entry, self.case)
         except HydroDataError as exc:
@@ -250,6 +362,37 @@ class Damager:
             if op == "swap" and outcome.kind == "different" and self._blind(target, text, content):
                 outcome = Outcome("blind", outcome.detail)
             yield target, op, outcome
+
+    def quantity_cases(
+        self, n: int | None = None, seed: int = 0
+    ) -> Iterator[tuple[str, str, Outcome]]:
+        """Copies damaged in a declared quantity (:attr:`FuzzCase.quantities`, each with
+        its operations of :data:`NUMERIC_OPS`): every one (``n`` None) or ``n`` seeded
+        picks; then every target emptied and every :attr:`FuzzCase.removable` file
+        removed (:data:`FILE_OPS`): (target, mutation, outcome)."""
+        pairs = [
+            (target, selector, op)
+            for target, selector, ops in map(_quantity, self.case.quantities)
+            for op in ops
+        ]
+        if n is not None:
+            rng = random.Random(seed)
+            pairs = [rng.choice(pairs) for _ in range(n)] if pairs else []
+        for target, selector, op in pairs:
+            data = (self.source / target).read_bytes()
+            if _is_binary(data):
+                path = self.work / target
+                path.chmod(0o644)
+                scale_array(path, selector, op)
+                outcome = self.judge(target, ...)
+            else:
+                text = data.decode("utf-8", errors="replace")
+                outcome = self.judge(target, scale_column(text, selector, op).encode("utf-8"))
+            yield target, f"{op} {selector}", outcome
+        for target in self.case.targets:
+            yield target, "empty", self.judge(target, b"")
+        for target in self.case.removable:
+            yield target, "remove", self.judge(target, None)
 
     def _blind(self, target: str, text: str, content: bytes) -> bool:
         """Whether the swap that made ``content`` is one :attr:`FuzzCase.swap_blind` allows."""

@@ -20,7 +20,7 @@ from click.testing import CliRunner
 
 import cummins
 from cummins.cli import main
-from cummins.errors import OutputExistsError
+from cummins.errors import ArgumentError, OutputExistsError
 from cummins.studies.batch import (
     Limit,
     Study,
@@ -361,6 +361,7 @@ def test_list_study_with_probabilities(two_workers, tmp_path):
 
 
 BAD_STUDIES = {
+    "heading beyond a turn": ("data: {data}\ngrid: {{heading: 1e9, hs: 1, tp: 8}}", "grid"),
     "unknown key": ("data: {data}\nanalysys: rao\ngrid: {{heading: 1, hs: 1, tp: 8}}", "analysys"),
     "missing data": ("data: nowhere.1\ngrid: {{heading: 1, hs: 1, tp: 8}}", "nowhere.1"),
     "degrees on heave": (
@@ -411,6 +412,35 @@ def test_limit_on_a_dof_the_data_lack(tmp_path):
     )
     with pytest.raises(StudyError, match=r"limits\.Roll: the data have no DOF 'Roll'"):
         prepare_study(study)
+
+
+@pytest.mark.parametrize(
+    ("changes", "key"),
+    [
+        ({"analysis": "rao", "n_omega": 1e9}, "n_omega"),  # issue 31: grew to 16 GB
+        ({"analysis": "simulate", "components": 1e9}, "components"),
+        ({"analysis": "simulate", "duration": 1e12}, "duration"),
+    ],
+)
+def test_a_study_too_large_for_memory_is_refused_before_anything_is_allocated(
+    changes, key, tmp_path, monkeypatch
+):
+    """A CLI run of the same study says so in one line, exit status 2 (no Dask needed:
+    the size is checked as the study is prepared, before any cluster starts)."""
+    import tracemalloc
+
+    monkeypatch.setenv("CUMMINS_MEMORY_LIMIT", "1")  # 1 GiB: far from any of these
+    study = Study(
+        data=TANKER, grid={"heading": 180, "hs": 2, "tp": 8}, source=tmp_path / "s.yaml", **changes
+    )
+    tracemalloc.start()
+    try:
+        with pytest.raises(ArgumentError, match=rf"s\.yaml: {key}.* more than the 1 GiB"):
+            prepare_study(study)
+        peak = tracemalloc.get_traced_memory()[1]
+    finally:
+        tracemalloc.stop()
+    assert peak < 200e6, peak  # the data read, not the request
 
 
 def test_zarr_results(fd_run, tmp_path):

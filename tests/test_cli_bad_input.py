@@ -311,6 +311,243 @@ CASES: dict[str, tuple[list[str], int, str]] = {
     "report-g-negative": (["report", T, "-o", "r.html", "--g", "-9.81"], 2, "--g"),
     "report-rho-nan": (["report", T, "-o", "r.html", "--rho", "nan"], 2, "--rho"),
     "report-ulen-zero": (["report", T, "-o", "r.html", "--ulen", "0"], 2, "--ulen"),
+    # an output over a file the command reads, or two outputs on one file: refused with
+    # --force too (issue 31: --force replaces an earlier output, never the input)
+    **{
+        f"{args[0]}-over-{args[-2]}": (args, 2, "reads")
+        for args in (
+            ["fit", T, "-o", T, "--force"],
+            ["fit", T, "-o", "tanker.hst", "--force"],
+            ["fit", T, "-o", "m.nc", "--openfast", "tanker.frc", "--force"],
+            ["kernel", T, "-o", "tanker.out", "--force"],
+            ["report", T, "-o", "tanker.3", "--force"],
+            ["report", T, "-o", T, "--force"],
+            ["rao", T, "-o", "tanker.3", "--force"],
+            ["simulate", "tanker.nc", "-o", "tanker.nc", "--hs", "2", "--tp", "9", "--force"],
+            ["convert", "tanker.nc", "tanker.nc", "--force"],
+            ["check", T, "--json", "tanker.hst", "--force"],
+        )
+    },
+    # options that contradict each other: refused, naming both, instead of one ignored
+    **{
+        f"contradiction-{k}": (args, 2, fragment)
+        for k, (args, fragment) in enumerate(
+            (
+                (
+                    ["simulate", T, "-o", "s.nc", "--regular", "--wave-period", "9", "--hs", "3"],
+                    "--regular and --hs",
+                ),
+                (
+                    ["simulate", T, "-o", "s.nc", "--regular", "--wave-period", "9", "--tp", "9"],
+                    "--regular and --tp",
+                ),
+                (
+                    [
+                        "simulate",
+                        T,
+                        "-o",
+                        "s.nc",
+                        "--regular",
+                        "--wave-period",
+                        "9",
+                        "--spreading",
+                        "4",
+                    ],
+                    "--regular and --spreading",
+                ),
+                (
+                    ["simulate", T, "-o", "s.nc", "--hs", "3", "--tp", "9", "--wave-period", "9"],
+                    "--wave-period applies only with --regular",
+                ),
+                (
+                    ["simulate", T, "-o", "s.nc", "--hs", "3", "--tp", "9", "--directions", "5"],
+                    "--directions applies only with --spreading",
+                ),
+                (
+                    [
+                        "simulate",
+                        T,
+                        "-o",
+                        "s.nc",
+                        "--hs",
+                        "3",
+                        "--tp",
+                        "9",
+                        "--spectrum",
+                        "pm",
+                        "--gamma",
+                        "2",
+                    ],
+                    "--gamma applies only with --spectrum jonswap",
+                ),
+                (
+                    [
+                        "simulate",
+                        T,
+                        "-o",
+                        "s.nc",
+                        "--hs",
+                        "3",
+                        "--tp",
+                        "9",
+                        "--viscous-damping",
+                        "Roll",
+                        "5e8",
+                        "--viscous-damping",
+                        "Roll",
+                        "1e9",
+                    ],
+                    "Roll is given twice",
+                ),
+                (
+                    ["simulate", T, "-o", "s.nc", "--hs", "3", "--tp", "9", "--heading", "1e9"],
+                    "--heading",
+                ),
+                (
+                    ["simulate", T, "-o", "s.nc", "--hs", "3", "--tp", "9", "--hs", "4"],
+                    "--hs 3 and --hs 4",
+                ),
+                (
+                    ["simulate", T, "-o", "s.nc", "--hs=3", "--tp", "9", "--dt=0.1", "--dt", "0.2"],
+                    "--dt 0.1 and --dt 0.2",
+                ),
+                (
+                    ["fit", T, "-o", "m.nc", "--order", "Heave", "Heave", "30", "--max-order", "5"],
+                    "above --max-order 5",
+                ),
+                (
+                    [
+                        "fit",
+                        T,
+                        "-o",
+                        "m.nc",
+                        "--order",
+                        "Heave",
+                        "Pitch",
+                        "3",
+                        "--order",
+                        "Pitch",
+                        "Heave",
+                        "4",
+                    ],
+                    "Heave Pitch is given twice",
+                ),
+                (
+                    ["kernel", T, "-o", "k.nc", "--above-first"],
+                    "--above-first applies only with --remove-suspect",
+                ),
+                (["rao", T, "-o", "r.nc", "--headings", "0", "360"], "one direction"),
+                (["rao", T, "-o", "r.nc", "--headings", "400"], "beyond one turn"),
+                (
+                    [
+                        "rao",
+                        T,
+                        "-o",
+                        "r.nc",
+                        "--external-stiffness",
+                        "Surge",
+                        "Surge",
+                        "1",
+                        "--external-stiffness",
+                        "Surge",
+                        "Surge",
+                        "2",
+                    ],
+                    "Surge Surge is given twice",
+                ),
+                (
+                    ["reduce", "tanker.nc", "-o", "r.nc", "--order", "9", "--speed", "2"],
+                    "--speed applies only with --data",
+                ),
+                (
+                    ["dp-demo", "-o", "dp", "--wind-from", "40"],
+                    "--wind-from applies only with --wind above 0",
+                ),
+                (["dp-demo", "-o", "dp", "--current-from", "720"], "--current-from"),
+                (
+                    [
+                        *BOX,
+                        "--omega-min",
+                        "0.2",
+                        "--omega-max",
+                        "2",
+                        "--headings",
+                        "1e9",
+                        "-o",
+                        "b.nc",
+                    ],
+                    "beyond one turn",
+                ),
+                (
+                    [
+                        "bem",
+                        "mesh.gdf",
+                        "--resolution",
+                        "9",
+                        "--omega-min",
+                        "0.2",
+                        "--omega-max",
+                        "2",
+                        "-o",
+                        "b.nc",
+                    ],
+                    "--resolution applies only with --hull",
+                ),
+                (
+                    [
+                        "identify-damping",
+                        "tanker.hst",
+                        "--model",
+                        T,
+                        "--inertia",
+                        "1e9",
+                        "--report",
+                        "rep",
+                    ],
+                    "--inertia applies only with --decay",
+                ),
+                (
+                    [
+                        "identify-damping",
+                        "tanker.hst",
+                        "--decay",
+                        "--terms",
+                        "linear",
+                        "--report",
+                        "rep",
+                    ],
+                    "--decay and --terms exclude each other",
+                ),
+                (
+                    [
+                        "identify-damping",
+                        "tanker.hst",
+                        "--model",
+                        T,
+                        "--max-lag",
+                        "5",
+                        "--report",
+                        "rep",
+                    ],
+                    "--max-lag applies only with --align",
+                ),
+                (
+                    ["batch", "--example", "s.yaml", "--workers", "2"],
+                    "--workers applies only with --output",
+                ),
+            )
+        )
+    },
+    "fit-json-on-output": (
+        ["fit", T, "-o", "old.nc", "--json", "./old.nc", "--force"],
+        2,
+        "--output old.nc and --json old.nc name one file",
+    ),
+    "reduce-json-on-output": (
+        ["reduce", "tanker.nc", "-o", "old.json", "--json", "old.json", "--order", "9", "--force"],
+        2,
+        "one file",
+    ),
 }
 
 
@@ -451,3 +688,24 @@ def test_report_reads_the_kernel_output(work, monkeypatch):
     assert "retardation functions" in page and "Heave" in page
     result, _ = _run(work, ["report", "K.nc", "-o", "K2.html", "--kind", "data"], monkeypatch)
     assert result.exit_code == 2 and "is a kernel file" in result.output
+
+
+@pytest.mark.parametrize(
+    ("extra", "fragment"),
+    [
+        (["--omega-min", "0.2", "--omega-max", "2", "--headings", "nan"], "not a finite number"),
+        (["--omega-min", "3", "--omega-max", "2"], "--omega"),
+    ],
+)
+def test_bem_checks_its_arguments_before_looking_for_capytaine(work, monkeypatch, extra, fragment):
+    """Without the [bem] extra, a bad argument is still a bad argument (exit status 2),
+    not "Capytaine is not installed" (exit status 1)."""
+    import sys
+
+    monkeypatch.setitem(sys.modules, "capytaine", None)  # import capytaine: ImportError
+    result, _ = _run(work, [*BOX, *extra, "-o", "b.nc"], monkeypatch)
+    assert result.exit_code == 2, result.output
+    assert fragment in result.output and "Capytaine" not in result.output, result.output
+    good = [*BOX, "--omega-min", "0.2", "--omega-max", "2", "-o", "b.nc"]
+    result, _ = _run(work, good, monkeypatch)
+    assert result.exit_code == 1 and "Capytaine is not installed" in result.output, result.output

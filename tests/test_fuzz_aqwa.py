@@ -62,3 +62,11 @@ def test_damaged_copies_are_refused_or_read_alike(shared_data, case):
 def test_reencoded_copies_read_identically(shared_data, case):
     with Damager(shared_data, case) as damager:
         assert not failures(damager.encodings())
+
+
+@pytest.mark.parametrize("case", CASES, ids=lambda c: c.name)
+def test_scaled_quantities_and_emptied_or_removed_files_are_not_read_silently(shared_data, case):
+    """Four seeded quantities scaled by 10^±3 or negated (FuzzCase.quantities), every
+    target emptied, every removable companion removed (issue 31)."""
+    with Damager(shared_data, case) as damager:
+        assert not failures(damager.quantity_cases(4, seed=5))

@@ -34,13 +34,22 @@ from cummins import HydroDataError
 INPUTS = ("Input/Hydrostatic.in", "Input/ControlFile.in")
 
 CASES = [
-    FuzzCase("hams-inputs-cylinder", "corpus/HAMS/Cylinder", ".", INPUTS),
+    FuzzCase(
+        "hams-inputs-cylinder",
+        "corpus/HAMS/Cylinder",
+        ".",
+        INPUTS,
+        removable=("Input/Hydrostatic.in",),
+        quantities=("Input/Hydrostatic.in:3", "Input/Hydrostatic.in:1::1"),
+    ),
     FuzzCase(
         "hams-inputs-hywind-spar",
         "corpus/HAMS/HywindSpar",
         ".",
         INPUTS,
         swap_blind=("Input/Hydrostatic.in:4-37",),
+        removable=("Input/Hydrostatic.in",),
+        quantities=("Input/Hydrostatic.in:3", "Input/Hydrostatic.in:1::1"),
     ),
 ]
 
@@ -61,6 +70,14 @@ def test_damaged_copies_are_refused_or_read_alike(shared_data, case):
 def test_reencoded_copies_read_identically(shared_data, case):
     with Damager(shared_data, case) as damager:
         assert not failures(damager.encodings())
+
+
+@pytest.mark.parametrize("case", CASES, ids=lambda c: c.name)
+def test_scaled_quantities_and_emptied_or_removed_files_are_not_read_silently(shared_data, case):
+    """Four seeded quantities scaled by 10^±3 or negated (FuzzCase.quantities), every
+    target emptied, every removable companion removed (issue 31)."""
+    with Damager(shared_data, case) as damager:
+        assert not failures(damager.quantity_cases(4, seed=5))
 
 
 def _edited(shared_data, tmp_path, name, edit):

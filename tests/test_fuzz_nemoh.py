@@ -35,6 +35,14 @@ CASES = [
             "FKForce.tec",
         ),
         format="nemoh",
+        removable=("KH.dat", "Hydrostatics.dat"),
+        quantities=(
+            "RadiationCoefficients.tec:1",  # ω
+            "RadiationCoefficients.tec:2::2",  # A
+            "RadiationCoefficients.tec:3::2",  # B
+            "ExcitationForce.tec:2::2:scale",  # |X|
+            "KH.dat:3:negate",  # no inertia in the run: C's scale has nothing to meet
+        ),
     ),
     FuzzCase(
         "nemoh-v3-qtf-oc3-spar",
@@ -52,6 +60,14 @@ CASES = [
             "results/index.dat",
         ),
         swap_blind=("results/RadiationCoefficients.tec",),
+        removable=("Mesh/KH.dat", "Mesh/Hydrostatics.dat"),
+        quantities=(
+            "results/RadiationCoefficients.tec:2::2",
+            "results/RadiationCoefficients.tec:3::2",
+            "results/ExcitationForce.tec:2::2:scale",
+            "Mechanics/Inertia.dat:1::1",  # the whole matrix
+            "Mechanics/Kh.dat:3",
+        ),
     ),
     FuzzCase(
         "nemoh-v2-two-bodies",
@@ -67,6 +83,11 @@ CASES = [
             "Results/IRF.tec",
         ),
         swap_blind=("Results/RadiationCoefficients.tec", "Results/IRF.tec"),
+        removable=("Mesh/KH_0.dat", "Mesh/Hydrostatics_1.dat"),
+        quantities=(
+            "Results/RadiationCoefficients.tec:2::2",
+            "Results/RadiationCoefficients.tec:3::2",
+        ),
     ),
 ]
 
@@ -82,3 +103,11 @@ def test_damaged_copies_are_refused_or_read_alike(shared_data, case):
 def test_reencoded_copies_read_identically(shared_data, case):
     with Damager(shared_data, case) as damager:
         assert not failures(damager.encodings())
+
+
+@pytest.mark.parametrize("case", CASES, ids=lambda c: c.name)
+def test_scaled_quantities_and_emptied_or_removed_files_are_not_read_silently(shared_data, case):
+    """Four seeded quantities scaled by 10^±3 or negated (FuzzCase.quantities), every
+    target emptied, every removable companion removed (issue 31)."""
+    with Damager(shared_data, case) as damager:
+        assert not failures(damager.quantity_cases(4, seed=5))

@@ -35,19 +35,56 @@ CASES = [
         "corpus/WEC-Sim_Applications/wamit_wavestar_NMPC_with_h5",
         "wavestar.h5",
         ("wavestar.h5",),
+        quantities=(
+            "wavestar.h5:body1/hydro_coeffs/added_mass/all",
+            "wavestar.h5:body1/hydro_coeffs/radiation_damping/all",
+            "wavestar.h5:body1/hydro_coeffs/excitation/re+body1/hydro_coeffs/excitation/im:scale",
+            "wavestar.h5:body1/hydro_coeffs/linear_restoring_stiffness:negate",
+        ),
     ),
     FuzzCase(
         "bemio-python-oswec",
         "corpus/WEC-Sim/wamit_OSWEC_2015_with_bemio_h5",
         "oswec.h5",
         ("oswec.h5",),
+        quantities=(
+            "oswec.h5:body1/hydro_coeffs/added_mass/all",
+            "oswec.h5:body1/hydro_coeffs/radiation_damping/all",
+            "oswec.h5:body1/hydro_coeffs/excitation/re+body1/hydro_coeffs/excitation/im:scale",
+            "oswec.h5:body1/hydro_coeffs/linear_restoring_stiffness:negate",
+        ),
     ),
     FuzzCase("capytaine-legacy-text", COER, ".", ("outputs/KH.dat", "outputs/Hydrostatics.dat")),
 ]
 #: Files cummins wrote (NetCDF-4 and BEMIO, with checksums), made in a temporary root.
 WRITTEN = [
-    FuzzCase("cummins-netcdf4", "written", "tanker.nc", ("tanker.nc",)),
-    FuzzCase("cummins-bemio", "written", "tanker.h5", ("tanker.h5",)),
+    FuzzCase(
+        "cummins-netcdf4",
+        "written",
+        "tanker.nc",
+        ("tanker.nc",),
+        quantities=(
+            "tanker.nc:omega",
+            "tanker.nc:added_mass+added_mass_inf+added_mass_zero",
+            "tanker.nc:radiation_damping",
+            "tanker.nc:excitation_force:scale",
+            "tanker.nc:inertia_matrix",
+            "tanker.nc:hydrostatic_stiffness",
+            "tanker.nc:additional_damping:negate",
+        ),
+    ),
+    FuzzCase(
+        "cummins-bemio",
+        "written",
+        "tanker.h5",
+        ("tanker.h5",),
+        quantities=(
+            "tanker.h5:body1/hydro_coeffs/added_mass/all",
+            "tanker.h5:body1/hydro_coeffs/radiation_damping/all",
+            "tanker.h5:body1/hydro_coeffs/excitation/re+body1/hydro_coeffs/excitation/im:scale",
+            "tanker.h5:body1/hydro_coeffs/linear_restoring_stiffness:negate",
+        ),
+    ),
 ]
 
 
@@ -74,10 +111,26 @@ def test_reencoded_copies_read_identically(shared_data, case):
         assert not failures(damager.encodings())
 
 
+@pytest.mark.parametrize("case", CASES, ids=lambda c: c.name)
+def test_scaled_quantities_and_emptied_or_removed_files_are_not_read_silently(shared_data, case):
+    """Four seeded quantities scaled by 10^±3 or negated (FuzzCase.quantities), every
+    target emptied, every removable companion removed (issue 31)."""
+    with Damager(shared_data, case) as damager:
+        assert not failures(damager.quantity_cases(4, seed=5))
+
+
 @pytest.mark.parametrize("case", WRITTEN, ids=lambda c: c.name)
 def test_damaged_files_cummins_wrote_are_refused_or_read_alike(written_root, case):
     with Damager(written_root, case) as damager:
         assert not failures(damager.cases(40, seed=11))
+
+
+@pytest.mark.parametrize("case", WRITTEN, ids=lambda c: c.name)
+def test_scaled_quantities_of_files_cummins_wrote_are_not_read_silently(written_root, case):
+    """Every declared quantity, every operation: the checksums are rewritten with the
+    numbers (h5py), so only the physics can tell."""
+    with Damager(written_root, case) as damager:
+        assert not failures(damager.quantity_cases())
 
 
 def _payload_ranges(path: Path) -> list[range]:

@@ -118,6 +118,14 @@ def test_reencoded_copies_read_identically(shared_data, case):
         assert not failures(damager.encodings())
 
 
+@pytest.mark.parametrize("case", CASES, ids=lambda c: c.name)
+def test_scaled_quantities_and_emptied_or_removed_files_are_not_read_silently(shared_data, case):
+    """Four seeded quantities scaled by 10^±3 or negated (FuzzCase.quantities), every
+    target emptied, every removable companion removed (issue 31)."""
+    with Damager(shared_data, case) as damager:
+        assert not failures(damager.quantity_cases(4, seed=5))
+
+
 def _swapped(path: Path, i: int, j: int, tmp_path: Path) -> Path:
     lines = path.read_text().splitlines()
     lines[i - 1], lines[j - 1] = lines[j - 1], lines[i - 1]

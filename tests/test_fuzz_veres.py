@@ -34,8 +34,36 @@ CASES = [
         format="veres",
         swap_blind=("input.re8", "input.re1"),
     ),
-    FuzzCase("mss-supply-mat", "mss/supply", "supply.mat", ("supply.mat",), format="mss"),
-    FuzzCase("mss-s175-mat", "mss/s175", "s175.mat", ("s175.mat",), format="mss"),
+    FuzzCase(
+        "mss-supply-mat",
+        "mss/supply",
+        "supply.mat",
+        ("supply.mat",),
+        format="mss",
+        quantities=(
+            "supply.mat:vessel.freqs",
+            "supply.mat:vessel.A",
+            "supply.mat:vessel.B",
+            "supply.mat:vessel.MRB",
+            "supply.mat:vessel.C",
+            "supply.mat:vessel.forceRAO.amp:scale",
+        ),
+    ),
+    FuzzCase(
+        "mss-s175-mat",
+        "mss/s175",
+        "s175.mat",
+        ("s175.mat",),
+        format="mss",
+        quantities=(
+            "s175.mat:vessel.freqs",
+            "s175.mat:vessel.A",
+            "s175.mat:vessel.B",
+            "s175.mat:vessel.MRB",
+            "s175.mat:vessel.C",
+            "s175.mat:vessel.forceRAO.amp:scale",
+        ),
+    ),
     FuzzCase(
         "mss-naval-vessel-force-rao",
         "corpus/MSS/navalvessel_forceRAO",
@@ -56,6 +84,14 @@ def test_damaged_copies_are_refused_or_read_alike(shared_data, case):
 def test_reencoded_copies_read_identically(shared_data, case):
     with Damager(shared_data, case) as damager:
         assert not failures(damager.encodings())
+
+
+@pytest.mark.parametrize("case", CASES, ids=lambda c: c.name)
+def test_scaled_quantities_and_emptied_or_removed_files_are_not_read_silently(shared_data, case):
+    """Four seeded quantities scaled by 10^±3 or negated (FuzzCase.quantities), every
+    target emptied, every removable companion removed (issue 31)."""
+    with Damager(shared_data, case) as damager:
+        assert not failures(damager.quantity_cases(4, seed=5))
 
 
 def test_a_zero_speed_row_unlike_the_other_headings_is_named(shared_data, tmp_path):

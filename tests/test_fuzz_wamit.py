@@ -27,25 +27,54 @@ import cummins
 from _mutate import Damager, FuzzCase, failures
 
 CASES = [
-    FuzzCase("tanker", "mss/tanker", "tanker.1", ("tanker.1", "tanker.3", "tanker.hst")),
-    FuzzCase("sphere", "wecsim/sphere", "sphere.1", ("sphere.1", "sphere.3", "sphere.hst")),
+    FuzzCase(
+        "tanker",
+        "mss/tanker",
+        "tanker.1",
+        ("tanker.1", "tanker.3", "tanker.hst"),
+        quantities=(
+            "tanker.1:1",  # the periods
+            "tanker.1:4",  # A (and the limit rows)
+            "tanker.1:5",  # B
+            "tanker.3:4+6+7:scale",  # |X|, Re X, Im X
+            "tanker.hst:3",  # C (the run has its inertia: .frc, .out)
+        ),
+    ),
+    FuzzCase(
+        "sphere",
+        "wecsim/sphere",
+        "sphere.1",
+        ("sphere.1", "sphere.3", "sphere.hst"),
+        quantities=(
+            "sphere.1:1",
+            "sphere.1:4",
+            "sphere.1:5",
+            "sphere.3:4+6+7:scale",
+            "sphere.hst:3:negate",  # no inertia in the run: C's scale has nothing to meet
+        ),
+    ),
     FuzzCase(
         "barge_gbm",
         "corpus/WEC-Sim_Applications/wamit_generalized_modes_barge",
         "barge.1",
         ("barge.hst", "barge.frc", "barge.cfg"),
+        quantities=("barge.hst:3",),
     ),
     FuzzCase(
         "hams_hywind",
         "corpus/HAMS/HywindSpar",
         ".",
         ("Output_Benchmark/Wamit_format/Buoy.1", "Output_Benchmark/Wamit_format/Buoy.3"),
+        # two frequencies: no Kramers-Kronig or Haskind relation; the wave numbers
+        # against the size remain
+        quantities=("Output_Benchmark/Wamit_format/Buoy.1:1",),
     ),
     FuzzCase(
         "iti_barge_crlf",
         "corpus/ROSCO/wamit_ITI_barge_5MW_Baseline",
         "Barge.1",
         ("Barge.1", "Barge.hst"),
+        quantities=("Barge.1:1", "Barge.1:4", "Barge.1:5", "Barge.hst:3:negate"),
     ),
     FuzzCase(
         "wavebot_out_only",
@@ -74,6 +103,14 @@ def test_damaged_copies_are_refused_or_read_alike(shared_data, case):
 def test_reencoded_copies_read_identically(shared_data, case):
     with Damager(shared_data, case) as damager:
         assert not failures(damager.encodings())
+
+
+@pytest.mark.parametrize("case", CASES, ids=lambda c: c.name)
+def test_scaled_quantities_and_emptied_or_removed_files_are_not_read_silently(shared_data, case):
+    """Four seeded quantities scaled by 10^±3 or negated (FuzzCase.quantities), every
+    target emptied, every removable companion removed (issue 31)."""
+    with Damager(shared_data, case) as damager:
+        assert not failures(damager.quantity_cases(4, seed=5))
 
 
 def test_a_cut_number_in_the_iti_barge_hst_is_named(shared_data, tmp_path):

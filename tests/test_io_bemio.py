@@ -187,3 +187,44 @@ def test_fitted_model_is_written_as_bemio_state_space(shared_data, tmp_path):
     with h5py.File(out) as f:
         ss = f["body1/hydro_coeffs/radiation_damping/state_space"]
         assert ss["it"][2, 2] == 2 and ss["conv"][2, 2] == 1 and ss["conv"][0, 0] == 0
+
+
+def _store_single(path, group, change=None):
+    """Rewrite ``group``'s re, im, mag and phase as float32, as a single-precision BEMIO
+    writer stores them (mag and phase rounded apart from re and im); ``change`` edits mag."""
+    with h5py.File(path, "r+") as f:
+        for key in ("re", "im", "mag", "phase"):
+            name = f"{group}/{key}"
+            data = np.asarray(f[name][()], dtype=np.float32)
+            if key == "mag" and change is not None:
+                data = change(data)
+            attrs = dict(f[name].attrs)
+            del f[name]
+            f.create_dataset(name, data=data)
+            f[name].attrs.update(attrs)
+
+
+def test_single_precision_magnitude_and_phase_are_not_damage(corpus, tmp_path):
+    """WEC-Sim's wavestar with its excitation stored in float32: |F| e^{i arg F} differs
+    from re + i im by ~4e-7 of the largest force, the rounding of single precision, not
+    damage (the 1e-9 of double precision called every such file damaged); a magnitude
+    changed by 1e-4 still is."""
+    import shutil
+    import warnings
+
+    path = tmp_path / "wavestar.h5"
+    shutil.copy(corpus / WAVESTAR / "wavestar.h5", path)
+    group = "body1/hydro_coeffs/excitation"
+    _store_single(path, group)
+    with h5py.File(path, "r") as f:
+        re, im = f[f"{group}/re"][()], f[f"{group}/im"][()]
+        polar = f[f"{group}/mag"][()] * np.exp(1j * f[f"{group}/phase"][()].astype(float))
+        gap = np.abs(polar - (re + 1j * im)).max() / np.abs(re + 1j * im).max()
+    assert 1e-8 < gap < 1e-5  # the rounding the old tolerance took for damage
+    with warnings.catch_warnings():
+        warnings.simplefilter("error", cummins.HydroDataWarning)
+        ds = cummins.read(path)
+    assert "read_warnings" not in ds.attrs
+    _store_single(path, group, change=lambda mag: mag * np.float32(1 + 1e-4))
+    with pytest.warns(cummins.HydroDataWarning, match="mag and phase differ from re and im"):
+        cummins.read(path)

@@ -782,7 +782,7 @@ def describe(ds: xr.Dataset) -> dict[str, Any]:
     # one number for one body, a list of one per body for several
     if "displaced_volume" in ds.attrs:
         volumes = [float(x) for x in np.ravel(ds.attrs["displaced_volume"])]
-        info["displaced_volume_m3"] = volumes[0] if len(volumes) == 1 else volumes
+        info["displaced_volume_m3"] = volumes[0] if len(volumes) == 1 else volumes  # per body
     if "inertia_matrix" in ds:
         m = np.diag(dof_matrix(ds, "inertia_matrix"))
         labels = [str(d) for d in ds.influenced_dof.values]

@@ -23,6 +23,7 @@ from cummins.display import (
     unwrapped_phase_deg,
 )
 from cummins.errors import check_writable
+from cummins.files import replacing
 from cummins.fit_figures import plot_coupling_fit as plot_coupling_fit  # its earlier place
 from cummins.hydrodb import is_rotation
 
@@ -220,7 +221,8 @@ def save_figure(
     check_writable(p, force)
     p.parent.mkdir(parents=True, exist_ok=True)
     settle_layout(fig, dpi)
-    fig.savefig(p, dpi=dpi)
+    with replacing(p) as tmp:
+        fig.savefig(tmp, dpi=dpi, format=p.suffix.lstrip(".").lower() or "png")
     return p
 
 

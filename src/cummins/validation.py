@@ -227,18 +227,27 @@ MAX_MASS = 1e12
 MAX_LENGTH = 1e3
 #: Frequency scale turning a mass coefficient into the largest damping, rad/s.
 MAX_RATE = 1e2
+#: Acceleration scale turning a mass into the largest wave force per metre of wave
+#: amplitude, m/s² per m (ρ g A_wp of a waterplane of 10⁸ m², with room to spare).
+MAX_WAVE_FORCE_RATE = 1e2
+#: No water wave is faster, rad/s (a period of 0.6 ms: capillary ripples are slower).
+MAX_FREQUENCY = 1e4
 
 
 def coefficient_limit(dof_i: str, dof_j: str, kind: str = "mass") -> float:
     """The largest |value| a mass-like (``kind="mass"``: inertia, added mass, kg, kg·m,
     kg·m²) or damping (``"damping"``, ×:data:`MAX_RATE`) coefficient between two rigid-body
     DOFs can have for any floating body: :data:`MAX_MASS` × :data:`MAX_LENGTH`^(number of
-    rotations). ``inf`` for a generalized mode (its scale is the mode shape's)."""
+    rotations); a wave excitation of DOF ``dof_i`` per metre of amplitude
+    (``"excitation"``): :data:`MAX_MASS` × :data:`MAX_WAVE_FORCE_RATE` (× :data:`MAX_LENGTH`
+    for a moment). ``inf`` for a generalized mode (its scale is the mode shape's)."""
     from cummins.hydrodb import is_rigid_body_dof, is_rotation
 
     if not (is_rigid_body_dof(dof_i) and is_rigid_body_dof(dof_j)):
         return math.inf
     rotations = int(is_rotation(dof_i)) + int(is_rotation(dof_j))
+    if kind == "excitation":  # a force or moment per metre of wave amplitude, DOF i
+        return MAX_MASS * MAX_WAVE_FORCE_RATE * MAX_LENGTH ** int(is_rotation(dof_i))
     return MAX_MASS * MAX_LENGTH**rotations * (MAX_RATE if kind == "damping" else 1.0)
 
 

@@ -20,6 +20,12 @@ changed in the data. Each finding says what was measured, where, and what to do.
   a negative mass, masses, inertias, added masses or dampings beyond any floating body
   (10¹² kg, 10¹⁸ kg·m², :func:`cummins.validation.coefficient_limit`); the numerical
   checks below are skipped then.
+* ``plausibility`` — what every floating body keeps between its quantities, so that one
+  scaled by 10³ or of the wrong sign stands out (errors): mass against ρ∇ and against
+  the waterplane C33/(ρg), A(ω)'s variation against what B(ω) implies (Kramers–Kronig),
+  excitation against damping (Haskind), the frequencies against the body's size, the
+  sign of C33 and of external damping; natural periods far from the data (warning)
+  (:mod:`cummins.check.plausibility`).
 * ``inertia``, ``hydrostatics`` — M_RB symmetric positive definite; C33, C44, C55 > 0.
 * ``copied_dof`` — a DOF that is an exact scaled copy of another (strip-theory codes
   approximate surge by scaling sway).
@@ -41,6 +47,7 @@ changed in the data. Each finding says what was measured, where, and what to do.
 
 The checks live in modules by subject: :mod:`~cummins.check.coefficients` (frequency
 grid, symmetry, damping, A∞, decay), :mod:`~cummins.check.physical`,
+:mod:`~cummins.check.plausibility`,
 :mod:`~cummins.check.rigid_body` (inertia, hydrostatics), :mod:`~cummins.check.artefacts`
 (read damage, copied DOFs, suspect frequencies), :mod:`~cummins.check.retardation` and
 :mod:`~cummins.check.waves` (wave parity); the report in :mod:`~cummins.check.report`,
@@ -73,6 +80,7 @@ from cummins.check.common import (
     TAIL_TOL,
 )
 from cummins.check.physical import _check_physical
+from cummins.check.plausibility import plausibility_findings
 from cummins.check.report import SEVERITIES, CheckReport, Finding
 from cummins.check.retardation import _check_retardation
 from cummins.check.rigid_body import _check_rigid_body
@@ -134,6 +142,7 @@ def check(ds: xr.Dataset) -> CheckReport:
         return CheckReport(source=str(source), findings=tuple(findings))
     for part in (
         _check_read_warnings,
+        plausibility_findings,
         _check_grid,
         _check_symmetry,
         _check_damping,

@@ -1,8 +1,9 @@
 """The ``physical`` check: what no floating body has (errors).
 
-Non-finite coordinates or positions, a negative mass, masses, inertias, added masses or
-dampings beyond any floating body (10¹² kg, 10¹⁸ kg·m²,
-:func:`cummins.validation.coefficient_limit`). When it finds an error,
+Non-finite coordinates or positions, a negative mass, masses, inertias, added masses,
+dampings or wave excitations beyond any floating body (10¹² kg, 10¹⁸ kg·m²,
+:func:`cummins.validation.coefficient_limit`), frequencies beyond any water wave
+(:data:`cummins.validation.MAX_FREQUENCY`). When it finds an error,
 :func:`cummins.check.check` skips the numerical checks.
 """
 
@@ -14,7 +15,7 @@ import xarray as xr
 from cummins.check.common import _labels
 from cummins.check.report import Finding
 from cummins.hydrodb import dof_matrix, split_dof
-from cummins.validation import coefficient_limit
+from cummins.validation import MAX_FREQUENCY, coefficient_limit
 
 
 def _check_physical(ds: xr.Dataset) -> list[Finding]:
@@ -56,6 +57,20 @@ def _check_physical(ds: xr.Dataset) -> list[Finding]:
                         advice="give the position in metres (the file is damaged)",
                     )
                 )
+    w = np.asarray(ds.omega.values, dtype=float)
+    if w.size and np.all(np.isfinite(w)) and w.max() > MAX_FREQUENCY:
+        out.append(
+            Finding(
+                "physical",
+                "error",
+                f"the frequencies reach {w.max():.4g} rad/s (a period of {2 * np.pi / w.max():.3g} "
+                f"s), beyond any water wave (at most {MAX_FREQUENCY:.0e} rad/s)",
+                where="omega",
+                value=float(w.max()),
+                advice="the file is damaged or its first column is not what it says (periods "
+                "in ms? a scaled column): check it, or rerun the solver",
+            )
+        )
     labels = _labels(ds)
     if "inertia_matrix" in ds:
         m = dof_matrix(ds, "inertia_matrix")
@@ -79,11 +94,16 @@ def _check_physical(ds: xr.Dataset) -> list[Finding]:
         ("added_mass_inf", "mass", "added mass A∞"),
         ("added_mass_zero", "mass", "added mass A(0)"),
         ("radiation_damping", "damping", "damping"),
+        ("excitation_force", "excitation", "wave excitation per metre of amplitude"),
     ):
         if var not in ds:
             continue
-        values = ds[var].transpose(..., "influenced_dof", "radiating_dof").values
-        peak = np.max(np.abs(values.reshape(-1, len(labels), len(labels))), axis=0)
+        if var == "excitation_force":  # a vector per DOF: its largest |X_i| on the diagonal
+            values = np.abs(ds[var].transpose(..., "influenced_dof").values)
+            peak = np.diag(values.reshape(-1, len(labels)).max(axis=0))
+        else:
+            values = ds[var].transpose(..., "influenced_dof", "radiating_dof").values
+            peak = np.max(np.abs(values.reshape(-1, len(labels), len(labels))), axis=0)
         for i, row in enumerate(labels):
             for j, col in enumerate(labels):
                 if j < i:

@@ -12,14 +12,17 @@ from rich.table import Table
 from cummins.cli.common import (
     console,
     force_option,
+    note_inputs,
     prepare_outputs,
     progress_bar,
     reports_errors,
     run_reporting_errors,
 )
+from cummins.cli.option_rules import Command, option_rules
+from cummins.cli.outputs import output_written
 
 
-@click.command(name="batch")
+@click.command(name="batch", cls=Command)
 @click.argument("study_file", metavar="STUDY", type=click.Path(dir_okay=False))
 @click.option(
     "-o",
@@ -49,6 +52,7 @@ from cummins.cli.common import (
     help="First write an example study (the bundled tanker) to STUDY; with -o, then run it.",
 )
 @force_option("Overwrite OUTPUT (and STUDY with --example).")
+@option_rules(needs={"workers": "output", "scheduler": "output"})
 @reports_errors
 def batch_command(study_file, output, scheduler, workers, example, force):
     """Run a study of many cases (headings x sea states x seeds) on a Dask cluster.
@@ -88,6 +92,7 @@ def batch_command(study_file, output, scheduler, workers, example, force):
 
         data = "tanker.1" if here else str(demo_files() / "tanker.1")
         study_path.write_text(example_study_text(data), encoding="utf-8")
+        output_written(study_path)
         console.print(f"wrote {study_path} (an example study: edit it, then run it with -o)")
         if output is None:
             return
@@ -97,6 +102,7 @@ def batch_command(study_file, output, scheduler, workers, example, force):
         raise click.BadParameter(f"{study_path} does not exist", param_hint="STUDY")
     study = load_study(study_path)
     _require_dask()
+    note_inputs(study_path, study.data, study.model)
     prepare_outputs(output, force=force)
     n = len(study.all_cases)
     console.print(

@@ -13,31 +13,22 @@ from cummins.cli.common import (
     Number,
     finite,
     force_option,
+    headings_list,
     positive,
     prepare_outputs,
     reports_errors,
 )
+from cummins.cli.option_rules import Command, option_rules
 from cummins.io._common import DEFAULT_G, DEFAULT_RHO
 
 
 def _headings(values: tuple[str, ...]) -> list[float]:
-    """Headings in degrees from ``--headings 0 --headings 90,180`` style options."""
-    out: list[float] = []
-    for value in values:
-        for part in value.replace(",", " ").split():
-            try:
-                value = float(part)
-            except ValueError:
-                value = math.nan
-            if not math.isfinite(value):
-                raise click.BadParameter(
-                    f"{part!r} is not a finite number of degrees", param_hint="--headings"
-                )
-            out.append(value)
-    return out or [180.0]
+    """Headings in degrees from ``--headings 0 --headings 90,180`` style options (default
+    180: head seas)."""
+    return headings_list(values, "--headings") or [180.0]
 
 
-@click.command(name="bem")
+@click.command(name="bem", cls=Command)
 @click.argument("mesh", required=False, type=click.Path(dir_okay=False, path_type=Path))
 @click.option(
     "--hull",
@@ -112,6 +103,7 @@ def _headings(values: tuple[str, ...]) -> list[float]:
     help="Output NetCDF file (.nc).",
 )
 @force_option("Overwrite the output file if it exists.")
+@option_rules(needs={"length": "hull", "beam": "hull", "draft": "hull", "resolution": "hull"})
 @reports_errors
 def bem_command(
     mesh,
@@ -153,8 +145,15 @@ def bem_command(
         ]
         if missing:
             raise click.UsageError(f"--hull {hull} needs {', '.join(missing)}")
-    prepare_outputs(output, force=force)
+    # every argument is checked before Capytaine is looked for (exit status 2 first)
+    directions = np.radians(_headings(headings))
+    if not omega_min < omega_max:
+        raise click.BadParameter(
+            f"{omega_min:g} rad/s is not below --omega-max {omega_max:g} rad/s",
+            param_hint="--omega-min",
+        )
     omega = bem.default_omegas(omega_min, omega_max, n_omega)
+    prepare_outputs(output, force=force)
     if hull is not None:
         geometry = bem.hull_mesh(hull, length, beam, draft, resolution=resolution)
     else:
@@ -163,7 +162,7 @@ def bem_command(
     ds = bem.compute_hydrodb(
         geometry,
         omega,
-        wave_direction=np.radians(_headings(headings)),
+        wave_direction=directions,
         water_depth=depth,
         rho=rho,
         g=gravity,

@@ -3,7 +3,6 @@
 from __future__ import annotations
 
 import sys
-from pathlib import Path
 
 import click
 from rich.markup import escape
@@ -16,9 +15,11 @@ from cummins.cli.common import (
     read_options,
     reports_errors,
 )
+from cummins.cli.option_rules import Command
+from cummins.files import write_text
 
 
-@click.command(name="check")
+@click.command(name="check", cls=Command)
 @click.argument("path", type=click.Path(exists=True))
 @read_options
 @click.option(
@@ -57,7 +58,7 @@ def check_command(path, format_, rho, g, ulen, json_path, strict, force):
     else:
         _print_report(report)
         if json_path:
-            Path(json_path).write_text(report.to_json() + "\n", encoding="utf-8")
+            write_text(json_path, report.to_json() + "\n")
             console.print(f"JSON report written to {json_path}")
     failed = not report.ok or (strict and report.worst() == "warning")
     sys.exit(1 if failed else 0)

@@ -1,11 +1,11 @@
-"""Pieces shared by the ``cummins`` commands: consoles, error reporting, read options."""
+"""Pieces shared by the ``cummins`` commands: consoles, error reporting, read options;
+:func:`prepare_outputs` and :func:`note_inputs` (from :mod:`cummins.cli.outputs`)."""
 
 from __future__ import annotations
 
 import contextlib
 import functools
 import math
-import os
 import sys
 import warnings
 from collections.abc import Callable, Iterator
@@ -26,13 +26,16 @@ from rich.progress import (
 )
 from rich.table import Table
 
+from cummins.cli.option_rules import refuse_repeated
+from cummins.cli.outputs import note_inputs
+from cummins.cli.outputs import prepare_outputs as prepare_outputs  # for the commands
 from cummins.errors import (
     ArgumentError,
     CumminsError,
     CumminsWarning,
     OutputExistsError,
-    check_writable,
 )
+from cummins.files import files_read
 
 #: The width of the output when it is not a terminal (a pipe, a log, CI), unless COLUMNS
 #: says otherwise: wide enough for every table, where rich would otherwise take 80.
@@ -218,6 +221,52 @@ def finite(unit: str = "") -> Number:
     return Number(unit=unit)
 
 
+#: Headings, wave and wind directions: degrees in one turn either way (a larger value is
+#: a typing error, not a direction).
+HEADING_RANGE = (-360.0, 360.0)
+
+
+def heading_degrees(unit: str = "deg") -> Number:
+    """A direction in degrees within ±360 (:data:`HEADING_RANGE`)."""
+    return Number(*HEADING_RANGE, unit=unit)
+
+
+def headings_list(values, option: str = "--headings") -> list[float]:
+    """Directions in degrees from a repeatable option (``--headings 0 --headings 90,180``:
+    commas or spaces), each finite and within one turn (:data:`HEADING_RANGE`), none twice
+    (0 and 360 are one direction)."""
+    out: list[float] = []
+    for value in values:
+        for part in str(value).replace(",", " ").split():
+            try:
+                x = float(part)
+            except ValueError:
+                x = math.nan
+            if not math.isfinite(x):
+                raise click.BadParameter(
+                    f"{part!r} is not a finite number of degrees", param_hint=option
+                )
+            if not HEADING_RANGE[0] <= x <= HEADING_RANGE[1]:
+                raise click.BadParameter(
+                    f"{part} deg is beyond one turn ({HEADING_RANGE[0]:g} to "
+                    f"{HEADING_RANGE[1]:g} deg)",
+                    param_hint=option,
+                )
+            twin = [
+                y
+                for y in out
+                if math.isclose((x - y) % 360.0, 0.0, abs_tol=1e-9)
+                or math.isclose((x - y) % 360.0, 360.0, abs_tol=1e-9)
+            ]
+            if twin:
+                raise click.BadParameter(
+                    f"{twin[0]:g} and {x:g} deg are one direction; give each once",
+                    param_hint=option,
+                )
+            out.append(x)
+    return out
+
+
 def speed_option(help: str = "Forward speed to use when the data hold several."):
     """--speed M/S (a finite number of m/s), passed as ``speed``."""
     return click.option("--speed", type=finite("m/s"), default=None, metavar="M/S", help=help)
@@ -248,7 +297,7 @@ def viscous_damping_option(func):
         multiple=True,
         metavar="DOF VALUE",
         help="Linear viscous damping B_v on a DOF, e.g. --viscous-damping Roll 5e8 (kg/s, "
-        "kg m^2/s; repeatable, repeated values add up). Surge, sway and yaw have no "
+        "kg m^2/s; repeatable, once per DOF). Surge, sway and yaw have no "
         "restoring: without it they drift in a simulation.",
     )(func)
 
@@ -260,6 +309,7 @@ def viscous_damping_values(
     none)."""
     if not pairs:
         return None
+    refuse_repeated(pairs, option, key=lambda pair: pair[0])
     values: dict[str, float] = {}
     for dof, value in pairs:
         if dof not in labels:
@@ -267,7 +317,7 @@ def viscous_damping_values(
                 f"unknown DOF {dof!r}; the data have {', '.join(labels)}",
                 param_hint=option,
             )
-        values[dof] = values.get(dof, 0.0) + value
+        values[dof] = value
     return values
 
 
@@ -437,7 +487,9 @@ def read_hydrodb(
 
     context = click.get_current_context(silent=True)
     depth = context.meta.get(_DEPTH_KEY) if context is not None else None
-    ds = read(path, format=format_, rho=rho, g=g, ulen=ulen, water_depth=depth)
+    with files_read() as used:
+        ds = read(path, format=format_, rho=rho, g=g, ulen=ulen, water_depth=depth)
+    note_inputs(path, *used)
     options = context.meta.get(_EOM_KEY) if context is not None else None
     return complete_equation_of_motion(ds, **options) if options else ds
 
@@ -474,6 +526,7 @@ def complete_equation_of_motion(
                 "give either --inertia-matrix or --mass/--center-of-gravity/"
                 "--radii-of-gyration, not both"
             )
+        note_inputs(inertia_matrix)
         ds = with_inertia(ds, matrix=read_matrix_file(inertia_matrix), restoring=restoring)
     elif radii_of_gyration:
         ds = with_inertia(
@@ -495,6 +548,7 @@ def complete_equation_of_motion(
     terms = {}
     for name, given in (("stiffness", external_stiffness), ("damping", external_damping)):
         if given:
+            refuse_repeated(given, f"--external-{name}", key=lambda t: (t[0], t[1]), what="pair")
             values: dict[tuple[str, str], float] = {}
             for i, j, value in given:
                 for dof in (i, j):
@@ -503,52 +557,9 @@ def complete_equation_of_motion(
                             f"unknown DOF {dof!r}; the data have {', '.join(labels)}",
                             param_hint=f"--external-{name}",
                         )
-                values[(i, j)] = values.get((i, j), 0.0) + value
+                values[(i, j)] = value
             terms[name] = values
     return with_external_terms(ds, **terms) if terms else ds
-
-
-def prepare_outputs(*paths, force: bool, folders=()) -> None:
-    """Before any work: refuse to overwrite without ``--force``, refuse a path under an
-    existing file (or a folder where a file is to be written), create missing folders.
-
-    ``folders`` are output folders (``--plot DIR``): checked the same way, not created.
-    """
-    files = [Path(p) for p in paths if p]
-    dirs = [Path(p) for p in folders if p]
-    for path in files:
-        if path.is_dir() and path.suffix.lower() != ".zarr":  # a Zarr store is a folder
-            raise ArgumentError(
-                f"{path} is a folder: cannot write a file there",
-                hint="Give the name of a file",
-            )
-        check_writable(path, force)
-    for path in [*files, *dirs]:
-        _check_parents(path)
-    for path in dirs:
-        if path.exists() and not path.is_dir():
-            raise ArgumentError(
-                f"{path} is a file, not a folder", hint="Give the name of a folder for the output"
-            )
-    for path in files:
-        path.parent.mkdir(parents=True, exist_ok=True)
-
-
-def _check_parents(path: Path) -> None:
-    """ArgumentError when a folder above ``path`` exists as a file or is not writable."""
-    for parent in path.parents:
-        if parent.exists():
-            if not parent.is_dir():
-                raise ArgumentError(
-                    f"cannot write {path}: {parent} is a file, not a folder",
-                    hint="Choose an output path in a folder",
-                )
-            if not os.access(parent, os.W_OK | os.X_OK):
-                raise ArgumentError(
-                    f"cannot write {path}: the folder {parent} is not writable",
-                    hint="Choose an output path in a folder you may write to",
-                )
-            return
 
 
 def select_speed(ds, speed: float | None):
@@ -584,6 +595,7 @@ def model_and_data(path):
     from cummins.radiation.model_file import FORMAT_NAME
 
     p = Path(path)
+    note_inputs(p)
     if p.is_file() and p.suffix.lower() == ".nc":
         import h5py
 

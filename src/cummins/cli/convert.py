@@ -18,10 +18,11 @@ from cummins.cli.common import (
     reports_errors,
     select_body,
 )
+from cummins.cli.option_rules import Command
 from cummins.errors import CumminsWarning
 
 
-@click.command(name="convert")
+@click.command(name="convert", cls=Command)
 @click.argument("source", type=click.Path(exists=True))
 @click.argument("destination", type=click.Path())
 @read_options

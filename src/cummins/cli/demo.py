@@ -16,6 +16,8 @@ from pathlib import Path
 import click
 
 from cummins.cli.common import console, force_option, prepare_outputs, reports_errors
+from cummins.cli.option_rules import Command
+from cummins.cli.pipeline import kernel_stage, write_kernel_plots
 from cummins.errors import check_writable
 
 
@@ -91,7 +93,6 @@ def run_demo(
 
     from cummins import demo_files
     from cummins.check import check
-    from cummins.cli.pipeline import kernel_stage, write_kernel_plots
     from cummins.hydrodb import change_axes, describe, move_reference_point
     from cummins.io import read, write
     from cummins.plots import plot_added_mass_damping, plot_excitation, save_figure
@@ -365,7 +366,7 @@ def _dp_step(out: Path, force: bool) -> DemoStep:
     )
 
 
-@click.command(name="demo")
+@click.command(name="demo", cls=Command)
 @click.option(
     "-o",
     "--output",

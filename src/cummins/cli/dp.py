@@ -8,19 +8,21 @@ import click
 
 from cummins.cli.common import (
     console,
-    finite,
     force_option,
+    heading_degrees,
     non_negative,
+    note_inputs,
     positive,
     prepare_outputs,
     progress_bar,
     reports_errors,
 )
+from cummins.cli.option_rules import Command, option_rules
 from cummins.cli.second_order import second_order_option
 from cummins.validation import check_simulation_size
 
 
-@click.command(name="dp-demo")
+@click.command(name="dp-demo", cls=Command)
 @click.option(
     "-o",
     "--output",
@@ -54,7 +56,9 @@ from cummins.validation import check_simulation_size
     metavar="M/S",
     help="Current speed (from --current-from).",
 )
-@click.option("--current-from", type=finite("deg"), default=0.0, show_default=True, metavar="DEG")
+@click.option(
+    "--current-from", type=heading_degrees(), default=0.0, show_default=True, metavar="DEG"
+)
 @click.option(
     "--wind",
     "wind_speed",
@@ -64,7 +68,7 @@ from cummins.validation import check_simulation_size
     metavar="M/S",
     help="Mean wind speed at 10 m, with NORSOK gusts.",
 )
-@click.option("--wind-from", type=finite("deg"), default=30.0, show_default=True, metavar="DEG")
+@click.option("--wind-from", type=heading_degrees(), default=30.0, show_default=True, metavar="DEG")
 @click.option(
     "--data",
     "data_path",
@@ -79,6 +83,12 @@ from cummins.validation import check_simulation_size
     "stops with an error) or none.",
 )
 @force_option("Overwrite the files of an earlier run.")
+@option_rules(
+    needs={
+        "current_from": ("current_speed", lambda v: v > 0, "above 0"),
+        "wind_from": ("wind_speed", lambda v: v > 0, "above 0"),
+    }
+)
 @reports_errors
 def dp_demo_command(
     folder,
@@ -120,6 +130,7 @@ def dp_demo_command(
 
     out = Path(folder)
     names = ["run.nc", "pose.png", "wave_and_radiation_forces.png", "loads.png", "watch_circle.png"]
+    note_inputs(data_path)
     prepare_outputs(*(out / n for n in names), force=force)
     # before the model is built: the run's size (the S-175 model has about 60 states)
     check_simulation_size(duration, dt, 60, 54, option="--duration")

@@ -27,10 +27,12 @@ from cummins.cli.common import (
     speed_option,
     stage_progress,
 )
+from cummins.cli.option_rules import Command, refuse_repeated
 from cummins.dofs import split_dof
+from cummins.files import write_text
 
 
-@click.command(name="fit")
+@click.command(name="fit", cls=Command)
 @click.argument("path", type=click.Path(exists=True))
 @read_options
 @click.option(
@@ -196,6 +198,14 @@ def fit_command(
     """
     from cummins.radiation.fit import fit_radiation
 
+    refuse_repeated(orders, "--order", key=lambda o: tuple(sorted(o[:2])), what="coupling")
+    above = [o for o in orders if max_order is not None and o[2] > max_order]
+    if above:
+        a, b, n = above[0]
+        raise click.UsageError(
+            f"--order {a} {b} {n} is above --max-order {max_order}: one of the two would be "
+            "ignored; raise --max-order or lower the order"
+        )
     prepare_outputs(output, json_path, openfast, mss_path, force=force, folders=[plot_dir])
     ds = select_speed(read_hydrodb(path, format_, rho, g, ulen), speed)
     if body is not None:
@@ -269,7 +279,7 @@ def fit_command(
     model.save(output, force=force)
     console.print(f"wrote {output}")
     if json_path:
-        Path(json_path).write_text(json.dumps(summary, indent=2) + "\n", encoding="utf-8")
+        write_text(json_path, json.dumps(summary, indent=2) + "\n")
         console.print(f"wrote {json_path}")
     if openfast:
         from cummins.io.openfast import write_openfast_ss

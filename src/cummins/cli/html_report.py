@@ -46,6 +46,7 @@ from cummins.cli.html_page import Section as Section
 from cummins.cli.html_page import _note, figure_html, table_html
 from cummins.cli.html_page import render_html as render_html
 from cummins.errors import CumminsError, check_writable
+from cummins.files import files_read, refuse_overwriting_inputs, replacing
 from cummins.hydrodb import is_rotation
 
 __all__ = ["KINDS", "Section", "detect_kind", "render_html", "report_sections", "write_report"]
@@ -729,16 +730,21 @@ def write_report(
     ------
     OutputExistsError
         ``output`` exists and ``force`` is false.
+    ArgumentError
+        ``output`` is a file the report reads (``path``, a run's companion files), with
+        ``force`` or not.
     CumminsError
         ``path`` cannot be read as anything cummins knows.
     """
     output = Path(output)
+    refuse_overwriting_inputs([output], [path])
     check_writable(output, force)
-    kind, sections = report_sections(path, kind, read_options=read_options)
+    with files_read() as used:
+        kind, sections = report_sections(path, kind, read_options=read_options)
+    refuse_overwriting_inputs([output], [path, *used])  # a run's companion files too
     title = f"{Path(path).name}: {KINDS[kind]}"
     page = render_html(title, f"cummins report of {Path(path).resolve()}", sections)
     output.parent.mkdir(parents=True, exist_ok=True)
-    tmp = output.with_name(f".{output.name}.tmp")
-    tmp.write_text(page, encoding="utf-8")
-    os.replace(tmp, output)
+    with replacing(output) as tmp:
+        tmp.write_text(page, encoding="utf-8")
     return output

@@ -8,6 +8,7 @@ import click
 from rich.table import Table
 
 from cummins.cli.common import console, read_hydrodb, read_options, reports_errors
+from cummins.cli.option_rules import Command
 
 
 def second_order_lines(summary: dict) -> list[str]:
@@ -33,7 +34,7 @@ def second_order_lines(summary: dict) -> list[str]:
     return lines
 
 
-@click.command(name="info")
+@click.command(name="info", cls=Command)
 @click.argument("path", type=click.Path(exists=True))
 @read_options
 @click.option("--json", "as_json", is_flag=True, help="Print the description as JSON.")

@@ -20,9 +20,11 @@ from cummins.cli.common import (
     speed_option,
     stage_progress,
 )
+from cummins.cli.option_rules import Command, option_rules
+from cummins.files import replacing
 
 
-@click.command(name="kernel")
+@click.command(name="kernel", cls=Command)
 @click.argument("path", type=click.Path(exists=True))
 @read_options
 @click.option(
@@ -93,6 +95,7 @@ from cummins.cli.common import (
 )
 @speed_option()
 @force_option()
+@option_rules(needs={"above_first": "remove_suspect"})
 @reports_errors
 def kernel_command(
     path,
@@ -146,7 +149,8 @@ def kernel_command(
             say=console.print,
         )
     console.print(kernel_table(result))
-    result.to_netcdf(output, engine="h5netcdf")
+    with replacing(output) as tmp:
+        result.to_netcdf(tmp, engine="h5netcdf")
     console.print(f"wrote {output}")
     if plot_dir:
         with stage_progress("drawing K(t), A and B rebuilt from it, A∞"):

@@ -20,9 +20,10 @@ from cummins.cli.common import (
     select_speed,
     speed_option,
 )
+from cummins.cli.option_rules import Command
 
 
-@click.command(name="lf-model")
+@click.command(name="lf-model", cls=Command)
 @click.argument("path", metavar="DATA", type=click.Path(exists=True))
 @read_options
 @click.option(

@@ -11,6 +11,7 @@ from rich.table import Table
 from cummins.cli.common import (
     console,
     force_option,
+    headings_list,
     non_negative,
     positive,
     prepare_outputs,
@@ -23,6 +24,7 @@ from cummins.cli.common import (
     viscous_damping_option,
     viscous_damping_values,
 )
+from cummins.cli.option_rules import Command
 from cummins.cli.system_options import (
     prepare_system_args,
     system_from_options,
@@ -66,7 +68,7 @@ def expand_list_options(args: list[str]) -> list[str]:
     return out
 
 
-class ListOptionsCommand(click.Command):
+class ListOptionsCommand(Command):
     """A click command whose list options take several values after one flag."""
 
     def parse_args(self, ctx: click.Context, args: list[str]) -> list[str]:
@@ -74,22 +76,9 @@ class ListOptionsCommand(click.Command):
 
 
 def parse_headings(values: tuple[str, ...]) -> list[float]:
-    """Headings in degrees from ``--headings`` values (each may be a comma list)."""
-    out: list[float] = []
-    for value in values:
-        for part in str(value).split(","):
-            if not part.strip():
-                continue
-            try:
-                value = float(part)
-            except ValueError:
-                value = float("nan")
-            if not np.isfinite(value):
-                raise click.BadParameter(
-                    f"{part!r} is not a finite number of degrees", param_hint="--headings"
-                )
-            out.append(value)
-    return out
+    """Headings in degrees from ``--headings`` values (each may be a comma list; see
+    :func:`cummins.cli.common.headings_list`)."""
+    return headings_list(values, "--headings")
 
 
 @click.command(name="rao", cls=ListOptionsCommand)

@@ -24,9 +24,11 @@ from cummins.cli.common import (
     speed_option,
     stage_progress,
 )
+from cummins.cli.option_rules import Command, option_rules
+from cummins.files import write_text
 
 
-@click.command(name="reduce")
+@click.command(name="reduce", cls=Command)
 @click.argument("model_path", metavar="MODEL", type=click.Path(exists=True, dir_okay=False))
 @click.option(
     "-o",
@@ -93,6 +95,7 @@ from cummins.cli.common import (
 )
 @allow_other_data_option
 @force_option()
+@option_rules(needs={"speed": "data_path"})
 @reports_errors
 def reduce_command(
     model_path,
@@ -177,7 +180,7 @@ def reduce_command(
     reduced.save(output, force=force)
     console.print(f"wrote {output}")
     if json_path:
-        Path(json_path).write_text(json.dumps(summary, indent=2) + "\n", encoding="utf-8")
+        write_text(json_path, json.dumps(summary, indent=2) + "\n")
         console.print(f"wrote {json_path}")
     failures = [
         f for f in reduced.attrs.get("failures", []) if f not in model.attrs.get("failures", [])

@@ -11,9 +11,10 @@ from cummins.cli.common import (
     read_options,
     reports_errors,
 )
+from cummins.cli.option_rules import Command
 
 
-@click.command(name="report")
+@click.command(name="report", cls=Command)
 @click.argument("path", metavar="FILE|MODEL|RUN", type=click.Path(exists=True))
 @click.option(
     "-o", "--output", type=click.Path(dir_okay=False), required=True, help="The HTML page."

@@ -11,8 +11,8 @@ from cummins.cli.common import (
     Number,
     allow_other_data_option,
     console,
-    finite,
     force_option,
+    heading_degrees,
     model_and_data,
     non_negative,
     positive,
@@ -26,6 +26,7 @@ from cummins.cli.common import (
     viscous_damping_option,
     viscous_damping_values,
 )
+from cummins.cli.option_rules import option_rules
 from cummins.cli.second_order import (
     build_second_order,
     second_order_option,
@@ -57,7 +58,7 @@ from cummins.validation import check_simulation_size
 )
 @click.option(
     "--heading",
-    type=finite("deg"),
+    type=heading_degrees(),
     default=None,
     metavar="DEG",
     help="Direction the waves travel, degrees: 0 following seas (along +x), 180 head seas "
@@ -171,6 +172,19 @@ from cummins.validation import check_simulation_size
 @sum_frequency_option
 @allow_other_data_option
 @force_option()
+@option_rules(
+    needs={
+        "wave_period": "regular",
+        "wave_amplitude": "regular",
+        "directions": "spreading",
+        "gamma": ("spectrum", "jonswap"),
+        "soft_springs": "speed",
+    },
+    excludes=tuple(
+        ("regular", name)
+        for name in ("hs", "tp", "spectrum", "gamma", "spreading", "components", "seed")
+    ),
+)
 @reports_errors
 def simulate_command(
     path,

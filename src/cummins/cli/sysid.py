@@ -14,8 +14,8 @@ from cummins.cli.common import (
     allow_other_data_option,
     console,
     err_console,
-    finite,
     force_option,
+    heading_degrees,
     model_and_data,
     non_negative,
     positive,
@@ -28,9 +28,10 @@ from cummins.cli.common import (
     viscous_damping_option,
     viscous_damping_values,
 )
+from cummins.cli.option_rules import Command, option_rules
 
 
-@click.command(name="identify-damping")
+@click.command(name="identify-damping", cls=Command)
 @click.argument("records", nargs=-1, required=True, type=click.Path(exists=True, dir_okay=False))
 @click.option(
     "--model",
@@ -96,7 +97,7 @@ from cummins.cli.common import (
 )
 @click.option(
     "--heading",
-    type=finite("deg"),
+    type=heading_degrees(),
     default=None,
     metavar="DEG",
     help="Wave direction, for records holding a wave elevation instead of forces.",
@@ -147,6 +148,26 @@ from cummins.cli.common import (
 )
 @allow_other_data_option
 @force_option("Overwrite the report's files.")
+@option_rules(
+    needs={"inertia": "decay", "stiffness": "decay", "max_lag": "align_dof"},
+    # a decay analysis fits the roll decay alone: the regression's options do not apply
+    excludes=tuple(
+        ("decay", name)
+        for name in (
+            "dofs",
+            "terms",
+            "couplings",
+            "offset",
+            "method",
+            "cutoff",
+            "burn_in",
+            "segment",
+            "heading",
+            "align_dof",
+            "viscous_damping",
+        )
+    ),
+)
 @reports_errors
 def identify_damping_command(
     records,

@@ -27,6 +27,7 @@ from typing import TYPE_CHECKING
 import click
 
 from cummins.cli.common import finite, non_negative
+from cummins.cli.option_rules import Command
 from cummins.dofs import DOF_NAMES, split_dof
 from cummins.errors import ArgumentError
 from cummins.mechanics.joints import JOINT_KINDS, Joint
@@ -72,8 +73,9 @@ def prepare_system_args(ctx: click.Context, args: Sequence[str]) -> list[str]:
     return expanded
 
 
-class SystemCommand(click.Command):
-    """A click command whose system options attach to the --joint or --pto before them."""
+class SystemCommand(Command):
+    """A ``cummins`` command (:class:`cummins.cli.option_rules.Command`) whose system
+    options attach to the --joint or --pto before them."""
 
     def parse_args(self, ctx: click.Context, args: list[str]) -> list[str]:
         return super().parse_args(ctx, prepare_system_args(ctx, args))

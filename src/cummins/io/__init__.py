@@ -260,7 +260,15 @@ def read(
         if name in ("wamit", "wamit-out"):  # a wavenumber column is read with it
             options["water_depth"] = water_depth
     ds = fmt.read(target, **constants, **options)
-    return ds if water_depth is None else _given_depth(ds, water_depth, target)
+    if water_depth is not None:
+        ds = _given_depth(ds, water_depth, target)
+    # numbers no floating body has (a quantity scaled by 10^3, a flipped sign) warn here,
+    # for the commands that do not run cummins check (deferred: check imports radiation,
+    # whose model file imports io)
+    from cummins.check.plausibility import warn_implausible
+
+    warn_implausible(ds)
+    return ds
 
 
 def _given_depth(ds: xr.Dataset, depth: float, path: Path) -> xr.Dataset:

@@ -10,6 +10,7 @@ from pathlib import Path
 import numpy as np
 
 from cummins.errors import HydroDataError
+from cummins.files import note_read
 
 #: A Fortran-style real: 1.0, -1.E+03, 1.0D-02, .5, 12 — also when numbers run together
 #: without a space ("1.2E+03-4.5E+01"), as fixed-width Fortran output sometimes does.
@@ -32,6 +33,7 @@ class TextFile:
     def read(cls, path: str | os.PathLike[str]) -> TextFile:
         """Read ``path``; a missing, empty or binary file raises :class:`HydroDataError`."""
         p = Path(path)
+        note_read(p)
         try:
             raw = p.read_bytes()
         except FileNotFoundError:

@@ -47,6 +47,7 @@ import numpy as np
 import xarray as xr
 
 from cummins.errors import HydroDataError
+from cummins.files import note_read
 from cummins.io._common import warn_damage
 from cummins.io._text import check_cut_numbers, parse_numbers
 from cummins.io.wamit import RunSettings, _parse_dot1, _read_text, numeric_kind, read_wamit_run
@@ -347,6 +348,7 @@ def _constants(output: Path) -> tuple[float | None, float | None, str | None, di
     """ρ, g, the file they come from, and the depth, reference length and centre the run
     used, as printed in the Hydrostar_format headers of an output."""
     for f in sorted((output / "Hydrostar_format").glob("*.rao"))[:1]:
+        note_read(f)
         head = f.read_text(errors="replace").splitlines()[:16]
         found: dict = {}
         for line in head:
@@ -503,6 +505,15 @@ def read_hams(
             )
             matrices = {}
     else:
+        # HAMS reads it for every run: without it the run's mass and external matrices
+        # are lost, as when it is damaged
+        warn_damage(
+            f"{'empty' if hydrostatic.is_file() else 'missing'}: HAMS reads it for every "
+            "run, so the run's mass, external damping and external restoring are unknown "
+            "(no inertia_matrix, additional_damping, additional_stiffness)",
+            path=hydrostatic,
+            notes=settings.notes,
+        )
         matrices = {}
     if matrices:
         if np.any(matrices["mass"]):

@@ -59,6 +59,7 @@ from numpy.typing import ArrayLike, NDArray
 
 from cummins._version import __version__
 from cummins.errors import HydroDataError, check_writable
+from cummins.files import replacing
 from cummins.hydrodb import DOF_NAMES
 from cummins.io._model_common import resolve_axis_convention
 from cummins.io.mss import load_mat_struct
@@ -147,7 +148,8 @@ def write_mss_abc(
     z_down = change_model_axes(model, "z-down", current=current)
     struct = _vessel_abc(z_down, path)
     try:
-        scipy.io.savemat(str(path), {"vesselABC": struct}, do_compression=True, oned_as="row")
+        with replacing(path) as tmp:
+            scipy.io.savemat(str(tmp), {"vesselABC": struct}, do_compression=True, oned_as="row")
     except OSError as exc:
         raise HydroDataError(f"cannot write the file ({exc})", path=path) from None
     return path

@@ -51,6 +51,7 @@ from numpy.typing import ArrayLike, NDArray
 
 from cummins._version import __version__
 from cummins.errors import HydroDataError, HydroDataWarning, check_writable
+from cummins.files import replacing
 from cummins.hydrodb import DOF_NAMES
 from cummins.io._model_common import resolve_axis_convention
 from cummins.io._text import TextFile, check_cut_numbers, parse_numbers
@@ -252,7 +253,8 @@ def write_openfast_ss(
     current = resolve_axis_convention(model, axis_convention, path=path)
     z_up = change_model_axes(model, "z-up", current=current)
     content = openfast_ss_from_model(z_up, title=title)
-    path.write_text(format_openfast_ss(content), encoding="utf-8")
+    with replacing(path) as tmp:
+        tmp.write_text(format_openfast_ss(content), encoding="utf-8")
     return path
 
 

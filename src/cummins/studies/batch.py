@@ -62,6 +62,7 @@ import numpy as np
 import xarray as xr
 
 from cummins.errors import CumminsError, check_writable
+from cummins.files import replacing
 from cummins.studies.study import (
     _BLAS_ENV,
     _RESULT_KIND,
@@ -76,6 +77,7 @@ from cummins.studies.study import (
     load_study,
     parse_limit_value,
 )
+from cummins.validation import check_memory, simulation_memory, time_steps
 
 __all__ = [
     "ANALYSES",
@@ -151,6 +153,7 @@ def prepare_study(study: Study) -> tuple[StudyContext, str]:
                 + (" that can move" if study.system is not None else ""),
                 hint=f"DOFs: {', '.join(labels)}",
             )
+    check_study_size(study, len(labels))
     digest = hashlib.sha256(_dataset_digest(ds).encode())
     damping = dict(study.viscous_damping) or None
     if study.analysis == "rao":
@@ -214,6 +217,36 @@ def _derived_seed(case: Case) -> int:
     """A seed from the case's parameters: the same case gets the same sea anywhere."""
     text = json.dumps(case.parameters(), sort_keys=True)
     return int(hashlib.sha256(text.encode()).hexdigest()[:8], 16)
+
+
+def check_study_size(study: Study, n_dofs: int) -> None:
+    """Refuse a study whose cases need more memory than :func:`cummins.validation.memory_limit`
+    before anything is allocated (an :class:`~cummins.errors.ArgumentError` naming the
+    study's key): the RAO frequency grid and the coupled solve per heading
+    (``n_omega`` × n² complex matrices), or a run (``duration``/``dt`` samples of the
+    states) and its wave components (``components`` × ``directions``)."""
+    n = int(n_dofs)
+    if study.analysis == "rao":
+        check_memory(
+            float(study.n_omega) * (n * n * 16 * 4 + n * 16 * 4 + 8 * 4),
+            f"{at_key(study.source, 'n_omega')}: RAOs at {study.n_omega} frequencies "
+            f"({n} DOFs) per case",
+            hint="lower n_omega",
+        )
+        return
+    steps = time_steps(study.duration, study.dt)
+    check_memory(
+        simulation_memory(steps, 2 * n, n),
+        f"{at_key(study.source, 'duration')}: a run of {steps:.4g} time steps ({n} DOFs) per case",
+        hint="shorten duration or lengthen dt",
+    )
+    components = float(study.components) * float(study.directions)
+    check_memory(
+        components * (8 * 6 + n * 16 * 2),
+        f"{at_key(study.source, 'components')}: {study.components} wave components x "
+        f"{study.directions} directions ({n} DOFs) per case",
+        hint="lower components (or directions)",
+    )
 
 
 def case_statistics(context: StudyContext, case: Case) -> dict[str, Any]:
@@ -376,9 +409,8 @@ def _save_part(folder: Path, case_id: str, case: Case, values: dict[str, Any]) -
         "values": values,
         "cummins_version": __version__,
     }
-    tmp = folder / f".{case_id}.tmp"
-    tmp.write_text(json.dumps(record), encoding="utf-8")
-    os.replace(tmp, folder / f"{case_id}.json")
+    with replacing(folder / f"{case_id}.json") as tmp:
+        tmp.write_text(json.dumps(record), encoding="utf-8")
 
 
 def _load_parts(folder: Path, wanted: dict[str, Case]) -> tuple[dict[str, dict], int]:

@@ -276,6 +276,8 @@ def _case_from_mapping(raw: Any, k: int, source: Path | None) -> Case:
 
 
 def _checked_case(case: Case, key: str, source: Path | None) -> Case:
+    if not -360.0 <= case.heading <= 360.0:
+        raise StudyError(f"{at_key(source, key)}: heading {case.heading:g} deg is beyond one turn")
     if not case.hs > 0 or not case.tp > 0:
         raise StudyError(f"{at_key(source, key)}: hs and tp must be positive")
     if case.gamma is not None and not case.gamma >= 1:
@@ -314,6 +316,11 @@ def _normalise_grid(raw: Any, source: Path | None) -> tuple[tuple[str, tuple], .
             raise StudyError(f"{at_key(source, f'grid.{name}')}: no values")
         if len(set(numbers)) != len(numbers):
             raise StudyError(f"{at_key(source, f'grid.{name}')}: repeated values")
+        if name == "heading" and not all(-360.0 <= v <= 360.0 for v in numbers):
+            raise StudyError(
+                f"{at_key(source, 'grid.heading')}: headings are degrees within one turn "
+                "(-360 to 360)"
+            )
         axes.append((name, tuple(numbers)))
     return tuple(axes)
 

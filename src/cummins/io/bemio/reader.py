@@ -16,6 +16,7 @@ import numpy as np
 import xarray as xr
 
 from cummins.errors import HydroDataError
+from cummins.files import note_read
 from cummins.hydrodb import dof_labels, make_hydrodb
 from cummins.io._common import DEPTH_ASSUMED, warn_damage
 from cummins.io.bemio.files import (
@@ -64,6 +65,7 @@ def read_bemio(
     path = Path(path)
     if not path.is_file():
         raise HydroDataError("file not found", path=path)
+    note_read(path)
     try:
         with h5py.File(path, "r") as f:
             ds = _read_open(f, path, rho, g)
@@ -368,17 +370,32 @@ def _check_components(coeffs, name: str, full: np.ndarray, python: bool, path, n
             return
 
 
+#: Relative difference (to the largest |F|) between ``mag``·e^{i·``phase``} and
+#: ``re`` + i``im`` that is damage when all four are stored in double precision; in
+#: single precision (float32, rounding 6·10⁻⁸ per number) it is :data:`POLAR_ULPS` units
+#: of that precision.
+POLAR_TOL = 1e-9
+POLAR_ULPS = 64
+
+
 def _check_polar(coeffs, group: str, value: np.ndarray, path, notes) -> None:
-    """``mag``/``phase`` are |F| and arg F of ``re``/``im``: a difference is damage."""
+    """``mag``/``phase`` are |F| and arg F of ``re``/``im``: a difference beyond the
+    precision the four are stored in is damage (warned; ``re``/``im`` are used, so the
+    numbers read do not depend on it)."""
     if f"{group}/mag" not in coeffs or f"{group}/phase" not in coeffs:
         return
-    mag = np.asarray(coeffs[f"{group}/mag"][()], dtype=float)
-    phase = np.asarray(coeffs[f"{group}/phase"][()], dtype=float)
+    stored = [coeffs[f"{group}/{key}"] for key in ("re", "im", "mag", "phase")]
+    mag = np.asarray(stored[2][()], dtype=float)
+    phase = np.asarray(stored[3][()], dtype=float)
     if mag.shape != value.shape or phase.shape != value.shape:
         return
+    resolution = max(
+        np.finfo(d.dtype).eps if np.issubdtype(d.dtype, np.floating) else 0.0 for d in stored
+    )
+    tol = max(POLAR_TOL, POLAR_ULPS * float(resolution))
     scale = max(float(np.nanmax(np.abs(value))), 1e-300)
     with np.errstate(invalid="ignore"):
-        off = np.abs(mag * np.exp(1j * phase) - value) > 1e-9 * scale
+        off = np.abs(mag * np.exp(1j * phase) - value) > tol * scale
     if off.any() or not np.all(np.isfinite(mag)) or not np.all(np.isfinite(phase)):
         warn_damage(
             f"{coeffs.name}/{group}/mag and phase differ from re and im (BEMIO writes |F| and "

@@ -16,6 +16,7 @@ import numpy as np
 import xarray as xr
 
 from cummins.errors import CumminsWarning, HydroDataError
+from cummins.files import replacing
 from cummins.hydrodb import (
     DOF_NAMES,
     bodies,
@@ -126,34 +127,31 @@ def write_bemio(
                 ),
                 stacklevel=2,
             )
-    tmp = path.with_name(f".{path.name}.tmp")
     try:
-        with h5py.File(tmp, "w") as f:
-            out = H5Out(f)
-            code = str(ds.attrs.get("bem_code", ds.attrs.get("source_format", "")))
-            write_simulation_parameters(out, data, float(ds.attrs.get("water_depth", np.inf)), code)
-            start = 0
-            for k, m in enumerate(modes):
-                body = BodyRows(k + 1, start, m)
-                for group in BODY_GROUPS:
-                    group(out, data, body)
-                start += m
-        layout = to_capytaine_layout(copy)
-        with warnings.catch_warnings():
-            warnings.simplefilter("ignore", category=FutureWarning)
-            layout.to_netcdf(
-                tmp,
-                mode="a",
-                group=COPY_GROUP,
-                engine="h5netcdf",
-                encoding=_checksum_encoding(layout),
-            )
-        os.replace(tmp, path)
+        with replacing(path) as tmp:
+            with h5py.File(tmp, "w") as f:
+                out = H5Out(f)
+                code = str(ds.attrs.get("bem_code", ds.attrs.get("source_format", "")))
+                depth = float(ds.attrs.get("water_depth", np.inf))
+                write_simulation_parameters(out, data, depth, code)
+                start = 0
+                for k, m in enumerate(modes):
+                    body = BodyRows(k + 1, start, m)
+                    for group in BODY_GROUPS:
+                        group(out, data, body)
+                    start += m
+            layout = to_capytaine_layout(copy)
+            with warnings.catch_warnings():
+                warnings.simplefilter("ignore", category=FutureWarning)
+                layout.to_netcdf(
+                    tmp,
+                    mode="a",
+                    group=COPY_GROUP,
+                    engine="h5netcdf",
+                    encoding=_checksum_encoding(layout),
+                )
     except OSError as exc:
         raise HydroDataError(f"cannot write the file ({exc})", path=path) from None
-    finally:
-        if tmp.exists():
-            tmp.unlink()
     return path
 
 

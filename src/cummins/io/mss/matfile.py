@@ -16,6 +16,7 @@ import numpy as np
 from numpy.typing import NDArray
 
 from cummins.errors import HydroDataError
+from cummins.files import note_read
 
 #: The frequency MSS uses as a stand-in for ω = ∞ (``wamit2vessel``, ``vessel2ss``).
 MSS_INFINITE_FREQUENCY = 10.0
@@ -63,6 +64,7 @@ def load_mat_struct(path: Path, name: str, missing_hint: str) -> np.void:
     the file (v7.3/HDF5, unreadable, no such struct, not a struct)."""
     if not path.is_file():
         raise HydroDataError("file not found", path=path)
+    note_read(path)
     with open(path, "rb") as f:
         head = f.read(128)
     if head.startswith(_HDF5_MAGIC) or b"MATLAB 7.3" in head:

@@ -17,6 +17,7 @@ import xarray as xr
 from numpy.typing import NDArray
 
 from cummins.errors import HydroDataError
+from cummins.files import replacing
 from cummins.hydrodb import DOF_NAMES, change_axes
 from cummins.io.mss.matfile import DRIFT_DOFS, MSS_INFINITE_FREQUENCY
 from cummins.io.mss.points import _rigid_body_cg
@@ -215,7 +216,8 @@ def write_mss(ds: xr.Dataset, path: str | os.PathLike[str]) -> Path:
     try:
         import scipy.io  # here: reading files of other formats need not load it
 
-        scipy.io.savemat(str(path), {"vessel": vessel}, do_compression=True, oned_as="row")
+        with replacing(path) as tmp:
+            scipy.io.savemat(str(tmp), {"vessel": vessel}, do_compression=True, oned_as="row")
     except OSError as exc:
         raise HydroDataError(f"cannot write the file ({exc.strerror or exc})", path=path) from None
     return path

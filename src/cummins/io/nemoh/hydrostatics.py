@@ -159,6 +159,8 @@ def _hydrostatics(run: _Run, bodies: _BodyInfo, omega, forces: dict, constants, 
     if nb > 1:
         _single_mesh_files(run, bodies, mass_lines, history)
     mechanics = _mechanics(run, n, omega.size, history, notes)
+    _warn_missing(run, nb, "KH", "hydrostatic_stiffness" in mechanics or "kh" in mechanics, notes)
+    _warn_missing(run, nb, "Hydrostatics", False, notes)
     if "kh" in mechanics:
         if c is None:
             c = mechanics["kh"]
@@ -217,7 +219,7 @@ def _hydrostatics(run: _Run, bodies: _BodyInfo, omega, forces: dict, constants, 
         )
     if "hydrostatic_stiffness" in out:
         out.update(_restoring_weight(kh_files, hydro_files, values, rho))
-    _inertia(out, mechanics, values, run, bodies, rho, history)
+    _inertia(out, mechanics, values, run, bodies, rho, history, notes)
     for key in ("km", "badd"):
         if key not in mechanics:
             continue
@@ -231,6 +233,30 @@ def _hydrostatics(run: _Run, bodies: _BodyInfo, omega, forces: dict, constants, 
             f"{variable} from Mechanics/{name} (about the reference point, as NEMOH requires)"
         )
     return out
+
+
+#: What each file of NEMOH's mesher gives (it writes both for every mesh).
+_MESHER_FILES = {
+    "KH": "no hydrostatic restoring (hydrostatic_stiffness)",
+    "Hydrostatics": "no centre of buoyancy, centre of gravity or displaced volume",
+}
+
+
+def _warn_missing(run: _Run, nb: int, stem: str, replaced: bool, notes: list[str]) -> None:
+    """A warning when the mesher's ``<stem>.dat`` (``<stem>_<k>.dat`` per body) is absent:
+    a quantity the run had is lost, as when the file is damaged (an empty or damaged one
+    is warned about where it is read); ``replaced`` when another file gives it
+    (``Mechanics/Kh.dat``)."""
+    if replaced or _body_files(run, stem, nb, []) is not None:
+        return
+    names = f"{stem}.dat" if nb == 1 else f"{stem}_0.dat … {stem}_{nb - 1}.dat (or {stem}.dat)"
+    warn_damage(
+        f"the run has no {names}: {_MESHER_FILES[stem]} (NEMOH's mesher writes "
+        "Hydrostatics.dat and KH.dat for every mesh; removed or not copied?)",
+        path=run.folder,
+        notes=notes,
+        hint="copy the mesher's files back, or give the values yourself",
+    )
 
 
 def _single_mesh_files(run: _Run, bodies: _BodyInfo, mass_lines: list[str], history) -> None:
@@ -297,11 +323,22 @@ def _mechanics(run: _Run, n: int, n_omega: int, history, notes) -> dict:
     return out
 
 
-def _inertia(out: dict, mechanics: dict, values: list[dict], run, bodies, rho, history) -> None:
-    """``inertia_matrix`` from ``Mechanics/Inertia.dat``, or the reason there is none."""
+def _inertia(
+    out: dict, mechanics: dict, values: list[dict], run, bodies, rho, history, notes
+) -> None:
+    """``inertia_matrix`` from ``Mechanics/Inertia.dat``, or the reason there is none (a
+    negative mass or inertia is damage: warned)."""
     if "inertia" in mechanics:
         m = mechanics["inertia"]
-        if np.any(np.diag(m) < 0) or not np.all(np.diag(m)[[0, 1, 2]] > 0):
+        if np.any(np.diag(m) < 0):
+            warn_damage(
+                "a mass or moment of inertia on its diagonal is negative: no inertia_matrix "
+                "read from it (a sign lost?)",
+                path=run.folder / "Mechanics" / "Inertia.dat",
+                notes=notes,
+            )
+            return
+        if not np.all(np.diag(m)[[0, 1, 2]] > 0):
             history.append("Mechanics/Inertia.dat not used: a mass or inertia is not positive")
             return
         out["inertia_matrix"] = m

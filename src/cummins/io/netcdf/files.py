@@ -13,6 +13,7 @@ from pathlib import Path
 import xarray as xr
 
 from cummins.errors import HydroDataError
+from cummins.files import note_read
 
 _MAGIC_HDF5 = b"\x89HDF\r\n\x1a\n"
 _MAGIC_CLASSIC = (b"CDF\x01", b"CDF\x02")
@@ -104,6 +105,7 @@ def _netcdf_files(folder: Path) -> list[Path]:
 
 def load_netcdf(path: Path) -> xr.Dataset:
     """Open a NetCDF file fully into memory; every failure becomes HydroDataError."""
+    note_read(path)
     engine = _engine(path)
     try:
         if engine == "h5netcdf":

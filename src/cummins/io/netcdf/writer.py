@@ -19,6 +19,7 @@ import xarray as xr
 
 from cummins._version import __version__
 from cummins.errors import HydroDataError
+from cummins.files import replacing
 from cummins.hydrodb import bodies, validate
 from cummins.io.netcdf.attributes import FILE_TIME_CONVENTION, VERSION_ATTR, encode_attributes
 
@@ -91,25 +92,21 @@ def write_netcdf(ds: xr.Dataset, path: str | os.PathLike[str]) -> Path:
 
 
 def save_netcdf(ds: xr.Dataset, path: str | os.PathLike[str], *, checksum: bool = True) -> Path:
-    """Write ``ds`` (h5netcdf) to a temporary name, then rename it to ``path``: a failure
-    leaves no half-written file. No overwrite check (the callers do it).
+    """Write ``ds`` (h5netcdf) to a temporary file of its own, then rename it to ``path``
+    (:func:`cummins.files.replacing`): a failure leaves no half-written file. No overwrite
+    check (the callers do it).
 
     With ``checksum`` every numeric array carries HDF5's Fletcher-32 checksum filter
     (a standard HDF5 filter that netCDF-C, h5py and MATLAB read transparently), so a
     damaged copy is refused on reading instead of giving different numbers."""
     path = Path(path)
-    tmp = path.with_name(f".{path.name}.tmp")
     encoding = _checksum_encoding(ds) if checksum else None
     try:
-        with warnings.catch_warnings():
+        with replacing(path) as tmp, warnings.catch_warnings():
             warnings.simplefilter("ignore", category=FutureWarning)
             _to_h5netcdf(ds, tmp, encoding)
-        os.replace(tmp, path)
     except OSError as exc:
         raise HydroDataError(f"cannot write the file ({exc})", path=path) from None
-    finally:
-        if tmp.exists():
-            tmp.unlink()
     return path
 
 

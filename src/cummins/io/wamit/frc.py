@@ -83,7 +83,18 @@ def _read_frc(path: Path, n: int, n_bodies: int, ialtfrc: int | None) -> _ForceC
         flag = need(k, 1)[0]
         k += 1
         if flag == 1:
-            matrices.append(np.array([need(k + r, n) for r in range(n)]))
+            matrix = np.array([need(k + r, n) for r in range(n)])
+            if name != "ISTIF" and np.any(np.diag(matrix) < 0):
+                # a mass or a damping of the wrong sign: no body has one (a damping that
+                # gives energy to the body), a sign lost or flipped in the file
+                r = int(np.argmax(np.diag(matrix) < 0))
+                what = "mass" if name == "IMASS" else "external damping"
+                raise text.error(
+                    f"the {what} of mode {r + 1} is negative ({matrix[r, r]:g}): no body "
+                    f"has one ({name} matrix damaged?)",
+                    body[k + r][0],
+                )
+            matrices.append(matrix)
             k += n
         elif flag == 0:
             matrices.append(None)

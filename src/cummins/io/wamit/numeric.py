@@ -307,6 +307,14 @@ def _read_hst(path: Path, n: int) -> np.ndarray:
     seen[i, j] = True
     c[i, j] = table[:, 2]
     n_file = int(ij.max())
+    if n_file < n:
+        # WAMIT writes every entry of the matrix of all n modes: a shorter file is cut
+        # (cut in its first line, the all-zero restoring would read as a good one)
+        raise text.error(
+            f"the file lists the entries of a {n_file}×{n_file} matrix, the run has {n} "
+            "modes (truncated?)",
+            len(text) - 1,
+        )
     if not seen[:n_file, :n_file].all():
         a, b = np.argwhere(~seen[:n_file, :n_file])[0]
         raise text.error(

@@ -144,10 +144,32 @@ def read_wamit(
     )
 
 
-def _nonempty_sibling(dot1: Path, suffix: str, history: list[str]) -> Path | None:
+#: What each sibling of a ``.1`` gives, for the warning when it is empty.
+_SIBLING_GIVES = {
+    ".3": "no wave excitation",
+    ".4": "no motion RAOs of the solver",
+    ".hst": "no hydrostatic restoring",
+    ".frc": "no inertia or external matrices",
+    ".out": "no constants, body parameters or mass properties from the log",
+    ".mmx": "no mass or external matrices",
+    ".cfg": "no settings (first column, modes)",
+    ".pot": "no body names",
+}
+
+
+def _nonempty_sibling(dot1: Path, suffix: str, history: list[str], notes: list[str]) -> Path | None:
+    """The sibling file with ``suffix``; an empty one (0 bytes) is skipped with a warning,
+    as a damaged one is: the quantity it holds is lost (a solver that wrote nothing there
+    writes no file)."""
     p = _sibling(dot1, suffix)
     if p is not None and p.stat().st_size == 0:
         history.append(f"{p.name} is empty (0 bytes): skipped")
+        warn_damage(
+            f"the file is empty (0 bytes): skipped, so {_SIBLING_GIVES.get(suffix, 'nothing')} "
+            "from it",
+            path=p,
+            notes=notes,
+        )
         return None
     return p
 
@@ -174,7 +196,7 @@ def read_wamit_run(
     def sibling(suffix: str) -> Path | None:
         if not siblings and not (entry is not None and entry.suffix.lower() == suffix):
             return None
-        return _nonempty_sibling(dot1, suffix, history)
+        return _nonempty_sibling(dot1, suffix, history, notes)
 
     dot3, dot4, hst = sibling(".3"), sibling(".4"), sibling(".hst")
     out_path, frc_path = sibling(".out"), sibling(".frc")
