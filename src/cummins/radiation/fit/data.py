@@ -141,6 +141,7 @@ def prepare_fit(ds: xr.Dataset, options: FitOptions) -> FitInput:
     :meth:`~cummins.radiation.fit.options.FitOptions.checked`."""
     ds = single_speed(ds)
     guard_hydro_data(ds)  # non-finite or absurd values: FitError naming the DOF pair
+    given = ds  # the data as the user gave them: the model's fingerprint
     method = options.method
     # a passive model is fitted to the data's passive part (a non-passive B(ω) makes the
     # passivity step move every coupling of a block); what is said about the data, and
@@ -243,7 +244,7 @@ def prepare_fit(ds: xr.Dataset, options: FitOptions) -> FitInput:
     attrs = {
         "source_file": str(ds.attrs.get("source_file", "")),
         "source_format": str(ds.attrs.get("source_format", "")),
-        "data_fingerprint": data_fingerprint(user),
+        "data_fingerprint": data_fingerprint(given),
         "history": str(data.attrs.get("history", "")),
         "axis_convention": str(ds.attrs.get("axis_convention", "z-up")),
         "reference_point": np.asarray(
