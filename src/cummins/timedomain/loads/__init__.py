@@ -41,7 +41,7 @@ class                          model                                           S
 :class:`Current`               current velocity, relative velocity (no load)   eqs. 40, 49
 :class:`FirstOrderWaveLoad`    first-order wave excitation                     eq. 46
 :class:`WaveDriftLoad`         mean and slowly varying drift (Newman)          eqs. 47–48
-:class:`SecondOrderWaveLoad`   mean, slow drift (Newman or full QTF), sum-freq.
+:class:`SecondOrderWaveLoad`   mean and slow drift (Newman or QTF), sum freq.
 :class:`SurgeResistance`       ITTC 1957 friction line resistance              eqs. 50–51, 54
 :class:`CrossFlowDrag`         cross-flow drag in sway and yaw (strips)        eqs. 52–54
 :class:`WindLoad`              wind with gusts (Harris, NORSOK)                eq. 55, §4.2
