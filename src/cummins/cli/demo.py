@@ -17,7 +17,6 @@ import click
 
 from cummins.cli.common import console, force_option, prepare_outputs, reports_errors
 from cummins.cli.option_rules import Command
-from cummins.cli.pipeline import kernel_stage, write_kernel_plots
 from cummins.errors import check_writable
 
 
@@ -93,6 +92,7 @@ def run_demo(
 
     from cummins import demo_files
     from cummins.check import check
+    from cummins.cli.pipeline import kernel_stage, write_kernel_plots
     from cummins.hydrodb import change_axes, describe, move_reference_point
     from cummins.io import read, write
     from cummins.plots import plot_added_mass_damping, plot_excitation, save_figure
