@@ -69,6 +69,7 @@ from cummins.check.common import (
     TAIL_TOL,
 )
 from cummins.check.physical import _check_physical
+from cummins.check.reciprocity import _check_reciprocity
 from cummins.check.report import SEVERITIES, CheckReport, Finding
 from cummins.check.retardation import _check_retardation
 from cummins.check.rigid_body import _check_rigid_body
@@ -131,6 +132,7 @@ def check(ds: xr.Dataset) -> CheckReport:
         _check_read_warnings,
         _check_grid,
         _check_symmetry,
+        _check_reciprocity,
         _check_damping,
         _check_added_mass_inf,
         _check_decay,

@@ -23,6 +23,7 @@ def coupling_metrics(
     *,
     time: ArrayLike | None = None,
     kernel: ArrayLike | None = None,
+    floor: tuple[float, float] = (0.0, 0.0),
 ) -> dict[str, float | bool | None]:
     """Fit measures of one coupling model against its data.
 
@@ -36,6 +37,9 @@ def coupling_metrics(
         A∞ of the coupling used with the model.
     time, kernel
         K(t) of the data on a time grid, for ``r2_kernel`` (optional).
+    floor
+        Smallest variances of A and of B taken by their R² (a direction of a pair
+        fitted as given: the pair's spread, :func:`pair_floor`).
 
     Returns
     -------
@@ -52,8 +56,8 @@ def coupling_metrics(
     error = np.abs(k_model - k_data)
     scale = float(np.abs(k_data).max()) or 1.0
     metrics: dict[str, float | bool | None] = {
-        "r2_added_mass": r_squared(a, added_mass_inf + k_model.imag / w),
-        "r2_damping": r_squared(b, k_model.real),
+        "r2_added_mass": r_squared(a, added_mass_inf + k_model.imag / w, floor[0]),
+        "r2_damping": r_squared(b, k_model.real, floor[1]),
         "r2_magnitude": r_squared(np.abs(k_data), np.abs(k_model)),
         "r2_phase": r_squared(np.unwrap(np.angle(k_data)), np.unwrap(np.angle(k_model))),
         "r2_kernel": None,
@@ -70,3 +74,15 @@ def coupling_metrics(
         residues = (model.c @ vec) * np.linalg.solve(vec, model.b)
         metrics["passive"] = bool(metrics["stable"]) and is_positive_real(lam, residues)
     return metrics
+
+
+def pair_floor(added_mass: ArrayLike, damping: ArrayLike, i: int, j: int) -> tuple[float, float]:
+    """The variance floors (A, B) of the R² of each direction of a pair (i, j) fitted as
+    given: the mean of the variances of X_ij and X_ji over the frequencies given
+    (``added_mass``, ``damping``: (omega, n, n)), the spread its fit is weighed by
+    (:func:`cummins.radiation.fit.vector.block_data`). A direction near zero beside
+    the other is then judged at the pair's scale, not at its own noise."""
+    out = []
+    for x in (np.asarray(added_mass, dtype=float), np.asarray(damping, dtype=float)):
+        out.append(float(0.5 * (np.var(x[:, i, j]) + np.var(x[:, j, i]))))
+    return out[0], out[1]

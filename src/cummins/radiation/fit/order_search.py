@@ -20,12 +20,8 @@ from dataclasses import dataclass
 import numpy as np
 
 from cummins.errors import FitError
-from cummins.radiation.fit.vector import (
-    BlockData,
-    PoleResidueBlock,
-    enforce_passivity,
-    vector_fit,
-)
+from cummins.radiation.fit.block_passivity import enforce_passivity
+from cummins.radiation.fit.vector import BlockData, PoleResidueBlock, vector_fit
 
 
 def block_groups(n: int, pairs) -> list[tuple[tuple[int, ...], tuple[tuple[int, int], ...]]]:
@@ -77,21 +73,31 @@ def score_block(
     motion=None,
     passive: bool = False,
 ) -> BlockScore:
-    """R² of A and B of each pair (on the frequencies it keeps), the shortfall below the
-    targets and, with ``motion`` (a callable: block → relative motion error), the motion
-    error."""
+    """R² of A and B of each pair (on the frequencies it keeps; each direction of a pair
+    fitted as given), the shortfall below the targets and, with ``motion`` (a callable:
+    block → relative motion error), the motion error."""
     from cummins.radiation.fit.frequency import r_squared
+    from cummins.radiation.fit.metrics import pair_floor
 
     w = data.omega[: data.n_data]
     k = block.element_response(w)
-    scores, shortfall = {}, 0.0
+    responses = block.pair_values(k.T)
+    infs = block.pair_values(block.added_mass_inf)
+    used = {}
     for e, (i, j) in enumerate(block.elements):
-        use = data.used[:, e]
-        a_model = block.added_mass_inf[e] + k[use, e].imag / w[use]
-        b_model = k[use, e].real
+        if i <= j:
+            used[(i, j)] = used[(j, i)] = data.used[:, e]
+    scores, shortfall = {}, 0.0
+    for (i, j), response in responses.items():
+        use = used[(i, j)]
+        a_model = infs[(i, j)] + response[use].imag / w[use]
+        b_model = response[use].real
+        floor = (0.0, 0.0)
+        if (max(i, j), min(i, j)) in block.elements:  # fitted as given: the pair's spread
+            floor = pair_floor(data.added_mass[use], data.damping[use], i, j)
         pair = (
-            r_squared(data.added_mass[use, i, j], a_model),
-            r_squared(data.damping[use, i, j], b_model),
+            r_squared(data.added_mass[use, i, j], a_model, floor[0]),
+            r_squared(data.damping[use, i, j], b_model, floor[1]),
         )
         scores[(i, j)] = pair
         target = r2 if i == j else r2_coupling
