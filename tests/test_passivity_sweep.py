@@ -33,8 +33,8 @@ def barge_blocks(corpus):
         calls.append((block, out[0], out[1]))
         return out
 
-    def recording_sweep(block, lo, hi, exact=True):
-        found = sweep(block, lo, hi, exact=exact)
+    def recording_sweep(block, lo, hi, exact=True, **options):
+        found = sweep(block, lo, hi, exact=exact, **options)
         if not exact:
             blind.append((block, lo, hi, bool(found[0])))
         return found

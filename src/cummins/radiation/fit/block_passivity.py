@@ -50,10 +50,46 @@ CHECK_SPAN = 1e3
 CHECK_POINTS = 1500
 #: At most this many local minima of λ_min per violation band give constraints at once.
 MINIMA = 8
+#: How often (iterations) :func:`enforce_passivity` asks its ``give_up``.
+GIVE_UP_EVERY = 3
+
+
+class BlockSweep:
+    """What every sweep of one enforcement shares (the poles do not move): the check grid,
+    the basis of the poles there, the positions of the elements in the block matrix."""
+
+    def __init__(self, block: PoleResidueBlock, omega_min: float, omega_max: float):
+        self.grid = np.geomspace(omega_min / CHECK_SPAN, omega_max * CHECK_SPAN, CHECK_POINTS)
+        self.basis = block.poles.basis(1j * self.grid)
+        where = {d: k for k, d in enumerate(block.dofs)}
+        self.size = len(block.dofs)
+        self.rows = np.array([where[i] for i, _ in block.elements], dtype=int)
+        self.columns = np.array([where[j] for _, j in block.elements], dtype=int)
+        self.anti = np.array([is_antisymmetric(x) for x in block.elements], dtype=bool)
+
+    def hermitian_part(self, block: PoleResidueBlock) -> NDArray:
+        """:meth:`PoleResidueBlock.hermitian_part` on the grid (the same numbers)."""
+        values = 1j * self.grid[:, None] * (self.basis @ block.coefficients.T)
+        if not self.anti.any():
+            values = values.real
+        else:
+            values = np.where(self.anti[None, :], 1j * values.imag, values.real + 0j)
+        out = np.zeros((self.grid.size, self.size, self.size), dtype=values.dtype)
+        sym = ~self.anti
+        out[:, self.rows[sym], self.columns[sym]] = values[:, sym]
+        out[:, self.columns[sym], self.rows[sym]] = values[:, sym]
+        if self.anti.any():
+            out[:, self.rows[self.anti], self.columns[self.anti]] += values[:, self.anti]
+            out[:, self.columns[self.anti], self.rows[self.anti]] -= values[:, self.anti]
+        return out
 
 
 def passivity_violations(
-    block: PoleResidueBlock, omega_min: float, omega_max: float, exact: bool = True
+    block: PoleResidueBlock,
+    omega_min: float,
+    omega_max: float,
+    exact: bool = True,
+    sweep: BlockSweep | None = None,
 ) -> tuple[list[tuple[float, float, NDArray, float]], NDArray]:
     """(g, λ, w, λ_scale) of the points where S Re K(jω) S (DOF-scaled: s_i =
     1/√max_ω |K_ii(jω)|, as :func:`cummins.radiation.passivity.dof_scaling`, so that translations
@@ -71,11 +107,13 @@ def passivity_violations(
 
     ``exact=False`` takes the bands from the sign changes of λ_min on the grid alone: no
     pencil to factor (its QZ is most of the sweep's cost on a 12-DOF block), but a band
-    narrower than the grid's spacing is not seen."""
+    narrower than the grid's spacing is not seen. ``sweep``: the :class:`BlockSweep` of
+    the block's poles and range (made here when not given)."""
     from cummins.radiation.passivity import band_points
 
-    grid = np.geomspace(omega_min / CHECK_SPAN, omega_max * CHECK_SPAN, CHECK_POINTS)
-    k_grid = block.hermitian_part(grid)
+    sweep = sweep or BlockSweep(block, omega_min, omega_max)
+    grid = sweep.grid
+    k_grid = sweep.hermitian_part(block)
     peak = np.abs(np.diagonal(k_grid, axis1=1, axis2=2)).max(axis=0)
     dof_scale = np.where(peak > 0, 1.0 / np.sqrt(np.where(peak > 0, peak, 1.0)), 0.0)
     if exact:
@@ -151,11 +189,14 @@ def limit_forms(poles: Poles) -> tuple[NDArray, NDArray]:
 
 
 def enforce_passivity(
-    block: PoleResidueBlock, data: BlockData
+    block: PoleResidueBlock, data: BlockData, *, give_up=None
 ) -> tuple[PoleResidueBlock, bool, int]:
     """The block with the smallest weighted residue change that makes K(jω) + K(jω)ᴴ ⪰ 0
-    at all frequencies (module docstring, step 3): (block, passive, iterations)."""
-    from cummins.radiation.passivity import least_distance
+    at all frequencies (module docstring, step 3): (block, passive, iterations).
+    ``give_up``: called with the iterate every :data:`GIVE_UP_EVERY` iterations; when it
+    returns True the enforcement stops there (not passive): the caller knows it would
+    not keep the result."""
+    from cummins.radiation.passivity.enforcement import factored_misfit, least_distance
 
     w = data.omega[: data.n_data]
     s = 1j * data.omega
@@ -173,7 +214,10 @@ def enforce_passivity(
         # ‖J z‖ = ‖R z‖: the small triangular factor stands for the whole misfit
         r = np.linalg.qr(np.vstack([jac, ridge * np.eye(null.shape[1])]), mode="r")
         misfit.append((r, np.zeros(null.shape[1])))
+    misfit = factored_misfit(misfit)  # once: every programme below shares it
     where = {d: k for k, d in enumerate(block.dofs)}
+    lo, hi = float(w.min()), float(w.max())
+    sweep = BlockSweep(block, lo, hi)
     rows, rhs = [], []
     bound = np.zeros(0, dtype=bool)
     start = block.coefficients
@@ -184,10 +228,10 @@ def enforce_passivity(
     # bodies, and the grid alone took twice the iterations on the ITI barge
     exact = False
     for iteration in range(PASSIVITY_ITERATIONS):
-        found, _ = passivity_violations(current, float(w.min()), float(w.max()), exact=exact)
+        found, _ = passivity_violations(current, lo, hi, exact=exact, sweep=sweep)
         if not found and not exact:
             exact = True
-            found, _ = passivity_violations(current, float(w.min()), float(w.max()), exact=exact)
+            found, _ = passivity_violations(current, lo, hi, exact=exact, sweep=sweep)
         if not found:
             return current, True, iteration
         for form, lam, vec, local in found:
@@ -214,7 +258,10 @@ def enforce_passivity(
         current = PoleResidueBlock(
             block.dofs, block.elements, block.poles, start + change, block.added_mass_inf
         )
-    found, _ = passivity_violations(current, float(w.min()), float(w.max()))
+        if give_up is not None and iteration % GIVE_UP_EVERY == GIVE_UP_EVERY - 1:
+            if give_up(current):
+                return current, False, iteration + 1
+    found, _ = passivity_violations(current, lo, hi, sweep=sweep)
     return current, not found, PASSIVITY_ITERATIONS
 
 

@@ -141,10 +141,19 @@ def identify_block(
     plain_fits: list[tuple[float, int, PoleResidueBlock]] = []
     tried: dict[int, tuple[tuple[bool, float], PoleResidueBlock, BlockScore]] = {}
 
-    def passivated(count: int, fitted: PoleResidueBlock) -> bool:
-        """The fit made passive and scored; True when it meets every target."""
+    def passivated(count: int, fitted: PoleResidueBlock, bound: float = np.inf) -> bool:
+        """The fit made passive and scored; True when it meets every target. With a
+        ``bound``, the enforcement gives up once its iterate is further from the targets
+        (passivity brings no fit closer: that fit would not be kept)."""
         if passive:
-            block, is_passive, _ = enforce_passivity(fitted, data)
+            give_up = None
+            if np.isfinite(bound):
+
+                def give_up(block: PoleResidueBlock) -> bool:
+                    score = score_block(block, data, r2=r2, r2_coupling=r2_coupling, motion=motion)
+                    return distance(score, r2, motion_aim) > bound
+
+            block, is_passive, _ = enforce_passivity(fitted, data, give_up=give_up)
         else:
             block, is_passive = fitted, True
         score = score_block(
@@ -204,7 +213,8 @@ def identify_block(
             if _tied(bad) >= passive_best:
                 break
             if count not in tried:
-                passivated(count, fitted)
+                # one that ends further than GIVE_UP × (the best + NEAR) is not kept
+                passivated(count, fitted, GIVE_UP * (passive_best + NEAR))
     if not tried:
         raise FitError("no stable model could be fitted")
     count = kept_count({c: key for c, (key, _, _) in tried.items()})
@@ -250,6 +260,11 @@ LOST = 1.0
 #: RAFT float's heave: 0.01–0.08 of R² at 7 … 20 poles; 3 or 4 give the same models on
 #: every corpus case, 3 is 0.5 s faster on the NEMOH two cubes).
 PASSIVE_STALL = 3
+#: A finalist's passivity enforcement gives up when its iterate is further from the
+#: targets than GIVE_UP × (the best passive fit's distance + NEAR): it would end further
+#: still and not be kept (the RAFT float's surge-pitch block: 4 of its 5 finalists end at
+#: 6–7 times the best; each took 20–25 iterations).
+GIVE_UP = 2.0
 #: When no order meets every target, passive fits closer to them by less than NEAR (in
 #: units of the allowed 1 − R², a tenth: R² within 0.001) are equally good, and the
 #: fewest poles among them is kept (the ITI barge: 15 or 20 common poles on its surge–

@@ -339,18 +339,21 @@ def relocate(data: BlockData, poles: Poles) -> Poles:
     blocks: list = [None] * f.shape[0]
     # one QR per element, stacked: [own, −f σ] weighted, real rows over imaginary rows
     # (own: the element's basis, with a constant when its A∞ is estimated)
+    n_w = s.size
     for estimated in (False, True):
         rows = np.flatnonzero(free == estimated)
         if not rows.size:
             continue
         own = np.hstack([phi, ones]) if estimated else phi
         k = own.shape[1]
-        fe = f[rows]
-        m = np.concatenate(
-            [np.broadcast_to(own, (rows.size, *own.shape)), -fe[:, :, None] * sigma], 2
-        )
+        fs = -f[rows][:, :, None] * sigma
         wre, wie = wr[rows][:, :, None], wi[rows][:, :, None]
-        r = np.linalg.qr(np.concatenate([wre * m.real, wie * m.imag], 1), "r")
+        stack = np.empty((rows.size, 2 * n_w, k + n + 1))
+        stack[:, :n_w, :k] = wre * own.real[None]
+        stack[:, n_w:, :k] = wie * own.imag[None]
+        stack[:, :n_w, k:] = wre * fs.real
+        stack[:, n_w:, k:] = wie * fs.imag
+        r = np.linalg.qr(stack, "r")
         for e, block in zip(rows, r[:, k : k + n + 1, k:], strict=True):
             blocks[e] = block
     scale = np.sqrt(float(np.sum((wr * f.real) ** 2 + (wi * f.imag) ** 2))) / s.size
