@@ -258,9 +258,9 @@ def enforce_passivity(
         current = PoleResidueBlock(
             block.dofs, block.elements, block.poles, start + change, block.added_mass_inf
         )
-        if give_up is not None and iteration % GIVE_UP_EVERY == GIVE_UP_EVERY - 1:
-            if give_up(current):
-                return current, False, iteration + 1
+        check = give_up is not None and iteration % GIVE_UP_EVERY == GIVE_UP_EVERY - 1
+        if check and give_up(current):
+            return current, False, iteration + 1
     found, _ = passivity_violations(current, lo, hi, sweep=sweep)
     return current, not found, PASSIVITY_ITERATIONS
 
