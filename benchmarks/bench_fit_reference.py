@@ -5,8 +5,9 @@ The scoreboard of :mod:`cummins.radiation.fit.scorecard` and the fit's CPU time
 (``time.process_time``, best of ``BENCH_REPEAT``, one BLAS thread) of the default fit
 (``fit_radiation(ds)``) of each case of ``benchmarks/bench_identification.py`` (its
 set-ups included: RM3 with WEC-Sim's mass properties), computed by this tree and by a
-reference tree — by default ``main`` as ``git archive`` extracts it into a temporary
-folder (``BENCH_REFERENCE=<git ref>``, or ``BENCH_REFERENCE_SRC=<folder holding cummins>``).
+reference tree — by default the commit this branch left ``main`` at (``git merge-base
+main HEAD``) as ``git archive`` extracts it into a temporary folder
+(``BENCH_REFERENCE=<git ref>``, or ``BENCH_REFERENCE_SRC=<folder holding cummins>``).
 Each case runs in a fresh process per tree, the two trees one after the other, so that
 a machine shared with other work loads both alike; the CPU time of one process is what
 the load changes least. Printed per case: order, smallest diagonal R² of A and B, passive
@@ -72,12 +73,20 @@ def worker(name: str) -> None:
 
 
 def reference_tree() -> Path:
-    """The reference ``src`` folder: BENCH_REFERENCE_SRC, or BENCH_REFERENCE (default
-    ``main``) extracted with ``git archive``."""
+    """The reference ``src`` folder: BENCH_REFERENCE_SRC, or BENCH_REFERENCE (default the
+    merge base of ``main`` and ``HEAD``) extracted with ``git archive``."""
     given = os.environ.get("BENCH_REFERENCE_SRC")
     if given:
         return Path(given)
-    ref = os.environ.get("BENCH_REFERENCE", "main")
+    ref = (
+        os.environ.get("BENCH_REFERENCE")
+        or subprocess.run(
+            ["git", "-C", str(ROOT), "merge-base", "main", "HEAD"],
+            check=True,
+            capture_output=True,
+            text=True,
+        ).stdout.strip()
+    )
     folder = Path(tempfile.mkdtemp(prefix="cummins-reference-"))
     archive = subprocess.run(
         ["git", "-C", str(ROOT), "archive", ref, "src"], check=True, capture_output=True
@@ -92,8 +101,8 @@ def run(tree: Path, name: str) -> dict | None:
         [sys.executable, __file__, "--worker", name], env=env, capture_output=True, text=True
     )
     if done.returncode:
-        tail = done.stderr.strip().splitlines()[-1:] or ["?"]
-        print(f"  {name}: failed under {tree}: {tail[0]}")
+        tail = (done.stderr.strip().splitlines()[-1:] or ["?"])[0]
+        print(f"  {name}: failed under {tree}: {tail[:120]}")
         return None
     return json.loads(done.stdout.strip().splitlines()[-1])
 

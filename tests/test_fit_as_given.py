@@ -2,17 +2,13 @@
 
 References: an analytic passive non-reciprocal system (two heaving bodies, K = K_s + K_a
 with K_a antisymmetric and K + Kᴴ ⪰ 0 at every frequency, checked here), whose K_12 and
-K_21 a model must reproduce each; WAMIT's own RM3 run (WEC-Sim's two-body float and
-spar, ``corpus/WEC-Sim/wamit_RM3_2body``: A(1,7) = 44.9 but A(7,1) = −14.7 in its
-``.out``) with WEC-Sim's mass properties; the data's own motions (``motion_rao``).
-Passivity is judged by the exact test and by a dense sweep of λ_min(K + Kᴴ) here.
+K_21 a model must reproduce each; the WAMIT tanker with a non-reciprocal sway–roll
+damping; the data's own motions (``motion_rao``). Passivity is judged by the exact test
+and by a dense sweep of λ_min(K + Kᴴ) here. WEC-Sim's RM3 (WAMIT's own non-reciprocal
+run) is in ``tests/test_identification_targets.py``.
 
 Measured (2026-12-04): the analytic system fitted as given 0.60 % of the motion peak
-(16 states, R² of A and B of K_12 and K_21 ≥ 0.987), its reciprocal part 17.9 %; RM3
-fitted as given 4.8 % (the reciprocal fit 30.6 %), passive, its main couplings each
-way R² ≥ 0.84 — the rest of its error is the data's ω = ∞ row of the spar's roll and
-pitch, 98 % off the Kramers–Kronig transform of their damping (no causal model follows
-it with that A∞; the failure names it): 1 % is not reached on RM3 by default.
+(16 states, R² of A and B of K_12 and K_21 ≥ 0.987), its reciprocal part 17.9 %.
 """
 
 from __future__ import annotations
@@ -29,9 +25,7 @@ from cummins.radiation.fit import fit_radiation, prepare_fit
 from cummins.radiation.fit.frequency import r_squared
 from cummins.radiation.fit.options import DEFAULT
 from cummins.radiation.fit.scorecard import (
-    data_frequencies,
     motion_rao_error,
-    passivity_margin,
 )
 from cummins.radiation.model import RadiationModel, change_model_axes
 from cummins.radiation.passivity import passivity_sweep, passivity_test
@@ -193,75 +187,6 @@ def test_reciprocal_data_keep_the_reciprocal_fit():
     assert all(block.is_symmetric() for block in model.blocks)
 
 
-# ----------------------------------------------------------------------------- RM3
-
-
-@pytest.fixture(scope="module")
-def rm3(shared_data):
-    """WEC-Sim's RM3 (WAMIT ``.out``, ρ = 1000) with its mass properties, and its fit."""
-    with warnings.catch_warnings():
-        warnings.simplefilter("ignore")
-        ds = cummins.read(
-            shared_data / "corpus" / "WEC-Sim" / "wamit_RM3_2body" / "rm3.out", rho=1000
-        )
-        ds = cummins.with_inertia(
-            ds,
-            mass=[725833.0, 886687.0],
-            center_of_gravity=[[0.0, 0.0, -0.72], [0.0, 0.0, -21.29]],
-            radii_of_gyration=[[5.367, 5.418, 7.148], [10.319, 10.319, 5.674]],
-        )
-        return ds, fit_radiation(ds)
-
-
-#: The couplings of RM3 whose both directions matter (ranges of A_ij and A_ji ≥ 40 % of
-#: √(range A_ii range A_jj)), and the smallest R² of A and of B, each direction,
-#: measured: surge–pitch 0.960/0.975 (A), 0.867/0.836 (B); float–spar surge 0.959/0.924,
-#: 0.926/0.983; float–spar heave 0.926/0.931, 0.941/0.940.
-RM3_PAIRS = (("body1__Surge", "body1__Pitch"), ("body1__Surge", "body2__Surge"),
-             ("body1__Heave", "body2__Heave"))  # fmt: skip
-
-
-def test_rm3_couplings_are_fitted_each_as_given(rm3):
-    """Each direction of RM3's main couplings is reproduced (R² ≥ 0.67: the measured
-    ≥ 0.836 with twice its 1 − R²), where their reciprocal part cannot be (its R²
-    against the two directions of the float–spar surge added mass: below 0.5)."""
-    ds, model = rm3
-    keep = np.flatnonzero(data_frequencies(ds))
-    w = ds.omega.values[keep]
-    a = dof_matrix(ds, "added_mass")[keep]
-    b = dof_matrix(ds, "radiation_damping")[keep]
-    k, inf, labels = model.response(w), model.added_mass_inf, model.dofs
-    for one, two in RM3_PAIRS:
-        assert f"{one}-{two}" in model.attrs["couplings_as_given"]
-        i, j = labels.index(one), labels.index(two)
-        for p, q in ((i, j), (j, i)):
-            assert r_squared(a[:, p, q], inf[p, q] + k[:, p, q].imag / w) >= 0.67
-            assert r_squared(b[:, p, q], k[:, p, q].real) >= 0.67
-    i, j = labels.index("body1__Surge"), labels.index("body2__Surge")
-    average = 0.5 * (a[:, i, j] + a[:, j, i])
-    assert min(r_squared(a[:, i, j], average), r_squared(a[:, j, i], average)) < 0.5
-
-
-def test_rm3_is_passive(rm3):
-    """By the exact test and by a dense sweep of λ_min(K + Kᴴ) (5000 frequencies)."""
-    _, model = rm3
-    assert passivity_test(model).passive
-    assert _lambda_min(model, np.geomspace(1e-4, 1e3, 5000)) >= -1e-9
-    assert passivity_margin(model) >= -1e-6
-
-
-def test_rm3_motions_and_the_limit_named(rm3):
-    """The motion error against the data's own RAOs: 4.8 % measured, against 30.6 % for
-    the reciprocal fit before (its reciprocal part alone: 26.7 %), so below half of that;
-    not 1 %: the spar's roll and pitch added mass are 98 % off the Kramers–Kronig
-    transform of their damping with the data's ω = ∞ row, which the failure names."""
-    ds, model = rm3
-    error = motion_rao_error(ds, model).error
-    assert error < 0.5 * model.attrs["reciprocal_motion_error_floor"]
-    failure = [f for f in model.attrs["failures"] if f.startswith("motion error")]
-    assert failure and "Kramers–Kronig" in failure[0] and "body2__Pitch" in failure[0]
-
-
 @pytest.fixture(scope="module")
 def tanker_sway_roll():
     """The WAMIT tanker with its sway–roll damping made non-reciprocal (×1.6 one way,
@@ -296,24 +221,3 @@ def test_the_exports_hold_each_direction(tanker_sway_roll, tmp_path):
         k_back = other.response(w)
         assert np.abs(k_back - k).max() <= 1e-6 * np.abs(k).max()
         assert np.abs(k_back[:, 1, 3] - k_back[:, 3, 1]).max() > 0.1 * np.abs(k[:, 1, 3]).max()
-
-
-def test_the_check_says_what_the_fit_does(rm3):
-    """``cummins check`` on RM3: a ``reciprocity`` warning naming the couplings fitted as
-    given and the motion error of the reciprocal part."""
-    ds, _ = rm3
-    with warnings.catch_warnings():
-        warnings.simplefilter("ignore")
-        found = cummins.check(ds).by_check("reciprocity")
-    assert found and found[0].severity == "warning"
-    assert "body1__Surge-body2__Surge" in found[0].details["couplings_as_given"]
-    assert found[0].value > 0.2  # 26.7 % measured
-    assert "as given" in found[0].advice
-
-
-def test_rm3_reduce_is_refused_cleanly(rm3):
-    """Its one block is fitted as given: a total order below its states is refused with
-    the number it keeps."""
-    _, model = rm3
-    with pytest.raises(FitError, match=str(model.blocks[0].order)):
-        reduce_radiation_model(model, order=model.total_order - 10)

@@ -259,8 +259,22 @@ class MemoryBlock:
         return sorted(out)
 
 
-def siso_frequency_response(a: ArrayLike, b: ArrayLike, c: ArrayLike, omega: ArrayLike) -> NDArray:
-    """c (jωI − a)⁻¹ b for each ω, through the eigen-decomposition of ``a``.
+def modal_form(a: ArrayLike) -> tuple[NDArray, NDArray, bool]:
+    """(λ, V, usable) of ``a``: its eigen-decomposition and whether V is well enough
+    conditioned for the modal sums of :func:`siso_frequency_response` (shared by the pairs
+    of one block: one decomposition instead of one per pair)."""
+    a = np.asarray(a, dtype=float)
+    if a.size == 0:
+        return np.zeros(0, dtype=complex), np.zeros((0, 0), dtype=complex), True
+    lam, v = np.linalg.eig(a)
+    return lam, v, bool(np.linalg.cond(v) < 1e10)
+
+
+def siso_frequency_response(
+    a: ArrayLike, b: ArrayLike, c: ArrayLike, omega: ArrayLike, modal=None
+) -> NDArray:
+    """c (jωI − a)⁻¹ b for each ω, through the eigen-decomposition of ``a`` (``modal``:
+    its :func:`modal_form`, when known).
 
     Falls back to a linear solve per frequency when ``a`` is defective.
     """
@@ -270,8 +284,8 @@ def siso_frequency_response(a: ArrayLike, b: ArrayLike, c: ArrayLike, omega: Arr
     s = 1j * np.asarray(omega, dtype=float).reshape(-1)
     if a.size == 0:
         return np.zeros(s.size, dtype=complex)
-    lam, v = np.linalg.eig(a)
-    if np.linalg.cond(v) < 1e10:
+    lam, v, usable = modal or modal_form(a)
+    if usable:
         left = c @ v
         right = np.linalg.solve(v, b)
         return (left * right) @ (1.0 / (s[None, :] - lam[:, None]))
@@ -279,16 +293,19 @@ def siso_frequency_response(a: ArrayLike, b: ArrayLike, c: ArrayLike, omega: Arr
     return np.array([c @ np.linalg.solve(si * eye - a, b) for si in s])
 
 
-def siso_impulse_response(a: ArrayLike, b: ArrayLike, c: ArrayLike, t: ArrayLike) -> NDArray:
-    """c e^{a t} b for each t, through the eigen-decomposition of ``a``."""
+def siso_impulse_response(
+    a: ArrayLike, b: ArrayLike, c: ArrayLike, t: ArrayLike, modal=None
+) -> NDArray:
+    """c e^{a t} b for each t, through the eigen-decomposition of ``a`` (``modal``: its
+    :func:`modal_form`, when known)."""
     a = np.asarray(a, dtype=float)
     b = np.asarray(b, dtype=float).reshape(-1)
     c = np.asarray(c, dtype=float).reshape(-1)
     t = np.asarray(t, dtype=float).reshape(-1)
     if a.size == 0:
         return np.zeros(t.size)
-    lam, v = np.linalg.eig(a)
-    if np.linalg.cond(v) < 1e10:
+    lam, v, usable = modal or modal_form(a)
+    if usable:
         weights = (c @ v) * np.linalg.solve(v, b)
         return np.real(np.exp(np.outer(t, lam)) @ weights)
     from scipy.linalg import expm

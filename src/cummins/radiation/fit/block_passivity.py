@@ -125,10 +125,12 @@ def passivity_violations(
         order = np.argsort(points)
         points = points[order]
         k_all = np.concatenate([k_grid, block.hermitian_part(extra)])[order]
-        lam_all, vec_all = np.linalg.eigh(k_all * np.outer(dof_scale, dof_scale)[None])
     else:
         points = grid
-        lam_all, vec_all = np.linalg.eigh(k_grid * np.outer(dof_scale, dof_scale)[None])
+        k_all = k_grid
+    scaled = k_all * np.outer(dof_scale, dof_scale)[None]
+    lam_all = np.linalg.eigvalsh(scaled)  # the eigenvectors where constraints are asked
+    if not exact:
         negative = lam_all[:, 0] < 0
         change = np.flatnonzero(negative[1:] != negative[:-1])
         edges = np.r_[0.0, np.sqrt(grid[change] * grid[change + 1]), np.inf]
@@ -157,7 +159,8 @@ def passivity_violations(
         forms = 1j * points[at, None] * block.poles.basis(1j * points[at])
         if block.symmetric:
             forms = np.real(forms)
-        for form, lam, vec in zip(forms, lam_all[at], vec_all[at], strict=True):
+        lam_at, vec_at = np.linalg.eigh(scaled[at])
+        for form, lam, vec in zip(forms, lam_at, vec_at, strict=True):
             local = float(np.abs(lam).max())
             for e in np.flatnonzero(lam < 0):
                 out.append((form, float(lam[e]), dof_scale * vec[:, e], local))

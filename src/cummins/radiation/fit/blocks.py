@@ -19,7 +19,7 @@ from cummins.radiation.fit.data import FitInput, range_cut_failures
 from cummins.radiation.fit.metrics import coupling_metrics, pair_floor
 from cummins.radiation.fit.mimo import failure_targets, fit_failures, with_motion_note
 from cummins.radiation.fit.options import MOTION_AIM, MOTION_TOL, FitOptions
-from cummins.radiation.model import MemoryBlock, RadiationModel
+from cummins.radiation.model import MemoryBlock, RadiationModel, modal_form
 from cummins.radiation.passivity import passivity_test
 
 
@@ -157,6 +157,7 @@ def fit_blocks(
         before = None
         if plain_block is not None:
             before = order_search.score_block(plain_block, data, r2=r2, r2_coupling=r2_coupling)
+        modal = modal_form(block.a)  # shared by its pairs' metrics
         ordered = [(i, j) for i, j in elements if i <= j]
         ordered += [(i, j) for j, i in ordered if (j, i) in inp.as_given]
         for i, j in ordered:
@@ -172,6 +173,7 @@ def fit_blocks(
                 time=measured.time,
                 kernel=measured.kernel[:, i, j],
                 floor=pair_floor(a_data[use], b_data[use], i, j) if as_given else (0.0, 0.0),
+                modal=modal,
             )
             m["n_excluded_frequencies"] = int((~use).sum())
             m["common_poles"] = fitted.poles.count

@@ -473,6 +473,10 @@ class FactoredMisfit:
         branches on the result.)"""
         return scipy.linalg.solve_triangular(self.r_all, rhs, trans=trans)
 
+    def transformed(self, g: NDArray) -> NDArray:
+        """G R⁻¹ of constraint rows G (R upper triangular, block-diagonal)."""
+        return self.solve(np.asarray(g).T, trans="T").T
+
 
 def factored_misfit(misfit) -> FactoredMisfit:
     """:class:`FactoredMisfit` of ``[(J_k, y_k)]``."""
@@ -495,7 +499,7 @@ def least_distance(misfit, g: NDArray, h: NDArray) -> tuple[NDArray, NDArray[np.
     :func:`factored_misfit` (factored once for many programmes)."""
     factored = factored_misfit(misfit)
     shift = factored.shift
-    f = factored.solve(g.T, trans="T").T  # G R⁻¹ (R upper triangular, block-diagonal)
+    f = factored.transformed(g)  # G R⁻¹
     e = h + f @ shift
     norms = np.linalg.norm(f, axis=1)
     norms[norms == 0] = 1.0
