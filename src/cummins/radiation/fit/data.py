@@ -195,7 +195,8 @@ def prepare_fit(ds: xr.Dataset, options: FitOptions) -> FitInput:
     else:  # the user's own data at the same frequencies, bridged alike
         user = _bridged_dataset(user.sel(omega=raw.omega.values), keep_dof)
     excluded = [float(x) for x in raw.omega.values[~keep_dof.all(axis=1)]]
-    excluded += [float(x) for x in ds.omega.values if x not in set(raw.omega.values)]
+    fitted = set(raw.omega.values)  # once: in the comprehension it was rebuilt per point
+    excluded += [float(x) for x in ds.omega.values if x not in fitted]
     excluded = sorted(excluded)
     joint = method in ("fd", "vf")
     a_inf_mode = options.added_mass_inf
