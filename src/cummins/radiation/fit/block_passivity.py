@@ -147,9 +147,9 @@ def passivity_violations(
         if lam[worst, 0] >= -VIOLATION:  # S K S: the diagonal peaks are 1
             continue
         low = lam[:, 0]
-        minima = np.flatnonzero(
-            (low < -VIOLATION) & (low <= np.r_[np.inf, low[:-1]]) & (low <= np.r_[low[1:], np.inf])
-        )
+        bound = np.full(1, np.inf)
+        before, after = np.concatenate([bound, low[:-1]]), np.concatenate([low[1:], bound])
+        minima = np.flatnonzero((low < -VIOLATION) & (low <= before) & (low <= after))
         spread = np.linspace(0, inside.size - 1, 5).astype(int)
         chosen.append(
             inside[np.unique(np.r_[worst, minima[np.argsort(low[minima])][:MINIMA], spread])]

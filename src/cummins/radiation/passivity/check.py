@@ -202,11 +202,17 @@ def imaginary_axis_zeros(
     if n == 0:
         return np.empty(0)
     d = np.zeros((m, m)) if d is None else np.asarray(d, dtype=float)
-    a_phi = scipy.linalg.block_diag(a, -a.T)
-    b_phi = np.vstack([b, c.T])
-    c_phi = np.hstack([c, -b.T])
-    pencil = np.block([[a_phi, b_phi], [c_phi, d + d.T]])
-    mass = scipy.linalg.block_diag(np.eye(2 * n), np.zeros((m, m)))
+    # [[A, 0, B], [0, −Aᵀ, Cᵀ], [C, −Bᵀ, D + Dᵀ]] and diag(I, I, 0), written in place
+    pencil = np.zeros((2 * n + m, 2 * n + m))
+    pencil[:n, :n] = a
+    pencil[n : 2 * n, n : 2 * n] = -a.T
+    pencil[:n, 2 * n :] = b
+    pencil[n : 2 * n, 2 * n :] = c.T
+    pencil[2 * n :, :n] = c
+    pencil[2 * n :, n : 2 * n] = -b.T
+    pencil[2 * n :, 2 * n :] = d + d.T
+    mass = np.zeros_like(pencil)
+    mass[np.arange(2 * n), np.arange(2 * n)] = 1.0
     alpha, beta = scipy.linalg.eig(pencil, mass, right=False, homogeneous_eigvals=True)
     finite = np.abs(beta) > 1e-9 * np.abs(alpha) + 1e-300
     s = alpha[finite] / beta[finite]
