@@ -9,8 +9,9 @@ passivity costs the fits that meet the targets before it, or when passivity lose
 coupling at two orders in a row (data that are not passive themselves). When no order meets
 every target, the fits closest to them are made passive in order, up to the first that
 is no closer before passivity than the best passive fit so far is after it (passivity
-does not bring a fit closer to its targets), and the fewest poles among the passive fits
-nearly as close as the best is kept.
+does not bring a fit closer to its targets; an enforcement whose iterate is already far
+further gives up, :data:`GIVE_UP`), and the fewest poles among the passive fits nearly as
+close as the best is kept.
 """
 
 from __future__ import annotations
