@@ -289,6 +289,26 @@ def prepare_fit(ds: xr.Dataset, options: FitOptions) -> FitInput:
             f"reciprocity='as-given' needs method='vf' (the {method!r} fit models the "
             "reciprocal part of each coupling)"
         )
+    elif method == "fd" and reference is not None and options.reciprocity == "auto":
+        # the per-coupling fit (and the speed terms built from it) models the reciprocal
+        # part: say when that is further from the motions than the fit aims
+        either = significant_couplings(data, options.threshold, either=True)
+        found = reciprocity_of(
+            user,
+            keep_dof,
+            block_groups(len(labels), either),
+            np.zeros((len(labels), len(labels))),
+            reference,
+            motion_tol=options.motion_tol,
+            r2_coupling=options.coupling_target,
+        )
+        if found.as_given:
+            data_notes.append(
+                "the data are not reciprocal beyond what the motions allow (their reciprocal "
+                f"part alone is {100 * max(found.floors.values()):.3g} % off their own "
+                "motions); the per-coupling fit models that part, method='vf' fits such "
+                "couplings as given"
+            )
     for message in asymmetric_pairs(user, reciprocity.as_given):
         warnings.warn(message, CumminsWarning, stacklevel=3)
         data_notes.append(message)
