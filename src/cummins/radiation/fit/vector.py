@@ -50,10 +50,12 @@ The result is one :class:`~cummins.radiation.model.MemoryBlock` per block.
 
 from __future__ import annotations
 
+import functools
 from dataclasses import dataclass, field
 
 import numpy as np
 import scipy.linalg
+import scipy.linalg.lapack
 from numpy.typing import NDArray
 
 #: Iterations of the pole relocation (at most; it stops when the poles move by less
@@ -346,16 +348,16 @@ def relocate(data: BlockData, poles: Poles) -> Poles:
             continue
         own = np.hstack([phi, ones]) if estimated else phi
         k = own.shape[1]
-        fs = -f[rows][:, :, None] * sigma
-        wre, wie = wr[rows][:, :, None], wi[rows][:, :, None]
-        stack = np.empty((rows.size, 2 * n_w, k + n + 1))
-        stack[:, :n_w, :k] = wre * own.real[None]
-        stack[:, n_w:, :k] = wie * own.imag[None]
-        stack[:, :n_w, k:] = wre * fs.real
-        stack[:, n_w:, k:] = wie * fs.imag
-        r = np.linalg.qr(stack, "r")
-        for e, block in zip(rows, r[:, k : k + n + 1, k:], strict=True):
-            blocks[e] = block
+        fs = -f[rows][:, None, :] * sigma.T[None]
+        wre, wie = wr[rows][:, None, :], wi[rows][:, None, :]
+        # each element's matrix in column-major order (LAPACK's, factored in place)
+        stack = np.empty((rows.size, k + n + 1, 2 * n_w))
+        stack[:, :k, :n_w] = wre * own.real.T[None]
+        stack[:, :k, n_w:] = wie * own.imag.T[None]
+        stack[:, k:, :n_w] = wre * fs.real
+        stack[:, k:, n_w:] = wie * fs.imag
+        for e, matrix in zip(rows, stack, strict=True):
+            blocks[e] = _r_factor(matrix.T)[k : k + n + 1, k:]
     scale = np.sqrt(float(np.sum((wr * f.real) ** 2 + (wi * f.imag) ** 2))) / s.size
     norm = scale * np.real(sigma.sum(axis=0))
     lhs = np.vstack([*blocks, norm[None, :]])
@@ -369,6 +371,25 @@ def relocate(data: BlockData, poles: Poles) -> Poles:
         d = 1.0
     lam, b = poles.state_form()
     return _poles_from(np.linalg.eigvals(lam - np.outer(b, c) / d))
+
+
+def _r_factor(matrix: NDArray) -> NDArray:
+    """The triangular factor R of the Householder QR of a Fortran-ordered ``matrix``
+    (rows ≥ columns), factored in place: LAPACK's dgeqrf with its optimal workspace, as
+    ``numpy.linalg.qr(mode="r")`` calls it (the same R, bit for bit), without the copies."""
+    rows, columns = matrix.shape
+    qr, _, _, info = scipy.linalg.lapack.dgeqrf(
+        matrix, lwork=_qr_workspace(rows, columns), overwrite_a=1
+    )
+    if info:
+        raise np.linalg.LinAlgError(f"QR factorisation failed (LAPACK info {info})")
+    return np.triu(qr[:columns])
+
+
+@functools.lru_cache(maxsize=256)
+def _qr_workspace(rows: int, columns: int) -> int:
+    """dgeqrf's optimal workspace for a rows × columns matrix."""
+    return int(scipy.linalg.lapack.dgeqrf_lwork(rows, columns)[0])
 
 
 def _thinned(data: BlockData) -> BlockData:
