@@ -43,8 +43,7 @@ def _check_reciprocity(ds: xr.Dataset) -> list[Finding]:
             Finding(
                 "reciprocity",
                 "warning",
-                "the data are not reciprocal beyond what the motion target allows: "
-                + " ".join(found.notes),
+                " ".join(found.notes),
                 where=", ".join(f"{labels[i]}-{labels[j]}" for i, j in pairs[:6])
                 + (" …" if len(pairs) > 6 else ""),
                 value=max((x for x in found.floors.values() if x is not None), default=None),

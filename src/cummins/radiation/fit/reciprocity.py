@@ -31,7 +31,7 @@ from numpy.typing import NDArray
 from cummins.hydrodb import dof_matrix
 from cummins.radiation.fit.frequency import r_squared
 from cummins.radiation.fit.motion import MotionSensitivity
-from cummins.radiation.fit.options import MOTION_AIM, RECIPROCITY_OPTIONS  # noqa: F401
+from cummins.radiation.fit.options import MOTION_AIM
 
 if TYPE_CHECKING:
     from cummins.radiation.fit.data import FitData
@@ -238,7 +238,7 @@ def reciprocity_of(
     sensitivity
         The motion sensitivity of ``user`` (None without inertia or restoring).
     option
-        One of :data:`RECIPROCITY_OPTIONS`.
+        One of :data:`cummins.radiation.fit.options.RECIPROCITY_OPTIONS`.
     motion_tol, r2_coupling
         The targets: a block whose reciprocal part is further than
         :data:`~cummins.radiation.fit.options.MOTION_AIM` × ``motion_tol`` from the data's
