@@ -15,9 +15,9 @@ from pathlib import Path
 import pytest
 
 BENCHMARKS = Path(__file__).resolve().parents[1] / "benchmarks"
-#: scripts that take minutes (every corpus case fitted three ways; thousands of damaged
-#: files): run by hand, their results are in BENCHMARKS.md
-BY_HAND = {"bench_identification.py", "fuzz_readers.py"}
+#: scripts that take minutes (every corpus case fitted three ways, or by two source trees;
+#: thousands of damaged files): run by hand, their results are in BENCHMARKS.md
+BY_HAND = {"bench_identification.py", "bench_fit_reference.py", "fuzz_readers.py"}
 SCRIPTS = sorted(
     p.name for p in BENCHMARKS.glob("*.py") if not p.name.startswith("_") and p.name not in BY_HAND
 )

@@ -101,21 +101,26 @@ def test_the_kept_antisymmetry_is_what_brings_the_motions_to_the_data(tanker_off
 
 def test_a_sign_mix_up_is_named_and_not_kept():
     """A[Surge, Pitch] of the wrong sign is not constant over frequency: the warning names
-    the pair, A∞ stays symmetric."""
+    the pair, and its average (reciprocity='average') leaves A∞ symmetric. By default
+    the data are fitted as they are (their reciprocal part is far from their motions:
+    tests/test_fit_as_given.py), and the warning says so."""
     ds = cummins.demo_dataset()
     a = ds.added_mass.copy()
     a.loc[{"influenced_dof": "Surge", "radiating_dof": "Pitch"}] *= -1.0
     ds = ds.assign(added_mass=a)
-    inp = prepare_fit(ds, DEFAULT.checked())
+    inp = prepare_fit(ds, DEFAULT.with_changes(reciprocity="average").checked())
     assert np.all(inp.antisymmetric_added_mass == 0.0)
-    with pytest.warns(cummins.errors.CumminsWarning, match=r"A\[Surge, Pitch\]"):
-        model = fit_radiation(ds, passivity="diagonal")
+    with pytest.warns(cummins.errors.CumminsWarning, match=r"A\[Surge, Pitch\].*average"):
+        model = fit_radiation(ds, passivity="diagonal", reciprocity="average")
     assert np.array_equal(model.added_mass_inf, model.added_mass_inf.T)
+    with pytest.warns(cummins.errors.CumminsWarning, match=r"A\[Surge, Pitch\].*as given"):
+        assert (0, 4) in prepare_fit(ds, DEFAULT.checked()).as_given
 
 
 def test_antisymmetry_beyond_a_few_percent_is_not_kept(tanker_offset):
-    """Data that contradict reciprocity by more than ANTISYMMETRY_MAX are not baked into
-    the model."""
+    """Data that contradict reciprocity by more than ANTISYMMETRY_MAX are not taken for a
+    mesh's constant difference kept in A∞ beside the average; their reciprocal part is far
+    from their motions, so the pair is fitted as given instead (tests/test_fit_as_given.py)."""
     from cummins.radiation.fit.data import ANTISYMMETRY_MAX
 
     reciprocal, _, offset = tanker_offset
@@ -124,6 +129,7 @@ def test_antisymmetry_beyond_a_few_percent_is_not_kept(tanker_offset):
     assert np.all(inp.antisymmetric_added_mass == 0.0)
     found, notes = antisymmetric_added_mass(inp.raw, inp.keep_dof)
     assert np.all(found == 0.0) and not notes
+    assert (1, 3) in inp.as_given
 
 
 @pytest.fixture(scope="module")
@@ -172,12 +178,20 @@ def test_the_motion_floor_tells_the_data_from_the_fit():
     b = ds.radiation_damping.copy()
     b.loc[{"influenced_dof": "Sway", "radiating_dof": "Roll"}] *= 1.6
     b.loc[{"influenced_dof": "Roll", "radiating_dof": "Sway"}] *= 0.4
-    model = _quiet_fit(ds.assign(radiation_damping=b))
+    model = _quiet_fit(ds.assign(radiation_damping=b), reciprocity="average")
     floor, error = model.attrs["motion_error_floor"], model.attrs["motion_error"]
     assert floor > 0.1
     assert floor == pytest.approx(error, rel=0.05)
     failure = [f for f in model.attrs["failures"] if f.startswith("motion error")]
     assert failure and "the data limit it" in failure[0]
+    # by default the pair is fitted as given (tests/test_fit_as_given.py): closer, but a
+    # passive model cannot follow a non-reciprocal damping whose symmetric part is
+    # nearly rank one (sway-roll), and the failure says so
+    given = _quiet_fit(ds.assign(radiation_damping=b))
+    assert "Sway-Roll" in given.attrs["couplings_as_given"]
+    assert given.attrs["motion_error"] < 0.5 * error
+    failure = [f for f in given.attrs["failures"] if f.startswith("motion error")]
+    assert failure and "not reciprocal" in failure[0]
 
 
 def test_the_command_line_prints_the_notes_with_their_brackets(tmp_path):

@@ -17,7 +17,7 @@ import numpy as np
 import pytest
 
 import cummins
-from cummins.radiation.fit import fit_radiation, order_search, vector
+from cummins.radiation.fit import block_passivity, fit_radiation, order_search
 from cummins.radiation.passivity import imaginary_axis_zeros
 
 
@@ -26,22 +26,22 @@ def barge_blocks(corpus):
     """(fitted, enforced, passive) of every passivity enforcement of the ITI barge's fit,
     and the sweeps whose grid saw nothing, with what the exact sweep found there."""
     calls, blind = [], []
-    enforce, sweep = order_search.enforce_passivity, vector.passivity_violations
+    enforce, sweep = order_search.enforce_passivity, block_passivity.passivity_violations
 
-    def recording_enforce(block, data):
-        out = enforce(block, data)
+    def recording_enforce(block, data, **options):
+        out = enforce(block, data, **options)
         calls.append((block, out[0], out[1]))
         return out
 
-    def recording_sweep(block, lo, hi, exact=True):
-        found = sweep(block, lo, hi, exact=exact)
+    def recording_sweep(block, lo, hi, exact=True, **options):
+        found = sweep(block, lo, hi, exact=exact, **options)
         if not exact:
             blind.append((block, lo, hi, bool(found[0])))
         return found
 
     with pytest.MonkeyPatch.context() as mp:
         mp.setattr(order_search, "enforce_passivity", recording_enforce)
-        mp.setattr(vector, "passivity_violations", recording_sweep)
+        mp.setattr(block_passivity, "passivity_violations", recording_sweep)
         ds = cummins.read(corpus / "ROSCO" / "wamit_ITI_barge_5MW_Baseline" / "Barge.1")
         with warnings.catch_warnings():
             warnings.simplefilter("ignore")
@@ -98,7 +98,9 @@ def test_the_exact_sweep_finds_bands_the_grid_cannot_see(barge_blocks):
     called a non-passive block passive."""
     _, blind = barge_blocks
     missed = [
-        b for b, lo, hi, saw in blind if not saw and vector.passivity_violations(b, lo, hi)[0]
+        b
+        for b, lo, hi, saw in blind
+        if not saw and block_passivity.passivity_violations(b, lo, hi)[0]
     ]
     assert missed
 

@@ -81,6 +81,7 @@ from cummins.check.common import (
 )
 from cummins.check.physical import _check_physical
 from cummins.check.plausibility import plausibility_findings
+from cummins.check.reciprocity import _check_reciprocity
 from cummins.check.report import SEVERITIES, CheckReport, Finding
 from cummins.check.retardation import _check_retardation
 from cummins.check.rigid_body import _check_rigid_body
@@ -145,6 +146,7 @@ def check(ds: xr.Dataset) -> CheckReport:
         plausibility_findings,
         _check_grid,
         _check_symmetry,
+        _check_reciprocity,
         _check_damping,
         _check_added_mass_inf,
         _check_decay,

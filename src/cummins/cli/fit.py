@@ -144,6 +144,16 @@ from cummins.files import write_text
     "data-weighted change of the residues. Diagonal models are positive real either way.",
 )
 @click.option(
+    "--reciprocity",
+    type=click.Choice(["auto", "average", "as-given"]),
+    default="auto",
+    show_default=True,
+    help="Data with A_ij != A_ji or B_ij != B_ji (zero speed): auto fits a block's couplings "
+    "as given (K_ij and K_ji each, passive as K + K^H >= 0) where the data's reciprocal "
+    "part alone misses the motion target, else their average; average always; as-given "
+    "every pair that is not reciprocal (vf).",
+)
+@click.option(
     "--body",
     metavar="N|NAME",
     default=None,
@@ -174,6 +184,7 @@ def fit_command(
     mss_path,
     speed,
     passive,
+    reciprocity,
     body,
     force,
 ):
@@ -186,7 +197,9 @@ def fit_command(
     smallest number of poles whose R-squared of A(w) and B(w) reaches the targets
     and whose motion RAOs (with inertia and restoring in the data) are within 1 %
     of the data's; each block is made passive as fitted. With fd each coupling
-    K_ij(s) gets its own model. Negligible couplings and suspect frequencies are
+    K_ij(s) gets its own model. Data that are not reciprocal (A_ij != A_ji) beyond
+    what the motions allow have those couplings fitted as given, K_ij and K_ji each
+    (--reciprocity). Negligible couplings and suspect frequencies are
     left out and reported. The MIMO model (A, B, C, D = 0) and A-infinity go to
     OUTPUT; a fit that misses a target it should reach exits with status 3.
 
@@ -253,6 +266,7 @@ def fit_command(
             omega_max=omega_max,
             exclude_suspect=not keep_suspect,
             passivity="mimo" if passive else "diagonal",
+            reciprocity=reciprocity,
             progress=progress,
         )
     elapsed = time.perf_counter() - start
@@ -414,8 +428,8 @@ def fit_table(model) -> Table:
         table.add_column(column, justify="left" if left else "right", no_wrap=left)
     numbers: dict[str, int] = {}
     for k in model.modelled:
-        if k.influenced > k.radiating:
-            continue
+        if k.influenced > k.radiating and not k.metrics.get("as_given"):
+            continue  # the same model as (j, i); a pair fitted as given has two
         m = k.metrics
         a, b = table_label(model.dofs[k.influenced]), table_label(model.dofs[k.radiating])
         passive = m.get("passive")
@@ -454,7 +468,7 @@ def fit_notes(model) -> list[str]:
     seen: set[str] = set()
     owner = {d: "-".join(model.dofs[x] for x in b.dofs) for b in model.blocks for d in b.dofs}
     for k in model.modelled:
-        if k.influenced > k.radiating:
+        if k.influenced > k.radiating and not k.metrics.get("as_given"):
             continue
         note = short_note(k.note)
         if note and note not in seen:

@@ -157,7 +157,7 @@ class MemoryBlock:
         """K_ij of the block as a SISO model (model indices; the block's own states, so
         not minimal), with the pair's metrics."""
         ii, jj = self.dofs.index(i), self.dofs.index(j)
-        key = (min(i, j), max(i, j))
+        key = self._metrics_key(i, j)
         return CouplingModel(
             i,
             j,
@@ -176,7 +176,7 @@ class MemoryBlock:
         (1/(s − p) for a real pole, a 2×2 block for a pair). Exact up to the dropped
         modes."""
         ii, jj = self.dofs.index(i), self.dofs.index(j)
-        key = (min(i, j), max(i, j))
+        key = self._metrics_key(i, j)
         a, b, c = (np.asarray(x, dtype=float) for x in (self.a, self.b, self.c))
         if not self.order:
             empty = np.zeros(0)
@@ -226,6 +226,30 @@ class MemoryBlock:
             self.note,
         )
 
+    def _metrics_key(self, i: int, j: int) -> tuple[int, int]:
+        """The key of pair (i, j) in :attr:`metrics`: (i, j) itself for a pair fitted as
+        given (each direction has its measures), else (min, max)."""
+        return (i, j) if (i, j) in self.metrics else (min(i, j), max(i, j))
+
+    def is_symmetric(self, rtol: float = 1e-9) -> bool:
+        """Whether K_D(s) = K_D(s)ᵀ (reciprocity, zero speed): a block whose couplings were
+        fitted as given is not. Tested on K(jω) at the magnitudes of its poles and a
+        decade either side, to ``rtol`` of max|K|."""
+        if not self.order or len(self.dofs) < 2:
+            return True
+        poles = np.abs(self.poles())
+        w = np.geomspace(poles.min() / 10, poles.max() * 10, 64)
+        a, b, c = (np.asarray(x, dtype=float) for x in (self.a, self.b, self.c))
+        lam, v = np.linalg.eig(a)
+        if np.linalg.cond(v) < 1e10:
+            k = np.einsum("ik,wk,kj->wij", c @ v, 1.0 / (1j * w[:, None] - lam[None, :]),
+                          np.linalg.solve(v, b))  # fmt: skip
+        else:
+            eye = np.eye(self.order)
+            k = np.array([c @ np.linalg.solve(1j * x * eye - a, b) for x in w])
+        top = float(np.abs(k).max())
+        return bool(np.abs(k - np.swapaxes(k, 1, 2)).max() <= rtol * max(top, 1e-300))
+
     def pairs(self) -> list[tuple[int, int]]:
         """The modelled pairs (i, j), both orders, in row-major order."""
         keys = set(self.metrics) or {(min(i, j), max(i, j)) for i in self.dofs for j in self.dofs}
@@ -235,8 +259,22 @@ class MemoryBlock:
         return sorted(out)
 
 
-def siso_frequency_response(a: ArrayLike, b: ArrayLike, c: ArrayLike, omega: ArrayLike) -> NDArray:
-    """c (jωI − a)⁻¹ b for each ω, through the eigen-decomposition of ``a``.
+def modal_form(a: ArrayLike) -> tuple[NDArray, NDArray, bool]:
+    """(λ, V, usable) of ``a``: its eigen-decomposition and whether V is well enough
+    conditioned for the modal sums of :func:`siso_frequency_response` (shared by the pairs
+    of one block: one decomposition instead of one per pair)."""
+    a = np.asarray(a, dtype=float)
+    if a.size == 0:
+        return np.zeros(0, dtype=complex), np.zeros((0, 0), dtype=complex), True
+    lam, v = np.linalg.eig(a)
+    return lam, v, bool(np.linalg.cond(v) < 1e10)
+
+
+def siso_frequency_response(
+    a: ArrayLike, b: ArrayLike, c: ArrayLike, omega: ArrayLike, modal=None
+) -> NDArray:
+    """c (jωI − a)⁻¹ b for each ω, through the eigen-decomposition of ``a`` (``modal``:
+    its :func:`modal_form`, when known).
 
     Falls back to a linear solve per frequency when ``a`` is defective.
     """
@@ -246,8 +284,8 @@ def siso_frequency_response(a: ArrayLike, b: ArrayLike, c: ArrayLike, omega: Arr
     s = 1j * np.asarray(omega, dtype=float).reshape(-1)
     if a.size == 0:
         return np.zeros(s.size, dtype=complex)
-    lam, v = np.linalg.eig(a)
-    if np.linalg.cond(v) < 1e10:
+    lam, v, usable = modal or modal_form(a)
+    if usable:
         left = c @ v
         right = np.linalg.solve(v, b)
         return (left * right) @ (1.0 / (s[None, :] - lam[:, None]))
@@ -255,16 +293,19 @@ def siso_frequency_response(a: ArrayLike, b: ArrayLike, c: ArrayLike, omega: Arr
     return np.array([c @ np.linalg.solve(si * eye - a, b) for si in s])
 
 
-def siso_impulse_response(a: ArrayLike, b: ArrayLike, c: ArrayLike, t: ArrayLike) -> NDArray:
-    """c e^{a t} b for each t, through the eigen-decomposition of ``a``."""
+def siso_impulse_response(
+    a: ArrayLike, b: ArrayLike, c: ArrayLike, t: ArrayLike, modal=None
+) -> NDArray:
+    """c e^{a t} b for each t, through the eigen-decomposition of ``a`` (``modal``: its
+    :func:`modal_form`, when known)."""
     a = np.asarray(a, dtype=float)
     b = np.asarray(b, dtype=float).reshape(-1)
     c = np.asarray(c, dtype=float).reshape(-1)
     t = np.asarray(t, dtype=float).reshape(-1)
     if a.size == 0:
         return np.zeros(t.size)
-    lam, v = np.linalg.eig(a)
-    if np.linalg.cond(v) < 1e10:
+    lam, v, usable = modal or modal_form(a)
+    if usable:
         weights = (c @ v) * np.linalg.solve(v, b)
         return np.real(np.exp(np.outer(t, lam)) @ weights)
     from scipy.linalg import expm
@@ -393,16 +434,19 @@ class RadiationModel:
         """The same K(s) with every block written as one minimal SISO model per pair
         (:meth:`MemoryBlock.element_minimal`): for the file formats that store one model
         per coupling (MSS ``vesselABC``, BEMIO, OpenFAST's states per radiating DOF). More
-        states than the block (its shared states are repeated per pair)."""
+        states than the block (its shared states are repeated per pair). A block that is
+        not symmetric (:meth:`MemoryBlock.is_symmetric`: couplings fitted as given) gives
+        K_ij and K_ji as two models."""
         if not self.blocks:
             return self
         couplings = list(self.couplings)
         for block in self.blocks:
+            symmetric = block.is_symmetric()
             for i, j in block.pairs():
-                if i <= j:
+                if i <= j or not symmetric:  # fitted as given: K_ij and K_ji each
                     k = block.element_minimal(i, j)
                     couplings.append(k)
-                    if i != j:
+                    if i != j and symmetric:
                         couplings.append(k.transposed())
         couplings.sort(key=lambda k: (k.influenced, k.radiating))
         return RadiationModel(self.dofs, tuple(couplings), self.added_mass_inf, self.attrs)

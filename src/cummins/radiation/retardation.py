@@ -635,18 +635,24 @@ def truncate_retardation(
 # --------------------------------------------------------------------------- diagnostics
 
 
-def significant_couplings(ds: xr.Dataset, threshold: float = 0.01) -> list[tuple[int, int]]:
+def significant_couplings(
+    ds: xr.Dataset, threshold: float = 0.01, *, either: bool = False
+) -> list[tuple[int, int]]:
     """(i, j) with i ≤ j whose damping or added-mass variation is not negligible.
 
     A coupling is kept when max|B_ij| or the range of A_ij exceeds ``threshold`` times
     the geometric mean of the same measure for B_ii and B_jj (or A_ii, A_jj); diagonal
     terms are kept unless they are negligible against the other DOFs of their kind
     (e.g. the yaw of an axisymmetric body), and the couplings of such a DOF are left out
-    too (a DOF without damping cannot have coupled damping in passive data).
+    too (a DOF without damping cannot have coupled damping in passive data). With
+    ``either``, a pair is kept when X_ij or X_ji is (data that are not reciprocal:
+    :mod:`cummins.radiation.fit.reciprocity`); else X_ij decides.
     """
     ds = single_speed(ds)
     b = np.abs(dof_matrix(ds, "radiation_damping")).max(axis=0)
     a = np.ptp(dof_matrix(ds, "added_mass"), axis=0)
+    if either:
+        a, b = np.maximum(a, a.T), np.maximum(b, b.T)
     n = b.shape[0]
     labels = [str(d) for d in ds.influenced_dof.values]
     rotation = np.array([is_rotation(lab) for lab in labels])

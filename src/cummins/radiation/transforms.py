@@ -171,7 +171,8 @@ def hilbert_pv(x: ArrayLike, f: ArrayLike, y: ArrayLike) -> NDArray[np.float64]:
     if np.any(y <= 0):
         raise ValueError("hilbert_pv needs y > 0")
     yy = y[:, None]
-    log_minus = _log_abs(b[None, :] - yy) - _log_abs(a[None, :] - yy)  # (M, K)
+    logs = _log_abs(x[None, :] - yy)  # ln|x_k − y| once for both ends of each segment
+    log_minus = logs[:, 1:] - logs[:, :-1]  # (M, K)
     log_plus = np.log((b[None, :] + yy) / (a[None, :] + yy))
     # (p + s y) ln|(b − y)/(a − y)| − (p − s y) ln|(b + y)/(a + y)|, per segment
     out = (log_minus - log_plus) @ p + ((log_minus + log_plus) * yy) @ slope

@@ -16,10 +16,10 @@ import numpy as np
 from cummins.errors import FitError
 from cummins.radiation.fit import order_search, vector
 from cummins.radiation.fit.data import FitInput, range_cut_failures
-from cummins.radiation.fit.metrics import coupling_metrics
+from cummins.radiation.fit.metrics import coupling_metrics, pair_floor
 from cummins.radiation.fit.mimo import failure_targets, fit_failures, with_motion_note
 from cummins.radiation.fit.options import MOTION_AIM, MOTION_TOL, FitOptions
-from cummins.radiation.model import MemoryBlock, RadiationModel
+from cummins.radiation.model import MemoryBlock, RadiationModel, modal_form
 from cummins.radiation.passivity import passivity_test
 
 
@@ -57,6 +57,8 @@ def fit_blocks(
     blocks, notes = [], []
     for dofs, elements in order_search.block_groups(n, pairs):
         say("block " + "-".join(labels[d] for d in dofs))
+        # a pair fitted as given adds its antisymmetric part (j, i) after the others
+        elements = elements + tuple((j, i) for i, j in elements if (i, j) in inp.as_given)
         used = np.stack([keep[:, i] & keep[:, j] for i, j in elements], axis=1)
 
         def motion(block, dofs=dofs):
@@ -65,9 +67,11 @@ def fit_blocks(
             k = k_data.copy()
             local = block.response(wk)
             a_block = np.zeros((len(dofs), len(dofs)))
-            for e, (i, j) in enumerate(block.elements):
+            for (i, j), value in block.pair_values(block.added_mass_inf).items():
                 ii, jj = dofs.index(i), dofs.index(j)
-                a_block[ii, jj] = a_block[jj, ii] = block.added_mass_inf[e]
+                a_block[ii, jj] = value
+                if i <= j and (j, i) not in block.elements:  # one value for both
+                    a_block[jj, ii] = value
             a_block += antisymmetric[np.ix_(dofs, dofs)]
             k[:, np.asarray(dofs)[:, None], np.asarray(dofs)[None, :]] = (
                 local + 1j * wk[:, None, None] * a_block
@@ -105,6 +109,7 @@ def fit_blocks(
                 motion_weight=None if sensitivity is None else sensitivity.coupling_weight,
                 motion_tol=tol,
                 prior=prior,
+                antisymmetric_inf=inp.reciprocity.added_mass_inf,
             )
             try:
                 found = order_search.identify_block(
@@ -142,17 +147,23 @@ def fit_blocks(
                     block_notes.append(order_search.targets_not_met(fitted.poles.count))
         plain_block = vector.fit_residues_at(data, fitted.poles) if passive else None
         a, b, c = fitted.realization()
-        for e, (i, j) in enumerate(elements):
-            inf[i, j] = inf[j, i] = fitted.added_mass_inf[e]
+        for (i, j), value in fitted.pair_values(fitted.added_mass_inf).items():
+            inf[i, j] = value  # a pair fitted as given: each direction its own
+            if i <= j and (j, i) not in fitted.elements:
+                inf[j, i] = value
         note = "; ".join(block_notes)
         block = MemoryBlock(dofs, a, b, c, "vf", {}, note)
         metrics = {}
         before = None
         if plain_block is not None:
             before = order_search.score_block(plain_block, data, r2=r2, r2_coupling=r2_coupling)
-        for e, (i, j) in enumerate(elements):
-            use = used[:, e]
-            view = block.element(i, j)
+        modal = modal_form(block.a)  # shared by its pairs' metrics
+        ordered = [(i, j) for i, j in elements if i <= j]
+        ordered += [(i, j) for j, i in ordered if (j, i) in inp.as_given]
+        for i, j in ordered:
+            use = used[:, elements.index((min(i, j), max(i, j)))]
+            view = replace(block.element(i, j), metrics={})
+            as_given = (min(i, j), max(i, j)) in inp.as_given
             m = coupling_metrics(
                 view,
                 omega[use],
@@ -161,9 +172,13 @@ def fit_blocks(
                 inf[i, j],
                 time=measured.time,
                 kernel=measured.kernel[:, i, j],
+                floor=pair_floor(a_data[use], b_data[use], i, j) if as_given else (0.0, 0.0),
+                modal=modal,
             )
             m["n_excluded_frequencies"] = int((~use).sum())
             m["common_poles"] = fitted.poles.count
+            if as_given:
+                m["as_given"] = True
             if before is not None:
                 m["r2_added_mass_before"], m["r2_damping_before"] = before.r2[(i, j)]
             metrics[(i, j)] = m
@@ -190,9 +205,31 @@ def fit_blocks(
             motion_error_by_dof=[float(x) for x in per_dof],
             motion_target=float(motion_tol),
         )
+        if error > motion_tol:  # what the data's causality allows (the failure says it)
+            extra["noncausal_dofs"] = noncausal_dofs(inp, model, per_dof > motion_tol)
     model = replace(model, attrs={**model.attrs, **extra})
     if sensitivity is not None:
         model = with_motion_note(model, motion_tol)
     failures = fit_failures(model, **failure_targets(options, sensitivity))
     failures += range_cut_failures(model, inp, options.r2)
     return replace(model, attrs={**model.attrs, "failures": failures})
+
+
+#: A DOF whose A(ω) is further than this from the Kramers–Kronig transform of its B(ω)
+#: (relative, :func:`cummins.radiation.retardation.kramers_kronig_error`, with the model's
+#: A∞) cannot be followed by a causal model: a motion error there is the data's.
+NONCAUSAL = 0.5
+
+
+def noncausal_dofs(inp: FitInput, model: RadiationModel, missed) -> list[str]:
+    """The DOFs among ``missed`` (a mask) whose data are not causal with the model's A∞
+    (:data:`NONCAUSAL`), as ``"body2__Pitch (98 %)"``."""
+    from cummins.radiation.retardation import kramers_kronig_error
+
+    inf = np.asarray(model.added_mass_inf, dtype=float)
+    error = np.diag(kramers_kronig_error(inp.data, added_mass_inf=0.5 * (inf + inf.T)).values)
+    return [
+        f"{label} ({100 * error[d]:.3g} %)"
+        for d, label in enumerate(inp.labels)
+        if missed[d] and error[d] > NONCAUSAL
+    ]

@@ -20,7 +20,6 @@
 
 from __future__ import annotations
 
-import itertools
 import warnings
 from dataclasses import dataclass, field
 from typing import Any
@@ -36,6 +35,19 @@ from cummins.radiation.fingerprint import data_fingerprint
 from cummins.radiation.fit.frequency import r_squared
 from cummins.radiation.fit.motion import MotionSensitivity, motion_sensitivity
 from cummins.radiation.fit.options import FitOptions
+from cummins.radiation.fit.order_search import block_groups
+from cummins.radiation.fit.reciprocity import (
+    ANTISYMMETRY_CONSTANT,  # noqa: F401 (the names of the data stage before the split)
+    ANTISYMMETRY_MAX,  # noqa: F401
+    ANTISYMMETRY_MIN,  # noqa: F401
+    ASYMMETRY_TOL,  # noqa: F401
+    Reciprocity,
+    antisymmetric_added_mass,
+    asymmetric_pairs,
+    motion_error_floor,
+    passive_hermitian_part,
+    reciprocity_of,
+)
 from cummins.radiation.fit.scorecard import data_frequencies
 from cummins.radiation.model import RadiationModel
 from cummins.radiation.retardation import added_mass_inf as estimate_added_mass_inf
@@ -105,7 +117,11 @@ class FitInput:
     antisymmetric_added_mass
         (n, n) antisymmetric part of the data's added mass that is constant over the
         fitted frequencies, which the model's A∞ keeps (:func:`antisymmetric_added_mass`);
-        zero for reciprocal data.
+        zero for reciprocal data and for the pairs fitted as given.
+    reciprocity
+        What :func:`cummins.radiation.fit.reciprocity.reciprocity_of` decided: the pairs
+        (i, j), i < j, fitted as given, K_ij ≠ K_ji (:attr:`as_given`; ``added_mass``,
+        ``damping`` and ``measured`` hold them as they are), and why.
     attrs
         The provenance the model will carry (source, options, what was left out, notes).
     beyond_range
@@ -133,6 +149,12 @@ class FitInput:
     antisymmetric_added_mass: NDArray[np.float64]
     attrs: dict[str, Any] = field(default_factory=dict)
     beyond_range: BeyondRange | None = None
+    reciprocity: Reciprocity = field(default_factory=Reciprocity)
+
+    @property
+    def as_given(self) -> frozenset[tuple[int, int]]:
+        """The pairs fitted as given (:attr:`reciprocity`)."""
+        return self.reciprocity.as_given
 
 
 def prepare_fit(ds: xr.Dataset, options: FitOptions) -> FitInput:
@@ -175,7 +197,8 @@ def prepare_fit(ds: xr.Dataset, options: FitOptions) -> FitInput:
     else:  # the user's own data at the same frequencies, bridged alike
         user = _bridged_dataset(user.sel(omega=raw.omega.values), keep_dof)
     excluded = [float(x) for x in raw.omega.values[~keep_dof.all(axis=1)]]
-    excluded += [float(x) for x in ds.omega.values if x not in set(raw.omega.values)]
+    fitted = set(raw.omega.values)  # once: in the comprehension it was rebuilt per point
+    excluded += [float(x) for x in ds.omega.values if x not in fitted]
     excluded = sorted(excluded)
     joint = method in ("fd", "vf")
     a_inf_mode = options.added_mass_inf
@@ -213,29 +236,89 @@ def prepare_fit(ds: xr.Dataset, options: FitOptions) -> FitInput:
             )
     a_inf = dof_matrix(data, "added_mass_inf") if a_inf_mode == "data" else ogilvie.copy()
     labels = tuple(str(d) for d in data.influenced_dof.values)
-    for message in asymmetric_pairs(user):
-        warnings.warn(message, CumminsWarning, stacklevel=3)
-        data_notes.append(message)
     weighting = options.weighting
     if weighting == "auto":
         known = {"inertia_matrix", "hydrostatic_stiffness"} <= set(data)
         weighting = "motion" if known and joint else "uniform"
-    sensitivity = None
+    reference = None  # the user's motions
     if weighting == "motion":
-        sensitivity = motion_sensitivity(data, added_mass_inf=a_inf)
-        if sensitivity is None:
+        reference = motion_sensitivity(user, added_mass_inf=a_inf)
+        if reference is None:
             raise FitError(
                 "weighting='motion' needs inertia_matrix and hydrostatic_stiffness in the data",
                 hint="use weighting='uniform' or data with the rigid-body inertia and restoring",
             )
     pairs = significant_couplings(data, options.threshold)
     antisymmetric, kept = np.zeros((len(labels), len(labels))), []
+    reciprocity = Reciprocity()
     if method == "vf" and float(ds.coords.get("forward_speed", 0.0)) == 0.0:
         # at speed A_ij ≠ A_ji is physical; the per-coupling fit compares every
         # coupling with the symmetric data and its A∞ (it keeps A∞ symmetric)
         antisymmetric, kept = antisymmetric_added_mass(raw, keep_dof, modelled)
+        # a pair whose X_ji alone is significant counts here: averaged with a small
+        # X_ij, or left out, it can move the motions most (RM3's spar sway-heave)
+        either = significant_couplings(data, options.threshold, either=True)
+        reciprocity = reciprocity_of(
+            user,
+            keep_dof,
+            block_groups(len(labels), either),
+            antisymmetric,
+            reference,
+            option=options.reciprocity,
+            motion_tol=options.motion_tol,
+            r2_coupling=options.coupling_target,
+        )
+        if reciprocity.as_given:
+            fitted = as_given_data(raw, data, pairs, reciprocity, keep_dof, modelled)
+            floors = (
+                motion_floor(reference, fitted[1], reciprocity.as_given, fitted[3]),
+                motion_floor(reference, data, frozenset(), antisymmetric),
+            )
+            if reference is None or floors[0] < floors[1]:
+                raw, data, pairs, antisymmetric, kept, note = fitted
+                data_notes += reciprocity.notes + [note] * bool(note)
+            else:  # its passive part is no closer to the data's motions than the average
+                data_notes.append(
+                    "the data are not reciprocal, but fitted as given their passive part "
+                    f"would be {100 * floors[0]:.3g} % off their own motions, the reciprocal "
+                    f"part's {100 * floors[1]:.3g} %: the reciprocal part is fitted"
+                )
+                reciprocity = Reciprocity(floors=reciprocity.floors)
+        else:
+            data_notes += reciprocity.notes
+    elif method != "vf" and options.reciprocity == "as-given":
+        raise FitError(
+            f"reciprocity='as-given' needs method='vf' (the {method!r} fit models the "
+            "reciprocal part of each coupling)"
+        )
+    elif method == "fd" and reference is not None and options.reciprocity == "auto":
+        # the per-coupling fit (and the speed terms built from it) models the reciprocal
+        # part: say when that is further from the motions than the fit aims
+        either = significant_couplings(data, options.threshold, either=True)
+        found = reciprocity_of(
+            user,
+            keep_dof,
+            block_groups(len(labels), either),
+            np.zeros((len(labels), len(labels))),
+            reference,
+            motion_tol=options.motion_tol,
+            r2_coupling=options.coupling_target,
+        )
+        if found.as_given:
+            data_notes.append(
+                "the data are not reciprocal beyond what the motions allow (their reciprocal "
+                f"part alone is {100 * max(found.floors.values()):.3g} % off their own "
+                "motions); the per-coupling fit models that part, method='vf' fits such "
+                "couplings as given"
+            )
+    for message in asymmetric_pairs(user, reciprocity.as_given):
+        warnings.warn(message, CumminsWarning, stacklevel=3)
+        data_notes.append(message)
     data_notes += kept
-    measured = fit_data(data)
+    sensitivity = reference
+    if reference is not None and data is not user:  # the fit aims at the passive part
+        sensitivity = motion_sensitivity(data, added_mass_inf=a_inf)
+    measured = fit_data(data, reciprocity.as_given)
     n = len(labels)
     negligible = [(i, j) for i in range(n) for j in range(i, n) if (i, j) not in pairs]
     a_raw = dof_matrix(raw, "added_mass")
@@ -269,11 +352,16 @@ def prepare_fit(ds: xr.Dataset, options: FitOptions) -> FitInput:
         "omega_fit_min": float(w[0]),
         "omega_fit_max": float(w[-1]),
     }
-    if sensitivity is not None:
-        # the floor: the data's passive reciprocal part against the user's motions
-        reference = sensitivity
-        if user is not data:
-            reference = motion_sensitivity(user, added_mass_inf=a_inf)
+    if reciprocity.as_given:
+        floors = [x for x in reciprocity.floors.values() if x is not None]
+        if floors:
+            attrs["reciprocal_motion_error_floor"] = float(max(floors))
+        attrs["couplings_as_given"] = [
+            f"{labels[i]}-{labels[j]}" for i, j in sorted(reciprocity.as_given)
+        ]
+    if reference is not None:
+        # the floor: what the model is fitted to (the data's passive part, reciprocal but
+        # for the pairs fitted as given) against the user's motions
         attrs["motion_error_floor"] = motion_error_floor(reference, measured, antisymmetric)
     return FitInput(
         ds=ds,
@@ -282,8 +370,8 @@ def prepare_fit(ds: xr.Dataset, options: FitOptions) -> FitInput:
         keep_dof=keep_dof,
         labels=labels,
         measured=measured,
-        added_mass=0.5 * (a_raw + np.swapaxes(a_raw, 1, 2)),
-        damping=0.5 * (b_raw + np.swapaxes(b_raw, 1, 2)),
+        added_mass=reciprocal_part(a_raw, reciprocity.as_given),
+        damping=reciprocal_part(b_raw, reciprocity.as_given),
         a_inf_mode=a_inf_mode,
         a_inf=a_inf,
         ogilvie=ogilvie,
@@ -295,106 +383,46 @@ def prepare_fit(ds: xr.Dataset, options: FitOptions) -> FitInput:
         attrs=attrs,
         beyond_range=beyond_range,
         antisymmetric_added_mass=antisymmetric,
+        reciprocity=reciprocity,
     )
 
 
-#: A pair whose A_ij and A_ji (or B) differ by more than this fraction of the larger one
-#: (and of the diagonal scale √(X_ii X_jj)) is named: the fit uses their average.
-ASYMMETRY_TOL = 0.1
+def as_given_data(raw, data, pairs, reciprocity: Reciprocity, keep_dof, modelled):
+    """What a fit with the pairs ``reciprocity.as_given`` fitted as given uses: (raw,
+    data, pairs, antisymmetric A∞ kept, its notes, a note): the data made passive as a
+    non-reciprocal model must be (:func:`~cummins.radiation.fit.reciprocity.
+    passive_hermitian_part`), the pairs with those added, the constant A_ij − A_ji kept
+    in A∞ but for them (each keeps its own, :attr:`Reciprocity.added_mass_inf`)."""
+    given = reciprocity.as_given
+    antisymmetric, kept = antisymmetric_added_mass(raw, keep_dof, modelled, skip=given)
+    pairs = sorted(set(pairs) | given)
+    blocks = block_groups(keep_dof.shape[1], pairs)
+    inf = reciprocity.added_mass_inf
+    raw, _ = passive_hermitian_part(raw, blocks, given, inf)
+    data, note = passive_hermitian_part(data, blocks, given, inf)
+    return raw, data, pairs, antisymmetric, kept, note
 
 
-def motion_error_floor(
-    sensitivity: MotionSensitivity, measured: FitData, antisymmetric: NDArray
-) -> float:
-    """The motion error of the data's own reciprocal part: what the model is fitted to
-    (½(A + Aᵀ), ½(B + Bᵀ) and the antisymmetry kept in A∞) put in the place of the model,
-    against the data's motions (:meth:`MotionSensitivity.error_of`): an estimate of what
-    the data's averaged matrices alone give. A motion error far above it is the fit's,
-    near it the data's (their damping's asymmetry, or A_ij − A_ji that varies over
-    frequency)."""
-    rows = sensitivity.compared_frequencies()
-    w = sensitivity.omega[rows][:, None, None]
-    k = measured.damping[rows] + 1j * w * (measured.added_mass[rows] + antisymmetric)
-    return sensitivity.error_of(k, np.zeros(antisymmetric.shape))[0]
+def motion_floor(reference, data: xr.Dataset, as_given, antisymmetric) -> float:
+    """:func:`~cummins.radiation.fit.reciprocity.motion_error_floor` of ``data`` (reciprocal
+    but for ``as_given``, with the antisymmetric A∞ kept) against ``reference``'s motions;
+    0 without motions."""
+    if reference is None:
+        return 0.0
+    a = reciprocal_part(dof_matrix(data, "added_mass"), as_given)
+    b = reciprocal_part(dof_matrix(data, "radiation_damping"), as_given)
+    return motion_error_floor(
+        reference, FitData(data.omega.values, a, b, None, None), antisymmetric
+    )
 
 
-#: A pair's antisymmetric added mass ½(A_ij − A_ji) is kept in A∞ when its mean over the
-#: frequencies the pair keeps is between ANTISYMMETRY_MIN and ANTISYMMETRY_MAX of
-#: √(max|A_ii| max|A_jj|) (the notes print the whole difference A_ij − A_ji, twice it)
-#: and it departs from that mean by at most
-#: ANTISYMMETRY_CONSTANT of the mean: constant over frequency and a few per cent, what a
-#: solver's mesh gives (the RM3-like float and spar: 0.5–1.1 %, constant to 2–6 % of
-#: itself). A sign or DOF-order mix-up is not constant; a larger difference is data
-#: that contradict reciprocity (the corpus's Capytaine OSWEC, flap and base: up to
-#: 17 %), named by :func:`asymmetric_pairs` and not kept.
-ANTISYMMETRY_MIN = 1e-3
-ANTISYMMETRY_MAX = 0.05
-ANTISYMMETRY_CONSTANT = 0.25
-
-
-def antisymmetric_added_mass(
-    raw: xr.Dataset, keep_dof: NDArray, modelled=None
-) -> tuple[NDArray, list[str]]:
-    """The part of A_ij ≠ A_ji that the model keeps in A∞, and a note per pair.
-
-    At zero speed the added mass is symmetric (reciprocity: Newman (1977) ch. 6); panel
-    methods return A_ij ≠ A_ji by a few per cent on coarse meshes (Capytaine's direct
-    method on an RM3-like float and spar: the spar's surge–pitch and pitch–surge added
-    mass 2.2 % of √(A_ii A_jj) apart, constant to 6 % of that over 0.1–3.5 rad/s). The
-    memory K(s) is fitted to the average ½(A_ij + A_ji): an antisymmetric
-    jω(A_ij − A_ji) in K(jω) cannot be passive as ω → 0, where K + Kᴴ is dominated by it.
-    A difference that is *constant over frequency* is kept in A∞ instead (antisymmetric,
-    ½(A_ij − A_ji) above and its negative below the diagonal), where it changes nothing
-    of the memory and the model's motions follow the data's: on that float and spar the
-    spar's pitch at its lightly damped resonance (0.25 rad/s) was 8 % off the data's
-    RAO with the average alone, 0.50 % with the difference in A∞. Only the
-    common-pole identification (``method="vf"``) at zero speed keeps it (at forward speed
-    A_ij ≠ A_ji is physical).
-
-    Parameters
-    ----------
-    raw
-        The data at the fitted frequencies (one speed).
-    keep_dof
-        (omega, n) which frequencies each DOF keeps (:func:`prepare_fit`).
-    modelled
-        The DOFs whose memory is modelled (those with damping of their own), default
-        all: a pair with another DOF (the yaw of an axisymmetric body, whose added mass
-        is rounding noise) keeps nothing.
-
-    Returns
-    -------
-    antisymmetric : ndarray, shape (n, n)
-        Zero but for the pairs whose mean difference is between
-        :data:`ANTISYMMETRY_MIN` and :data:`ANTISYMMETRY_MAX` of √(max|A_ii| max|A_jj|)
-        and varies over frequency by at most :data:`ANTISYMMETRY_CONSTANT` of itself.
-    notes : list of str
-        One per pair kept, with the size of the difference.
-    """
-    a = dof_matrix(raw, "added_mass")
-    labels = [str(d) for d in raw.influenced_dof.values]
-    n = len(labels)
-    out = np.zeros((n, n))
-    notes = []
-    dofs = range(n) if modelled is None else sorted(modelled)
-    for i, j in itertools.combinations(dofs, 2):
-        use = keep_dof[:, i] & keep_dof[:, j]
-        if use.sum() < 2:
-            continue
-        half = 0.5 * (a[use, i, j] - a[use, j, i])
-        mean = float(np.mean(half))
-        scale = np.sqrt(np.abs(a[use, i, i]).max() * np.abs(a[use, j, j]).max())
-        if not scale > 0 or not ANTISYMMETRY_MIN * scale <= abs(mean) <= ANTISYMMETRY_MAX * scale:
-            continue
-        if np.abs(half - mean).max() > ANTISYMMETRY_CONSTANT * abs(mean):
-            continue
-        out[i, j], out[j, i] = mean, -mean
-        notes.append(
-            f"A[{labels[i]}, {labels[j]}] − A[{labels[j]}, {labels[i]}] = {2 * mean:.5g} "
-            f"({200 * abs(mean) / scale:.2g} % of √(A_ii A_jj)), constant over frequency: "
-            "kept in A∞, the memory fitted to their average"
-        )
-    return out, notes
+def reciprocal_part(x: NDArray, as_given=frozenset()) -> NDArray:
+    """½(X + Xᵀ) of matrices (…, n, n), but for the pairs ``as_given`` (i, j): kept as
+    they are (:func:`cummins.radiation.fit.reciprocity.reciprocity_of`)."""
+    out = 0.5 * (x + np.swapaxes(x, -1, -2))
+    for i, j in as_given:
+        out[..., i, j], out[..., j, i] = x[..., i, j], x[..., j, i]
+    return out
 
 
 #: The data's A∞_ii is taken as inconsistent with A(ω) when it differs from Ogilvie's
@@ -421,34 +449,6 @@ def inconsistent_added_mass_inf(data: xr.Dataset, ogilvie, spread) -> list[str]:
     return out
 
 
-def asymmetric_pairs(data: xr.Dataset) -> list[str]:
-    """One message per DOF pair (i < j) whose A_ij ≠ A_ji or B_ij ≠ B_ji at zero speed
-    beyond :data:`ASYMMETRY_TOL`: the worst frequency and both values. The fit uses
-    ½(X_ij + X_ji) (the physics wants them equal); so large a difference usually means a
-    DOF order or sign convention mixed up between the two halves of the matrix."""
-    out = []
-    labels = [str(d) for d in data.influenced_dof.values]
-    w = data.omega.values
-    for name, symbol in (("added_mass", "A"), ("radiation_damping", "B")):
-        x = dof_matrix(data, name)
-        diag = np.abs(np.diagonal(x, axis1=1, axis2=2)).max(axis=0)
-        for i in range(len(labels)):
-            for j in range(i + 1, len(labels)):
-                diff = np.abs(x[:, i, j] - x[:, j, i])
-                scale = np.maximum(np.abs(x[:, i, j]), np.abs(x[:, j, i]))
-                floor = ASYMMETRY_TOL * np.sqrt(diag[i] * diag[j])
-                bad = (diff > ASYMMETRY_TOL * scale) & (diff > floor)
-                if bad.any():
-                    k = int(np.argmax(np.where(bad, diff, -1.0)))
-                    out.append(
-                        f"{symbol}[{labels[i]}, {labels[j]}] = {x[k, i, j]:.5g} but "
-                        f"{symbol}[{labels[j]}, {labels[i]}] = {x[k, j, i]:.5g} at "
-                        f"{w[k]:.4g} rad/s ({int(bad.sum())} frequencies): the fit uses their "
-                        "average; check the DOF order and signs of the data"
-                    )
-    return out
-
-
 @dataclass(frozen=True)
 class FitData:
     """What the couplings of a model are measured against: the symmetric parts of the data.
@@ -458,7 +458,8 @@ class FitData:
     omega
         The fitted frequencies, rad/s.
     added_mass, damping
-        ½(X + Xᵀ) of A(ω) and B(ω), shape (len(omega), n_dofs, n_dofs).
+        ½(X + Xᵀ) of A(ω) and B(ω), shape (len(omega), n_dofs, n_dofs); X_ij and X_ji
+        as they are for a pair fitted as given.
     time, kernel
         K(t) of the symmetric damping on the default time grid (≤ 500 points), for the
         R² of K(t).
@@ -471,19 +472,23 @@ class FitData:
     kernel: NDArray[np.float64]
 
 
-def fit_data(data: xr.Dataset) -> FitData:
-    """:class:`FitData` of a ``HydroDB`` already restricted to the fitted frequencies."""
+def fit_data(data: xr.Dataset, as_given=frozenset()) -> FitData:
+    """:class:`FitData` of a ``HydroDB`` already restricted to the fitted frequencies: its
+    reciprocal part, but for the pairs ``as_given`` (i, j), kept as they are."""
     b = data.radiation_damping
     swapped = b.rename(influenced_dof="radiating_dof", radiating_dof="influenced_dof")
+    damping = (0.5 * (b + swapped)).transpose(*b.dims)
+    if as_given:
+        order = b.transpose(..., "influenced_dof", "radiating_dof")
+        damping = order.copy(data=reciprocal_part(order.values, as_given)).transpose(*b.dims)
     kernel = default_retardation_function(
-        data.assign(radiation_damping=(0.5 * (b + swapped)).transpose(*b.dims)),
-        max_points=500,
+        data.assign(radiation_damping=damping), max_points=500
     ).transpose("time", "influenced_dof", "radiating_dof")
     a_all, b_all = dof_matrix(data, "added_mass"), dof_matrix(data, "radiation_damping")
     return FitData(
         data.omega.values,
-        0.5 * (a_all + np.swapaxes(a_all, 1, 2)),
-        0.5 * (b_all + np.swapaxes(b_all, 1, 2)),
+        reciprocal_part(a_all, as_given),
+        reciprocal_part(b_all, as_given),
         kernel.time.values,
         kernel.values,
     )
@@ -492,7 +497,8 @@ def fit_data(data: xr.Dataset) -> FitData:
 def model_fit_data(model: RadiationModel, ds: xr.Dataset) -> FitData:
     """The data a model was fitted to, as :func:`fit_radiation` used them: its DOFs, the
     frequencies in ``omega_fit_min`` … ``omega_fit_max`` less its ``excluded_frequencies``
-    (the model's attributes), one forward speed."""
+    (the model's attributes), one forward speed; reciprocal but for the pairs its
+    ``couplings_as_given`` names."""
     if "forward_speed" in ds.dims:
         ds = ds.isel(forward_speed=0)
     dofs = list(model.dofs)
@@ -509,7 +515,14 @@ def model_fit_data(model: RadiationModel, ds: xr.Dataset) -> FitData:
         keep &= ~np.isclose(w, float(excluded), rtol=1e-12, atol=0.0)
     if not keep.any():
         raise FitError("the data have no frequency in the model's fitted range")
-    return fit_data(ds.isel(omega=np.flatnonzero(keep)))
+    named = {str(x) for x in np.atleast_1d(model.attrs.get("couplings_as_given", []) or [])}
+    as_given = frozenset(
+        (i, j)
+        for i in range(len(dofs))
+        for j in range(i + 1, len(dofs))
+        if f"{dofs[i]}-{dofs[j]}" in named
+    )
+    return fit_data(ds.isel(omega=np.flatnonzero(keep)), as_given)
 
 
 def response_weights(data: xr.Dataset) -> NDArray[np.float64]:

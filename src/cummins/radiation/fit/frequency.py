@@ -91,11 +91,13 @@ class FrequencyFit:
         return (self.residues[None, :] / (s[:, None] - self.poles[None, :])).sum(axis=1)
 
 
-def r_squared(y: ArrayLike, y_model: ArrayLike) -> float:
-    """Coefficient of determination 1 − Σ(y − ŷ)² / Σ(y − ȳ)² (Unneland (2007) eq. 6.19)."""
+def r_squared(y: ArrayLike, y_model: ArrayLike, floor: float = 0.0) -> float:
+    """Coefficient of determination 1 − Σ(y − ŷ)² / Σ(y − ȳ)² (Unneland (2007) eq. 6.19);
+    with ``floor``, the variance of y is taken as at least ``floor`` (a direction of a pair
+    fitted as given that is small beside the other is judged at the pair's spread)."""
     y = np.asarray(y, dtype=float)
     y_model = np.asarray(y_model, dtype=float)
-    total = np.sum((y - y.mean()) ** 2)
+    total = max(float(np.sum((y - y.mean()) ** 2)), y.size * floor)
     if total == 0:
         return 1.0 if np.allclose(y, y_model) else 0.0
     return float(1.0 - np.sum((y - y_model) ** 2) / total)

@@ -402,8 +402,35 @@ def _floor_clause(model: RadiationModel) -> str:
     """What limits the motion error: the data (their reciprocal part alone is as far
     from their motions, ``attrs["motion_error_floor"]``) or the fit."""
     floor, error = model.attrs.get("motion_error_floor"), model.attrs.get("motion_error")
+    noncausal = list(model.attrs.get("noncausal_dofs", []) or [])
+    if noncausal:
+        source = (
+            "the data's ω = ∞ row"
+            if model.attrs.get("added_mass_inf_method") == "data"
+            else "the fitted A∞"
+        )
+        return (
+            f"the data limit it: the added mass of {', '.join(noncausal)} is that far "
+            f"from the Kramers–Kronig transform of its damping with {source} (cummins "
+            "check: retardation), which no causal model follows"
+            + (
+                "; added_mass_inf='fit' (--added-mass-inf fit) lets the model choose A∞"
+                if model.attrs.get("added_mass_inf_method") == "data"
+                else ""
+            )
+        )
     if floor is None or error is None:
         return "the data's own consistency may limit it"
+    reciprocal = model.attrs.get("reciprocal_motion_error_floor")
+    if model.attrs.get("couplings_as_given") and reciprocal is not None:
+        return (
+            "the data limit it: they are not reciprocal (their reciprocal part alone is "
+            f"{100 * reciprocal:.3g} % off their own motions), fitted as given, and a passive "
+            "model (K + Kᴴ ⪰ 0) follows a non-reciprocal part only as far as the damping "
+            "allows: its antisymmetric damping integrates to zero over frequency, and "
+            "none is passive where the damping matrix is singular (cummins check: "
+            "reciprocity)"
+        )
     if floor >= 0.5 * error:
         return (
             f"the data limit it: their reciprocal part alone is {100 * floor:.2f} % off "

@@ -20,6 +20,8 @@ METHODS = ("vf", "fd", "realization", "prony")
 PASSIVITY_OPTIONS = ("mimo", "diagonal", "none")
 ADDED_MASS_INF = ("auto", "data", "fit", "ogilvie")
 WEIGHTINGS = ("auto", "motion", "response", "uniform")
+#: How a pair with A_ij ≠ A_ji is fitted (:mod:`cummins.radiation.fit.reciprocity`).
+RECIPROCITY_OPTIONS = ("auto", "average", "as-given")
 #: Default ``max_order`` per method: the number of common poles of a block (``"vf"``),
 #: the order of one coupling otherwise.
 MAX_ORDER = {"vf": 20, "fd": 10, "realization": 10, "prony": 10}
@@ -77,6 +79,13 @@ class FitOptions(Mapping):
         (per coupling only).
     motion_tol
         Largest relative motion error of the model, 2 % of critical damping (1 %).
+    reciprocity
+        ``"auto"`` (default): a block's couplings are fitted as given, K_ij ≠ K_ji, where
+        the data's reciprocal part alone misses the motion aim (without the inertia, no
+        motions: the reciprocal part, and a note), else to the reciprocal part
+        ½(X_ij + X_ji);
+        ``"average"``: always the reciprocal part; ``"as-given"``: every pair that is
+        not reciprocal (:mod:`cummins.radiation.fit.reciprocity`; ``"vf"`` only).
     """
 
     method: str = "vf"
@@ -92,6 +101,7 @@ class FitOptions(Mapping):
     passivity: str = "mimo"
     weighting: str = "auto"
     motion_tol: float = MOTION_TOL
+    reciprocity: str = "auto"
 
     # ------------------------------------------------------------------ a mapping of
     # the fields set away from the defaults (``fit_radiation(ds, **preset)``)
@@ -141,6 +151,7 @@ class FitOptions(Mapping):
             ("method", self.method, METHODS),
             ("weighting", self.weighting, WEIGHTINGS),
             ("passivity option", self.passivity, PASSIVITY_OPTIONS),
+            ("reciprocity option", self.reciprocity, RECIPROCITY_OPTIONS),
         ):
             if value not in allowed:
                 raise FitError(f"unknown {name} {value!r}; use one of {', '.join(allowed)}")

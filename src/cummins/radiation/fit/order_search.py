@@ -9,8 +9,9 @@ passivity costs the fits that meet the targets before it, or when passivity lose
 coupling at two orders in a row (data that are not passive themselves). When no order meets
 every target, the fits closest to them are made passive in order, up to the first that
 is no closer before passivity than the best passive fit so far is after it (passivity
-does not bring a fit closer to its targets), and the fewest poles among the passive fits
-nearly as close as the best is kept.
+does not bring a fit closer to its targets; an enforcement whose iterate is already far
+further gives up, :data:`GIVE_UP`), and the fewest poles among the passive fits nearly as
+close as the best is kept.
 """
 
 from __future__ import annotations
@@ -20,12 +21,8 @@ from dataclasses import dataclass
 import numpy as np
 
 from cummins.errors import FitError
-from cummins.radiation.fit.vector import (
-    BlockData,
-    PoleResidueBlock,
-    enforce_passivity,
-    vector_fit,
-)
+from cummins.radiation.fit.block_passivity import enforce_passivity
+from cummins.radiation.fit.vector import BlockData, PoleResidueBlock, vector_fit
 
 
 def block_groups(n: int, pairs) -> list[tuple[tuple[int, ...], tuple[tuple[int, int], ...]]]:
@@ -77,21 +74,31 @@ def score_block(
     motion=None,
     passive: bool = False,
 ) -> BlockScore:
-    """R² of A and B of each pair (on the frequencies it keeps), the shortfall below the
-    targets and, with ``motion`` (a callable: block → relative motion error), the motion
-    error."""
+    """R² of A and B of each pair (on the frequencies it keeps; each direction of a pair
+    fitted as given), the shortfall below the targets and, with ``motion`` (a callable:
+    block → relative motion error), the motion error."""
     from cummins.radiation.fit.frequency import r_squared
+    from cummins.radiation.fit.metrics import pair_floor
 
     w = data.omega[: data.n_data]
     k = block.element_response(w)
-    scores, shortfall = {}, 0.0
+    responses = block.pair_values(k.T)
+    infs = block.pair_values(block.added_mass_inf)
+    used = {}
     for e, (i, j) in enumerate(block.elements):
-        use = data.used[:, e]
-        a_model = block.added_mass_inf[e] + k[use, e].imag / w[use]
-        b_model = k[use, e].real
+        if i <= j:
+            used[(i, j)] = used[(j, i)] = data.used[:, e]
+    scores, shortfall = {}, 0.0
+    for (i, j), response in responses.items():
+        use = used[(i, j)]
+        a_model = infs[(i, j)] + response[use].imag / w[use]
+        b_model = response[use].real
+        floor = (0.0, 0.0)
+        if (max(i, j), min(i, j)) in block.elements:  # fitted as given: the pair's spread
+            floor = pair_floor(data.added_mass[use], data.damping[use], i, j)
         pair = (
-            r_squared(data.added_mass[use, i, j], a_model),
-            r_squared(data.damping[use, i, j], b_model),
+            r_squared(data.added_mass[use, i, j], a_model, floor[0]),
+            r_squared(data.damping[use, i, j], b_model, floor[1]),
         )
         scores[(i, j)] = pair
         target = r2 if i == j else r2_coupling
@@ -135,10 +142,19 @@ def identify_block(
     plain_fits: list[tuple[float, int, PoleResidueBlock]] = []
     tried: dict[int, tuple[tuple[bool, float], PoleResidueBlock, BlockScore]] = {}
 
-    def passivated(count: int, fitted: PoleResidueBlock) -> bool:
-        """The fit made passive and scored; True when it meets every target."""
+    def passivated(count: int, fitted: PoleResidueBlock, bound: float = np.inf) -> bool:
+        """The fit made passive and scored; True when it meets every target. With a
+        ``bound``, the enforcement gives up once its iterate is further from the targets
+        (passivity brings no fit closer: that fit would not be kept)."""
         if passive:
-            block, is_passive, _ = enforce_passivity(fitted, data)
+            give_up = None
+            if np.isfinite(bound):
+
+                def give_up(block: PoleResidueBlock) -> bool:
+                    score = score_block(block, data, r2=r2, r2_coupling=r2_coupling, motion=motion)
+                    return distance(score, r2, motion_aim) > bound
+
+            block, is_passive, _ = enforce_passivity(fitted, data, give_up=give_up)
         else:
             block, is_passive = fitted, True
         score = score_block(
@@ -198,7 +214,8 @@ def identify_block(
             if _tied(bad) >= passive_best:
                 break
             if count not in tried:
-                passivated(count, fitted)
+                # one that ends further than GIVE_UP × (the best + NEAR) is not kept
+                passivated(count, fitted, GIVE_UP * (passive_best + NEAR))
     if not tried:
         raise FitError("no stable model could be fitted")
     count = kept_count({c: key for c, (key, _, _) in tried.items()})
@@ -244,6 +261,11 @@ LOST = 1.0
 #: RAFT float's heave: 0.01–0.08 of R² at 7 … 20 poles; 3 or 4 give the same models on
 #: every corpus case, 3 is 0.5 s faster on the NEMOH two cubes).
 PASSIVE_STALL = 3
+#: A finalist's passivity enforcement gives up when its iterate is further from the
+#: targets than GIVE_UP × (the best passive fit's distance + NEAR): it would end further
+#: still and not be kept (the RAFT float's surge-pitch block: 4 of its 5 finalists end at
+#: 6–7 times the best; each took 20–25 iterations).
+GIVE_UP = 2.0
 #: When no order meets every target, passive fits closer to them by less than NEAR (in
 #: units of the allowed 1 − R², a tenth: R² within 0.001) are equally good, and the
 #: fewest poles among them is kept (the ITI barge: 15 or 20 common poles on its surge–

@@ -13,6 +13,17 @@ strictly proper and K(0) = 0 (Unneland (2007) eqs. 3.44–3.48: the properties a
 radiation model must have). A∞ is the constant term of the fit (Perez & Fossen's joint
 estimate), or the data's ω = ∞ row when it is consistent.
 
+**Couplings fitted as given.** Where the data are not reciprocal (A_ij ≠ A_ji, B_ij ≠
+B_ji) beyond what the motions allow (:mod:`cummins.radiation.fit.data`), a pair is fitted
+as its symmetric part ½(X_ij + X_ji) (the element (i, j), i < j) and its antisymmetric
+part ½(X_ji − X_ij) (the element (j, i), listed after the symmetric ones): the residue
+matrices are then not symmetric. Passivity asks K(jω) + K(jω)ᴴ = 2(Re K_s + j Im K_a) ⪰ 0
+(Unneland (2007) eq. 3.13), which an antisymmetric part can meet only if it vanishes
+faster than the symmetric damping at both ends: its residues have Σ R_k = Σ R_k/p_k =
+Σ R_k p_k = 0 (no antisymmetric jω term as ω → 0, K(t = 0) symmetric), and its A∞ is
+the data's antisymmetric added mass at ω → 0, where passivity pins it (the model's
+antisymmetric added mass is A∞'s at both ends).
+
 1. **Poles**: relaxed vector fitting (Gustavsen (2006)) with the fast QR solution of
    Deschrijver et al. (2008): every coupling of the block contributes its rows to one
    small least-squares problem for the common poles, which are reflected into the left
@@ -25,13 +36,8 @@ estimate), or the data's ω = ∞ row when it is consistent.
    nothing unphysical is fitted beyond the data.
 3. **Passivity**: K(jω) + K(jω)ᴴ = 2 Re K(jω) ⪰ 0 at all frequencies (Unneland (2007)
    Prop. 3.4) is enforced on the residues of the whole block by the smallest weighted
-   change of the fit (linearised eigenvalue constraints, accumulated; Gustavsen &
-   Semlyen (2001)'s residue perturbation, solved as a least-distance programme, Lawson &
-   Hanson (1974)). The violations are looked for on a dense grid while it sees any (the
-   deep ones of the first iterations), then between the exact crossings of the
-   Hamiltonian pencil (:func:`cummins.radiation.passivity.imaginary_axis_zeros`), which
-   also find the bands narrower than the grid: a block is passive only when that exact
-   test finds none. The poles do not move, so the model stays stable.
+   change of the fit (:mod:`cummins.radiation.fit.block_passivity`). The poles do not
+   move, so the model stays stable.
 4. **Order**: the number of common poles grows until every coupling reaches its R²
    targets and the motion error of the block is within its aim
    (:mod:`cummins.radiation.fit.order_search`).
@@ -44,13 +50,13 @@ The result is one :class:`~cummins.radiation.model.MemoryBlock` per block.
 
 from __future__ import annotations
 
+import functools
 from dataclasses import dataclass, field
 
 import numpy as np
 import scipy.linalg
+import scipy.linalg.lapack
 from numpy.typing import NDArray
-
-from cummins.errors import FitError
 
 #: Iterations of the pole relocation (at most; it stops when the poles move by less
 #: than CONVERGED, relative).
@@ -67,26 +73,6 @@ START_DAMPING = 0.01
 TAIL_FACTORS = np.geomspace(1.3, 30.0, 8)
 #: Weight of the tail points against the last data point's damping weight.
 TAIL_WEIGHT = 0.3
-#: Passivity: a violation is λ_min(Re K) < −VIOLATION · max ‖K‖ on the check grid.
-VIOLATION = 1e-8
-#: Passivity: each linearised constraint asks for λ ≥ MARGIN × the largest |λ| there, an
-#: overshoot so that the next sweep does not find the band violated again (1e-5 took
-#: 2.5× the iterations: 203 against 79 on the NEMOH Cubes, same orders and RAO errors).
-MARGIN = 1e-3
-#: Passivity enforcement iterations.
-PASSIVITY_ITERATIONS = 120
-#: The passivity programme keeps every constraint until it has PRUNE_ROWS times as many
-#: as unknowns; then those that have never bound are left out (the WAMIT OSWEC 2015's
-#: non-passive data built 9 000 constraints on 275 unknowns: 300 s for the fit, now 43 s).
-PRUNE_ROWS = 1
-#: Regularisation of the residue change (× the norm of the misfit Jacobian): directions
-#: the data do not see stay put.
-RIDGE = 1e-3
-#: Frequencies of the passivity check: from CHECK_SPAN⁻¹ ω_min to CHECK_SPAN ω_max.
-CHECK_SPAN = 1e3
-CHECK_POINTS = 1500
-#: At most this many local minima of λ_min per violation band give constraints at once.
-MINIMA = 8
 #: Residue-matrix eigenvalues below RANK_TOL × the largest of the block cost no state.
 RANK_TOL = 0.0
 
@@ -184,7 +170,8 @@ class BlockData:
     weight_real, weight_imag
         Weights of the real and imaginary parts of each equation.
     fixed_inf
-        A∞ of each element when it is given (then not estimated), else None.
+        A∞ of each element when it is given (then not estimated; NaN for an element whose
+        A∞ is estimated: the symmetric ones beside an antisymmetric part), else None.
     n_data
         The number of data frequencies (the first ``n_data`` of ``omega``).
     inf_guess, inf_spread
@@ -208,6 +195,19 @@ class BlockData:
     inf_guess: NDArray[np.float64] | None = field(repr=False, default=None)
     inf_spread: NDArray[np.float64] | None = field(repr=False, default=None)
 
+    @property
+    def free_inf(self) -> NDArray[np.bool_]:
+        """Which elements estimate their A∞."""
+        if self.fixed_inf is None:
+            return np.ones(len(self.elements), dtype=bool)
+        return np.isnan(self.fixed_inf)
+
+
+def is_antisymmetric(element: tuple[int, int]) -> bool:
+    """Whether an element (p, q) of a block is the antisymmetric part ½(X_pq − X_qp) of a
+    pair fitted as given (p > q), not a symmetric part (p ≤ q)."""
+    return element[0] > element[1]
+
 
 def block_data(
     dofs,
@@ -221,32 +221,58 @@ def block_data(
     motion_weight=None,
     motion_tol: float = 0.01,
     prior=None,
+    antisymmetric_inf=None,
 ) -> BlockData:
     """Equations of a block (see :class:`BlockData`).
 
-    ``added_mass``, ``damping``: symmetric parts of the data (omega, n, n); ``used``:
-    (omega, n_elements) which frequencies each coupling keeps; ``motion_weight``:
-    callable (i, j) → W_ij(ω) of :class:`cummins.radiation.fit.motion.MotionSensitivity` or None;
-    ``prior``: (guess, spread) matrices of A∞ when it is estimated.
+    ``added_mass``, ``damping``: the data (omega, n, n), symmetric but for the pairs
+    fitted as given; ``used``: (omega, n_elements) which frequencies each coupling keeps;
+    ``motion_weight``: callable (i, j) → W_ij(ω) of
+    :class:`cummins.radiation.fit.motion.MotionSensitivity` or None; ``prior``: (guess,
+    spread) matrices of A∞ when it is estimated (symmetric); ``antisymmetric_inf``: the
+    antisymmetric part of A∞ of the pairs fitted as given (their A at ω → 0, where
+    passivity pins it: :mod:`cummins.radiation.fit.reciprocity`).
+
+    An element (i, j), i ≤ j, is fitted to ½(X_ij + X_ji); an antisymmetric one (p, q),
+    p > q (:func:`is_antisymmetric`), to ½(X_pq − X_qp), with the weights of its pair:
+    the least-squares misfit of the two is then that of X_pq and X_qp each.
     """
     w = np.asarray(omega, dtype=float)
     tail = w.max() * TAIL_FACTORS
     values, wr, wi = [], [], []
+    given = {(q, p) for p, q in elements if p > q}  # pairs fitted as given
     for e, (i, j) in enumerate(elements):
         use = used[:, e]
         n_use = max(int(use.sum()), 1)
-        a_ij, b_ij = added_mass[:, i, j], damping[:, i, j]
         floor_a = 1e-3 * np.sqrt(np.std(added_mass[:, i, i]) * np.std(added_mass[:, j, j]))
         floor_b = 1e-3 * np.sqrt(np.std(damping[:, i, i]) * np.std(damping[:, j, j]))
-        spread_a = max(float(np.std(a_ij[use])), floor_a, np.finfo(float).tiny)
-        spread_b = max(float(np.std(b_ij[use])), floor_b, np.finfo(float).tiny)
+        if (min(i, j), max(i, j)) not in given:
+            a_ij, b_ij = added_mass[:, i, j], damping[:, i, j]
+            spread_a = max(float(np.std(a_ij[use])), floor_a, np.finfo(float).tiny)
+            spread_b = max(float(np.std(b_ij[use])), floor_b, np.finfo(float).tiny)
+        else:  # a pair fitted as given: its parts, weighed as each direction's
+            sign = -1.0 if i > j else 1.0
+            a_ij = 0.5 * (added_mass[:, i, j] + sign * added_mass[:, j, i])
+            b_ij = 0.5 * (damping[:, i, j] + sign * damping[:, j, i])
+            spread_a = max(
+                _pair_spread(added_mass[use, i, j], added_mass[use, j, i]),
+                floor_a,
+                np.finfo(float).tiny,
+            )
+            spread_b = max(
+                _pair_spread(damping[use, i, j], damping[use, j, i]), floor_b, np.finfo(float).tiny
+            )
         r_a = np.full(w.size, 1.0 / spread_a) / np.sqrt(n_use)
         r_b = w / spread_b / np.sqrt(n_use)
         if motion_weight is not None:
             m = motion_weight(i, j) * w / motion_tol / np.sqrt(n_use)
             r_a, r_b = np.hypot(r_a, m), np.hypot(r_b, m)
         r_a, r_b = np.where(use, r_a, 0.0), np.where(use, r_b, 0.0)
-        offset = 0.0 if added_mass_inf is None else added_mass_inf[i, j]
+        offset = 0.0
+        if i > j:
+            offset = antisymmetric_inf[i, j]
+        elif added_mass_inf is not None:
+            offset = added_mass_inf[i, j]
         last = np.flatnonzero(use)[-5:]
         rate = float(np.mean(b_ij[last] * w[last] ** 2)) if last.size else 0.0
         if i == j:
@@ -254,14 +280,25 @@ def block_data(
         b_tail = rate / tail**2
         values.append(np.r_[a_ij - offset - 1j * b_ij / w, -1j * b_tail / tail])
         last_weight = r_b[last[-1]] if last.size else 0.0
+        if i > j:  # an antisymmetric part's damping integrates to zero (K(t = 0) symmetric):
+            last_weight = 0.0  # what it owes, it may put beyond the data
         wr.append(np.r_[r_a, np.zeros(tail.size)])
         wi.append(np.r_[r_b, TAIL_WEIGHT * last_weight * tail / w.max()])
     fixed = guess = spread = None
-    if added_mass_inf is not None:
-        fixed = np.array([added_mass_inf[i, j] for i, j in elements])
-    elif prior is not None:
-        guess = np.array([prior[0][i, j] for i, j in elements])
-        spread = np.array([prior[1][i, j] for i, j in elements])
+    if added_mass_inf is not None or any(i > j for i, j in elements):
+        # an antisymmetric part's A∞ is given (its A at ω → 0); a symmetric one's is
+        # estimated (NaN) unless ``added_mass_inf`` is given
+        fixed = np.array(
+            [
+                antisymmetric_inf[i, j]
+                if i > j
+                else (np.nan if added_mass_inf is None else added_mass_inf[i, j])
+                for i, j in elements
+            ]
+        )
+    if added_mass_inf is None and prior is not None:
+        guess = np.array([prior[0][i, j] if i <= j else 0.0 for i, j in elements])
+        spread = np.array([prior[1][i, j] if i <= j else 0.0 for i, j in elements])
     return BlockData(
         tuple(dofs),
         tuple(elements),
@@ -279,6 +316,12 @@ def block_data(
     )
 
 
+def _pair_spread(one: NDArray, two: NDArray) -> float:
+    """The spread of a pair fitted as given: the root mean square of the spreads of X_ij
+    and X_ji (each direction's, as its R² measures it)."""
+    return float(np.sqrt(0.5 * (np.var(one) + np.var(two))))
+
+
 def _stacked(m: NDArray, wr: NDArray, wi: NDArray) -> NDArray:
     return np.vstack([wr[:, None] * m.real, wi[:, None] * m.imag])
 
@@ -292,14 +335,29 @@ def relocate(data: BlockData, poles: Poles) -> Poles:
     phi = poles.basis(s)
     n = phi.shape[1]
     ones = np.ones((s.size, 1))
-    own = phi if data.fixed_inf is not None else np.hstack([phi, ones])
     sigma = np.hstack([phi, ones])
-    k = own.shape[1]
     f, wr, wi = data.values, data.weight_real, data.weight_imag
+    free = data.free_inf
+    blocks: list = [None] * f.shape[0]
     # one QR per element, stacked: [own, −f σ] weighted, real rows over imaginary rows
-    m = np.concatenate([np.broadcast_to(own, (f.shape[0], *own.shape)), -f[:, :, None] * sigma], 2)
-    r = np.linalg.qr(np.concatenate([wr[:, :, None] * m.real, wi[:, :, None] * m.imag], 1), "r")
-    blocks = list(r[:, k : k + n + 1, k:])
+    # (own: the element's basis, with a constant when its A∞ is estimated)
+    n_w = s.size
+    for estimated in (False, True):
+        rows = np.flatnonzero(free == estimated)
+        if not rows.size:
+            continue
+        own = np.hstack([phi, ones]) if estimated else phi
+        k = own.shape[1]
+        fs = -f[rows][:, None, :] * sigma.T[None]
+        wre, wie = wr[rows][:, None, :], wi[rows][:, None, :]
+        # each element's matrix in column-major order (LAPACK's, factored in place)
+        stack = np.empty((rows.size, k + n + 1, 2 * n_w))
+        stack[:, :k, :n_w] = wre * own.real.T[None]
+        stack[:, :k, n_w:] = wie * own.imag.T[None]
+        stack[:, k:, :n_w] = wre * fs.real
+        stack[:, k:, n_w:] = wie * fs.imag
+        for e, matrix in zip(rows, stack, strict=True):
+            blocks[e] = _r_factor(matrix.T)[k : k + n + 1, k:]
     scale = np.sqrt(float(np.sum((wr * f.real) ** 2 + (wi * f.imag) ** 2))) / s.size
     norm = scale * np.real(sigma.sum(axis=0))
     lhs = np.vstack([*blocks, norm[None, :]])
@@ -313,6 +371,25 @@ def relocate(data: BlockData, poles: Poles) -> Poles:
         d = 1.0
     lam, b = poles.state_form()
     return _poles_from(np.linalg.eigvals(lam - np.outer(b, c) / d))
+
+
+def _r_factor(matrix: NDArray) -> NDArray:
+    """The triangular factor R of the Householder QR of a Fortran-ordered ``matrix``
+    (rows ≥ columns), factored in place: LAPACK's dgeqrf with its optimal workspace, as
+    ``numpy.linalg.qr(mode="r")`` calls it (the same R, bit for bit), without the copies."""
+    rows, columns = matrix.shape
+    qr, _, _, info = scipy.linalg.lapack.dgeqrf(
+        matrix, lwork=_qr_workspace(rows, columns), overwrite_a=1
+    )
+    if info:
+        raise np.linalg.LinAlgError(f"QR factorisation failed (LAPACK info {info})")
+    return np.triu(qr[:columns])
+
+
+@functools.lru_cache(maxsize=256)
+def _qr_workspace(rows: int, columns: int) -> int:
+    """dgeqrf's optimal workspace for a rows × columns matrix."""
+    return int(scipy.linalg.lapack.dgeqrf_lwork(rows, columns)[0])
 
 
 def _thinned(data: BlockData) -> BlockData:
@@ -353,22 +430,61 @@ def residue_null_space(poles: Poles) -> NDArray[np.float64]:
     return q[:, 1:]
 
 
+def antisymmetric_null_space(poles: Poles) -> NDArray[np.float64]:
+    """Orthonormal basis of the coefficient vectors of an antisymmetric part: Σ R_k = 0
+    (K(0) = 0, strictly proper), Σ R_k/p_k = 0 (no jω term as ω → 0: the model's
+    antisymmetric added mass tends to its A∞ at zero frequency) and Σ R_k p_k = 0
+    (K(t = 0) symmetric: no 1/ω term as ω → ∞), each sum over the conjugates too; without
+    them K + Kᴴ is indefinite at one end (module docstring). Fewer than four coefficients
+    leave none."""
+    nr = poles.real.size
+    count = poles.count
+    forms = np.zeros((count, 3))
+    forms[:, 0] = poles.residue_sum()
+    forms[:nr, 1], forms[:nr, 2] = 1.0 / poles.real, poles.real
+    inverse = 1.0 / poles.pairs
+    forms[nr::2, 1], forms[nr + 1 :: 2, 1] = 2 * inverse.real, -2 * inverse.imag
+    forms[nr::2, 2], forms[nr + 1 :: 2, 2] = 2 * poles.pairs.real, -2 * poles.pairs.imag
+    if count <= 3:
+        return np.zeros((count, 0))
+    q, _ = np.linalg.qr(np.c_[forms, np.eye(count)[:, : count - 3]])
+    return q[:, 3:]
+
+
+def element_null_spaces(elements, poles: Poles) -> list[NDArray[np.float64]]:
+    """The null space of each element's coefficients: :func:`residue_null_space`, or
+    :func:`antisymmetric_null_space` for an antisymmetric part."""
+    null = residue_null_space(poles)
+    anti = antisymmetric_null_space(poles) if any(map(is_antisymmetric, elements)) else None
+    return [anti if is_antisymmetric(x) else null for x in elements]
+
+
 def fit_residues(data: BlockData, poles: Poles) -> tuple[NDArray, NDArray]:
-    """Coefficients (n_elements, count) with Σ R_k = 0, and A∞ per element."""
+    """Coefficients (n_elements, count) with Σ R_k = 0 (and the antisymmetric parts'
+    constraints), and A∞ per element."""
     s = 1j * data.omega
     phi = poles.basis(s)
-    null = residue_null_space(poles)
-    m = phi @ null
-    if data.fixed_inf is None:
-        m = np.hstack([m, np.ones((s.size, 1))])
+    free = data.free_inf
     x = np.zeros((len(data.elements), poles.count))
     inf = np.zeros(len(data.elements)) if data.fixed_inf is None else data.fixed_inf.copy()
-    for e, (f, wr, wi) in enumerate(
-        zip(data.values, data.weight_real, data.weight_imag, strict=True)
+    columns: dict = {}
+    for e, (f, wr, wi, null) in enumerate(
+        zip(
+            data.values,
+            data.weight_real,
+            data.weight_imag,
+            element_null_spaces(data.elements, poles),
+            strict=True,
+        )
     ):
+        key = (id(null), bool(free[e]))
+        if key not in columns:
+            m = phi @ null
+            columns[key] = np.hstack([m, np.ones((s.size, 1))]) if free[e] else m
+        m = columns[key]
         rows = _stacked(m, wr, wi)
         rhs = np.concatenate([wr * f.real, wi * f.imag])
-        if data.fixed_inf is None and data.inf_guess is not None and data.inf_spread[e] > 0:
+        if free[e] and data.inf_guess is not None and data.inf_spread[e] > 0:
             # the prior: weighs like all the added-mass equations together (their
             # weights are 1/spread of A over √n each)
             weight = 1.0 / data.inf_spread[e]
@@ -378,7 +494,7 @@ def fit_residues(data: BlockData, poles: Poles) -> tuple[NDArray, NDArray]:
             rhs = np.r_[rhs, weight * data.inf_guess[e]]
         z, *_ = np.linalg.lstsq(rows, rhs, rcond=None)
         x[e] = null @ z[: null.shape[1]]
-        if data.fixed_inf is None:
+        if free[e]:
             inf[e] = z[-1]
     return x, inf
 
@@ -402,23 +518,49 @@ class PoleResidueBlock:
         """K(jω) of the block, (n_omega, m, m), local DOF order."""
         return _element_matrix(self, self.element_response(omega).T)
 
+    def hermitian_part(self, omega: NDArray) -> NDArray:
+        """½(K(jω) + K(jω)ᴴ) = Re K_s + j Im K_a, (n_omega, m, m): real (Re K) for a
+        symmetric block, Hermitian for one with pairs fitted as given."""
+        if self.symmetric:
+            return self.response(omega).real
+        values = self.element_response(omega)
+        anti = np.array([is_antisymmetric(x) for x in self.elements])
+        values = np.where(anti[None, :], 1j * values.imag, values.real + 0j)
+        return _element_matrix(self, values.T)
+
+    @property
+    def symmetric(self) -> bool:
+        """No pair fitted as given: K(s) and the residue matrices are symmetric."""
+        return not any(map(is_antisymmetric, self.elements))
+
+    def pair_values(self, values: NDArray) -> dict[tuple[int, int], NDArray]:
+        """The values of the ordered pairs (i, j) (model indices) from one value per
+        element (``values`` (n_elements, …)): a symmetric element gives (i, j); a pair
+        fitted as given gives X_ij = s − a and X_ji = s + a from its symmetric part s and
+        its antisymmetric part a = ½(X_ji − X_ij) (element (j, i))."""
+        values = np.asarray(values)
+        anti = {(q, p): e for e, (p, q) in enumerate(self.elements) if p > q}
+        out = {}
+        for e, (i, j) in enumerate(self.elements):
+            if i > j:
+                continue
+            if (i, j) in anti:
+                a = values[anti[(i, j)]]
+                out[(i, j)], out[(j, i)] = values[e] - a, values[e] + a
+            else:
+                out[(i, j)] = values[e]
+        return out
+
     def residue_matrices(self) -> list[tuple[complex, NDArray]]:
         """(p_k, M_k) with K(s) = Σ M_k/(s − p_k) over real poles and the upper member
         of each pair (its conjugate carries M̄_k)."""
-        where = {d: k for k, d in enumerate(self.dofs)}
-        m, nr = len(self.dofs), self.poles.real.size
+        nr = self.poles.real.size
         out = []
         for k, p in enumerate(self.poles.real):
-            r = np.zeros((m, m))
-            for e, (i, j) in enumerate(self.elements):
-                r[where[i], where[j]] = r[where[j], where[i]] = self.coefficients[e, k]
-            out.append((complex(p), r * p))
+            out.append((complex(p), _element_matrix(self, self.coefficients[:, k]) * p))
         for k, p in enumerate(self.poles.pairs):
-            r = np.zeros((m, m), dtype=complex)
-            for e, (i, j) in enumerate(self.elements):
-                value = self.coefficients[e, nr + 2 * k] + 1j * self.coefficients[e, nr + 2 * k + 1]
-                r[where[i], where[j]] = r[where[j], where[i]] = value
-            out.append((complex(p), r * p))
+            value = self.coefficients[:, nr + 2 * k] + 1j * self.coefficients[:, nr + 2 * k + 1]
+            out.append((complex(p), _element_matrix(self, value) * p))
         return out
 
     def coordinate_realization(self) -> tuple[NDArray, NDArray, NDArray]:
@@ -434,13 +576,24 @@ class PoleResidueBlock:
         return a, np.kron(beta[:, None], np.eye(m)), c @ a
 
     def realization(self, rank_tol: float = RANK_TOL) -> tuple[NDArray, NDArray, NDArray]:
-        """Gilbert's realization (a, b, c), block DOF order; residue ranks below
-        ``rank_tol`` × the largest residue eigenvalue are dropped."""
+        """Gilbert's realization (a, b, c), block DOF order: one state per rank of each
+        residue matrix (eigenvalues of a symmetric real one, singular values otherwise:
+        R = U Σ Vᴴ); ranks below ``rank_tol`` × the largest residue entry are dropped."""
         terms = self.residue_matrices()
         m = len(self.dofs)
         top = max((float(np.abs(mk).max()) for _, mk in terms), default=0.0)
         a_blocks, b_blocks, c_blocks = [], [], []
+        symmetric = self.symmetric
         for p, mk in terms:
+            if p.imag == 0 and not symmetric:  # a real residue matrix R = U Σ Vᵀ
+                u, sv, vh = np.linalg.svd(mk.real)
+                keep = sv > rank_tol * top
+                r = int(keep.sum())
+                if r:
+                    a_blocks.append(p.real * np.eye(r))
+                    b_blocks.append(vh[keep])
+                    c_blocks.append(u[:, keep] * sv[keep])
+                continue
             if p.imag == 0:
                 lam, u = np.linalg.eigh(mk.real)
                 keep = np.abs(lam) > rank_tol * top
@@ -479,170 +632,22 @@ def vector_fit(data: BlockData, count: int) -> PoleResidueBlock:
     return PoleResidueBlock(data.dofs, data.elements, poles, coefficients, inf)
 
 
-# ----------------------------------------------------------------------------- passivity
-
-
-def passivity_violations(
-    block: PoleResidueBlock, omega_min: float, omega_max: float, exact: bool = True
-) -> tuple[list[tuple[float, float, NDArray, float]], NDArray]:
-    """(g, λ, w, λ_scale) of the points where S Re K(jω) S (DOF-scaled: s_i =
-    1/√max_ω |K_ii(jω)|, as :func:`cummins.radiation.passivity.dof_scaling`, so that translations
-    and rotations weigh alike) has a negative eigenvalue λ below −:data:`VIOLATION`, at the
-    worst point of each band between exact crossings and a few points across it, and of
-    the limits ω → 0, ∞ (:func:`limit_forms`) below −VIOLATION × their largest
-    eigenvalue: g the linear form giving each element of Re K there from its
-    coefficients, w = S v (v the eigenvector: wᵀ Re K w = λ) and the largest |λ| there;
-    and S.
-
-    ``exact=False`` takes the bands from the sign changes of λ_min on the grid alone: no
-    pencil to factor (its QZ is most of the sweep's cost on a 12-DOF block), but a band
-    narrower than the grid's spacing is not seen."""
-    from cummins.radiation.passivity import band_points
-
-    grid = np.geomspace(omega_min / CHECK_SPAN, omega_max * CHECK_SPAN, CHECK_POINTS)
-    k_grid = block.response(grid).real
-    peak = np.abs(np.diagonal(k_grid, axis1=1, axis2=2)).max(axis=0)
-    dof_scale = np.where(peak > 0, 1.0 / np.sqrt(np.where(peak > 0, peak, 1.0)), 0.0)
-    if exact:
-        a, b, c = block.coordinate_realization()
-        b, c = b * dof_scale[None, :], dof_scale[:, None] * c  # S K S: well conditioned
-        # every point once: the grid, five inside each band between crossings, its midpoint
-        edges, extra = band_points(a, b, c, grid)
-        points = np.r_[grid, extra]
-        order = np.argsort(points)
-        points = points[order]
-        k_all = np.concatenate([k_grid, block.response(extra).real])[order]
-        lam_all, vec_all = np.linalg.eigh(k_all * np.outer(dof_scale, dof_scale)[None])
-    else:
-        points = grid
-        lam_all, vec_all = np.linalg.eigh(k_grid * np.outer(dof_scale, dof_scale)[None])
-        negative = lam_all[:, 0] < 0
-        change = np.flatnonzero(negative[1:] != negative[:-1])
-        edges = np.r_[0.0, np.sqrt(grid[change] * grid[change + 1]), np.inf]
-    out, chosen = [], []
-    # between consecutive crossings the sign of λ_min is constant
-    starts = np.searchsorted(points, edges, side="right")
-    stops = np.searchsorted(points, edges, side="left")
-    for first, last in zip(starts[:-1], stops[1:], strict=True):
-        if last <= first:
-            continue
-        inside = np.arange(first, last)
-        lam = lam_all[inside]
-        worst = int(np.argmin(lam[:, 0]))
-        if lam[worst, 0] >= -VIOLATION:  # S K S: the diagonal peaks are 1
-            continue
-        low = lam[:, 0]
-        minima = np.flatnonzero(
-            (low < -VIOLATION) & (low <= np.r_[np.inf, low[:-1]]) & (low <= np.r_[low[1:], np.inf])
-        )
-        spread = np.linspace(0, inside.size - 1, 5).astype(int)
-        chosen.append(
-            inside[np.unique(np.r_[worst, minima[np.argsort(low[minima])][:MINIMA], spread])]
-        )
-    if chosen:
-        at = np.concatenate(chosen)
-        forms = np.real(1j * points[at, None] * block.poles.basis(1j * points[at]))
-        for form, lam, vec in zip(forms, lam_all[at], vec_all[at], strict=True):
-            local = float(np.abs(lam).max())
-            for e in np.flatnonzero(lam < 0):
-                out.append((form, float(lam[e]), dof_scale * vec[:, e], local))
-    # the limits ω → 0 and ω → ∞, where Re K vanishes as ω² L₀ and L_∞/ω²
-    for form in limit_forms(block.poles):
-        matrix = _element_matrix(block, block.coefficients @ form) * np.outer(dof_scale, dof_scale)
-        lam, vec = np.linalg.eigh(matrix)
-        local = float(np.abs(lam).max())
-        for e in np.flatnonzero(lam < -VIOLATION * local):
-            out.append((form, float(lam[e]), dof_scale * vec[:, e], local))
-    return out, dof_scale
-
-
-def limit_forms(poles: Poles) -> tuple[NDArray, NDArray]:
-    """The linear forms g (one per coefficient) of the limits of Re K: L_∞ = lim ω² Re K
-    (= −C A B = −Σ R_k p_k²) and L₀ = lim Re K / ω² (= C A⁻³ B = Σ R_k / p_k²), each
-    element of L being g · x_e."""
-    high, low = np.zeros(poles.count), np.zeros(poles.count)
-    nr = poles.real.size
-    high[:nr], low[:nr] = -(poles.real**2), 1.0 / poles.real**2
-    squared, inverse = poles.pairs**2, 1.0 / poles.pairs**2
-    high[nr::2], high[nr + 1 :: 2] = -2 * squared.real, 2 * squared.imag
-    low[nr::2], low[nr + 1 :: 2] = 2 * inverse.real, -2 * inverse.imag
-    return high, low
-
-
 def _element_matrix(block: PoleResidueBlock, values: NDArray) -> NDArray:
-    """The symmetric m×m matrices of one value per element (block DOF order): ``values``
-    (n_elements, …) gives (…, m, m), in its dtype."""
+    """The m×m matrices of one value per element (block DOF order): ``values``
+    (n_elements, …) gives (…, m, m), in its dtype; symmetric but for the antisymmetric
+    parts (p, q), p > q, added at (p, q) and subtracted at (q, p)."""
     values = np.asarray(values)
     where = {d: k for k, d in enumerate(block.dofs)}
     m = len(block.dofs)
     out = np.zeros((*values.shape[1:], m, m), dtype=np.result_type(values, float))
     for e, (i, j) in enumerate(block.elements):
-        out[..., where[i], where[j]] = out[..., where[j], where[i]] = values[e]
+        if i <= j:
+            out[..., where[i], where[j]] = out[..., where[j], where[i]] = values[e]
+    for e, (i, j) in enumerate(block.elements):
+        if i > j:
+            out[..., where[i], where[j]] += values[e]
+            out[..., where[j], where[i]] -= values[e]
     return out
-
-
-def enforce_passivity(
-    block: PoleResidueBlock, data: BlockData
-) -> tuple[PoleResidueBlock, bool, int]:
-    """The block with the smallest weighted residue change that makes Re K(jω) ⪰ 0 at all
-    frequencies (module docstring, step 3): (block, passive, iterations)."""
-    from cummins.radiation.passivity import least_distance
-
-    w = data.omega[: data.n_data]
-    s = 1j * data.omega
-    null = residue_null_space(block.poles)
-    q = null.shape[1]
-    phi = block.poles.basis(s) @ null
-    misfit = []
-    for wr, wi in zip(data.weight_real, data.weight_imag, strict=True):
-        jac = _stacked(phi, wr, wi)
-        ridge = RIDGE * np.linalg.norm(jac, 2)
-        # ‖J z‖ = ‖R z‖: the small triangular factor stands for the whole misfit
-        r = np.linalg.qr(np.vstack([jac, ridge * np.eye(q)]), mode="r")
-        misfit.append((r, np.zeros(q)))
-    where = {d: k for k, d in enumerate(block.dofs)}
-    rows, rhs = [], []
-    bound = np.zeros(0, dtype=bool)
-    start = block.coefficients
-    delta = np.zeros(len(block.elements) * q)
-    current = block
-    # the grid while it sees violations, then the exact crossings to the end (the narrow
-    # bands they find come back for a few iterations): half the sweeps' cost on two
-    # bodies, and the grid alone took twice the iterations on the ITI barge
-    exact = False
-    for iteration in range(PASSIVITY_ITERATIONS):
-        found, _ = passivity_violations(current, float(w.min()), float(w.max()), exact=exact)
-        if not found and not exact:
-            exact = True
-            found, _ = passivity_violations(current, float(w.min()), float(w.max()), exact=exact)
-        if not found:
-            return current, True, iteration
-        for form, lam, vec, local in found:
-            basis = form @ null
-            row = np.zeros(len(block.elements) * q)
-            for e, (i, j) in enumerate(block.elements):
-                vi, vj = vec[where[i]], vec[where[j]]
-                row[e * q : (e + 1) * q] = (vi * vi if i == j else 2 * vi * vj) * basis
-            rows.append(row)
-            rhs.append(MARGIN * local - lam + row @ delta)
-        try:
-            delta, active = least_distance(misfit, np.array(rows), np.array(rhs))
-        except FitError:
-            return current, False, iteration
-        # once the programme is large, a constraint that has never bound is left out of
-        # the next ones (were it violated again, the next sweep finds it); one that has
-        # bound is kept, or the iteration goes round in circles
-        bound = np.r_[bound, np.zeros(len(rows) - bound.size, dtype=bool)] | active
-        if len(rows) > PRUNE_ROWS * delta.size:
-            rows = [r for r, a in zip(rows, bound, strict=True) if a]
-            rhs = [h for h, a in zip(rhs, bound, strict=True) if a]
-            bound = bound[bound]
-        change = (null @ delta.reshape(len(block.elements), q).T).T
-        current = PoleResidueBlock(
-            block.dofs, block.elements, block.poles, start + change, block.added_mass_inf
-        )
-    found, _ = passivity_violations(current, float(w.min()), float(w.max()))
-    return current, not found, PASSIVITY_ITERATIONS
 
 
 def fit_residues_at(data: BlockData, poles: Poles) -> PoleResidueBlock:

@@ -23,6 +23,7 @@ The public names of both modules are importable from here.
 
 from __future__ import annotations
 
+from cummins.radiation.passivity.check import ANTISYMMETRY_TOLERANCE as ANTISYMMETRY_TOLERANCE
 from cummins.radiation.passivity.check import AXIS_TOLERANCE as AXIS_TOLERANCE
 from cummins.radiation.passivity.check import ORIGIN_TOLERANCE as ORIGIN_TOLERANCE
 from cummins.radiation.passivity.check import PASSIVITY_TOLERANCE as PASSIVITY_TOLERANCE

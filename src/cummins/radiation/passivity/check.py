@@ -19,7 +19,10 @@ in a form that needs no (D + Dᵀ)⁻¹, which does not exist for a radiation mo
 Between two consecutive crossings the sign of λ_min is constant, so one evaluation per
 interval decides it; a dense sweep (:func:`default_sweep`) is added as a safeguard, and
 the two limits are checked on their own: Φ(jω) ≈ −(CAB + (CAB)ᵀ)/ω² for ω → ∞ and
-Φ(jω) ≈ ω² (CA⁻³B + (CA⁻³B)ᵀ) for ω → 0 (a radiation model has K(0) = 0).
+Φ(jω) ≈ ω² (CA⁻³B + (CA⁻³B)ᵀ) for ω → 0 (a radiation model has K(0) = 0). A model that
+is not symmetric (couplings fitted as given) has K + Kᴴ = 2(Re K_s + j Im K_a): the
+test is the same, and at the ends its terms −j(CB − (CB)ᵀ)/ω and −jω(CA⁻²B − (CA⁻²B)ᵀ),
+which would dominate them, must vanish.
 
 The enforcement that acts on this test's report is in
 :mod:`cummins.radiation.passivity.enforcement`.
@@ -49,6 +52,10 @@ AXIS_TOLERANCE = 1e-3
 #: Zeros of Φ(s) closer to the origin than ORIGIN_TOLERANCE × the slowest pole are the
 #: double zero at s = 0 that K(0) = 0 puts there (split by rounding), not crossings.
 ORIGIN_TOLERANCE = 1e-4
+#: An antisymmetric part of CB or CA⁻²B below this fraction of the matrix is rounding (a
+#: model fitted as given has them symmetric by construction); beyond it K + Kᴴ is
+#: indefinite at that end (:func:`passivity_test`).
+ANTISYMMETRY_TOLERANCE = 1e-8
 #: Crossings closer than SAME_CROSSING (relative) are one: the zeros ±jω of Φ(s) come in
 #: pairs whose |Im s| differ in the last bits, by a rounding path that depends on the BLAS
 #: kernel (Sandybridge gave 1.395465 twice where others gave it once).
@@ -195,11 +202,17 @@ def imaginary_axis_zeros(
     if n == 0:
         return np.empty(0)
     d = np.zeros((m, m)) if d is None else np.asarray(d, dtype=float)
-    a_phi = scipy.linalg.block_diag(a, -a.T)
-    b_phi = np.vstack([b, c.T])
-    c_phi = np.hstack([c, -b.T])
-    pencil = np.block([[a_phi, b_phi], [c_phi, d + d.T]])
-    mass = scipy.linalg.block_diag(np.eye(2 * n), np.zeros((m, m)))
+    # [[A, 0, B], [0, −Aᵀ, Cᵀ], [C, −Bᵀ, D + Dᵀ]] and diag(I, I, 0), written in place
+    pencil = np.zeros((2 * n + m, 2 * n + m))
+    pencil[:n, :n] = a
+    pencil[n : 2 * n, n : 2 * n] = -a.T
+    pencil[:n, 2 * n :] = b
+    pencil[n : 2 * n, 2 * n :] = c.T
+    pencil[2 * n :, :n] = c
+    pencil[2 * n :, n : 2 * n] = -b.T
+    pencil[2 * n :, 2 * n :] = d + d.T
+    mass = np.zeros_like(pencil)
+    mass[np.arange(2 * n), np.arange(2 * n)] = 1.0
     alpha, beta = scipy.linalg.eig(pencil, mass, right=False, homogeneous_eigvals=True)
     finite = np.abs(beta) > 1e-9 * np.abs(alpha) + 1e-300
     s = alpha[finite] / beta[finite]
@@ -267,8 +280,13 @@ def passivity_test(model: RadiationModel) -> PassivityReport:
             worst_w, worst_v = w_min, v_min
         if v_min < -PASSIVITY_TOLERANCE:
             bands.append(ViolationBand(float(lo), float(hi), w_min, v_min))
-    high = _limit_eigenvalue(-(c @ a @ b))
-    low = _limit_eigenvalue(c @ np.linalg.matrix_power(np.linalg.inv(a), 3) @ b) if a.size else 0
+    high = _limit_eigenvalue(-(c @ a @ b), c @ b)
+    low = 0.0
+    if a.size:
+        inverse = np.linalg.inv(a)
+        low = _limit_eigenvalue(
+            c @ np.linalg.matrix_power(inverse, 3) @ b, c @ np.linalg.matrix_power(inverse, 2) @ b
+        )
     passive = (
         not bands
         and not orphan.any()
@@ -357,8 +375,17 @@ def _refine_minimum(lam_min, lo: float, hi: float, w0: float, v0: float) -> tupl
     return best_w, best_v
 
 
-def _limit_eigenvalue(matrix: NDArray) -> float:
-    """λ_min / λ_max(abs) of the symmetric part (NaN for a zero matrix)."""
+def _limit_eigenvalue(matrix: NDArray, leading: NDArray | None = None) -> float:
+    """λ_min / λ_max(abs) of the symmetric part of ``matrix`` (NaN for a zero matrix): the
+    limit of K + Kᴴ at one end, scaled. ``leading`` is the term of K one order before it
+    (CB, the 1/ω term as ω → ∞; CA⁻²B, the ω term as ω → 0): symmetric, it leaves K + Kᴴ
+    alone; with an antisymmetric part beyond :data:`ANTISYMMETRY_TOLERANCE` of itself (a
+    model that is not reciprocal and not made passive as such), K + Kᴴ tends to
+    ∓j(M − Mᵀ)/ω or jω(M − Mᵀ), whose eigenvalues come in pairs ±: −1."""
+    if leading is not None:
+        anti = np.abs(leading - leading.T).max(initial=0.0)
+        if anti > ANTISYMMETRY_TOLERANCE * np.abs(leading).max(initial=0.0):
+            return -1.0
     sym = matrix + matrix.T
     lam = np.linalg.eigvalsh(sym)
     top = np.abs(lam).max()

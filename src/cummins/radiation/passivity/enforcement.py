@@ -458,10 +458,30 @@ def constrained_least_squares(misfit, g: NDArray, h: NDArray) -> NDArray:
     return least_distance(misfit, g, h)[0]
 
 
-def least_distance(misfit, g: NDArray, h: NDArray) -> tuple[NDArray, NDArray[np.bool_]]:
-    """:func:`constrained_least_squares`, and which constraints hold with equality at the
-    solution (their NNLS multiplier u is positive): the others can be left out of the next
-    linearisation without changing its solution."""
+@dataclass(frozen=True)
+class FactoredMisfit:
+    """The misfit Σ_k ‖J_k z_k + y_k‖² of :func:`least_distance` factored once: J_k = Q_k
+    R_k (R_k with a ridge where its diagonal vanishes) and Q_kᵀ y_k, for a programme
+    solved many times with the same misfit and more constraints."""
+
+    r_all: NDArray
+    shift: NDArray
+
+    def solve(self, rhs: NDArray, trans: str = "N") -> NDArray:
+        """R⁻¹ rhs (``trans="T"``: R⁻ᵀ rhs), rhs (n, …). (One solve with the
+        block-diagonal R: the blocks one by one round differently, and the order search
+        branches on the result.)"""
+        return scipy.linalg.solve_triangular(self.r_all, rhs, trans=trans)
+
+    def transformed(self, g: NDArray) -> NDArray:
+        """G R⁻¹ of constraint rows G (R upper triangular, block-diagonal)."""
+        return self.solve(np.asarray(g).T, trans="T").T
+
+
+def factored_misfit(misfit) -> FactoredMisfit:
+    """:class:`FactoredMisfit` of ``[(J_k, y_k)]``."""
+    if isinstance(misfit, FactoredMisfit):
+        return misfit
     r_blocks, qty = [], []
     for jac, y in misfit:
         q, r = np.linalg.qr(jac)
@@ -469,9 +489,17 @@ def least_distance(misfit, g: NDArray, h: NDArray) -> tuple[NDArray, NDArray[np.
         r = r + ridge * np.eye(r.shape[0]) * (np.abs(np.diag(r)) < ridge)
         r_blocks.append(r)
         qty.append(q.T @ y)
-    r_all = scipy.linalg.block_diag(*r_blocks)
-    shift = np.concatenate(qty)
-    f = scipy.linalg.solve_triangular(r_all, g.T, trans="T").T  # G R⁻¹ (R upper triangular)
+    return FactoredMisfit(scipy.linalg.block_diag(*r_blocks), np.concatenate(qty))
+
+
+def least_distance(misfit, g: NDArray, h: NDArray) -> tuple[NDArray, NDArray[np.bool_]]:
+    """:func:`constrained_least_squares`, and which constraints hold with equality at the
+    solution (their NNLS multiplier u is positive): the others can be left out of the next
+    linearisation without changing its solution. ``misfit``: ``[(J_k, y_k)]`` or its
+    :func:`factored_misfit` (factored once for many programmes)."""
+    factored = factored_misfit(misfit)
+    shift = factored.shift
+    f = factored.transformed(g)  # G R⁻¹
     e = h + f @ shift
     norms = np.linalg.norm(f, axis=1)
     norms[norms == 0] = 1.0
@@ -485,7 +513,7 @@ def least_distance(misfit, g: NDArray, h: NDArray) -> tuple[NDArray, NDArray[np.
     if abs(residual[-1]) < 1e-12:
         raise FitError("passivity enforcement: the linearised constraints are infeasible")
     x = -residual[:n] / residual[-1]
-    return scipy.linalg.solve_triangular(r_all, x - shift), u > 0
+    return factored.solve(x - shift), u > 0
 
 
 def _apply_step(model, groups, bases, step) -> RadiationModel:

@@ -251,14 +251,27 @@ def _reduced_blocks(
             "the model holds both common-pole blocks and single couplings: reduce it "
             "with a tolerance (tol=..., cummins reduce --tol)"
         )
+    # a block fitted as given (K_ij ≠ K_ji) is kept whole: its truncations would be written
+    # with symmetric residues (reduce/blocks.py), which it has not
+    given = [k for k, block in enumerate(model.blocks) if not block.is_symmetric()]
     n = len(model.blocks)
     units = []
     for index, block in enumerate(model.blocks):
+        if index in given:
+            continue
         say(f"block {index + 1} of {n} ({block.order} states): balanced truncations")
         grid = _block_grid(model, block, fitted)
         units.append(prepared_block(block, index, method, regularization, grid))
-    chosen = _requested_blocks(units, order, tol)
+    order = _without_blocks(model, order, given)
+    chosen = _requested_blocks(units, order, tol) if units else []
     blocks = list(model.blocks)
+    for k in given:
+        note = (
+            f"not reduced: its couplings are fitted as given (K_ij ≠ K_ji), which the "
+            f"block truncation (symmetric residues) does not keep; kept at its "
+            f"{model.blocks[k].order} states"
+        )
+        blocks[k] = replace(blocks[k], note="; ".join(filter(None, [blocks[k].note, note])))
     for unit, candidate in zip(units, chosen, strict=True):
         if candidate is not None:
             say(f"block {unit.index + 1} of {n}: K(0) = 0 and passivity in its states")
@@ -276,6 +289,34 @@ def _reduced_blocks(
     return RadiationModel(
         model.dofs, couplings, model.added_mass_inf, dict(model.attrs), tuple(blocks)
     )
+
+
+def _without_blocks(model: RadiationModel, order: Any, given: list[int]) -> Any:
+    """The order asked of the blocks that are reduced: a total less the states of the
+    blocks ``given`` (kept whole); a mapping that names one of them is refused."""
+    if not given or order is None:
+        return order
+    if isinstance(order, Mapping):
+        for k in given:
+            dofs = model.blocks[k].dofs
+            if any(i in dofs and j in dofs for i, j in order):
+                raise FitError(
+                    f"the block of DOFs {', '.join(model.dofs[d] for d in dofs)} cannot be "
+                    "reduced: its couplings are fitted as given (K_ij ≠ K_ji, data that are not "
+                    f"reciprocal) and the block truncation keeps symmetric residues only; it "
+                    f"keeps its {model.blocks[k].order} states",
+                    hint="reduce the other blocks, or fit with reciprocity='average' "
+                    "(cummins fit --reciprocity average) for a reciprocal model",
+                )
+        return order
+    kept = sum(model.blocks[k].order for k in given)
+    if int(order) <= kept:
+        raise FitError(
+            f"a total order of {order} is not enough: the blocks whose couplings are fitted as "
+            f"given (K_ij ≠ K_ji) are kept whole, {kept} states",
+            hint="ask for more states, or fit with reciprocity='average'",
+        )
+    return int(order) - kept
 
 
 def _block_grid(model: RadiationModel, block: MemoryBlock, fitted: FitData | None) -> NDArray:
