@@ -1,4 +1,16 @@
-"""Every command in the README runs, and CI runs the README's test command."""
+"""Every command and Python block of the README and of the user guide runs, and CI runs
+the README's test command.
+
+The pages are read in order: the README, then the guide (``docs/guide/*.md`` in the
+order of its contents) and the notes of ``docs/`` that hold ``$ cummins`` lines. Every
+distinct ``$ cummins …`` line of their console blocks (a trailing backslash continues
+it) runs once, in a temporary folder holding the files the pages name (the ``workdir``
+fixture); a command that reads a file another command writes first runs the latest
+command before it that writes it — in the README for the README's tour, in the guide and
+the notes for theirs — and what each command wrote reads back as what it claims to be.
+The Python blocks of a page run one after the other in one namespace, in that folder,
+with every warning an error.
+"""
 
 from __future__ import annotations
 
@@ -6,6 +18,7 @@ import re
 import shlex
 import shutil
 from pathlib import Path
+from typing import NamedTuple
 
 import pytest
 from click.testing import CliRunner
@@ -14,15 +27,71 @@ import cummins
 from cummins.cli import main
 
 ROOT = Path(__file__).resolve().parents[1]
-README = (ROOT / "README.md").read_text(encoding="utf-8")
+GUIDE = ROOT / "docs" / "guide"
 
 
-def _blocks(language: str) -> list[str]:
-    return re.findall(rf"```{language}\n(.*?)```", README, flags=re.S)
+def _blocks(path: Path, language: str) -> list[str]:
+    text = path.read_text(encoding="utf-8")
+    return re.findall(rf"```{language}\n(.*?)```", text, flags=re.S)
+
+
+def _guide_pages() -> list[Path]:
+    """The guide's pages in the order of its contents (``docs/guide/index.md``)."""
+    index = (GUIDE / "index.md").read_text(encoding="utf-8")
+    toctree = re.search(r"```\{toctree\}\n(.*?)```", index, flags=re.S).group(1)
+    names = [line.strip() for line in toctree.splitlines() if line.strip()]
+    return [GUIDE / f"{name}.md" for name in names if not name.startswith(":")]
+
+
+def _notes() -> list[Path]:
+    """The notes of ``docs/`` whose console blocks hold ``$ cummins`` lines."""
+    notes = sorted((ROOT / "docs").glob("*.md"))
+    return [p for p in notes if any("$ cummins" in b for b in _blocks(p, "console"))]
+
+
+#: The documents in the order a reader takes them, in groups: a command reads what an
+#: earlier command of its own group writes (the README's tour stands alone).
+GROUPS = ((ROOT / "README.md",), (*_guide_pages(), *_notes()))
+
+
+class Command(NamedTuple):
+    page: str  # the document, relative to the repository
+    group: int
+    position: int  # order within the group
+    args: tuple[str, ...]  # after ``cummins``
+
+
+def _console_lines(block: str) -> list[str]:
+    lines = block.replace("\\\n", " ").splitlines()
+    return [line[2:].strip() for line in lines if line.startswith("$ cummins")]
+
+
+def _commands() -> list[Command]:
+    commands = []
+    for group, documents in enumerate(GROUPS):
+        position = 0
+        for path in documents:
+            for block in _blocks(path, "console"):
+                for line in _console_lines(block):
+                    args = tuple(shlex.split(line, comments=True)[1:])
+                    page = str(path.relative_to(ROOT))
+                    commands.append(Command(page, group, position, args))
+                    position += 1
+    return commands
+
+
+COMMANDS = _commands()
+#: each command once, where it first appears (the README's tour repeats the guide's)
+DISTINCT = list({c.args: c for c in reversed(COMMANDS)}.values())[::-1]
 
 
 def test_two_setup_commands_and_ci():
-    setup = [line for block in _blocks("bash") for line in block.splitlines() if line.strip()]
+    setup = [
+        line
+        for block in _blocks(ROOT / "README.md", "bash")
+        for line in block.splitlines()
+        if line.strip()
+    ]
     assert len(setup) == 2, setup
     assert setup[0].endswith("cummins demo")
     assert "pytest" in setup[1] and ".[test" in setup[1]
@@ -30,48 +99,82 @@ def test_two_setup_commands_and_ci():
     assert setup[1] in ci.splitlines(), "the CI script must run the README's test command"
 
 
-def _console_commands() -> list[str]:
-    return [
-        line[2:].strip()
-        for block in _blocks("console")
-        for line in block.splitlines()
-        if line.startswith("$ cummins")
-    ]
+def test_the_pages_are_read():
+    """The scan is not vacuous: the README's tour, every stage of the guide and the
+    OpenFAST note hold commands, and the README repeats the guide rather than adding."""
+    pages = {c.page for c in COMMANDS}
+    for page in ("README.md", "docs/guide/fit.md", "docs/guide/wec.md", "docs/openfast_wecsim.md"):
+        assert page in pages, page
+    assert len(DISTINCT) >= 40
+    guide = {c.args for c in COMMANDS if c.group == 1}
+    tour = [c.args for c in COMMANDS if c.group == 0]
+    assert 10 <= len(tour) <= 16
+    assert [a for a in tour if a not in guide] == [("demo", "-o", "cummins-demo", "--force")]
 
 
 @pytest.fixture
 def workdir(tmp_path, shared_data, monkeypatch):
+    import numpy as np
+
     for f in cummins.demo_files().glob("tanker.*"):
         shutil.copy(f, tmp_path / f.name)
     shutil.copytree(shared_data / "mss" / "supply", tmp_path / "supply")
     shutil.copy(cummins.demo_files().parent / "s175" / "s175.mat", tmp_path / "s175.mat")
     for f in (shared_data / "corpus" / "WEC-Sim" / "wamit_RM3_2body").glob("rm3.*"):
-        shutil.copy(f, tmp_path / f.name)  # the README's wave-energy converter
-    semi = shared_data / "corpus" / "WEIS" / "ss_fitting_OC4_semi"
+        shutil.copy(f, tmp_path / f.name)  # the wave-energy converter
+    weis = shared_data / "corpus" / "WEIS"
     for suffix in (".1", ".hst", ".12d", ".12s"):  # the OC4 semi's WAMIT run with its QTFs
-        shutil.copy(semi / f"marin_semi{suffix}", tmp_path / f"marin_semi{suffix}")
+        shutil.copy(weis / "ss_fitting_OC4_semi" / f"marin_semi{suffix}", tmp_path)
+    for suffix in (".1", ".3", ".hst"):  # the OC3 spar of the OpenFAST note
+        shutil.copy(weis / "ss_fitting_OC3_spar" / f"spar{suffix}", tmp_path)
+    shutil.copy(ROOT / "tests" / "data" / "semisub_capytaine.nc", tmp_path / "semisub.nc")
+    t = np.arange(0.0, 600.0, 0.5)  # a wave probe's record, 10 minutes
+    eta = 0.8 * np.cos(0.6 * t) + 0.5 * np.cos(0.9 * t + 1.0) + 0.3 * np.cos(0.45 * t + 2.0)
+    rows = "".join(f"{a:g}, {b:.6f}\n" for a, b in zip(t, eta, strict=True))
+    (tmp_path / "probe.csv").write_text("time [s], wave elevation [m]\n" + rows)
     monkeypatch.chdir(tmp_path)
     return tmp_path
 
 
-@pytest.mark.parametrize("command", _console_commands())
-def test_readme_console_command(command, workdir):
-    if " bem " in f" {command} ":
+def _outputs(args: tuple[str, ...]) -> list[str]:
+    written = [args[k + 1] for k, a in enumerate(args[:-1]) if a in ("-o", "--output")]
+    if args[0] == "convert":
+        written.append(args[2])
+    return written
+
+
+def _prerequisites(command: Command, done: set[tuple[str, ...]]) -> list[Command]:
+    """The commands to run before ``command``: for each file it reads that a command of
+    its group writes, the latest such command before it (and what that one needs)."""
+    chain = []
+    for name in command.args[1:]:
+        if name in _outputs(command.args):
+            continue
+        writers = [
+            c
+            for c in COMMANDS
+            if c.group == command.group
+            and c.position < command.position
+            and name in _outputs(c.args)
+        ]
+        if writers and writers[-1].args not in done:
+            done.add(writers[-1].args)
+            chain += [*_prerequisites(writers[-1], done), writers[-1]]
+    return chain
+
+
+@pytest.mark.parametrize(
+    "command", DISTINCT, ids=[f"{c.page}:{' '.join(c.args)[:60]}" for c in DISTINCT]
+)
+def test_console_command(command, workdir):
+    if command.args[0] == "bem":
         pytest.importorskip("capytaine")
-    args = shlex.split(command)[1:]
-    # a command that reads a file another README command writes runs after that one
-    for earlier in _console_commands():
-        made = shlex.split(earlier)[1:]
-        if made[0] != args[0] and any(f in args[1:2] for f in _outputs(made)):
-            first = CliRunner().invoke(main, made, catch_exceptions=False)
-            assert first.exit_code == 0, f"{earlier}\n{first.output}"
-    result = CliRunner().invoke(main, args, catch_exceptions=False)
-    assert result.exit_code == 0, f"{command}\n{result.output}"
-    _read_back(args, workdir)
-
-
-def _outputs(args: list[str]) -> list[str]:
-    return [args[k + 1] for k, a in enumerate(args[:-1]) if a in ("-o", "--output")]
+    for earlier in _prerequisites(command, {command.args}):
+        first = CliRunner().invoke(main, list(earlier.args), catch_exceptions=False)
+        assert first.exit_code == 0, f"{earlier.page}: {earlier.args}\n{first.output}"
+    result = CliRunner().invoke(main, list(command.args), catch_exceptions=False)
+    assert result.exit_code == 0, f"{command.page}: {command.args}\n{result.output}"
+    _read_back(list(command.args), workdir)
 
 
 def _option(args: list[str], name: str) -> str | None:
@@ -79,7 +182,7 @@ def _option(args: list[str], name: str) -> str | None:
 
 
 def _read_back(args: list[str], workdir: Path) -> None:
-    """What a README command wrote reads back as what it claims to be."""
+    """What a command wrote reads back as what it claims to be."""
     import json
 
     import numpy as np
@@ -89,7 +192,7 @@ def _read_back(args: list[str], workdir: Path) -> None:
     from cummins.seakeeping.frequency_domain import load_rao
 
     command = args[0]
-    outputs = [workdir / f for f in _outputs(args)]
+    outputs = [workdir / f for f in _outputs(tuple(args))]
     for path in outputs:
         assert path.exists() and (path.is_dir() or path.stat().st_size > 0), path
     for flag in ("--json",):
@@ -121,6 +224,13 @@ def _read_back(args: list[str], workdir: Path) -> None:
             from cummins.io.mss_abc import read_mss_abc
 
             assert read_mss_abc(workdir / _option(args, "--mss")).total_order > 0
+    elif command == "fit-excitation":
+        model = cummins.ExcitationModel.load(outputs[0])
+        if _option(args, "--openfast"):
+            from cummins.io.openfast import read_openfast_ssexctn
+
+            ss = read_openfast_ssexctn(workdir / _option(args, "--openfast"))
+            assert ss.heading == float(_option(args, "--heading")) and ss.n_states > 0
     elif command == "rao":
         rao = load_rao(outputs[0])
         assert set(rao.dims) == {"omega", "wave_direction", "dof"}
@@ -130,8 +240,8 @@ def _read_back(args: list[str], workdir: Path) -> None:
             assert rao.sizes["wave_direction"] == count
     elif command == "simulate":
         with xr.open_dataset(outputs[0], engine="h5netcdf") as run:
-            duration = float(_option(args, "--duration"))
-            assert run.time.values[-1] == np.float64(duration)
+            if _option(args, "--duration"):
+                assert run.time.values[-1] == np.float64(_option(args, "--duration"))
             assert np.all(np.isfinite(run.motion.values))
     elif command in ("kernel", "lf-model", "batch", "bem"):
         if outputs[0].suffix == ".nc":
@@ -145,15 +255,28 @@ def _read_back(args: list[str], workdir: Path) -> None:
             assert "eta" in run
 
 
-def test_readme_python_block(workdir):
-    """The README's Python blocks run with every warning an error: what they show a user
-    raise none (a warning there would be the first thing a user sees)."""
+PYTHON_PAGES = [p for group in GROUPS for p in group if _blocks(p, "python")]
+#: files a page's Python blocks write, that the test finds
+WRITES = {"docs/guide/read.md": "tanker_at_cg.nc", "docs/guide/fit.md": "tanker_model.nc"}
+
+
+@pytest.mark.parametrize("page", PYTHON_PAGES, ids=[str(p.relative_to(ROOT)) for p in PYTHON_PAGES])
+def test_python_blocks(page, workdir):
+    """A page's Python blocks run with every warning an error: what they show a user
+    raises none (a warning there would be the first thing a user sees)."""
     import warnings
 
-    blocks = _blocks("python")
-    assert blocks
-    for code in blocks:
+    namespace: dict = {}
+    for code in _blocks(page, "python"):
         with warnings.catch_warnings():
             warnings.simplefilter("error")
-            exec(compile(code, "README.md", "exec"), {})
-    assert (workdir / "tanker_at_cg.nc").is_file()
+            exec(compile(code, str(page.relative_to(ROOT)), "exec"), namespace)
+    written = WRITES.get(str(page.relative_to(ROOT)))
+    assert written is None or (workdir / written).is_file()
+
+
+def test_python_pages():
+    """The README and the guide's stages hold Python, and the files checked are theirs."""
+    names = {str(p.relative_to(ROOT)) for p in PYTHON_PAGES}
+    assert {"README.md", "docs/guide/read.md", "docs/guide/wec.md"} <= names
+    assert set(WRITES) <= names
