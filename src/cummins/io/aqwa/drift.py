@@ -38,20 +38,18 @@ def _blocks(
         if directions is None or directions.size == 0:
             raise text.error("no wave directions on the drift table's header", header)
         k = header + 1
-        dof, rows = -1, []
+        tables: list[tuple[int, list[tuple[int, np.ndarray]]]] = []
         while k < stop:
             stripped = text.lines[k].strip()
             label = stripped.replace(" ", "")
-            if label in _DOF_LABELS:
-                if dof >= 0:
-                    break
-                dof = _DOF_LABELS.index(label)
-            elif stripped == "1" and rows:  # Fortran carriage control: next page
+            if label in _DOF_LABELS:  # AQWA 19.1: one per page; AQWA 2023: all six in turn
+                tables.append((_DOF_LABELS.index(label), []))
+            elif stripped == "1" and tables and tables[-1][1]:  # carriage control: next page
                 break
-            elif dof >= 0 and stripped:
+            elif tables and stripped:
                 values = parse_numbers(stripped)
                 if values is None:
-                    if rows:
+                    if tables[-1][1]:
                         break
                     raise text.error(f"expected a row of numbers, found {stripped[:60]!r}", k)
                 if values.size != directions.size + 1:
@@ -62,13 +60,14 @@ def _blocks(
                     )
                 if not np.all(np.isfinite(values)):
                     raise text.error("non-finite value in the drift table", k)
-                rows.append((k, values))
+                tables[-1][1].append((k, values))
             k += 1
-        if dof < 0 or not rows:
+        if not tables or not all(rows for _, rows in tables):
             raise text.error("drift table without a DOF label or rows", header)
-        # fixed-width E-format values: a row cut inside its last number is damage
-        check_cut_numbers(text, [k for k, _ in rows], range(1, directions.size + 1))
-        out.append((dof, directions, header, rows))
+        for dof, rows in tables:
+            # fixed-width E-format values: a row cut inside its last number is damage
+            check_cut_numbers(text, [k for k, _ in rows], range(1, directions.size + 1))
+            out.append((dof, directions, header, rows))
     return out
 
 
