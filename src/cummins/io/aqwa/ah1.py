@@ -8,7 +8,8 @@ frequency``: 6 amplitudes then 6 phases in degrees) and, with LHFR, ADDEDMASS_LF
 DAMPING_LF and ADDEDMASS_HF. It has the same 5-digit A and B as the listing, 5-digit
 excitation amplitudes, but no RAOs and no Froude-Krylov/diffraction split. Records
 must be in AQWA's fixed formats and its matrices near symmetric
-(:data:`ASYMMETRY_LIMIT`).
+(:data:`ASYMMETRY_LIMIT`). The run's ``.QTF`` beside it (same name) is read as its QTFs
+(:mod:`cummins.io.aqwa.qtf`).
 """
 
 from __future__ import annotations
@@ -30,6 +31,8 @@ from cummins.io.aqwa.conventions import (
     _depth,
     _limits_history,
 )
+from cummins.io.aqwa.qtf import aqwa_second_order
+from cummins.qtf.data import with_second_order
 from cummins.restoring import weight_record
 
 
@@ -402,7 +405,9 @@ def _read_ah1(path: Path, rho, g) -> xr.Dataset:
             else [np.nan] * nb
         )
         extra.update(weight_record(masses, cog, "AQWA's HYDSTIFFNESS (about each G)"))
-    return make_hydrodb(
+    labels = list(dof_labels(names))
+    second = aqwa_second_order(path, cgs=cog, depth=depth, g=g_v, dofs=labels, notes=notes)
+    ds = make_hydrodb(
         omega,
         a,
         b,
@@ -411,7 +416,7 @@ def _read_ah1(path: Path, rho, g) -> xr.Dataset:
         water_depth=depth,
         source_format="aqwa",
         source_file=str(path),
-        dofs=dof_labels(names),
+        dofs=labels,
         reference_point=flat(cog),
         history=history,
         center_of_gravity=flat(cog),
@@ -420,6 +425,9 @@ def _read_ah1(path: Path, rho, g) -> xr.Dataset:
         read_warnings=notes,
         **extra,
     )
+    if not (second["tables"] or second["history"]):
+        return ds
+    return with_second_order(ds, second["tables"], history=second["history"], attrs=second["attrs"])
 
 
 def _ah1_volumes(text: TextFile, sections: dict[str, _Section], nb: int):

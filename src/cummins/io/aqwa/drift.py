@@ -1,13 +1,14 @@
 """The mean drift tables of an AQWA ``.LIS``: "WAVE-DRIFT LOADS FOR UNIT WAVE AMPLITUDE**2".
 
-One table per DOF (``SURGE(X)`` … ``YAW(RZ)``), headed "DUE TO (RADIANS/SEC)" and the
+One table per DOF (``SURGE(X)`` … ``YAW(RZ)``; AQWA 19.1 prints each on a page of its
+own, AQWA 2023 R1 the six in turn under one title), headed "DUE TO (RADIANS/SEC)" and the
 wave directions (degrees), then one row per frequency: ω and the mean drift force per
 squared wave amplitude in each direction (N/m², N·m/m², three significant digits),
 about the centre of gravity in AQWA's fixed reference axes (z up, as the rest of the
 listing). The values are real: a mean force. The corpus's PEND hull (AQWA 19.1) prints
 them for its 100 frequencies and 5 directions, −180° and 180° both, as the excitation.
 A damaged table does not stop the listing from reading: the drift is left out with a
-warning. AQWA's ``.QTF`` files (the full QTF) are not read: no corpus case has one.
+warning. The full QTF of the run is AQWA's ``.QTF`` file (:mod:`cummins.io.aqwa.qtf`).
 """
 
 from __future__ import annotations
@@ -30,7 +31,7 @@ def _blocks(
     out = []
     starts = [i for i, title in titles if _TITLE in title]
     for s, start in enumerate(starts):
-        stop = starts[s + 1] if s + 1 < len(starts) else min(len(text.lines), start + 400)
+        stop = starts[s + 1] if s + 1 < len(starts) else len(text.lines)
         header = next((k for k in range(start, stop) if "(RADIANS/SEC)" in text.lines[k]), -1)
         if header < 0:
             raise text.error("drift table without its '(RADIANS/SEC)' header", start)

@@ -1,7 +1,8 @@
-"""The AQWA-LINE ``.LIS`` listing (one structure; use the ``.AH1`` for several).
+"""The AQWA-LINE ``.LIS`` listing (AQWA 19.1 and 2023 R1 layouts; one or more structures).
 
 * "GLOBAL PARAMETERS": water depth, density, gravity; "WAVE FREQUENCIES/PERIODS AND
-  DIRECTIONS": the frequencies (rad/s, 5 decimals), wave numbers and directions.
+  DIRECTIONS": the frequencies (rad/s, 5 decimals), wave numbers and directions, in
+  either layout (:mod:`cummins.io.aqwa.pages`).
 * One "HYDRODYNAMIC PARAMETERS" block per frequency ("WAVE PERIOD = … WAVE FREQUENCY
   = …") with the 6×6 ADDED MASS and DAMPING matrices (5 significant digits), rows the
   influenced DOF (X … RZ), columns the radiating DOF; the first block holds the
@@ -15,7 +16,15 @@
   (:mod:`cummins.io.aqwa.drift`).
 * With the LHFR option, "HYDRODYNAMIC PARAMETERS AT LOW & HIGH FREQUENCIES".
 
-The listing must be in the "Metric: kg, m [N]" unit system that its header states.
+Several structures: each structure's pages (:mod:`cummins.io.aqwa.pages`) are read as a
+listing of one, about its own centre of gravity, and joined (DOFs ``body1__Surge`` …,
+matrices block-diagonal). A listing that prints added mass or damping between structures
+(hydrodynamic interaction, AQWA's ``STR#`` labels) is refused: no such listing is public
+to check its layout against; the run's ``.AH1`` holds the coupling.
+
+The run's ``.QTF`` beside the listing (same name) is read as its QTFs
+(:mod:`cummins.io.aqwa.qtf`). The listing must be in the "Metric: kg, m [N]" unit system
+that its header states.
 """
 
 from __future__ import annotations
@@ -29,7 +38,7 @@ import xarray as xr
 
 from cummins.hydrodb import dof_labels, make_hydrodb
 from cummins.io._common import resolve_rho_g, warn_damage
-from cummins.io._text import TextFile, parse_numbers
+from cummins.io._text import TextFile, check_line_ends, parse_numbers
 from cummins.io.aqwa.conventions import (
     _NUMBER,
     HIGH_FREQUENCY_LIMIT,
@@ -229,6 +238,8 @@ def _lis_tables(text: TextFile, titles, n_omega: int):
                 raise text.error("table row without a wave direction", k)
             rows.append((direction, float(values[1]), values[2:], k))
             k += 1
+    for rows in out.values():  # fixed columns: a row cut in its last phase ends early
+        check_line_ends(text, [row[3] for row in rows])
     return out
 
 
@@ -377,7 +388,7 @@ def _read_lis(path: Path, rho, g) -> xr.Dataset:
         read_warnings=notes,
         **extra,
     )
-    if not second["tables"]:
+    if not (second["tables"] or second["history"]):
         return ds
     return with_second_order(ds, second["tables"], history=second["history"], attrs=second["attrs"])
 
