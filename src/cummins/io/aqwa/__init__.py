@@ -40,10 +40,10 @@ from pathlib import Path
 import xarray as xr
 
 from cummins.errors import HydroDataError
-from cummins.io.aqwa.ah1 import ASYMMETRY_LIMIT as ASYMMETRY_LIMIT
 from cummins.io.aqwa.ah1 import _read_ah1
-from cummins.io.aqwa.ah1 import asymmetry as asymmetry
+from cummins.io.aqwa.conventions import ASYMMETRY_LIMIT as ASYMMETRY_LIMIT
 from cummins.io.aqwa.conventions import HIGH_FREQUENCY_LIMIT as HIGH_FREQUENCY_LIMIT
+from cummins.io.aqwa.conventions import asymmetry as asymmetry
 from cummins.io.aqwa.conventions import wavenumber as wavenumber
 from cummins.io.aqwa.detection import _head, _is_ah1, _is_lis, _is_qtf, sniff, sniff_dir
 from cummins.io.aqwa.lis import _read_lis

@@ -41,14 +41,23 @@ from cummins.io._common import resolve_rho_g, warn_damage
 from cummins.io._text import TextFile, check_line_ends, parse_numbers
 from cummins.io.aqwa.conventions import (
     _NUMBER,
+    ASYMMETRY_LIMIT,
     HIGH_FREQUENCY_LIMIT,
     _complex,
     _depth,
     _limits_history,
+    asymmetry,
 )
 from cummins.io.aqwa.detection import _is_lis
 from cummins.io.aqwa.drift import lis_mean_drift
-from cummins.io.aqwa.pages import despace, pages, structure_view, structures, wave_grid
+from cummins.io.aqwa.pages import (
+    check_structure_pages,
+    despace,
+    pages,
+    structure_view,
+    structures,
+    wave_grid,
+)
 from cummins.io.aqwa.qtf import aqwa_second_order
 from cummins.qtf.data import with_second_order
 from cummins.restoring import weight_record
@@ -171,6 +180,16 @@ def _lis_radiation(text: TextFile, omega: np.ndarray):
         if label < 0:
             raise text.error("no DAMPING matrix after the added mass", end)
         b[n], _ = _matrix_after(text, label + 1, stop, f"damping at {w:g} rad/s")
+    for name, matrices in (("added mass", a), ("damping", b)):
+        values = asymmetry(matrices)  # rows are labelled X … RZ, not by frequency
+        worst = int(np.argmax(values))
+        if values[worst] > ASYMMETRY_LIMIT:
+            raise text.error(
+                f"the {name} at {omega[worst]:g} rad/s is not symmetric (asymmetry "
+                f"{values[worst]:.3g}, AQWA's are below {ASYMMETRY_LIMIT:g}): rows moved "
+                "between frequencies or edited?",
+                blocks[worst][0],
+            )
     label = _label_line(text, "STIFFNESS MATRIX", 0, blocks[0][0])
     stiffness = None
     if label >= 0:
@@ -316,6 +335,7 @@ def _read_lis(path: Path, rho, g) -> xr.Dataset:
     grids, first_row = wave_grid(text, listing)
     omega, directions = _one_grid(text, grids, numbers, first_row)
     if len(numbers) > 1:
+        check_structure_pages(text, listing)
         coupled = next((i for i, line in enumerate(text.lines) if _COUPLING.search(line)), -1)
         if coupled >= 0:
             raise text.error(
@@ -359,8 +379,12 @@ def _read_lis(path: Path, rho, g) -> xr.Dataset:
     extra, body_history = _joined(bodies, directions, rho_v, g_v)
     history.extend(body_history)
     kinds = set.intersection(*(set(b.tables) for b in bodies))
-    has_lhfr = any(b.a_inf is not None or b.high is not None for b in bodies)
-    _lis_completeness(text, dict.fromkeys(kinds), has_lhfr, notes)
+    lacking = [
+        s for s, b in zip(numbers, bodies, strict=True) if b.a_inf is None and b.high is None
+    ]
+    _lis_completeness(
+        text, dict.fromkeys(kinds), lacking if len(numbers) > 1 else bool(lacking), notes
+    )
     cg = np.vstack([b.cg for b in bodies])
     n = len(bodies)
 
@@ -553,11 +577,12 @@ def _joined(bodies: list[_Structure], directions, rho, g) -> tuple[dict, list[st
     return extra, history
 
 
-def _lis_completeness(text: TextFile, tables: dict, has_lhfr: bool, notes: list[str]) -> None:
+def _lis_completeness(text: TextFile, tables: dict, lacking, notes: list[str]) -> None:
     """Warn when the listing ends before the sections it announces.
 
     AQWA closes every listing with a ``FINISH DATE`` line; the ``OPTIONS`` cards of the
-    input echo announce the LHFR block (low and high frequency limits).
+    input echo announce the LHFR block (low and high frequency limits). ``lacking``: the
+    structures without that block (a list), or whether the one structure lacks it.
     """
     options = {
         word
@@ -565,10 +590,15 @@ def _lis_completeness(text: TextFile, tables: dict, has_lhfr: bool, notes: list[
         if line.strip().startswith("OPTIONS")
         for word in line.split()[1:]
     }
-    if "LHFR" in options and not has_lhfr:
+    if "LHFR" in options and lacking:
+        whose = (
+            f" for structure {', '.join(str(s) for s in lacking)}"
+            if isinstance(lacking, list)
+            else ""
+        )
         warn_damage(
             "OPTIONS LHFR announces the HYDRODYNAMIC PARAMETERS AT LOW & HIGH FREQUENCIES, "
-            "but the listing has none (truncated?): read without added_mass_inf",
+            f"but the listing has none{whose} (truncated?): read without added_mass_inf",
             path=text.path,
             line=len(text.lines),
             notes=notes,

@@ -57,14 +57,23 @@ class Page:
 
 
 def pages(text: TextFile) -> list[Page]:
-    """The listing's pages (the text before the first page is common)."""
-    starts = [i for i, line in enumerate(text.lines) if line.strip() == "1"]
+    """The listing's pages (the text before the first page is common).
+
+    A page starts at a carriage control ``1``, or at a title line (``* * * *``) more than
+    a title block below the last start: a listing whose ``1`` was lost still splits at
+    the next title, so that no page of one structure is read as part of another's."""
+    starts = []
+    for i, line in enumerate(text.lines):
+        if line.strip() == "1" or (
+            "* * * *" in line and (not starts or i - starts[-1] > _TITLE_LINES)
+        ):
+            starts.append(i)
     bounds = [0, *starts, len(text.lines)]
     out = []
     for start, stop in itertools.pairwise(bounds):
         structure = None
         if start in starts:
-            for line in text.lines[start + 1 : min(stop, start + 1 + _TITLE_LINES)]:
+            for line in text.lines[start : min(stop, start + 1 + _TITLE_LINES)]:
                 m = _STRUCTURE.search(despace(line))
                 if m:
                     structure = int(m.group(1) or m.group(2))
@@ -72,6 +81,30 @@ def pages(text: TextFile) -> list[Page]:
         if stop > start:
             out.append(Page(start, stop, structure))
     return out
+
+
+#: Lines of the data a structure's pages hold (read per structure): on a page that names
+#: no structure, in a listing of several, they would be read for every structure.
+_STRUCTURE_DATA = re.compile(
+    r"WAVE PERIOD\s*=|WAVE FREQUENCY\s*=|^\s*STIFFNESS MATRIX\s*$|\bGX\s*=|"
+    r"VARIATION WITH WAVE PERIOD/FREQUENCY|\(RADIANS/SEC\)|^\s*ADDED\s+MASS\s*$|"
+    r"^\s*DAMPING\s*$|CENTRE OF GRAVITY|MESH BASED DISPLACEMENT|INERTIA MATRIX"
+)
+
+
+def check_structure_pages(text: TextFile, listing: list[Page]) -> None:
+    """Error on a page of a several-structure listing that holds a structure's data but
+    names no structure (its title lost or edited): it cannot be told whose it is."""
+    for page in listing:
+        if page.structure is not None:
+            continue
+        for k in range(page.start, page.stop):
+            if _STRUCTURE_DATA.search(text.lines[k]):
+                raise text.error(
+                    "structure data on a page that names no structure (its title lost or "
+                    "edited?): in a listing of several structures it cannot be told whose",
+                    k,
+                )
 
 
 def structures(listing: list[Page]) -> list[int]:
