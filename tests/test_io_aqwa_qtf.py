@@ -132,6 +132,43 @@ def test_interaction_matrices_are_refused(runs, tmp_path):
         cummins.read(run / "19_1.LIS")
 
 
+def test_a_page_whose_structure_is_lost_is_refused(runs, tmp_path):
+    """The title naming structure 2 of a hydrostatics page blanked: its centre of gravity
+    could be either structure's."""
+    run = tmp_path / "run"
+    shutil.copytree(runs["2023x2"], run)
+    lines = (run / "19_1.LIS").read_text().splitlines()
+    hydrostatics = [i for i, line in enumerate(lines) if "H Y D R O S T A T I C   P R O" in line]
+    marker = next(
+        k
+        for k in range(hydrostatics[1], hydrostatics[1] + 6)
+        if "S T R U C T U R E   2" in lines[k]
+    )
+    lines[marker] = ""
+    (run / "19_1.LIS").write_text("\n".join(lines) + "\n")
+    with pytest.raises(HydroDataError, match="names no structure"):
+        cummins.read(run / "19_1.LIS")
+
+
+def test_a_matrix_row_moved_between_frequencies_is_refused(runs, tmp_path):
+    """Rows of the listing's matrices are labelled X … RZ, not by frequency: the damping's
+    RY row swapped with the RY row of another frequency leaves a matrix far from
+    symmetric (a swap between two nearly equal matrices stays invisible)."""
+    run = tmp_path / "run"
+    shutil.copytree(runs["2023"], run)
+    lines = (run / "19_1.LIS").read_text().splitlines()
+    damping = [i for i, line in enumerate(lines) if line.strip() == "DAMPING"]
+
+    def ry_row(label):
+        return next(k for k in range(label, label + 30) if lines[k].split()[:1] == ["RY"])
+
+    first, second = ry_row(damping[10]), ry_row(damping[60])
+    lines[first], lines[second] = lines[second], lines[first]
+    (run / "19_1.LIS").write_text("\n".join(lines) + "\n")
+    with pytest.raises(HydroDataError, match=r"damping at .* is not symmetric"):
+        cummins.read(run / "19_1.LIS")
+
+
 # --------------------------------------------------------------------------- .QTF
 
 

@@ -63,6 +63,8 @@ from cummins.qtf.data import with_second_order
 from cummins.restoring import weight_record
 
 _ROW_LABELS = ("X", "Y", "Z", "RX", "RY", "RZ")
+#: AQWA's E format of a matrix entry (1.2345E+03): a cut number does not fit it.
+_MATRIX_FIELD = re.compile(r"-?\d\.\d{3,5}E[-+]\d{2,3}")
 
 
 _despace = despace
@@ -98,6 +100,13 @@ def _matrix_after(text: TextFile, i: int, stop: int, what: str) -> tuple[np.ndar
                 raise text.error(f"expected 6 numbers in row {tokens[0]} of the {what}", k)
             if not np.all(np.isfinite(values)):
                 raise text.error(f"non-finite value in the {what}", k)
+            cut = next((t for t in tokens[1:] if not _MATRIX_FIELD.fullmatch(t)), None)
+            if cut is not None:
+                raise text.error(
+                    f"{cut!r} in row {tokens[0]} of the {what} is not in AQWA's format "
+                    "(1.2345E+03): a cut or edited number",
+                    k,
+                )
             rows.append(values)
         elif tokens and rows and tokens[0] in _ROW_LABELS:
             raise text.error(f"row {tokens[0]} out of order in the {what}", k)
