@@ -245,6 +245,19 @@ def test_an_edited_record_that_breaks_its_mirror_is_refused(runs, tmp_path):
         read_aqwa_qtf(path, cgs=np.zeros((1, 3)), depth=np.inf, g=9.81)
 
 
+def test_a_mean_drift_with_an_imaginary_part_is_refused(runs, tmp_path):
+    """AQWA writes the Im row of Q⁻(ω, ω) as zeros: a row moved there is damage (the
+    diagonal has no mirror to betray it)."""
+    path = tmp_path / "x.QTF"
+    shutil.copy(runs["2023"] / "19_1.QTF", path)
+    lines = path.read_text().splitlines()
+    record = next(i for i, line in enumerate(lines) if line.split()[:4] == ["1", "2", "3", "3"])
+    lines[record + 1], lines[record + 3] = lines[record + 3], lines[record + 1]
+    path.write_text("\n".join(lines) + "\n")
+    with pytest.raises(HydroDataError, match="mean drift Q-\\(w, w\\) has an imaginary part"):
+        read_aqwa_qtf(path, cgs=np.zeros((1, 3)), depth=np.inf, g=9.81)
+
+
 def test_the_qtf_alone_says_which_file_to_read(runs):
     with pytest.raises(HydroDataError, match=r"read 19_1\.LIS, which reads the \.QTF beside it"):
         cummins.read(runs["2023"] / "19_1.QTF")

@@ -180,7 +180,7 @@ def wave_grid(text: TextFile, listing: list[Page]) -> tuple[dict[int, tuple], in
 def _read_page(text: TextFile, page: Page, grids: dict[int, _Grid]) -> None:
     """The rows of one page of the table into ``grids``."""
     mode = None  # "frequency" or "direction"
-    inner = False  # the directions sub-table inside the frequency table (AQWA 2023)
+    inner = False  # the directions sub-table inside the frequency table, as AQWA 2023 R1 prints it
     current: int | None = max(grids) if grids else None  # structure of the last rows
     for k in range(page.start + 1, page.stop):
         line = text.lines[k]

@@ -1,8 +1,8 @@
 """AQWA's full QTF file, ``<run>.QTF`` (options AQTF with CQTF), into the canonical form.
 
-The layout (AQWA 2023 R1's ``AQTF-2.0``, as the Ansys Aqwa Reference Manual's CQTF data
-record describes the file and BEMRosetta's ``examples/aqwa/line/Box1`` and ``Box2`` hold
-it):
+The layout of ``AQTF-2.0``, which AQWA 2023 R1 writes, as the Ansys Aqwa Reference
+Manual's CQTF data record describes the file and BEMRosetta's ``examples/aqwa/line/Box1``
+and ``Box2`` hold it:
 
 * line 1: ``AQTF-<version> :`` and an optional title (versions 1.0 and 2.0 exist; the
   layout of 2.0 is read, 1.0 is refused);
@@ -21,11 +21,11 @@ the diagonal Re Q⁻(ω, ω) is the listing's "WAVE-DRIFT LOADS FOR UNIT WAVE AM
 amplitudes, the force convention of :mod:`cummins.qtf.data` without a factor ½); Re + i Im
 is already cummins' e^{+iωt} value of Q(ω_i, ω_j) (the sign of the long-wave surge force
 of the bound set-down flow, which a conjugated reading would reverse); the mirror
-records are exact (Q⁻(ω_j, ω_i) = Q⁻(ω_i, ω_j)*, Q⁺ symmetric) and are checked so, a
-record that differs from its mirror being damage. The phases are referred from each
-centre of gravity to the origin as the first-order forces are
-(:mod:`~cummins.io.aqwa.conventions`): Q⁻ × exp(−i(k_i − k_j) d), Q⁺ × exp(−i(k_i + k_j) d),
-d = x_G cos β + y_G sin β.
+records are exact (Q⁻(ω_j, ω_i) = Q⁻(ω_i, ω_j)*, Q⁺ symmetric) and the imaginary row of
+the mean drift Q⁻(ω, ω) is zeros: both are checked, a record that breaks them being
+damage. The phases are referred from each centre of gravity to the origin as the
+first-order forces are (:mod:`~cummins.io.aqwa.conventions`): Q⁻ × exp(−i(k_i − k_j) d),
+Q⁺ × exp(−i(k_i + k_j) d), d = x_G cos β + y_G sin β.
 
 The ``.MQT`` file of the MQTF option is a binary database of the QTFs between waves of
 different directions (the Aqwa Reference Manual: copied into Aqwa-Drift by the FILE
@@ -188,9 +188,15 @@ def _record(text: TextFile, k: int, words: list[str], block: _Block) -> int:
 
 def _check_mirrors(text: TextFile, block: _Block) -> None:
     """Each record agrees with its mirror: Re Q⁻, Q⁺ equal, Im Q⁻ opposite (exact copies in
-    AQWA's files)."""
+    AQWA's files); the mean drift Q⁻(ω, ω) is real (AQWA writes its Im row as zeros)."""
     sign = np.array([1.0, -1.0, 1.0, 1.0])[:, None]
     for (h, i, j), (values, line) in block.records.items():
+        if i == j and np.any(values[1] != 0):
+            raise text.error(
+                f"record {block.structure} {h} {i} {j}: the mean drift Q-(w, w) has an "
+                "imaginary part, which AQWA writes as zeros (a moved or edited line)",
+                line + 1,
+            )
         mirror = block.records.get((h, j, i))
         if mirror is None or i >= j:
             continue
@@ -240,7 +246,8 @@ def read_aqwa_qtf(
         raise text.error("not an AQWA QTF file: the first line must be 'AQTF-<version>'", 0)
     if m.group(1) not in ("2", "2.0"):
         raise text.error(
-            f"AQTF version {m.group(1)}: cummins reads the layout of version 2.0 (AQWA 2023 R1)",
+            f"AQTF version {m.group(1)}: cummins reads the layout of version 2.0, which "
+            "AQWA 2023 R1 writes",
             0,
             hint="send the file to the cummins developers to add its layout",
         )
