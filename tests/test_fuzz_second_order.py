@@ -131,17 +131,21 @@ def _record_row(lines: list[str], k: int) -> tuple[tuple[str, ...], int] | None:
 
 
 def _blind_qtf_swap(before: list[str], after: list[str]) -> bool:
-    """Two lines swapped between a record and its mirror (the same row of Q(w_i, w_j) and
-    Q(w_j, w_i)): the mirror relations still hold, the values change (the Im Q- rows
-    conjugate both records), and no reader can tell."""
+    """Swaps no reader can see in an AQWA .QTF: the same row of a record and its mirror
+    (Q(w_i, w_j) and Q(w_j, w_i): the mirror relations still hold, the Im Q- rows
+    conjugate both records), or two lines of diagonal records Q(w, w) (they have no
+    mirror: only their Im Q- row, zeros, is constrained, and a swap that moves a non-zero
+    row into it is refused)."""
     moved = [k for k, (x, y) in enumerate(zip(before, after, strict=False)) if x != y]
     if len(moved) != 2:
         return False
     a, b = (_record_row(before, k) for k in moved)
-    if a is None or b is None or a[1] != b[1]:
+    if a is None or b is None:
         return False
     (s1, h1, i1, j1), (s2, h2, i2, j2) = a[0], b[0]
-    return (s1, h1, i1, j1) == (s2, h2, j2, i2) and i1 != j1
+    if i1 == j1 and i2 == j2:
+        return True
+    return a[1] == b[1] and (s1, h1, i1, j1) == (s2, h2, j2, i2) and i1 != j1
 
 
 def test_damaged_aqwa_qtf_is_refused_or_read_alike(aqwa_runs):
