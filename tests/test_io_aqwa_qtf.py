@@ -21,7 +21,7 @@ import numpy as np
 import pytest
 
 import cummins
-from _aqwa_layouts import DY, build_runs, write_aqtf
+from _aqwa_layouts import DY, build_runs, synthetic_qtf, write_aqtf
 from _bound_waves import small_body_forces, wavenumber
 from cummins import HydroDataError, HydroDataWarning
 from cummins.io.aqwa.qtf import read_aqwa_qtf
@@ -256,6 +256,32 @@ def test_a_mean_drift_with_an_imaginary_part_is_refused(runs, tmp_path):
     path.write_text("\n".join(lines) + "\n")
     with pytest.raises(HydroDataError, match="mean drift Q-\\(w, w\\) has an imaginary part"):
         read_aqwa_qtf(path, cgs=np.zeros((1, 3)), depth=np.inf, g=9.81)
+
+
+def test_qtf_beside_a_database_of_two_structures(corpus, tmp_path):
+    """The .AH1 alone (the floating OWC, two structures) reads the .QTF beside it too,
+    each block's phases referred from its structure's centre of gravity (COG section)."""
+    run = tmp_path / "owc"
+    shutil.copytree(corpus / "WEC-Sim_Applications/aqwa_floating_OWC_AH1only", run)
+    ds = cummins.read(run / "floatingOWC.AH1")
+    omega = ds.omega.values[[10, 20, 30]]
+    directions = np.degrees(ds.wave_direction.values)
+    rng = np.random.default_rng(1)
+    qd, qs = synthetic_qtf(omega, rng.uniform(1e3, 1e4, (3, directions.size, 6)))
+    write_aqtf(
+        run / "floatingOWC.QTF", [(1, directions, omega, qd, qs), (2, directions, omega, qd, qs)]
+    )
+    out = _read(run / "floatingOWC.AH1")
+    table = qtf_table(out, "difference")
+    assert table.values.shape == (3, 3, directions.size, 12)
+    cg = np.asarray(out.attrs["center_of_gravity"]).reshape(2, 3)
+    k = aqwa_k_of(table.omega, out)
+    for body in range(2):
+        d = cg[body, 0] * np.cos(table.directions) + cg[body, 1] * np.sin(table.directions)
+        shift = np.exp(-1j * (k[:, None] - k[None, :])[..., None] * d)
+        np.testing.assert_allclose(
+            table.values[..., 6 * body : 6 * body + 6], qd * shift[..., None], rtol=1e-12
+        )
 
 
 def test_the_qtf_alone_says_which_file_to_read(runs):
