@@ -80,7 +80,8 @@ class FuzzCase:
         not a failure; the test that lists a file here says why. An entry
         ``"file:first-last"`` limits this to swaps of two lines within those lines
         (1-based, inclusive), ``"file:same-label"`` to swaps of two rows with the same
-        label (the same leading integers, e.g. DOF index I or I J, and as many fields)
+        label (the same leading integers, e.g. DOF index I or I J, or the same matrix row
+        name X … RZ, and as many fields)
         in blocks told apart only by a header line: the rest of the file is judged as
         usual.
     removable
@@ -429,8 +430,16 @@ class Damager:
                 )
 
 
+#: Row labels of a 6×6 matrix printed by AQWA's listing (X … RZ): they name the row, not
+#: the frequency of the block.
+_MATRIX_ROWS = {"X", "Y", "Z", "RX", "RY", "RZ"}
+
+
 def _label(fields: list[str]) -> tuple[str, ...]:
-    """The leading integer fields of a row (its label: a DOF index, an I J pair)."""
+    """The leading integer fields of a row (its label: a DOF index, an I J pair), or the
+    row name of a printed matrix (X … RZ)."""
+    if fields and fields[0] in _MATRIX_ROWS:
+        return (fields[0],)
     out = []
     for field in fields:
         if not field.lstrip("+-").isdigit():

@@ -70,3 +70,37 @@ def test_scaled_quantities_and_emptied_or_removed_files_are_not_read_silently(sh
     target emptied, every removable companion removed (issue 31)."""
     with Damager(shared_data, case) as damager:
         assert not failures(damager.quantity_cases(4, seed=5))
+
+
+#: Synthetic AQWA 2023 R1 listings (tests/_aqwa_layouts.py: the PEND hull's numbers in the
+#: 2023 layout, one structure, and with a second structure, its copy moved 3 m): no
+#: listing of that layout is public under a licence cummins can ship. The .QTF beside
+#: is test_fuzz_second_order.py's. A matrix row (X … RZ) swapped with the same row of
+#: another frequency's matrix is refused when it leaves the matrix far from symmetric,
+#: and invisible when the two matrices are nearly equal: such swaps are counted blind
+#: (``same-label``), here as in any listing.
+_BLIND = ("19_1.LIS:same-label",)
+LAYOUT_CASES = [
+    FuzzCase("aqwa-lis-2023-layout", "2023", "19_1.LIS", ("19_1.LIS",), swap_blind=_BLIND),
+    FuzzCase(
+        "aqwa-lis-2023-two-structures", "2023x2", "19_1.LIS", ("19_1.LIS",), swap_blind=_BLIND
+    ),
+    FuzzCase(
+        "aqwa-lis-19.1-two-structures", "19.1x2", "19_1.LIS", ("19_1.LIS",), swap_blind=_BLIND
+    ),
+]
+
+
+@pytest.fixture(scope="module")
+def layout_runs(shared_data, tmp_path_factory):
+    from _aqwa_layouts import build_runs
+
+    root = tmp_path_factory.mktemp("aqwa_layout_runs")
+    build_runs(shared_data, root)
+    return root
+
+
+@pytest.mark.parametrize("case", LAYOUT_CASES, ids=lambda c: c.name)
+def test_damaged_listings_of_other_layouts_are_refused_or_read_alike(layout_runs, case):
+    with Damager(layout_runs, case) as damager:
+        assert not failures(damager.cases(25, seed=13))

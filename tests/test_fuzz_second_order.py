@@ -102,3 +102,74 @@ def test_damaged_aqwa_drift_tables_are_refused_or_read_alike(shared_data):
             outcomes.append(("19_1.LIS", op, outcome))
         assert not failures(outcomes)
         assert sum(o.kind == "warned" for _, _, o in outcomes) >= 10
+
+
+# --------------------------------------------------------------------------- AQWA .QTF
+
+#: A synthetic AQWA 2023 R1 run (tests/_aqwa_layouts.py: the PEND hull's listing in the
+#: 2023 layout, a .QTF of invented off-diagonal values): no AQWA .QTF is public under a
+#: licence cummins can ship.
+AQWA_QTF = FuzzCase("aqwa-qtf-synthetic", "2023", "19_1.LIS", ("19_1.QTF",))
+
+
+@pytest.fixture(scope="module")
+def aqwa_runs(shared_data, tmp_path_factory):
+    from _aqwa_layouts import build_runs
+
+    root = tmp_path_factory.mktemp("aqwa_qtf_runs")
+    build_runs(shared_data, root)
+    return root
+
+
+def _record_row(lines: list[str], k: int) -> tuple[tuple[str, ...], int] | None:
+    """(label 'structure direction i j', row 0-3) of line ``k`` of an AQWA .QTF."""
+    for back in range(4):
+        words = lines[k - back].split() if k - back >= 0 else []
+        if len(words) >= 4 and all(w.isdigit() for w in words[:4]):
+            return tuple(words[:4]), back
+    return None
+
+
+def _blind_qtf_swap(before: list[str], after: list[str]) -> bool:
+    """Swaps no reader can see in an AQWA .QTF: the same row of a record and its mirror
+    (Q(w_i, w_j) and Q(w_j, w_i): the mirror relations still hold, the Im Q- rows
+    conjugate both records), or two lines of diagonal records Q(w, w) (they have no
+    mirror: only their Im Q- row, zeros, is constrained, and a swap that moves a non-zero
+    row into it is refused)."""
+    moved = [k for k, (x, y) in enumerate(zip(before, after, strict=False)) if x != y]
+    if len(moved) != 2:
+        return False
+    a, b = (_record_row(before, k) for k in moved)
+    if a is None or b is None:
+        return False
+    (s1, h1, i1, j1), (s2, h2, i2, j2) = a[0], b[0]
+    if i1 == j1 and i2 == j2:
+        return True
+    return a[1] == b[1] and (s1, h1, i1, j1) == (s2, h2, j2, i2) and i1 != j1
+
+
+def test_damaged_aqwa_qtf_is_refused_or_read_alike(aqwa_runs):
+    with Damager(aqwa_runs, AQWA_QTF) as damager:
+        assert "qtf_difference" in damager.original
+        text = (damager.source / "19_1.QTF").read_text()
+        lines = text.splitlines()
+        rng = random.Random(3)
+        outcomes = []
+        for _ in range(30):
+            op = rng.choice(TEXT_OPS)
+            damaged = mutate_text(text, op, rng)
+            outcome = damager.judge("19_1.QTF", damaged.encode("utf-8"))
+            if (
+                op == "swap"
+                and outcome.kind == "different"
+                and _blind_qtf_swap(lines, damaged.splitlines())
+            ):
+                outcome = Outcome("blind", outcome.detail)
+            outcomes.append(("19_1.QTF", op, outcome))
+        assert not failures(outcomes)
+        assert sum(o.kind == "warned" for _, _, o in outcomes) >= 10
+
+
+def test_reencoded_aqwa_qtf_reads_identically(aqwa_runs):
+    with Damager(aqwa_runs, AQWA_QTF) as damager:
+        assert not failures(damager.encodings())

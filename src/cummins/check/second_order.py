@@ -129,24 +129,27 @@ def _against_drift(ds: xr.Dataset) -> list[Finding]:
         ]
     diag = table.diagonal().real  # (n, m, d)
     out = []
-    beta_q = np.mod(table.directions, 2 * np.pi)
+    labels = [str(d) for d in ds.influenced_dof.values]
     for name in estimates:
         drift = ds[name].transpose("omega", "wave_direction", "influenced_dof")
         w = ds.omega.values
-        inside = (table.omega >= w[0]) & (table.omega <= w[-1])
-        beta_d = np.mod(ds.wave_direction.values, 2 * np.pi)
+        # the QTF's grid may be printed to other digits than the drift's (AQWA: 0.0999969
+        # against 0.1): a frequency within 1e-4 of the drift's range is compared
+        inside = (table.omega >= w[0] * (1 - 1e-4)) & (table.omega <= w[-1] * (1 + 1e-4))
+        peaks = np.abs(drift.values).max(axis=(0, 1))
+        keep = _significant(peaks, labels)
         worst, where = 0.0, None
         compared = 0
-        for a, b in enumerate(beta_q):
-            hit = np.flatnonzero(np.isclose(beta_d, b, atol=1e-6))
-            if hit.size == 0 or not inside.any():
+        for a, beta in enumerate(table.directions):
+            hit = _same_direction(ds.wave_direction.values, beta)
+            if hit is None or not inside.any():
                 continue
             for dof in _computed(ds, name):
                 k = table.dofs.index(dof)
-                f = drift.values[:, hit[0], k]
-                peak = np.abs(f).max()
-                if peak == 0:
+                peak = peaks[labels.index(dof)]
+                if peak == 0 or not keep[labels.index(dof)]:
                     continue
+                f = drift.values[:, hit, labels.index(dof)]
                 at = np.interp(table.omega[inside], w, f)
                 err = np.abs(diag[inside, a, k] - at)
                 compared += 1
@@ -182,6 +185,17 @@ def _against_drift(ds: xr.Dataset) -> list[Finding]:
             )
         )
     return out
+
+
+def _same_direction(directions: np.ndarray, beta: float) -> int | None:
+    """The index of ``beta`` (rad) among ``directions``: the same value (AQWA lists both
+    −180° and 180°), else the same angle modulo 2π; None if absent."""
+    exact = np.flatnonzero(np.isclose(directions, beta, atol=1e-6))
+    if exact.size:
+        return int(exact[0])
+    wrapped = np.angle(np.exp(1j * (np.asarray(directions) - beta)))
+    hit = np.flatnonzero(np.abs(wrapped) < 1e-6)
+    return int(hit[0]) if hit.size else None
 
 
 def _drift_methods(ds: xr.Dataset) -> list[Finding]:

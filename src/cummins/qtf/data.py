@@ -1,8 +1,8 @@
 """The second-order wave loads of a ``HydroDB``: mean drift and quadratic transfer functions.
 
 The canonical form, whatever the solver (WAMIT ``.7/.8/.9`` and ``.10d–.12s``, NEMOH v3
-``OUT_QTF[M|P]_N.dat``, AQWA's ``.LIS`` drift tables, Capytaine's far-field drift, a
-cummins NetCDF), dimensional and in SI units, in the dataset's axes and about its
+``OUT_QTF[M|P]_N.dat``, AQWA's ``.LIS`` drift tables and ``.QTF``, Capytaine's far-field
+drift, a cummins NetCDF), dimensional and in SI units, in the dataset's axes and about its
 ``reference_point``:
 
 ==========================  ===============================================  ==============
@@ -195,7 +195,8 @@ def qtf_table(ds: xr.Dataset, kind: str = "difference") -> QTFTable:
                 f"it holds a {have[0]}-frequency QTF"
                 if have
                 else "read the solver's QTF output with the run (WAMIT .12d/.12s, NEMOH "
-                "results/QTF/OUT_QTFM_N.dat) or use the mean drift (Newman's approximation)"
+                "results/QTF/OUT_QTFM_N.dat, AQWA .QTF) or use the mean drift (Newman's "
+                "approximation)"
             ),
         )
     var = ds[name]

@@ -6,13 +6,16 @@ are printed "WITH RESPECT TO STRUCTURE COG": cummins records the centre of gravi
 ``reference_point`` (AQWA's fixed reference axes: z up, x and y in the mean free
 surface, as cummins).
 
-The ``.LIS`` (:mod:`~cummins.io.aqwa.lis`, a single structure) gives the constants,
-A and B per frequency, the hydrostatic stiffness, the excitation, diffraction and
-Froude-Krylov forces, the motion RAOs and the mass properties; the ``.AH1``
+The ``.LIS`` (:mod:`~cummins.io.aqwa.lis`, the AQWA 19.1 and 2023 R1 layouts, one or
+more structures without hydrodynamic interaction) gives the constants, A and B per
+frequency, the hydrostatic stiffness, the excitation, diffraction and Froude-Krylov
+forces, the motion RAOs, the mass properties and the mean drift; the ``.AH1``
 (:mod:`~cummins.io.aqwa.ah1`, any number of structures) the same 5-digit A and B and
 excitation amplitudes, but no RAOs and no Froude-Krylov/diffraction split. With the
 LHFR option the added mass at 100 rad/s becomes ``added_mass_inf``; the low-frequency
-row is not used as A(0) (:mod:`~cummins.io.aqwa.conventions`).
+row is not used as A(0) (:mod:`~cummins.io.aqwa.conventions`). The run's ``.QTF`` (the
+AQTF option's full difference- and sum-frequency QTFs, :mod:`~cummins.io.aqwa.qtf`) is
+read beside either file.
 
 Conventions. AQWA prints phase lags relative to the incident wave at the centre of
 gravity: cummins takes X = |X| exp(−iφ) (its exp(+iωt) convention) and refers the
@@ -23,8 +26,10 @@ and 180°, kept as two directions.
 
 Modules: :mod:`~cummins.io.aqwa.detection` (recognising the files),
 :mod:`~cummins.io.aqwa.conventions` (wave number, phase convention, LHFR limits),
-:mod:`~cummins.io.aqwa.lis` (the listing), :mod:`~cummins.io.aqwa.ah1` (the database);
-this module holds :func:`read_aqwa`.
+:mod:`~cummins.io.aqwa.pages` (a listing's pages by structure, its wave grid),
+:mod:`~cummins.io.aqwa.lis` (the listing), :mod:`~cummins.io.aqwa.drift` (its mean
+drift), :mod:`~cummins.io.aqwa.ah1` (the database), :mod:`~cummins.io.aqwa.qtf` (the
+``.QTF``); this module holds :func:`read_aqwa`.
 """
 
 from __future__ import annotations
@@ -35,12 +40,12 @@ from pathlib import Path
 import xarray as xr
 
 from cummins.errors import HydroDataError
-from cummins.io.aqwa.ah1 import ASYMMETRY_LIMIT as ASYMMETRY_LIMIT
 from cummins.io.aqwa.ah1 import _read_ah1
-from cummins.io.aqwa.ah1 import asymmetry as asymmetry
+from cummins.io.aqwa.conventions import ASYMMETRY_LIMIT as ASYMMETRY_LIMIT
 from cummins.io.aqwa.conventions import HIGH_FREQUENCY_LIMIT as HIGH_FREQUENCY_LIMIT
+from cummins.io.aqwa.conventions import asymmetry as asymmetry
 from cummins.io.aqwa.conventions import wavenumber as wavenumber
-from cummins.io.aqwa.detection import _head, _is_ah1, _is_lis, sniff, sniff_dir
+from cummins.io.aqwa.detection import _head, _is_ah1, _is_lis, _is_qtf, sniff, sniff_dir
 from cummins.io.aqwa.lis import _read_lis
 
 __all__ = ["read_aqwa", "sniff", "sniff_dir"]
@@ -90,6 +95,21 @@ def read_aqwa(
             )
         path = runs[0]
     text_head = _head(path, 65536)
+    if _is_qtf(text_head):
+        runs = [
+            p
+            for p in path.parent.iterdir()
+            if p.stem.lower() == path.stem.lower() and p.suffix.lower() in (".lis", ".ah1")
+        ]
+        raise HydroDataError(
+            "an AQWA .QTF holds only the run's second-order loads",
+            path=path,
+            hint=(
+                f"read {sorted(runs)[-1].name}, which reads the .QTF beside it"
+                if runs
+                else "read the run's .LIS or .AH1 (same name), which reads the .QTF beside it"
+            ),
+        )
     if _is_lis(text_head[:8192]):
         return _read_lis(path, rho, g)
     if _is_ah1(text_head):

@@ -8,7 +8,8 @@ frequency``: 6 amplitudes then 6 phases in degrees) and, with LHFR, ADDEDMASS_LF
 DAMPING_LF and ADDEDMASS_HF. It has the same 5-digit A and B as the listing, 5-digit
 excitation amplitudes, but no RAOs and no Froude-Krylov/diffraction split. Records
 must be in AQWA's fixed formats and its matrices near symmetric
-(:data:`ASYMMETRY_LIMIT`).
+(:data:`ASYMMETRY_LIMIT`). The run's ``.QTF`` beside it (same name) is read as its QTFs
+(:mod:`cummins.io.aqwa.qtf`).
 """
 
 from __future__ import annotations
@@ -25,11 +26,15 @@ from cummins.io._common import resolve_rho_g, warn_damage
 from cummins.io._text import TextFile, parse_numbers
 from cummins.io.aqwa.conventions import (
     _NUMBER,
+    ASYMMETRY_LIMIT,
     HIGH_FREQUENCY_LIMIT,
     _complex,
     _depth,
     _limits_history,
+    asymmetry,
 )
+from cummins.io.aqwa.qtf import aqwa_second_order
+from cummins.qtf.data import with_second_order
 from cummins.restoring import weight_record
 
 
@@ -114,13 +119,6 @@ def _records(text: TextFile, section: _Section, n_index: int, n_rows: int):
 #: amplitudes) or -178.71 (phases), one format per row.
 _AH1_FIELDS = (re.compile(r"-?\d\.\d{4}E[-+]\d\d"), re.compile(r"-?\d+\.\d\d"))
 
-#: Largest asymmetry |M_ij - M_ji| / (sqrt|M_ii M_jj| + 1e-3 sqrt(T_i T_j)) accepted in
-#: an AQWA matrix (T: largest diagonal of the same kind over all frequencies). Measured:
-#: ≤ 0.69 in the damping, ≤ 0.17 in the added mass of the three AQWA runs of the corpus
-#: and the shared data (noise in near-zero couplings); rows swapped or edited give
-#: 10–10⁶.
-ASYMMETRY_LIMIT = 2.0
-
 
 def _check_fields(text: TextFile, section: str, line: int, n_index: int, form) -> None:
     """A record row must be written in AQWA's fixed format ``form`` (a cut number, or a
@@ -133,19 +131,6 @@ def _check_fields(text: TextFile, section: str, line: int, n_index: int, form) -
             "edited?)",
             line,
         )
-
-
-def asymmetry(matrices: np.ndarray) -> np.ndarray:
-    """Relative asymmetry of each n×n matrix of ``matrices`` (…, n, n), see
-    :data:`ASYMMETRY_LIMIT`; 0 for a symmetric matrix."""
-    stack = np.asarray(matrices, dtype=float).reshape(-1, *np.shape(matrices)[-2:])
-    n = stack.shape[-1]
-    diag = np.abs(np.diagonal(stack, axis1=1, axis2=2))
-    rot = (np.arange(n) % 6) >= 3
-    largest = np.array([diag[:, rot == rot[i]].max() for i in range(n)])
-    floor = 1e-3 * np.sqrt(np.outer(largest, largest))
-    scale = np.sqrt(diag[:, :, None] * diag[:, None, :]) + floor + np.finfo(float).tiny
-    return (np.abs(stack - np.swapaxes(stack, 1, 2)) / scale).max(axis=(1, 2))
 
 
 def _check_symmetric(text: TextFile, section: _Section, matrices: np.ndarray, omega=None):
@@ -402,7 +387,9 @@ def _read_ah1(path: Path, rho, g) -> xr.Dataset:
             else [np.nan] * nb
         )
         extra.update(weight_record(masses, cog, "AQWA's HYDSTIFFNESS (about each G)"))
-    return make_hydrodb(
+    labels = list(dof_labels(names))
+    second = aqwa_second_order(path, cgs=cog, depth=depth, g=g_v, dofs=labels, notes=notes)
+    ds = make_hydrodb(
         omega,
         a,
         b,
@@ -411,7 +398,7 @@ def _read_ah1(path: Path, rho, g) -> xr.Dataset:
         water_depth=depth,
         source_format="aqwa",
         source_file=str(path),
-        dofs=dof_labels(names),
+        dofs=labels,
         reference_point=flat(cog),
         history=history,
         center_of_gravity=flat(cog),
@@ -420,6 +407,9 @@ def _read_ah1(path: Path, rho, g) -> xr.Dataset:
         read_warnings=notes,
         **extra,
     )
+    if not (second["tables"] or second["history"]):
+        return ds
+    return with_second_order(ds, second["tables"], history=second["history"], attrs=second["attrs"])
 
 
 def _ah1_volumes(text: TextFile, sections: dict[str, _Section], nb: int):

@@ -2,7 +2,8 @@
 
 A listing carries the AQWA banner (``DECK`` cards or letter-spaced ``* * * *`` titles);
 a database starts with ``*`` header lines, then ``nbodies ndirections nfrequencies``
-and keyword sections (GENERAL, COG, ADDEDMASS, HYDSTIFFNESS …).
+and keyword sections (GENERAL, COG, ADDEDMASS, HYDSTIFFNESS …); a QTF file's first line
+is ``AQTF-2.0``.
 """
 
 from __future__ import annotations
@@ -38,13 +39,19 @@ def _is_ah1(head: str) -> bool:
     return bool(keywords & {"GENERAL", "COG", "ADDEDMASS", "HYDSTIFFNESS"})
 
 
+def _is_qtf(head: str) -> bool:
+    """AQWA's ``.QTF``: its first line is ``AQTF-<version>``."""
+    return head.lstrip().startswith("AQTF-")
+
+
 def sniff(path: Path) -> bool:
-    """Content-based test: is ``path`` an AQWA ``.LIS`` listing or ``.AH1`` database?"""
+    """Content-based test: is ``path`` an AQWA ``.LIS`` listing, ``.AH1`` database or
+    ``.QTF`` (recognised to say which file of the run to read)?"""
     path = Path(path)
     if not path.is_file():
         return False
     head = _head(path, 65536)
-    return _is_lis(head[:8192]) or _is_ah1(head)
+    return _is_lis(head[:8192]) or _is_ah1(head) or _is_qtf(head)
 
 
 def sniff_dir(path: Path) -> list[Path]:

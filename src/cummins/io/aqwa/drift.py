@@ -1,13 +1,14 @@
 """The mean drift tables of an AQWA ``.LIS``: "WAVE-DRIFT LOADS FOR UNIT WAVE AMPLITUDE**2".
 
-One table per DOF (``SURGE(X)`` … ``YAW(RZ)``), headed "DUE TO (RADIANS/SEC)" and the
+One table per DOF (``SURGE(X)`` … ``YAW(RZ)``; AQWA 19.1 prints each on a page of its
+own, AQWA 2023 R1 the six in turn under one title), headed "DUE TO (RADIANS/SEC)" and the
 wave directions (degrees), then one row per frequency: ω and the mean drift force per
 squared wave amplitude in each direction (N/m², N·m/m², three significant digits),
 about the centre of gravity in AQWA's fixed reference axes (z up, as the rest of the
 listing). The values are real: a mean force. The corpus's PEND hull (AQWA 19.1) prints
 them for its 100 frequencies and 5 directions, −180° and 180° both, as the excitation.
 A damaged table does not stop the listing from reading: the drift is left out with a
-warning. AQWA's ``.QTF`` files (the full QTF) are not read: no corpus case has one.
+warning. The full QTF of the run is AQWA's ``.QTF`` file (:mod:`cummins.io.aqwa.qtf`).
 """
 
 from __future__ import annotations
@@ -30,7 +31,7 @@ def _blocks(
     out = []
     starts = [i for i, title in titles if _TITLE in title]
     for s, start in enumerate(starts):
-        stop = starts[s + 1] if s + 1 < len(starts) else min(len(text.lines), start + 400)
+        stop = starts[s + 1] if s + 1 < len(starts) else len(text.lines)
         header = next((k for k in range(start, stop) if "(RADIANS/SEC)" in text.lines[k]), -1)
         if header < 0:
             raise text.error("drift table without its '(RADIANS/SEC)' header", start)
@@ -38,20 +39,18 @@ def _blocks(
         if directions is None or directions.size == 0:
             raise text.error("no wave directions on the drift table's header", header)
         k = header + 1
-        dof, rows = -1, []
+        tables: list[tuple[int, list[tuple[int, np.ndarray]]]] = []
         while k < stop:
             stripped = text.lines[k].strip()
             label = stripped.replace(" ", "")
-            if label in _DOF_LABELS:
-                if dof >= 0:
-                    break
-                dof = _DOF_LABELS.index(label)
-            elif stripped == "1" and rows:  # Fortran carriage control: next page
+            if label in _DOF_LABELS:  # AQWA 19.1: one per page; AQWA 2023: all six in turn
+                tables.append((_DOF_LABELS.index(label), []))
+            elif stripped == "1" and tables and tables[-1][1]:  # carriage control: next page
                 break
-            elif dof >= 0 and stripped:
+            elif tables and stripped:
                 values = parse_numbers(stripped)
                 if values is None:
-                    if rows:
+                    if tables[-1][1]:
                         break
                     raise text.error(f"expected a row of numbers, found {stripped[:60]!r}", k)
                 if values.size != directions.size + 1:
@@ -62,13 +61,14 @@ def _blocks(
                     )
                 if not np.all(np.isfinite(values)):
                     raise text.error("non-finite value in the drift table", k)
-                rows.append((k, values))
+                tables[-1][1].append((k, values))
             k += 1
-        if dof < 0 or not rows:
+        if not tables or not all(rows for _, rows in tables):
             raise text.error("drift table without a DOF label or rows", header)
-        # fixed-width E-format values: a row cut inside its last number is damage
-        check_cut_numbers(text, [k for k, _ in rows], range(1, directions.size + 1))
-        out.append((dof, directions, header, rows))
+        for dof, rows in tables:
+            # fixed-width E-format values: a row cut inside its last number is damage
+            check_cut_numbers(text, [k for k, _ in rows], range(1, directions.size + 1))
+            out.append((dof, directions, header, rows))
     return out
 
 

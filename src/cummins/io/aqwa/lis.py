@@ -1,7 +1,8 @@
-"""The AQWA-LINE ``.LIS`` listing (one structure; use the ``.AH1`` for several).
+"""The AQWA-LINE ``.LIS`` listing (AQWA 19.1 and 2023 R1 layouts; one or more structures).
 
 * "GLOBAL PARAMETERS": water depth, density, gravity; "WAVE FREQUENCIES/PERIODS AND
-  DIRECTIONS": the frequencies (rad/s, 5 decimals), wave numbers and directions.
+  DIRECTIONS": the frequencies (rad/s, 5 decimals), wave numbers and directions, in
+  either layout (:mod:`cummins.io.aqwa.pages`).
 * One "HYDRODYNAMIC PARAMETERS" block per frequency ("WAVE PERIOD = … WAVE FREQUENCY
   = …") with the 6×6 ADDED MASS and DAMPING matrices (5 significant digits), rows the
   influenced DOF (X … RZ), columns the radiating DOF; the first block holds the
@@ -15,12 +16,21 @@
   (:mod:`cummins.io.aqwa.drift`).
 * With the LHFR option, "HYDRODYNAMIC PARAMETERS AT LOW & HIGH FREQUENCIES".
 
-The listing must be in the "Metric: kg, m [N]" unit system that its header states.
+Several structures: each structure's pages (:mod:`cummins.io.aqwa.pages`) are read as a
+listing of one, about its own centre of gravity, and joined (DOFs ``body1__Surge`` …,
+matrices block-diagonal). A listing that prints added mass or damping between structures
+(hydrodynamic interaction, AQWA's ``STR#`` labels) is refused: no such listing is public
+to check its layout against; the run's ``.AH1`` holds the coupling.
+
+The run's ``.QTF`` beside the listing (same name) is read as its QTFs
+(:mod:`cummins.io.aqwa.qtf`). The listing must be in the "Metric: kg, m [N]" unit system
+that its header states.
 """
 
 from __future__ import annotations
 
 import re
+from dataclasses import dataclass
 from pathlib import Path
 
 import numpy as np
@@ -28,24 +38,36 @@ import xarray as xr
 
 from cummins.hydrodb import dof_labels, make_hydrodb
 from cummins.io._common import resolve_rho_g, warn_damage
-from cummins.io._text import TextFile, parse_numbers
+from cummins.io._text import TextFile, check_line_ends, parse_numbers
 from cummins.io.aqwa.conventions import (
     _NUMBER,
+    ASYMMETRY_LIMIT,
     HIGH_FREQUENCY_LIMIT,
     _complex,
     _depth,
     _limits_history,
+    asymmetry,
 )
 from cummins.io.aqwa.detection import _is_lis
 from cummins.io.aqwa.drift import lis_mean_drift
+from cummins.io.aqwa.pages import (
+    check_structure_pages,
+    despace,
+    pages,
+    structure_view,
+    structures,
+    wave_grid,
+)
+from cummins.io.aqwa.qtf import aqwa_second_order
+from cummins.qtf.data import with_second_order
 from cummins.restoring import weight_record
 
 _ROW_LABELS = ("X", "Y", "Z", "RX", "RY", "RZ")
+#: AQWA's E format of a matrix entry (1.2345E+03): a cut number does not fit it.
+_MATRIX_FIELD = re.compile(r"-?\d\.\d{3,5}E[-+]\d{2,3}")
 
 
-def _despace(line: str) -> str:
-    """``* * * * H Y D R O   P A R`` → ``****HYDRO PAR`` (AQWA's letter-spaced titles)."""
-    return re.sub(r"\s+", " ", re.sub(r"(?<=\S) (?=\S)", "", line.strip()))
+_despace = despace
 
 
 def _normal(line: str) -> str:
@@ -78,6 +100,13 @@ def _matrix_after(text: TextFile, i: int, stop: int, what: str) -> tuple[np.ndar
                 raise text.error(f"expected 6 numbers in row {tokens[0]} of the {what}", k)
             if not np.all(np.isfinite(values)):
                 raise text.error(f"non-finite value in the {what}", k)
+            cut = next((t for t in tokens[1:] if not _MATRIX_FIELD.fullmatch(t)), None)
+            if cut is not None:
+                raise text.error(
+                    f"{cut!r} in row {tokens[0]} of the {what} is not in AQWA's format "
+                    "(1.2345E+03): a cut or edited number",
+                    k,
+                )
             rows.append(values)
         elif tokens and rows and tokens[0] in _ROW_LABELS:
             raise text.error(f"row {tokens[0]} out of order in the {what}", k)
@@ -123,75 +152,6 @@ def _lis_constants(text: TextFile) -> dict[str, float]:
     return out
 
 
-def _leading_numbers(line: str) -> list[float]:
-    values = []
-    for token in line.split():
-        try:
-            values.append(float(token))
-        except ValueError:
-            break
-    return values
-
-
-def _lis_frequencies(text: TextFile, titles) -> tuple[np.ndarray, np.ndarray, np.ndarray, int]:
-    """Frequencies (rad/s), wave numbers (rad/m) and directions (deg) of the listing."""
-    starts = [i for i, t in titles if t.startswith("****WAVE FREQUENCIES/PERIODS AND DIRECTIONS")]
-    if not starts:
-        raise text.error("no WAVE FREQUENCIES/PERIODS AND DIRECTIONS table (truncated?)")
-    omega, k_table, directions = [], [], []
-    first_row = -1
-    for start in starts:
-        header = _label_line_prefix(text, "STRUCTURE", start, start + 12)
-        if header < 0:
-            continue
-        is_direction = "DIRECTIONS" in text.lines[header]
-        k = next(
-            (
-                j
-                for j in range(header + 1, min(header + 6, len(text.lines)))
-                if _is_rule(text.lines[j])
-            ),
-            -1,
-        )
-        if k < 0:
-            raise text.error("table header without its dashed rule", header)
-        k += 1
-        while k < len(text.lines) and not _is_rule(text.lines[k]):
-            line = text.lines[k]
-            if line.strip() == "1":  # Fortran carriage control: the table goes on overleaf
-                break
-            values = _leading_numbers(line)
-            if not values:
-                if line.strip():
-                    raise text.error(f"expected a row of numbers, found {line.strip()[:60]!r}", k)
-                k += 1
-                continue
-            if is_direction:
-                directions.extend(values[1:] if not directions else values)
-            else:
-                if len(values) == 10:
-                    values = values[1:]
-                if len(values) != 9:
-                    raise text.error(
-                        f"expected 9 numbers in the frequency table, found {len(values)}", k
-                    )
-                if first_row < 0:
-                    first_row = k
-                omega.append(values[1])
-                k_table.append(values[4])
-            k += 1
-    if not omega:
-        raise text.error("the wave frequency table is empty", starts[0])
-    if not directions:
-        raise text.error("no wave directions in the listing", starts[0])
-    return np.asarray(omega), np.asarray(k_table), np.asarray(directions), first_row
-
-
-def _is_rule(line: str) -> bool:
-    stripped = line.strip()
-    return bool(stripped) and set(stripped) <= set("-")
-
-
 def _label_line_prefix(text: TextFile, prefix: str, start: int, stop: int) -> int:
     for k in range(start, min(stop, len(text.lines))):
         if text.lines[k].strip().startswith(prefix):
@@ -229,6 +189,16 @@ def _lis_radiation(text: TextFile, omega: np.ndarray):
         if label < 0:
             raise text.error("no DAMPING matrix after the added mass", end)
         b[n], _ = _matrix_after(text, label + 1, stop, f"damping at {w:g} rad/s")
+    for name, matrices in (("added mass", a), ("damping", b)):
+        values = asymmetry(matrices)  # rows are labelled X … RZ, not by frequency
+        worst = int(np.argmax(values))
+        if values[worst] > ASYMMETRY_LIMIT:
+            raise text.error(
+                f"the {name} at {omega[worst]:g} rad/s is not symmetric (asymmetry "
+                f"{values[worst]:.3g}, AQWA's are below {ASYMMETRY_LIMIT:g}): rows moved "
+                "between frequencies or edited?",
+                blocks[worst][0],
+            )
     label = _label_line(text, "STIFFNESS MATRIX", 0, blocks[0][0])
     stiffness = None
     if label >= 0:
@@ -296,6 +266,8 @@ def _lis_tables(text: TextFile, titles, n_omega: int):
                 raise text.error("table row without a wave direction", k)
             rows.append((direction, float(values[1]), values[2:], k))
             k += 1
+    for rows in out.values():  # fixed columns: a row cut in its last phase ends early
+        check_line_ends(text, [row[3] for row in rows])
     return out
 
 
@@ -367,14 +339,24 @@ def _read_lis(path: Path, rho, g) -> xr.Dataset:
             units,
             hint="rerun AQWA in the Metric: kg, m [N] system",
         )
-    titles = [(i, _despace(line)) for i, line in enumerate(text.lines) if "* * * *" in line]
-    structures = {int(m.group(1)) for _, t in titles if (m := re.search(r"FOR STRUCTURE (\d+)", t))}
-    if len(structures) > 1:
-        raise text.error(
-            f"the listing describes {len(structures)} structures",
-            hint="read the .AH1 file of the run, which cummins reads for several structures",
-        )
-    history = [f"read AQWA listing {path.name}"]
+    listing = pages(text)
+    numbers = structures(listing) or [1]
+    grids, first_row = wave_grid(text, listing)
+    omega, directions = _one_grid(text, grids, numbers, first_row)
+    if len(numbers) > 1:
+        check_structure_pages(text, listing)
+        coupled = next((i for i, line in enumerate(text.lines) if _COUPLING.search(line)), -1)
+        if coupled >= 0:
+            raise text.error(
+                "added mass or damping between structures (hydrodynamic interaction): a "
+                "listing layout cummins has no example of",
+                coupled,
+                hint="read the run's .AH1 file, which holds the coupling matrices",
+            )
+    history = [
+        f"read AQWA listing {path.name}"
+        + (f" ({len(numbers)} structures)" if len(numbers) > 1 else "")
+    ]
     constants = _lis_constants(text)
     rho_v, g_v = resolve_rho_g(
         rho,
@@ -386,89 +368,230 @@ def _read_lis(path: Path, rho, g) -> xr.Dataset:
         dimensional=True,
     )
     depth = _depth(constants["depth"])
-    omega, _, directions, _ = _lis_frequencies(text, titles)
+    notes: list[str] = []
+    bodies = [
+        _read_structure(
+            text if len(numbers) == 1 else structure_view(text, listing, s),
+            omega,
+            directions,
+            depth,
+            g_v,
+            notes,
+        )
+        for s in numbers
+    ]
+    if len(numbers) > 1:
+        history.append(
+            "the listing prints no added mass or damping between the structures (they were "
+            "computed without hydrodynamic interaction): the coupling terms are zero"
+        )
+    extra, body_history = _joined(bodies, directions, rho_v, g_v)
+    history.extend(body_history)
+    kinds = set.intersection(*(set(b.tables) for b in bodies))
+    lacking = [
+        s for s, b in zip(numbers, bodies, strict=True) if b.a_inf is None and b.high is None
+    ]
+    _lis_completeness(
+        text, dict.fromkeys(kinds), lacking if len(numbers) > 1 else bool(lacking), notes
+    )
+    cg = np.vstack([b.cg for b in bodies])
+    n = len(bodies)
+
+    def flat(points):
+        return points.reshape(-1) if n > 1 else points[0]
+
+    cb = [b.cb for b in bodies]
+    volumes = [b.volume for b in bodies]
+    second = aqwa_second_order(path, cgs=cg, depth=depth, g=g_v, dofs=_labels(n), notes=notes)
+    ds = make_hydrodb(
+        omega,
+        _block_diagonal([b.a for b in bodies]),
+        _block_diagonal([b.b for b in bodies]),
+        rho=rho_v,
+        g=g_v,
+        water_depth=depth,
+        source_format="aqwa",
+        source_file=str(path),
+        dofs=_labels(n),
+        reference_point=flat(cg),
+        history=history,
+        center_of_gravity=flat(cg),
+        center_of_buoyancy=None if any(c is None for c in cb) else flat(np.vstack(cb)),
+        displaced_volume=(volumes[0] if n == 1 else None if None in volumes else np.array(volumes)),
+        read_warnings=notes,
+        **extra,
+    )
+    if not (second["tables"] or second["history"]):
+        return ds
+    return with_second_order(ds, second["tables"], history=second["history"], attrs=second["attrs"])
+
+
+#: The label of a matrix between two structures (AQWA's "STR#" notation).
+_COUPLING = re.compile(r"STR\s*#\s*\d")
+
+
+def _labels(n: int) -> list[str]:
+    return dof_labels() if n == 1 else dof_labels([f"body{k + 1}" for k in range(n)])
+
+
+def _one_grid(text: TextFile, grids: dict, numbers: list[int], line: int):
+    """The frequencies and directions every structure shares (cummins holds one grid)."""
+    if sorted(grids) != numbers:
+        raise text.error(
+            f"the wave frequency table lists structures {sorted(grids)}, the listing's pages "
+            f"structures {numbers}",
+            line,
+        )
+    omega, directions = grids[numbers[0]]
+    for s in numbers[1:]:
+        w, d = grids[s]
+        if w.shape != omega.shape or not np.allclose(w, omega, rtol=1e-6):
+            raise text.error(f"structure {s} has other wave frequencies than structure 1", line)
+        if d.shape != directions.shape or not np.allclose(d, directions):
+            raise text.error(f"structure {s} has other wave directions than structure 1", line)
+    return omega, directions
+
+
+@dataclass
+class _Structure:
+    """What the listing gives for one structure (6 DOFs, about its centre of gravity)."""
+
+    a: np.ndarray
+    b: np.ndarray
+    stiffness: np.ndarray | None
+    cg: np.ndarray
+    a_inf: np.ndarray | None
+    high: float | None
+    low: float | None
+    tables: dict[str, np.ndarray]
+    drift: np.ndarray | None
+    drift_history: list[str]
+    mass: float | None
+    inertia: np.ndarray | None
+    cb: np.ndarray | None
+    volume: float | None
+
+
+def _read_structure(text: TextFile, omega, directions, depth, g, notes) -> _Structure:
+    """One structure's data from its pages (``text``: a view holding only them and the
+    common pages)."""
+    titles = [(i, _despace(line)) for i, line in enumerate(text.lines) if "* * * *" in line]
     a, b, stiffness = _lis_radiation(text, omega)
     cg = _lis_cg(text)
-    history.append(
-        f"matrices and forces about the centre of gravity {cg.tolist()} m "
-        "(AQWA: WITH RESPECT TO STRUCTURE COG)"
+    a_inf, high, low = _lis_limits(text, titles)
+    tables = {}
+    for kind, rows in _lis_tables(text, titles, omega.size).items():
+        amplitude, phase = _assemble(text, rows, omega, directions, kind)
+        if kind == "rao":
+            amplitude[..., 3:] = np.radians(amplitude[..., 3:])
+        tables[kind] = _complex(amplitude, phase, omega, directions, cg, depth, g)
+    drift, drift_history = lis_mean_drift(text, titles, omega, directions, notes)
+    mass, inertia = _lis_mass(text, titles)
+    cb = [_value_after(text, key)[0] for key in ("BX", "BY", "BZ")]
+    volume, _ = _value_after(text, "MESH BASED DISPLACEMENT")
+    return _Structure(
+        a,
+        b,
+        stiffness,
+        cg,
+        a_inf,
+        high,
+        low,
+        tables,
+        drift,
+        drift_history,
+        mass,
+        inertia,
+        None if any(v is None for v in cb) else np.array(cb, dtype=float),
+        volume,
     )
 
+
+def _block_diagonal(blocks: list[np.ndarray]) -> np.ndarray:
+    """Blocks (…, 6, 6) of the structures → (…, 6n, 6n), zero between structures."""
+    n = len(blocks)
+    if n == 1:
+        return blocks[0]
+    out = np.zeros((*blocks[0].shape[:-2], 6 * n, 6 * n))
+    for k, block in enumerate(blocks):
+        out[..., 6 * k : 6 * k + 6, 6 * k : 6 * k + 6] = block
+    return out
+
+
+def _joined(bodies: list[_Structure], directions, rho, g) -> tuple[dict, list[str]]:
+    """The optional variables of all structures (present for every one) and history."""
+    n = len(bodies)
+    history = [
+        f"matrices and forces about the centre of gravity "
+        f"{b.cg.tolist()} m (AQWA: WITH RESPECT TO STRUCTURE COG)"
+        if n == 1
+        else f"structure {k + 1}: matrices and forces about its centre of gravity {b.cg.tolist()} m"
+        for k, b in enumerate(bodies)
+    ]
     extra: dict = {}
-    if stiffness is not None:
-        extra["hydrostatic_stiffness"] = stiffness
-    a_inf, high, low = _lis_limits(text, titles)
-    _limits_history(history, a_inf, high, low, g_v)
-    if a_inf is not None:
-        extra["added_mass_inf"] = a_inf
-    tables = _lis_tables(text, titles, omega.size)
+    if all(b.stiffness is not None for b in bodies):
+        extra["hydrostatic_stiffness"] = _block_diagonal([b.stiffness for b in bodies])
+    if all(b.a_inf is not None for b in bodies):
+        extra["added_mass_inf"] = _block_diagonal([b.a_inf for b in bodies])
+    first = bodies[0]
+    _limits_history(history, extra.get("added_mass_inf"), first.high, first.low, g)
     names = {
         "excitation": "excitation_force",
         "diffraction": "diffraction_force",
         "froude_krylov": "froude_krylov_force",
         "rao": "rao",
     }
-    for kind, rows in tables.items():
-        amplitude, phase = _assemble(text, rows, omega, directions, kind)
-        if kind == "rao":
-            amplitude[..., 3:] = np.radians(amplitude[..., 3:])
-            history.append("RAO rotations converted from deg/m to rad/m")
-        extra[names[kind]] = _complex(amplitude, phase, omega, directions, cg, depth, g_v)
-    notes: list[str] = []
-    drift, drift_history = lis_mean_drift(text, titles, omega, directions, notes)
-    if drift is not None:
-        extra["drift_force"] = drift
-        history.extend(drift_history)
-    if tables or drift is not None:
+    for kind, name in names.items():
+        if all(kind in b.tables for b in bodies):
+            extra[name] = np.concatenate([b.tables[kind] for b in bodies], axis=-1)
+            if kind == "rao":
+                history.append("RAO rotations converted from deg/m to rad/m")
+    drifts = [b.drift for b in bodies]
+    if all(d is not None for d in drifts):
+        extra["drift_force"] = np.concatenate(drifts, axis=-1)
+        history.extend(first.drift_history)
+    elif any(d is not None for d in drifts):
+        history.append("mean drift not read: printed for some structures only")
+    if any(k in extra for k in (*names.values(), "drift_force")):
         extra["wave_direction"] = np.radians(directions)
         history.append(
             "AQWA phase lags converted: X = |X| exp(-i(phase + k(xG cos b + yG sin b))), "
             "phases referred from the centre of gravity to the origin"
         )
         history.append("excitation amplitudes printed with 3 significant digits in the listing")
-    mass, inertia = _lis_mass(text, titles)
-    if mass is not None and inertia is not None:
-        m = np.zeros((6, 6))
-        m[:3, :3] = mass * np.eye(3)
-        m[3:, 3:] = inertia
-        extra["inertia_matrix"] = m
+    if all(b.mass is not None and b.inertia is not None for b in bodies):
+        blocks = []
+        for b in bodies:
+            m = np.zeros((6, 6))
+            m[:3, :3] = b.mass * np.eye(3)
+            m[3:, 3:] = b.inertia
+            blocks.append(m)
+        extra["inertia_matrix"] = _block_diagonal(blocks)
         history.append(
-            f"inertia matrix from MASS AND INERTIA PROPERTIES (mass {mass:.6g} kg, inertia "
-            "matrix about the centre of gravity)"
+            "inertia matrix from MASS AND INERTIA PROPERTIES (mass "
+            + ", ".join(f"{b.mass:.6g}" for b in bodies)
+            + " kg, inertia matrix about the centre of gravity)"
         )
     else:
         history.append("no MASS AND INERTIA PROPERTIES in the listing: no inertia_matrix")
-    _lis_completeness(text, tables, a_inf is not None or high is not None, notes)
-    cb = np.array([_value_after(text, key)[0] for key in ("BX", "BY", "BZ")])
-    volume, _ = _value_after(text, "MESH BASED DISPLACEMENT")
-    if stiffness is not None:  # about G, where the weight's terms vanish: AQWA's matrix
-        weight = mass if mass is not None else (rho_v * volume if volume else np.nan)
-        extra.update(weight_record([weight], cg, "AQWA's hydrostatic stiffness (about G)"))
-    return make_hydrodb(
-        omega,
-        a,
-        b,
-        rho=rho_v,
-        g=g_v,
-        water_depth=depth,
-        source_format="aqwa",
-        source_file=str(path),
-        dofs=dof_labels(),
-        reference_point=cg,
-        history=history,
-        center_of_gravity=cg,
-        center_of_buoyancy=cb if not any(v is None for v in cb) else None,
-        displaced_volume=volume,
-        read_warnings=notes,
-        **extra,
-    )
+    if "hydrostatic_stiffness" in extra:  # about G, where the weight's terms vanish
+        weights = [
+            b.mass if b.mass is not None else (rho * b.volume if b.volume else np.nan)
+            for b in bodies
+        ]
+        cg = np.vstack([b.cg for b in bodies])
+        extra.update(
+            weight_record(weights, cg if n > 1 else cg[0], "AQWA's hydrostatic stiffness (about G)")
+        )
+    return extra, history
 
 
-def _lis_completeness(text: TextFile, tables: dict, has_lhfr: bool, notes: list[str]) -> None:
+def _lis_completeness(text: TextFile, tables: dict, lacking, notes: list[str]) -> None:
     """Warn when the listing ends before the sections it announces.
 
     AQWA closes every listing with a ``FINISH DATE`` line; the ``OPTIONS`` cards of the
-    input echo announce the LHFR block (low and high frequency limits).
+    input echo announce the LHFR block (low and high frequency limits). ``lacking``: the
+    structures without that block (a list), or whether the one structure lacks it.
     """
     options = {
         word
@@ -476,10 +599,15 @@ def _lis_completeness(text: TextFile, tables: dict, has_lhfr: bool, notes: list[
         if line.strip().startswith("OPTIONS")
         for word in line.split()[1:]
     }
-    if "LHFR" in options and not has_lhfr:
+    if "LHFR" in options and lacking:
+        whose = (
+            f" for structure {', '.join(str(s) for s in lacking)}"
+            if isinstance(lacking, list)
+            else ""
+        )
         warn_damage(
             "OPTIONS LHFR announces the HYDRODYNAMIC PARAMETERS AT LOW & HIGH FREQUENCIES, "
-            "but the listing has none (truncated?): read without added_mass_inf",
+            f"but the listing has none{whose} (truncated?): read without added_mass_inf",
             path=text.path,
             line=len(text.lines),
             notes=notes,
