@@ -96,6 +96,32 @@ def stage_progress(description: str) -> Iterator[Callable[[str], None]]:
         yield lambda message: bar.update(task, description=f"{description}: {message}")
 
 
+@contextlib.contextmanager
+def counted_progress(what: str, total: int) -> Iterator[Callable[[str], None]]:
+    """On a terminal, a bar "fitting ``what``" over ``total`` items (couplings, headings)
+    with the time elapsed (gone when done); in a pipe or a log, nothing. Yields
+    ``say(message)``: each call after the first counts one item done and shows
+    ``message`` as the current one (the ``progress=`` of the library's fits)."""
+    with Progress(
+        TextColumn("fitting {task.description}"),
+        BarColumn(),
+        TextColumn("{task.completed}/{task.total}"),
+        TimeElapsedColumn(),
+        console=console,
+        transient=True,
+    ) as bar:
+        task = bar.add_task(what, total=total)
+        started: list[str] = []
+
+        def say(message: str) -> None:
+            if started:
+                bar.advance(task)
+            started.append(message)
+            bar.update(task, description=message)
+
+        yield say
+
+
 def exit_status(exc: BaseException) -> int:
     """2 for a bad argument or option (``ArgumentError``, an output that exists), 1 for
     data that cannot be used and every other error of cummins."""

@@ -9,12 +9,12 @@ from pathlib import Path
 
 import click
 from rich.markup import escape
-from rich.progress import BarColumn, Progress, TextColumn, TimeElapsedColumn
 from rich.table import Table
 
 from cummins.cli.common import (
     Number,
     console,
+    counted_progress,
     force_option,
     non_negative,
     positive,
@@ -234,25 +234,9 @@ def fit_command(
                 )
         fixed[(labels.index(a), labels.index(b))] = n
     start = time.perf_counter()
-    with Progress(
-        TextColumn("fitting {task.description}"),
-        BarColumn(),
-        TextColumn("{task.completed}/{task.total}"),
-        TimeElapsedColumn(),
-        console=console,
-        transient=True,
-    ) as bar:
-        from cummins.radiation.retardation import significant_couplings
+    from cummins.radiation.retardation import significant_couplings
 
-        task = bar.add_task("couplings", total=len(significant_couplings(ds, threshold)))
-        started = []
-
-        def progress(message: str) -> None:
-            if started:
-                bar.advance(task)
-            started.append(message)
-            bar.update(task, description=message)
-
+    with counted_progress("couplings", len(significant_couplings(ds, threshold))) as progress:
         model = fit_radiation(
             ds,
             method=method,

@@ -11,12 +11,12 @@ import click
 import numpy as np
 from rich import box
 from rich.markup import escape
-from rich.progress import BarColumn, Progress, TextColumn, TimeElapsedColumn
 from rich.table import Table
 
 from cummins.cli.common import (
     Number,
     console,
+    counted_progress,
     finite,
     force_option,
     non_negative,
@@ -168,23 +168,7 @@ def fit_excitation_command(
     directions = None if not headings else np.radians(np.asarray(headings, dtype=float))
     total = len(headings) if headings else (ds.sizes.get("wave_direction", 0) or 1)
     start = time.perf_counter()
-    with Progress(
-        TextColumn("fitting {task.description}"),
-        BarColumn(),
-        TextColumn("{task.completed}/{task.total}"),
-        TimeElapsedColumn(),
-        console=console,
-        transient=True,
-    ) as bar:
-        task = bar.add_task("headings", total=total)
-        started = []
-
-        def progress(message: str) -> None:
-            if started:
-                bar.advance(task)
-            started.append(message)
-            bar.update(task, description=message)
-
+    with counted_progress("headings", total) as progress:
         model = fit_excitation(
             ds,
             directions,
