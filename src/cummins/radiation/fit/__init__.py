@@ -167,8 +167,10 @@ def fit_radiation(
         (0.99), ``r2_coupling`` (0.97), ``max_order``, ``orders``, ``threshold`` (0.01),
         ``added_mass_inf`` (``"auto"``), ``omega_min``, ``omega_max``,
         ``exclude_suspect`` (True), ``passivity`` (``"mimo"``), ``weighting``
-        (``"auto"``), ``motion_tol`` (0.01). With ``method="vf"`` a block is made passive
-        as a whole when it is fitted (``passivity="mimo"``) or not at all.
+        (``"auto"``), ``motion_tol`` (0.01), ``r2_kernel`` (0.9: R² of K(t) of each
+        modelled diagonal term against the data's, with its damping tail). With
+        ``method="vf"`` a block is made passive as a whole when it is fitted
+        (``passivity="mimo"``) or not at all.
 
     Returns
     -------

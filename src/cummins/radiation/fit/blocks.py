@@ -54,7 +54,7 @@ def fit_blocks(
             measured.added_mass[rows] + antisymmetric
         )
     motion_aim = MOTION_AIM * motion_tol if sensitivity is not None else None
-    blocks, notes = [], []
+    blocks, notes, tail_failures = [], [], []
     for dofs, elements in order_search.block_groups(n, pairs):
         say("block " + "-".join(labels[d] for d in dofs))
         used = np.stack([keep[:, i] & keep[:, j] for i, j in elements], axis=1)
@@ -105,6 +105,8 @@ def fit_blocks(
                 motion_weight=None if sensitivity is None else sensitivity.coupling_weight,
                 motion_tol=tol,
                 prior=prior,
+                time=measured.time,
+                kernel=measured.kernel,
             )
             try:
                 found = order_search.identify_block(
@@ -116,6 +118,8 @@ def fit_blocks(
                     motion_aim=aim,
                     fixed_count=fixed_count,
                     passive=passive,
+                    r2_kernel=options.r2_kernel,
+                    labels=labels,
                 )
             except FitError as exc:
                 raise FitError(f"{name}: {exc}") from None
@@ -139,7 +143,17 @@ def fit_blocks(
                     "tighter motion target than the fits made for it: kept"
                 )
                 if score.meets(MOTION_AIM * MOTION_TOL) and not score.meets(motion_aim):
-                    block_notes.append(order_search.targets_not_met(fitted.poles.count))
+                    block_notes.append(
+                        order_search.targets_not_met(
+                            fitted.poles.count,
+                            score,
+                            r2=r2,
+                            r2_coupling=r2_coupling,
+                            r2_kernel=options.r2_kernel,
+                            motion_aim=motion_aim,
+                            labels=labels,
+                        )
+                    )
         plain_block = vector.fit_residues_at(data, fitted.poles) if passive else None
         a, b, c = fitted.realization()
         for e, (i, j) in enumerate(elements):
@@ -172,6 +186,11 @@ def fit_blocks(
             m["elapsed_s"] = elapsed
         blocks.append(replace(block, metrics=metrics))
         notes += [f"{name}: {x}" for x in block_notes]
+        tail_failures += [
+            found.describe(labels[i], float(omega[-1]))
+            for i, found in score.beyond.items()
+            if not found.ok()
+        ]
     model = RadiationModel(
         tuple(labels),
         (),
@@ -195,4 +214,5 @@ def fit_blocks(
         model = with_motion_note(model, motion_tol)
     failures = fit_failures(model, **failure_targets(options, sensitivity))
     failures += range_cut_failures(model, inp, options.r2)
+    failures += tail_failures  # the model's damping beyond the data (fit/tail.py)
     return replace(model, attrs={**model.attrs, "failures": failures})

@@ -64,7 +64,10 @@ def coupling_metrics(
         "n_frequencies": int(w.size),
     }
     if time is not None and kernel is not None:
-        metrics["r2_kernel"] = r_squared(kernel, model.impulse_response(time))
+        fitted = model.impulse_response(time)
+        metrics["r2_kernel"] = r_squared(kernel, fitted)
+        metrics["kernel_zero"] = float(fitted[0])
+        metrics["kernel_zero_data"] = float(np.asarray(kernel)[0])
     if model.influenced == model.radiating:
         lam, vec = np.linalg.eig(model.a)
         residues = (model.c @ vec) * np.linalg.solve(vec, model.b)

@@ -51,6 +51,13 @@ import scipy.linalg
 from numpy.typing import NDArray
 
 from cummins.errors import FitError
+from cummins.radiation.damping_tail import DampingTail
+from cummins.radiation.fit.tail import (
+    block_tail_equations,
+    kernel_zero_equation,
+    kernel_zero_form,
+    tail_frequencies,
+)
 
 #: Iterations of the pole relocation (at most; it stops when the poles move by less
 #: than CONVERGED, relative).
@@ -63,10 +70,6 @@ RELOCATION_POINTS = 300
 MIN_DAMPING = 0.05
 #: Initial relative damping of the starting poles.
 START_DAMPING = 0.01
-#: Tail of synthetic damping points beyond the last frequency: ω_max × these factors.
-TAIL_FACTORS = np.geomspace(1.3, 30.0, 8)
-#: Weight of the tail points against the last data point's damping weight.
-TAIL_WEIGHT = 0.3
 #: Passivity: a violation is λ_min(Re K) < −VIOLATION · max ‖K‖ on the check grid.
 VIOLATION = 1e-8
 #: Passivity: each linearised constraint asks for λ ≥ MARGIN × the largest |λ| there, an
@@ -207,6 +210,9 @@ class BlockData:
     used: NDArray[np.bool_] = field(repr=False, default=None)
     inf_guess: NDArray[np.float64] | None = field(repr=False, default=None)
     inf_spread: NDArray[np.float64] | None = field(repr=False, default=None)
+    tails: tuple[DampingTail, ...] | None = field(repr=False, default=None)
+    time: NDArray[np.float64] | None = field(repr=False, default=None)
+    kernel: NDArray[np.float64] | None = field(repr=False, default=None)
 
 
 def block_data(
@@ -221,17 +227,24 @@ def block_data(
     motion_weight=None,
     motion_tol: float = 0.01,
     prior=None,
+    tail_weight: float = 1.0,
+    time=None,
+    kernel=None,
 ) -> BlockData:
     """Equations of a block (see :class:`BlockData`).
 
     ``added_mass``, ``damping``: symmetric parts of the data (omega, n, n); ``used``:
     (omega, n_elements) which frequencies each coupling keeps; ``motion_weight``:
     callable (i, j) → W_ij(ω) of :class:`cummins.radiation.fit.motion.MotionSensitivity` or None;
-    ``prior``: (guess, spread) matrices of A∞ when it is estimated.
+    ``prior``: (guess, spread) matrices of A∞ when it is estimated; ``tail_weight``: a
+    factor on the weight of the damping tail beyond the data
+    (:func:`cummins.radiation.fit.tail.tail_equations`); ``time``, ``kernel``: the data's
+    K(t) (time, n, n), for the R² of K(t) of the diagonal elements.
     """
     w = np.asarray(omega, dtype=float)
-    tail = w.max() * TAIL_FACTORS
-    values, wr, wi = [], [], []
+    tail = tail_frequencies(w.max())
+    values, wr, wi, tails = [], [], [], []
+    beyond = block_tail_equations(w, added_mass, damping, used, elements, tail)
     for e, (i, j) in enumerate(elements):
         use = used[:, e]
         n_use = max(int(use.sum()), 1)
@@ -247,15 +260,12 @@ def block_data(
             r_a, r_b = np.hypot(r_a, m), np.hypot(r_b, m)
         r_a, r_b = np.where(use, r_a, 0.0), np.where(use, r_b, 0.0)
         offset = 0.0 if added_mass_inf is None else added_mass_inf[i, j]
-        last = np.flatnonzero(use)[-5:]
-        rate = float(np.mean(b_ij[last] * w[last] ** 2)) if last.size else 0.0
-        if i == j:
-            rate = max(rate, 0.0)
-        b_tail = rate / tail**2
+        # beyond the data: the data's damping tail, weighed as the data it stands for
+        b_tail, weight, element_tail = beyond[e]
+        tails.append(element_tail)
         values.append(np.r_[a_ij - offset - 1j * b_ij / w, -1j * b_tail / tail])
-        last_weight = r_b[last[-1]] if last.size else 0.0
         wr.append(np.r_[r_a, np.zeros(tail.size)])
-        wi.append(np.r_[r_b, TAIL_WEIGHT * last_weight * tail / w.max()])
+        wi.append(np.r_[r_b, tail_weight * weight * tail / spread_b / np.sqrt(n_use)])
     fixed = guess = spread = None
     if added_mass_inf is not None:
         fixed = np.array([added_mass_inf[i, j] for i, j in elements])
@@ -276,6 +286,9 @@ def block_data(
         used,
         guess,
         spread,
+        tuple(tails),
+        None if kernel is None else np.asarray(time, dtype=float),
+        None if kernel is None else np.array([kernel[:, i, j] for i, j in elements]),
     )
 
 
@@ -318,13 +331,14 @@ def relocate(data: BlockData, poles: Poles) -> Poles:
 def _thinned(data: BlockData) -> BlockData:
     """The equations of the pole relocation: every k-th data frequency when there are
     more than RELOCATION_POINTS (the weights scaled by √k, so that the equations keep
-    their total weight), the tail whole. The residues are then fitted to all."""
-    step = int(np.ceil(data.n_data / RELOCATION_POINTS))
-    if step <= 1:
-        return data
-    rows = np.r_[np.arange(0, data.n_data, step), np.arange(data.n_data, data.omega.size)]
-    scale = np.r_[np.full(rows.size - (data.omega.size - data.n_data), np.sqrt(step)),
-                  np.ones(data.omega.size - data.n_data)]  # fmt: skip
+    their total weight), without the damping tail beyond the data: the poles come from
+    the data, the residues are then fitted to all, tail included. (With the tail's
+    equations, which carry real weight since issue 31, the relocation placed poles for
+    them erratically: the supply vessel's R² of B 0.69 or 0.99 as their number went
+    from 12 to 24, and 56 states against 43 without them.)"""
+    step = max(int(np.ceil(data.n_data / RELOCATION_POINTS)), 1)
+    rows = np.arange(0, data.n_data, step)
+    scale = np.sqrt(step)
     return BlockData(
         data.dofs,
         data.elements,
@@ -376,6 +390,12 @@ def fit_residues(data: BlockData, poles: Poles) -> tuple[NDArray, NDArray]:
             prior_row[-1] = weight
             rows = np.vstack([rows, prior_row])
             rhs = np.r_[rhs, weight * data.inf_guess[e]]
+        zero = kernel_zero_equation(data, e)
+        if zero is not None:  # K(0): the damping beyond the data is data too
+            form = np.zeros(m.shape[1])
+            form[: null.shape[1]] = kernel_zero_form(poles) @ null
+            rows = np.vstack([rows, zero[0] * form])
+            rhs = np.r_[rhs, zero[0] * zero[1]]
         z, *_ = np.linalg.lstsq(rows, rhs, rcond=None)
         x[e] = null @ z[: null.shape[1]]
         if data.fixed_inf is None:
@@ -397,6 +417,20 @@ class PoleResidueBlock:
         """K of each element, (n_omega, n_elements)."""
         w = np.asarray(omega, dtype=float)
         return 1j * w[:, None] * (self.poles.basis(1j * w) @ self.coefficients.T)
+
+    def element_impulse(self, t: NDArray) -> NDArray[np.float64]:
+        """K(t) of each element, (n_t, n_elements): K(s) = Σ x p/(s − p) over the real
+        poles and (a + jb) p/(s − p) + c.c. over the pairs (Σ R_k = 0), so K(t) =
+        Σ x p e^{pt} + 2 Re[(a + jb) p e^{pt}]."""
+        t = np.asarray(t, dtype=float).reshape(-1, 1)
+        nr = self.poles.real.size
+        real = self.poles.real[None, :]
+        out = (real * np.exp(real * t)) @ self.coefficients[:, :nr].T
+        if self.poles.pairs.size:
+            p = self.poles.pairs[None, :]
+            residue = self.coefficients[:, nr::2] + 1j * self.coefficients[:, nr + 1 :: 2]
+            out = out + 2.0 * np.real((p * np.exp(p * t)) @ residue.T)
+        return out
 
     def response(self, omega: NDArray) -> NDArray[np.complex128]:
         """K(jω) of the block, (n_omega, m, m), local DOF order."""
@@ -582,10 +616,16 @@ def _element_matrix(block: PoleResidueBlock, values: NDArray) -> NDArray:
 
 
 def enforce_passivity(
-    block: PoleResidueBlock, data: BlockData
+    block: PoleResidueBlock, data: BlockData, bounds=None
 ) -> tuple[PoleResidueBlock, bool, int]:
     """The block with the smallest weighted residue change that makes Re K(jω) ⪰ 0 at all
-    frequencies (module docstring, step 3): (block, passive, iterations)."""
+    frequencies (module docstring, step 3): (block, passive, iterations).
+
+    ``bounds``: a callable (block → more violated linear constraints, in the form of
+    :func:`passivity_violations`' (g, λ, w, scale)) that the same programme meets: the
+    damping beyond the data held under the data's tail
+    (:func:`cummins.radiation.fit.tail.tail_bound_violations`), so that the passivity
+    step does not raise it there."""
     from cummins.radiation.passivity import least_distance
 
     w = data.omega[: data.n_data]
@@ -594,8 +634,11 @@ def enforce_passivity(
     q = null.shape[1]
     phi = block.poles.basis(s) @ null
     misfit = []
-    for wr, wi in zip(data.weight_real, data.weight_imag, strict=True):
+    for e, (wr, wi) in enumerate(zip(data.weight_real, data.weight_imag, strict=True)):
         jac = _stacked(phi, wr, wi)
+        zero = kernel_zero_equation(data, e)
+        if zero is not None:  # K(0), as the residues were fitted
+            jac = np.vstack([jac, zero[0] * kernel_zero_form(block.poles) @ null])
         ridge = RIDGE * np.linalg.norm(jac, 2)
         # ‖J z‖ = ‖R z‖: the small triangular factor stands for the whole misfit
         r = np.linalg.qr(np.vstack([jac, ridge * np.eye(q)]), mode="r")
@@ -615,6 +658,7 @@ def enforce_passivity(
         if not found and not exact:
             exact = True
             found, _ = passivity_violations(current, float(w.min()), float(w.max()), exact=exact)
+        found = found + ([] if bounds is None else bounds(current))
         if not found:
             return current, True, iteration
         for form, lam, vec, local in found:
