@@ -81,6 +81,13 @@ CORPUS = {
 GENERATED = {"semisub": "semisub_capytaine.nc", "three_buoys": "three_buoys_capytaine.nc"}
 #: Diagonal R² floors other than 0.98, with the reason in the module docstring.
 R2_FLOOR = {"coer": 0.97}
+#: DOFs whose data are numerical noise, not radiation: the WAMIT sphere's yaw (a sphere
+#: radiates no yaw; |B| ≤ 7.8·10⁻⁸ N·m·s against 3.3·10³ N·s in surge, and rising at the
+#: last frequency). Modelled (its damping is not negligible against the other rotations',
+#: themselves noise), it cannot be followed inside the data by a model that decays beyond
+#: them (issue 31; before, a peak 1.55× the data's beyond them): not judged by the
+#: targets, but its misses must be failures that name it, never silent.
+NOISE = {"drift_sphere": ("Yaw",)}
 
 
 def _read(path):
@@ -126,7 +133,10 @@ def test_the_default_model_is_stable_and_passive(fitted):
     assert np.all(poles.real < 0), name
     assert _dense_passivity_margin(model) >= -1e-6, name
     # no passivity step took a coupling below its target, and the model says it is passive
-    passivity = [f for f in model.attrs["failures"] if "passiv" in f]
+    noise = NOISE.get(name, ())
+    passivity = [
+        f for f in model.attrs["failures"] if "passiv" in f and f.split(":")[0] not in noise
+    ]
     assert not passivity, (name, passivity)
     assert passivity_test(model).passive, name
 
@@ -145,6 +155,10 @@ def test_the_default_model_fits_every_diagonal(fitted):
     name, ds, model = fitted
     floor = R2_FLOOR.get(name, 0.98)
     for dof, (r2a, r2b) in diagonal_r2(ds, model).items():
+        if dof in NOISE.get(name, ()):  # noise: a miss is a failure naming it
+            if min(r2a, r2b) < floor:
+                assert any(f.startswith(f"{dof}:") for f in model.attrs["failures"]), dof
+            continue
         assert r2a >= floor and r2b >= floor, (name, dof, r2a, r2b)
 
 

@@ -220,7 +220,8 @@ def fit_damping_tail(
     term), is replaced by the ω⁻² law too.
 
     Where the fitted curve does not decay (α ≤ 0, n ≤ 1: B still rising at the last
-    frequency, its peak beyond the data), the damping must still decay beyond it, at a
+    frequency, its peak beyond the data) and B_N is at least :data:`RISING_MIN` of the
+    peak (below, no tail: noise on a decayed damping), the damping must decay beyond it, at a
     rate the damping alone does not tell: it is continued along its trend (the slope s ≥ 0
     of a straight line through the window) up to a knee ω_k, then decays as ω⁻²
     (``"rising"``; ω_k = ω_N is the ω⁻² law from the last point). The added mass tells
@@ -283,6 +284,9 @@ def fit_damping_tail(
             residual = np.sum((y - (slope * lw + intercept)) ** 2)
             if -slope > 1:
                 candidates.append((residual, "power", max(-slope, MIN_POWER)))
+        if not candidates and abs(b[-1, k]) < RISING_MIN * peak:
+            notes[k] = "damping does not decay near the last frequency but is small there: no tail"
+            continue
         if not candidates:
             # still rising (or flat) at the last frequency: continued along its trend to
             # a knee (chosen below), then ω⁻²
@@ -305,6 +309,11 @@ def fit_damping_tail(
     return DampingTail(kinds, float(w[-1]), b[-1].copy(), rates, notes, knees, slopes)
 
 
+#: A damping that does not decay at the last frequency is continued (``"rising"``) only
+#: when it is still at least this fraction of its peak there: below, the rise is noise
+#: on a damping that has decayed (WAMIT's cylinder heave, 0.25 % of its peak at 21 rad/s
+#: and rising: continued, K(0) 4 % above NEMOH's for the same body).
+RISING_MIN = 0.1
 #: Where a damping still rising at the last frequency may turn, × ω_N (1: at once).
 RISE_KNEES = (1.0, 1.1, 1.25, 1.5, 1.75, 2.0)
 #: ... but not above this multiple of the last value: the data do not tell more.
