@@ -211,22 +211,30 @@ def modelled_diagonal(model: RadiationModel, k: NDArray) -> list[int]:
 
 
 def passive_part(ds: xr.Dataset, model: RadiationModel) -> xr.Dataset:
-    """The data of the model's DOFs over its fitted range (``omega_fit_min`` …
-    ``omega_fit_max``: beyond, the damping tail takes over, as in the data's K(t) the fit
-    was measured against) with the damping of the pairs it models made positive
-    semi-definite where it is not (:func:`cummins.repair.nearest_passive_damping`, as the
-    fit takes it): what K(t) and the tail of a passive model are measured against (the
-    tanker's pitch, fitted to 3.4 rad/s where its irregular frequencies start, had the
-    negative and spiking damping of 3.65–5.98 rad/s in its K(t): R² 0.75 against 0.995)."""
+    """The data of the model's DOFs with the damping of the significant pairs made
+    positive semi-definite where it is not (:func:`cummins.repair.nearest_passive_damping`
+    of :func:`cummins.radiation.retardation.significant_couplings` at the model's
+    ``threshold``, as the fit takes it, before it looks for suspect frequencies): what
+    K(t) and the tail of a passive model are measured against."""
+    from cummins.radiation.retardation import significant_couplings
     from cummins.repair import nearest_passive_damping
 
     ds = ds.sel(influenced_dof=list(model.dofs), radiating_dof=list(model.dofs))
-    lo, hi = model.attrs.get("omega_fit_min"), model.attrs.get("omega_fit_max")
-    if lo is not None and hi is not None:  # the fitted range: beyond it, the tail
-        w = ds.omega.values
-        ds = ds.isel(omega=np.flatnonzero((w >= lo * (1 - 1e-12)) & (w <= hi * (1 + 1e-12))))
-    pairs = [(k.influenced, k.radiating) for k in model.modelled if k.influenced <= k.radiating]
+    pairs = significant_couplings(ds, float(model.attrs.get("threshold", 0.01)))
     return nearest_passive_damping(ds, pairs)[0] if pairs else ds
+
+
+def fitted_range(ds: xr.Dataset, model: RadiationModel) -> xr.Dataset:
+    """``ds`` over the model's fitted range (``omega_fit_min`` … ``omega_fit_max``): beyond
+    it the damping tail takes over, as in the data's K(t) the fit was measured against
+    (the tanker's pitch, fitted to 3.4 rad/s where its irregular frequencies start, had
+    the negative and spiking damping of 3.65–5.98 rad/s in its K(t): R² 0.75 against
+    0.995)."""
+    lo, hi = model.attrs.get("omega_fit_min"), model.attrs.get("omega_fit_max")
+    if lo is None or hi is None:
+        return ds
+    w = ds.omega.values
+    return ds.isel(omega=np.flatnonzero((w >= lo * (1 - 1e-12)) & (w <= hi * (1 + 1e-12))))
 
 
 def own_frequencies(ds: xr.Dataset, dofs, omega=None) -> dict[str, NDArray[np.bool_]]:
@@ -291,8 +299,8 @@ def kernel_r2(ds: xr.Dataset, model: RadiationModel) -> dict[str, float]:
     """
     from cummins.radiation.retardation import default_time_grid, retardation_function
 
-    full = single_speed(ds).sel(influenced_dof=list(model.dofs), radiating_dof=list(model.dofs))
-    ds = passive_part(full, model)
+    full = passive_part(single_speed(ds), model)
+    ds = fitted_range(full, model)
     t = default_time_grid(ds.isel(omega=np.flatnonzero(data_frequencies(ds))))
     fitted = np.asarray(model.impulse_response(t), dtype=float)
     k = model.response(ds.omega.values[ds.omega.values > 0].astype(float))
@@ -314,8 +322,8 @@ def damping_beyond(ds: xr.Dataset, model: RadiationModel) -> dict[str, BeyondDat
     from ω_N to 10³ ω_N): B → 0 as ω grows, under the data's tail, no peak of its own."""
     from cummins.radiation.damping_tail import fit_damping_tail
 
-    full = single_speed(ds).sel(influenced_dof=list(model.dofs), radiating_dof=list(model.dofs))
-    ds = passive_part(full, model)
+    full = passive_part(single_speed(ds), model)
+    ds = fitted_range(full, model)
     w_all = ds.omega.values.astype(float)
     k = model.response(w_all[w_all > 0])
     dofs = [model.dofs[i] for i in modelled_diagonal(model, k)]
