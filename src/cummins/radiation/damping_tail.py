@@ -8,7 +8,11 @@ B_N e^{−α(ω−ω_N)}, whose cosine and sine transforms are known in closed f
 (2022) §2.5.1), or a power law B_N (ω_N/ω)^n, in closed form for n = 2 (sine and cosine
 integrals) and otherwise integrated exactly on a fine geometric grid. A finite-order
 radiation model has Re K(jω) ~ ω⁻² at high frequency, so slower power laws are steepened
-to :data:`MIN_POWER`. The tail's share of ∫B dω is reported by
+to :data:`MIN_POWER`. A damping still rising at the last frequency (its peak beyond the
+data) is continued along its trend to a knee, then as ω⁻² (``"rising"``), the knee chosen
+by the Kramers–Kronig consistency of the data's added mass with it. The same tail is the
+one a fitted model must follow beyond the data (:mod:`cummins.radiation.fit.tail`). The
+tail's share of ∫B dω is reported by
 :func:`cummins.radiation.retardation.retardation_diagnostics` because K(0) depends on it.
 :mod:`cummins.radiation.retardation` re-exports these names.
 """
