@@ -19,8 +19,10 @@ from cummins.radiation.fit.data import FitInput, range_cut_failures
 from cummins.radiation.fit.metrics import coupling_metrics
 from cummins.radiation.fit.mimo import failure_targets, fit_failures, with_motion_note
 from cummins.radiation.fit.options import MOTION_AIM, MOTION_TOL, FitOptions
+from cummins.radiation.fit.tail import fine_kernel_metrics
 from cummins.radiation.model import MemoryBlock, RadiationModel
 from cummins.radiation.passivity import passivity_test
+from cummins.radiation.retardation import default_time_grid
 
 
 def fit_blocks(
@@ -55,6 +57,7 @@ def fit_blocks(
         )
     motion_aim = MOTION_AIM * motion_tol if sensitivity is not None else None
     blocks, notes, tail_failures = [], [], []
+    fine_time = default_time_grid(inp.data)
     for dofs, elements in order_search.block_groups(n, pairs):
         say("block " + "-".join(labels[d] for d in dofs))
         used = np.stack([keep[:, i] & keep[:, j] for i, j in elements], axis=1)
@@ -176,6 +179,8 @@ def fit_blocks(
                 time=measured.time,
                 kernel=measured.kernel[:, i, j],
             )
+            if i == j:  # K(t) at the data's full time resolution: the target (issue 31)
+                m.update(fine_kernel_metrics(inp.data, i, view, fine_time))
             m["n_excluded_frequencies"] = int((~use).sum())
             m["common_poles"] = fitted.poles.count
             if before is not None:
