@@ -233,7 +233,8 @@ def fit_damping_tail(
     (Hjulstad (2004) eq. 5.23), so with ``added_mass`` the knee among
     :data:`RISE_KNEES` × ω_N that makes the data most consistent is taken — the one whose
     per-frequency estimates of A∞ (Ogilvie's, over the upper half of the frequencies)
-    spread least. Without it, ω_k = ω_N.
+    spread least — or no tail, when that is more consistent still (a rise that is the
+    data's error). Without it, ω_k = ω_N.
 
     Parameters
     ----------
@@ -309,7 +310,12 @@ def fit_damping_tail(
         a = np.asarray(added_mass, dtype=float).reshape(w.size, -1)
         knees[rising] = _consistent_knees(w, b[:, rising], a[:, rising], slopes[rising])
     for k in rising:
-        notes[k] += f" at {knees[k]:.4g} rad/s"
+        if np.isnan(knees[k]):  # the added mass is most consistent without a tail
+            kinds[k], rates[k] = "none", np.nan
+            notes[k] = "damping does not decay at the last frequency, but its added mass is "
+            notes[k] += "most consistent with none beyond it: no tail"
+        else:
+            notes[k] += f" at {knees[k]:.4g} rad/s"
     return DampingTail(kinds, float(w[-1]), b[-1].copy(), rates, notes, knees, slopes)
 
 
@@ -328,7 +334,10 @@ def _consistent_knees(w: NDArray, b: NDArray, a: NDArray, slopes: NDArray) -> ND
     """The knee (rad/s) of each rising tail that makes A(ω) most consistent with B(ω):
     the spread (standard deviation) of Ogilvie's A∞ = A(ω) − (2/π) PV∫₀^∞ B/(ν² − ω²) dν
     over the upper half of the frequencies (at least five, the last left out: the
-    integral is singular there for a truncated B) is smallest (:func:`fit_damping_tail`).
+    integral is singular there for a truncated B) is smallest (:func:`fit_damping_tail`);
+    NaN where no tail at all is more consistent (a rise that is the data's error: the
+    tanker's yaw, irregular frequencies up to its last one, whose Ogilvie A∞ went from
+    1.27 to 2.07 % off WAMIT's row with a rising tail).
     The tail's part is exact: the linear rise by :func:`hilbert_pv`, the ω⁻² decay from
     the knee k in closed form, ∫_k^∞ (k/ν)²/(ν² − ω²) dν = (k/ω)² [ln((k + ω)/(k − ω))/(2ω)
     − 1/k] for ω < k."""
@@ -338,8 +347,8 @@ def _consistent_knees(w: NDArray, b: NDArray, a: NDArray, slopes: NDArray) -> ND
     y = w[upper]
     x = np.r_[0.0, w]
     inner = hilbert_pv(x, np.vstack([np.zeros((1, b.shape[1])), b]), y)
-    best = np.full(b.shape[1], np.inf)
-    knees = np.full(b.shape[1], w[-1])
+    best = np.std(a[upper] - (2.0 / np.pi) * inner, axis=0)  # no tail at all: NaN
+    knees = np.full(b.shape[1], np.nan)
     for factor in RISE_KNEES:
         knee = factor * w[-1]
         top = b[-1] + slopes * (knee - w[-1])
