@@ -19,10 +19,10 @@ from cummins.radiation.fit.data import FitInput, range_cut_failures
 from cummins.radiation.fit.metrics import coupling_metrics
 from cummins.radiation.fit.mimo import failure_targets, fit_failures, with_motion_note
 from cummins.radiation.fit.options import MOTION_AIM, MOTION_TOL, FitOptions
-from cummins.radiation.fit.tail import fine_kernel_metrics
+from cummins.radiation.fit.tail import fine_kernel_metrics, fine_time_grid
 from cummins.radiation.model import MemoryBlock, RadiationModel
 from cummins.radiation.passivity import passivity_test
-from cummins.radiation.retardation import default_time_grid
+from cummins.radiation.retardation import retardation_function
 
 
 def fit_blocks(
@@ -57,7 +57,11 @@ def fit_blocks(
         )
     motion_aim = MOTION_AIM * motion_tol if sensitivity is not None else None
     blocks, notes, tail_failures = [], [], []
-    fine_time = default_time_grid(inp.data)
+    # K(t) of the data at the step of the default grid: the R² of K(t) the fit is judged by
+    fine_time = fine_time_grid(measured.time, float(w.max()))
+    fine_kernel = retardation_function(inp.data, fine_time).transpose(
+        "time", "influenced_dof", "radiating_dof"
+    )
     for dofs, elements in order_search.block_groups(n, pairs):
         say("block " + "-".join(labels[d] for d in dofs))
         used = np.stack([keep[:, i] & keep[:, j] for i, j in elements], axis=1)
@@ -180,7 +184,7 @@ def fit_blocks(
                 kernel=measured.kernel[:, i, j],
             )
             if i == j:  # K(t) at the data's full time resolution: the target (issue 31)
-                m.update(fine_kernel_metrics(inp.data, i, view, fine_time))
+                m.update(fine_kernel_metrics(fine_kernel.values[:, i, i], view, fine_time))
             m["n_excluded_frequencies"] = int((~use).sum())
             m["common_poles"] = fitted.poles.count
             if before is not None:
