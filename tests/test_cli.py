@@ -225,7 +225,16 @@ def test_fit_command(runner, tanker_copy, tmp_path):
     assert by_pair[(3, 5)]["order"] == by_pair[(1, 1)]["order"] == 8
     assert {b["common_poles"] for b in summary["blocks"] if 3 in b["dofs"]} == {8}
     for (i, j), c in by_pair.items():
-        assert set(c) == {"i", "j", "order", "r2_added_mass", "r2_damping", "stable", "passive"}
+        assert set(c) == {
+            "i",
+            "j",
+            "order",
+            "r2_added_mass",
+            "r2_damping",
+            "r2_kernel",
+            "stable",
+            "passive",
+        }
         assert (c["passive"] is None) == (i != j)
         if i == j:
             assert c["passive"] and min(c["r2_added_mass"], c["r2_damping"]) >= 0.99

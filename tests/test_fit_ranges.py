@@ -48,9 +48,15 @@ def test_the_oswec_2015_periods_are_not_spikes_and_the_fit_covers_its_range(corp
     """WAMIT OSWEC 2015 (`.out`, 50 periods, the top eight 8, 7, …, 1 s): the flap's
     curves are not flagged above 0.78 rad/s; the base's roll damping, negative at 0.157–
     1.257 rad/s (down to −1 × its peak), still is. The fit covers the data's range, is
-    passive by a dense sweep and stable, and reports what passivity cost; the order
-    search stops once passivity has lost a coupling at two orders in a row, since more
-    poles cannot make non-passive data passive."""
+    passive by a dense sweep and stable, and reports what passivity cost: the base's roll,
+    R² of A 0.9994 → −2.66, the worst miss its block's note names.
+
+    The order search stops once passivity has lost a coupling at two orders in a row,
+    since more poles cannot make non-passive data passive. Since the fit follows the
+    data's damping tail (issue 31) the plain fits meet the 0.99 target only at 12 common
+    poles, the most the roll's 14 kept frequencies allow (8–11: 0.979–0.990), so at the
+    default targets the search ends there; at 0.98 (couplings 0.96) they meet it from 8
+    poles and the rule stops the search at 10, saying the data are not passive."""
     ds = read_quietly(corpus / "WEC-Sim" / "wamit_OSWEC_2015_with_bemio_h5" / "oswec.out")
     w = ds.omega.values
     top = w[w > 0.78]
@@ -68,9 +74,16 @@ def test_the_oswec_2015_periods_are_not_spikes_and_the_fit_covers_its_range(corp
     assert model.is_stable()
     assert passivity_margin(model) >= -1e-6
     # the data are not passive (the base's roll): what enforcing passivity cost is a failure
-    assert any("passivity took" in f for f in model.attrs["failures"])
-    # and the order search stopped there rather than adding poles that cannot help
+    roll = [f for f in model.attrs["failures"] if f.startswith("body2__Roll: passivity took")]
+    assert roll and float(roll[0].split(" to ")[1].split()[0]) < 0.0  # −2.66
     big = next(b for b in model.blocks if len(b.dofs) > 2)
+    assert big.note.startswith("targets not met") and "R² of A of body2__Roll -" in big.note
+    # where the plain fits meet the targets at two orders, the search stops there rather
+    # than adding poles that cannot help
+    with warnings.catch_warnings():
+        warnings.simplefilter("ignore")
+        relaxed = fit_radiation(ds, r2=0.98, r2_coupling=0.96)
+    big = next(b for b in relaxed.blocks if len(b.dofs) > 2)
     assert "the data are not passive" in big.note
 
 
@@ -115,7 +128,11 @@ def test_short_of_its_targets_a_block_keeps_the_fewest_poles_that_fit_as_well(
     costs ~0.011 of R² at every count) and the RAFT Capytaine float's heave (passivity
     costs 0.01–0.08 at every count from 7 to 20). The search keeps fewer poles than the
     most it may use, and the most (fixed here) fit no better by more than 0.001 of R²:
-    what the data allow is not bought with states."""
+    what the data allow is not bought with states. (Since issue 31, the damping beyond the
+    data held to the data's tail, the barge's surge–pitch plain fits level off from 10
+    common poles and the search stops at 12, keeping 11 — R² 0.9830 at 22 states against
+    0.9861 at 40 for 20 poles, both short of 0.99: at most 0.007 lost (2.3× the 0.0031
+    measured), at most 80 % of the states (55 % measured).)"""
     from cummins.radiation.fit.order_search import NEAR
 
     ds = read_quietly(corpus / case)
@@ -134,7 +151,11 @@ def test_short_of_its_targets_a_block_keeps_the_fewest_poles_that_fit_as_well(
     }
     assert poles < 20
     assert blocks["most"].a.shape[0] > blocks["default"].a.shape[0]
-    assert r2["default"] >= r2["most"] - NEAR * (1 - 0.99) - 1e-9, r2
+    if "Barge" in case:
+        assert r2["default"] >= r2["most"] - 0.007, r2
+        assert blocks["default"].a.shape[0] <= 0.8 * blocks["most"].a.shape[0]
+    else:
+        assert r2["default"] >= r2["most"] - NEAR * (1 - 0.99) - 1e-9, r2
     assert passivity_margin(default) >= -1e-6
 
 

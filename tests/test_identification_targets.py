@@ -93,6 +93,13 @@ CORPUS = {
 GENERATED = {"semisub": "semisub_capytaine.nc", "three_buoys": "three_buoys_capytaine.nc"}
 #: Diagonal R² floors other than 0.98, with the reason in the module docstring.
 R2_FLOOR = {"coer": 0.97}
+#: DOFs whose data are numerical noise, not radiation: the WAMIT sphere's yaw (a sphere
+#: radiates no yaw; |B| ≤ 7.8·10⁻⁸ N·m·s against 3.3·10³ N·s in surge, and rising at the
+#: last frequency). Modelled (its damping is not negligible against the other rotations',
+#: themselves noise), it cannot be followed inside the data by a model that decays beyond
+#: them (issue 31; before, a peak 1.55× the data's beyond them): not judged by the
+#: targets, but its misses must be failures that name it, never silent.
+NOISE = {"drift_sphere": ("Yaw",)}
 
 
 def _read(path):
@@ -138,7 +145,10 @@ def test_the_default_model_is_stable_and_passive(fitted):
     assert np.all(poles.real < 0), name
     assert _dense_passivity_margin(model) >= -1e-6, name
     # no passivity step took a coupling below its target, and the model says it is passive
-    passivity = [f for f in model.attrs["failures"] if "passiv" in f]
+    noise = NOISE.get(name, ())
+    passivity = [
+        f for f in model.attrs["failures"] if "passiv" in f and f.split(":")[0] not in noise
+    ]
     assert not passivity, (name, passivity)
     assert passivity_test(model).passive, name
 
@@ -157,6 +167,10 @@ def test_the_default_model_fits_every_diagonal(fitted):
     name, ds, model = fitted
     floor = R2_FLOOR.get(name, 0.98)
     for dof, (r2a, r2b) in diagonal_r2(ds, model).items():
+        if dof in NOISE.get(name, ()):  # noise: a miss is a failure naming it
+            if min(r2a, r2b) < floor:
+                assert any(f.startswith(f"{dof}:") for f in model.attrs["failures"]), dof
+            continue
         assert r2a >= floor and r2b >= floor, (name, dof, r2a, r2b)
 
 
@@ -342,16 +356,20 @@ def rm3(shared_data):
 
 #: The couplings of RM3 whose both directions matter (ranges of A_ij and A_ji ≥ 40 % of
 #: √(range A_ii range A_jj)), and the smallest R² of A and of B, each direction,
-#: measured: surge–pitch 0.960/0.975 (A), 0.867/0.836 (B); float–spar surge 0.959/0.924,
-#: 0.926/0.983; float–spar heave 0.926/0.931, 0.941/0.940.
+#: measured: surge–pitch 0.887/0.942 (A), 0.860/0.803 (B); float–spar surge 0.214/0.551
+#: (the spar's non-causal surge), 0.858/0.907; float–spar heave 0.982/0.988, 0.991/0.991.
 RM3_PAIRS = (("body1__Surge", "body1__Pitch"), ("body1__Surge", "body2__Surge"),
              ("body1__Heave", "body2__Heave"))  # fmt: skip
 
 
 def test_rm3_couplings_are_fitted_each_as_given(rm3):
     """Each direction of RM3's main couplings is reproduced (R² ≥ 0.67: the measured
-    ≥ 0.836 with twice its 1 − R²), where their reciprocal part cannot be (its R²
-    against the two directions of the float–spar surge added mass: below 0.5)."""
+    ≥ 0.80 with over half its 1 − R² to spare), where their reciprocal part cannot be (its
+    R² against the two directions of the float–spar surge added mass: below 0.5) — but
+    for the added mass of the float–spar surge coupling (R² 0.21 and 0.55): the spar's
+    surge added mass is 85 % off the Kramers–Kronig transform of its damping, which a
+    causal model that invents no damping beyond the data cannot follow, and the fit's
+    failure names it."""
     ds, model = rm3
     keep = np.flatnonzero(data_frequencies(ds))
     w = ds.omega.values[keep]
@@ -362,8 +380,11 @@ def test_rm3_couplings_are_fitted_each_as_given(rm3):
         assert f"{one}-{two}" in model.attrs["couplings_as_given"]
         i, j = labels.index(one), labels.index(two)
         for p, q in ((i, j), (j, i)):
-            assert r_squared(a[:, p, q], inf[p, q] + k[:, p, q].imag / w) >= 0.67
+            if two != "body2__Surge":
+                assert r_squared(a[:, p, q], inf[p, q] + k[:, p, q].imag / w) >= 0.67
             assert r_squared(b[:, p, q], k[:, p, q].real) >= 0.67
+    (failure,) = [f for f in model.attrs["failures"] if f.startswith("motion error")]
+    assert "body2__Surge" in failure and "Kramers–Kronig" in failure
     i, j = labels.index("body1__Surge"), labels.index("body2__Surge")
     average = 0.5 * (a[:, i, j] + a[:, j, i])
     assert min(r_squared(a[:, i, j], average), r_squared(a[:, j, i], average)) < 0.5
@@ -379,13 +400,15 @@ def test_rm3_is_passive(rm3):
 
 
 def test_rm3_motions_and_the_limit_named(rm3):
-    """The motion error against the data's own RAOs: 4.8 % measured, against 30.6 % for
-    the reciprocal fit before (its reciprocal part alone: 26.7 %), so below half of that;
-    not 1 %: the spar's roll and pitch added mass are 98 % off the Kramers–Kronig
-    transform of their damping with the data's ω = ∞ row, which the failure names."""
+    """The motion error against the data's own RAOs: 14.1 % measured, against 30.6 % for
+    the reciprocal fit before (its reciprocal part alone: 26.7 %), so below three
+    quarters of that; not 1 %: the spar's surge and pitch added mass are 85 % and 97 %
+    off the Kramers–Kronig transform of their damping with the data's ω = ∞ row, which
+    the failure names. (A fit that put damping beyond the data, before issue 31, reached
+    4.8 % with a K(t) of the float's surge nothing like the data's: R² −4.9.)"""
     ds, model = rm3
     error = motion_rao_error(ds, model).error
-    assert error < 0.5 * model.attrs["reciprocal_motion_error_floor"]
+    assert error < 0.75 * model.attrs["reciprocal_motion_error_floor"]
     failure = [f for f in model.attrs["failures"] if f.startswith("motion error")]
     assert failure and "Kramers–Kronig" in failure[0] and "body2__Pitch" in failure[0]
 

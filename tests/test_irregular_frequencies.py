@@ -4,9 +4,9 @@ A panel method without irregular-frequency removal puts a pole's shape in A(ω) 
 spike in B(ω) near each irregular frequency. The spike test finds the points near it;
 on the ITI barge (WAMIT, ROSCO) heave's A(ω) stays 30 % below what B(ω) implies from
 2.8 rad/s to the last frequency, 5 rad/s, while the spikes end at 3.9 rad/s. The default
-fit, holding those points, needs 76 states and reports three couplings failed; fitted
-below 2.8 rad/s the same data give a model that meets every target. The check and the
-fit's notes now say where and what to do.
+fit, holding those points, misses heave's R² of A (0.58); fitted below 2.8 rad/s the
+same data give a passive model within 0.002 of every target, whose K(t) follows the
+data's. The check and the fit's notes now say where and what to do.
 """
 
 from __future__ import annotations
@@ -18,9 +18,15 @@ import pytest
 
 import cummins
 from _synthetic import one_dof_hydrodb, read_quietly
+from cummins.radiation.damping_tail import fit_damping_tail
 from cummins.radiation.fit import fit_radiation
 from cummins.radiation.fit.scorecard import scorecard
-from cummins.radiation.retardation import causal_limits
+from cummins.radiation.retardation import (
+    CAUSAL_DEPARTURE,
+    added_mass_inf_per_frequency,
+    causal_limits,
+    trusted_frequencies,
+)
 from cummins.repair import irregular_frequency_spans
 
 
@@ -45,9 +51,17 @@ def test_the_barge_spans_start_where_its_added_mass_leaves_causality(barge):
 
 
 def test_fitted_below_the_span_the_barge_meets_its_targets(barge):
-    """The note's advice, followed: at ω ≤ 2.8 rad/s no coupling fails, every diagonal
-    R² of A and B ≥ 0.99 (independent scorecard), passive, and far fewer states than
-    the default fit through the spoiled data (76, three couplings failed)."""
+    """The note's advice, followed. The default fit through the spoiled data: heave's
+    R² of A 0.579 (its block's note, 'targets not met'), 0.685 on the independent
+    scorecard over all the data. At ω ≤ 2.8 rad/s: no failure, passive, every diagonal
+    R² of A and B ≥ 0.988 (heave's A, 0.988, the one target missed, by its note) and of
+    K(t) ≥ 0.995 against the data's K(t) with its damping tail.
+
+    Since the fit follows the data's damping tail beyond the last frequency (issue 31)
+    the default fit is no longer a failure (the passivity step used to take surge's and
+    sway's R² of A below 0.99; the plain fits now miss it first, a note) and the fit
+    below the span needs 49 states, not 35, against 58: the old 35 had heave's K(t) at
+    R² −2.18 (no decay beyond 2.8 rad/s as the data's tail), now 0.998."""
     with warnings.catch_warnings():
         warnings.simplefilter("ignore")
         full = fit_radiation(barge)
@@ -55,11 +69,14 @@ def test_fitted_below_the_span_the_barge_meets_its_targets(barge):
         below = fit_radiation(barge, omega_max=start)
     notes = " ".join(full.attrs["data_notes"])
     assert f"fitted below {start:.4g} rad/s" in notes
-    assert full.attrs["failures"] and not below.attrs.get("failures")
+    heave = next(n for n in full.attrs["data_notes"] if n.startswith("Heave: targets not met"))
+    assert float(heave.split("R² of A of Heave ")[1].split()[0]) < 0.8  # 0.579
+    assert not below.attrs.get("failures")
     card = scorecard(barge.sel(omega=barge.omega[barge.omega <= start]), below)
     assert card.passive and card.stable
-    assert min(card.r2_added_mass, card.r2_damping) >= 0.99
-    assert card.total_order <= 0.6 * scorecard(barge, full).total_order
+    assert min(card.r2_added_mass, card.r2_damping) >= 0.975  # 0.988
+    assert card.r2_kernel >= 0.98  # 0.995
+    assert scorecard(barge, full).r2_added_mass < 0.85  # 0.685
 
 
 def test_the_check_says_where_and_what_to_do(barge):
@@ -91,12 +108,32 @@ def test_consistent_data_have_no_span(shared_data, case):
 
 
 def test_a_departure_without_spikes_is_not_called_an_irregular_frequency(corpus):
-    """The RAFT Capytaine float's surge estimate departs over its last 7 of 28
-    frequencies (2.2–2.8 rad/s), with no spike there: data that end before the damping
-    has decayed (the unknown tail), not an irregular frequency; no span, and fitting
-    below 2.2 rad/s would not help (its heave then fails)."""
+    """The RAFT Capytaine float's surge damping is still rising at its last frequency,
+    2.8 rad/s (its peak beyond the data), with no spike anywhere: without a tail,
+    Ogilvie's A∞ estimate departs over the last 7 of 28 frequencies (11–40 % of the
+    DOF's scale from 2.2 rad/s), the unknown tail, not an irregular frequency. Continued
+    along its trend to a knee (:func:`fit_damping_tail`, ``"rising"``, knee 3.5 rad/s
+    chosen by Kramers–Kronig), the same data agree to 6.4 % at worst: no departure, no
+    span (before the rising tail, ``causal_limits`` gave surge a departure from 2.2 rad/s
+    and the span test had to refuse it for having no spike)."""
     ds = read_quietly(corpus / "RAFT" / "capytaine_integration_float" / "floatData.nc")
-    assert "Surge" in causal_limits(ds)
+    surge = {"influenced_dof": "Surge", "radiating_dof": "Surge"}
+    w = ds.omega.values
+    added = ds.added_mass.sel(surge).values
+    tail = fit_damping_tail(
+        w, ds.radiation_damping.sel(surge).values[:, None], "auto", added_mass=added[:, None]
+    )
+    assert tail.kind[0] == "rising" and tail.knee[0] > w[-1]
+    trusted = trusted_frequencies(ds)
+    off = {}
+    for kind in ("none", "auto"):
+        curve = added_mass_inf_per_frequency(ds, tail=kind).sel(surge).values
+        centre = np.median(curve[trusted])
+        off[kind] = np.abs(curve - centre) / max(abs(centre), np.median(np.abs(added)))
+    assert np.all(off["none"][w >= 2.2] > 0.1)  # 0.11–0.40: a departure without the tail
+    assert off["auto"].max() < CAUSAL_DEPARTURE  # 0.064 with it, 0.023 at 2.2 rad/s
+    assert np.all(off["auto"][w >= 2.2] < 0.6 * off["none"][w >= 2.2])  # ≤ 0.57×
+    assert causal_limits(ds) == {}
     assert irregular_frequency_spans(ds) == ()
 
 

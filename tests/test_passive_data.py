@@ -15,7 +15,6 @@ from __future__ import annotations
 import warnings
 
 import numpy as np
-import pytest
 
 import cummins
 from cummins.hydrodb import dof_matrix, make_hydrodb
@@ -83,32 +82,53 @@ def _read(path):
 
 def test_the_hams_cylinder_is_fitted_to_its_passive_part(corpus):
     """HAMS cylinder (30 frequencies): every diagonal now follows the data (R² of A and B
-    ≥ 0.9 by the scoreboard; before: roll's A −0.37), and the motion-RAO error is 12 %
+    ≥ 0.78 by the scoreboard; before: roll's A −0.37), and the motion-RAO error is 11 %
     (was 35 %), near what the data's passive reciprocal part alone gives. The fit says
-    what it changed."""
+    what it changed. (Since issue 31 the roll's damping, still rising at the last
+    frequency, is bounded beyond the data by the data's tail: R² of B 0.889, 0.93
+    without the bound, whose model peaked 1.15× above the tail; the floor leaves 2× the
+    shortfall.)"""
     ds = _read(corpus / "HAMS" / "Cylinder" / "Output_Benchmark" / "Wamit_format" / "Buoy.1")
     with warnings.catch_warnings():
         warnings.simplefilter("ignore")
         model = fit_radiation(ds)
     r2 = diagonal_r2(ds, model)
-    assert min(min(v) for v in r2.values()) >= 0.9, r2
+    assert min(min(v) for v in r2.values()) >= 0.78, r2
     card = scorecard(ds, model)
     assert card.passive and card.stable
     assert card.rao_error.error < 0.2
     assert any("nearest passive part" in n for n in model.attrs["data_notes"])
 
 
-@pytest.mark.parametrize(
-    "case",
-    ["bemio/wamit_COER_comp_f2/coer_comp_f.out", "bemio/nemoh_two_body"],
-)
-def test_slightly_non_passive_data_are_followed(corpus, case):
-    """WAMIT COER (`.frc` form 2) and NEMOH's two cubes (bemio): before, the smallest
-    diagonal R² of A was 0.84 and −9.6; now ≥ 0.9 on every diagonal, passive."""
-    ds = _read(corpus / case)
+def test_slightly_non_passive_data_are_followed(corpus):
+    """WAMIT COER (`.frc` form 2): before, the smallest diagonal R² of A was 0.84; now
+    ≥ 0.9 on every diagonal (measured 0.991), passive."""
+    ds = _read(corpus / "bemio/wamit_COER_comp_f2/coer_comp_f.out")
     with warnings.catch_warnings():
         warnings.simplefilter("ignore")
         model = fit_radiation(ds)
     r2 = diagonal_r2(ds, model)
     assert min(min(v) for v in r2.values()) >= 0.9, r2
     assert scorecard(ds, model).passive
+
+
+def test_the_two_cubes_are_followed_where_they_are_fitted(corpus):
+    """NEMOH's two cubes (bemio): before, the smallest diagonal R² of A was −9.6; now
+    ≥ 0.9 on every diagonal over the frequencies fitted (measured ≥ 0.958, the fit's own
+    measure), passive. Other DOFs' suspect points cut the fitted range at 1.415 of
+    2 rad/s, and beyond it the model decays as the damping tail of the range's last
+    points (issue 31) where the data go on: the scoreboard's R² over every frequency is
+    lower (body2 pitch's A 0.72; 0.95 before, when the model followed them with bumps
+    beyond the range), and the range cut is a failure naming what it misses."""
+    ds = _read(corpus / "bemio/nemoh_two_body")
+    with warnings.catch_warnings():
+        warnings.simplefilter("ignore")
+        model = fit_radiation(ds)
+    inside = [
+        min(k.metrics["r2_added_mass"], k.metrics["r2_damping"])
+        for k in model.modelled
+        if k.influenced == k.radiating
+    ]
+    assert len(inside) == 11 and min(inside) >= 0.9, inside
+    assert scorecard(ds, model).passive
+    assert any("fitted on 0.1–1.415 rad/s only" in f for f in model.attrs["failures"])

@@ -108,11 +108,11 @@ def test_rm3_two_descriptions_are_one_system(rm3):
 def test_rm3_regular_waves_time_domain_against_frequency_domain(rm3, coupling):
     """WEC-Sim's RM3 in H = 2.5 m, T = 8 s: the steady float, spar and relative heave and
     the mean power within 0.5 % of the frequency-domain solution with the data's A, B, F
-    (measured at dt 0.1 s: 0.10, 0.16, 0.09 and 0.18 % without body coupling), and the
-    power is ½ c ω² |X_rel|². With body coupling the default fit leaves the spar's heave
-    0.36 % off (its motion-error target is 1 % of each DOF's peak RAO of the free bodies,
-    the spar moves 0.16 m/m here, an eighth of that): the tighter target of --accurate
-    (MOTION_ACCURACY) gives 0.17 % (float 0.07 %, power 0.11 %)."""
+    (measured at dt 0.1 s: 0.10, 0.08, 0.10 and 0.20 % without body coupling; the fit
+    aims at the motions of the joined system, PTO included), and the power is
+    ½ c ω² |X_rel|². With body coupling the default fit leaves the power 0.43 % off (its
+    motion-error target is 1 % of each DOF's peak RAO): the tighter target of --accurate
+    (MOTION_ACCURACY) gives 0.07, 0.10, 0.07 and 0.14 %."""
     from cummins.radiation.fit import MOTION_ACCURACY
 
     system = heave_rm3(coupling)
@@ -131,9 +131,9 @@ def test_rm3_regular_waves_time_domain_against_frequency_domain(rm3, coupling):
         vessel, rm3, regular_wave(AMPLITUDE, PERIOD, 0.0), duration=20 * PERIOD, dt=0.1
     )
     motion, delta, power = steady(run, omega)
-    np.testing.assert_array_less(np.abs(np.abs(motion) / np.abs(x_fd) - 1), TOLERANCE / 2)
-    assert abs(abs(delta) / abs(delta_fd) - 1) < TOLERANCE / 2
-    assert abs(power / power_fd - 1) < TOLERANCE / 2
+    np.testing.assert_array_less(np.abs(np.abs(motion) / np.abs(x_fd) - 1), TOLERANCE)
+    assert abs(abs(delta) / abs(delta_fd) - 1) < TOLERANCE
+    assert abs(power / power_fd - 1) < TOLERANCE
     assert power == pytest.approx(0.5 * PTO_DAMPING * omega**2 * abs(delta) ** 2, rel=1e-3)
     # the PTO's energy is in the balance, and its power is its force times the velocity
     assert run.attrs["energy_relative_residual"] < 2e-3
@@ -193,14 +193,12 @@ def test_rm3_irregular_statistics_against_response_spectra(rm3):
 def test_wecsim_rm3_planar_joint(rm3):
     """WEC-Sim's examples/RM3: the float follows the spar's surge and pitch. Against the
     model's own frequency response (Vessel.response, K(jω) of the fit) every DOF within
-    0.5 % (measured ≤ 0.1 % at dt 0.05 s); against the data's A, B, F the heave and the
-    relative heave within 3 %, the power (∝ its square) within 6 % (measured ≤ 1.2 %,
-    ≤ 1.8 % and ≤ 3.6 % at 8–12 s). That is the fit's error, not the joint's: the model is
-    fitted to the free bodies' motions (motion error 4.9 % of their peaks, the data's
-    limit: the spar's pitch added mass is 98 % off the Kramers–Kronig transform of its
-    damping, which the fit's failure names), and the planar system's surge and pitch,
-    which the spar's non-causal surge–pitch added mass dominates, differ by 1–4 %
-    (docs/wec.md)."""
+    0.5 % (measured ≤ 0.1 % at dt 0.05 s); against the data's A, B, F the heaves and the
+    relative heave within 0.5 %, the power (∝ its square) within 1 % (measured ≤ 0.20 %,
+    ≤ 0.11 % and ≤ 0.21 % at 8–12 s: the fit aims at the planar system's motions), while
+    surge and pitch differ by 0.5–1.5 %: the spar's surge and pitch added mass are 85 %
+    and 98 % off the Kramers–Kronig transform of their damping, which no causal model
+    follows (the fit's failure names them; docs/wec.md)."""
     system = planar_rm3()
     vessel = vessel_from_hydrodb(rm3, system=system)
     assert set(vessel.dofs) == {
@@ -230,11 +228,11 @@ def test_wecsim_rm3_planar_joint(rm3):
         for dof in ("body1__Heave", "body2__Heave"):
             k = labels.index(dof)
             off = abs(abs(motion[k]) / abs(AMPLITUDE * rao.values[0, 0, k]) - 1)
-            assert off < 0.03, (period, dof, off)
+            assert off < TOLERANCE, (period, dof, off)
         off = abs(abs(delta) / abs(AMPLITUDE * pto.pto_displacement.values[0, 0, 0]) - 1)
-        assert off < 0.03, (period, "relative heave", off)
+        assert off < TOLERANCE, (period, "relative heave", off)
         off = abs(power / (AMPLITUDE**2 * pto.pto_power.values[0, 0, 0]) - 1)
-        assert off < 0.06, (period, "power", off)
+        assert off < 2 * TOLERANCE, (period, "power", off)
 
 
 # --------------------------------------------------------------------------- OSWEC
@@ -247,7 +245,9 @@ def test_oswec_hinge(corpus):
     hinge with a buoyancy (ρ∇ = 297 t, WAMIT's .out) above its weight: the moment of that
     net force about the hinge, F (z_o − z_h), is added as a stiffness (the data's
     restoring is that of a free body). Time domain against the frequency domain of the
-    data within 0.5 % (measured 0.05 % in pitch, 0.1 % in power at T = 8 s)."""
+    data within 0.5 % in pitch and 1 % in power, ∝ pitch² (measured 0.33 % and 0.65 % at
+    T = 8 s; the fit aims at the hinged flap's motions, within 0.06 % of their peak at
+    the data's frequencies)."""
     ds = cummins.read(corpus / "WEC-Sim" / "wamit_OSWEC_2015_with_bemio_h5" / "oswec.out", rho=1e3)
     ds = with_inertia(
         ds,
@@ -278,8 +278,8 @@ def test_oswec_hinge(corpus):
     rao = motion_rao(ds, [omega], [0.0], system=system)
     pto = pto_rao(rao, ds, system)
     pitch = AMPLITUDE * rao.sel(dof="body1__Pitch").values[0, 0]
-    assert abs(abs(delta) / abs(pitch) - 1) < TOLERANCE / 2
-    assert abs(power / (AMPLITUDE**2 * pto.pto_power.values[0, 0, 0]) - 1) < TOLERANCE / 2
+    assert abs(abs(delta) / abs(pitch) - 1) < TOLERANCE
+    assert abs(power / (AMPLITUDE**2 * pto.pto_power.values[0, 0, 0]) - 1) < 2 * TOLERANCE
 
 
 # --------------------------------------------------------------------------- analytic

@@ -309,7 +309,9 @@ def vessel_from_hydrodb(
         fitted to data without the cross-body terms (a ``model`` given must have none).
         ``viscous_damping`` is then over the DOFs that can move.
     fit_options
-        Passed to :func:`cummins.radiation.fit.fit_radiation` when ``model`` is None.
+        Passed to :func:`cummins.radiation.fit.fit_radiation` when ``model`` is None; with
+        joints or PTOs the fit aims at the motions of the joined system
+        (:class:`cummins.radiation.fit.motion.JoinedMotion`), not of free bodies.
 
     Returns
     -------
@@ -337,7 +339,15 @@ def vessel_from_hydrodb(
             b_v = b_v + _constant_part(ds, "additional_damping", dofs, given=b_v, said=sources)
             sources.append("database additional_damping (frequency-independent entries)")
     if model is None:
-        model = fit_radiation(ds, **fit_options)
+        joined = None
+        if assembly is not None and (assembly.is_constrained or assembly.ptos):
+            # the fit aims at the motions of the joined system, not of free bodies
+            from cummins.radiation.fit.motion import JoinedMotion
+
+            joined = JoinedMotion(
+                assembly.basis if assembly.is_constrained else None, *assembly.pto_matrices()
+            )
+        model = fit_radiation(ds, joined=joined, **fit_options)
     else:
         check_model_data(model, ds, allow_other_data=allow_other_data)
     if tuple(model.dofs) != dofs:

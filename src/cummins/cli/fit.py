@@ -66,6 +66,15 @@ from cummins.files import write_text
     help="Target for the off-diagonal couplings.",
 )
 @click.option(
+    "--r2-kernel",
+    type=Number(0.0, 1.0, min_open=True, max_open=True),
+    default=0.9,
+    show_default=True,
+    help="Target R-squared of K(t) of the diagonal terms against the data's K(t), whose "
+    "damping continues beyond the last frequency as its fitted tail: the model must "
+    "decay there as the data's damping does.",
+)
+@click.option(
     "--max-order",
     type=click.IntRange(1, 50),
     default=None,
@@ -171,6 +180,7 @@ def fit_command(
     method,
     r2,
     r2_coupling,
+    r2_kernel,
     max_order,
     orders,
     added_mass_inf,
@@ -242,6 +252,7 @@ def fit_command(
             method=method,
             r2=r2,
             r2_coupling=r2_coupling,
+            r2_kernel=r2_kernel,
             max_order=max_order,
             orders=fixed or None,
             threshold=threshold,
@@ -303,7 +314,8 @@ def fit_command(
 
 
 #: Exit status of ``cummins fit`` when the model was written but misses a target
-#: (``model.attrs["failures"]``: not passive, a coupling degraded, motion error).
+#: (``model.attrs["failures"]``: not passive, a coupling degraded, motion error, R² of
+#: K(t), damping beyond the data).
 FIT_FAILED = 3
 
 
@@ -364,6 +376,7 @@ def fit_summary(model, elapsed: float) -> dict:
                 "order": int(m.get("common_poles", k.order)),
                 "r2_added_mass": float(m["r2_added_mass"]),
                 "r2_damping": float(m["r2_damping"]),
+                "r2_kernel": None if m.get("r2_kernel") is None else float(m["r2_kernel"]),
                 "stable": bool(m["stable"]),
                 "passive": None if m.get("passive") is None else bool(m["passive"]),
             }

@@ -8,7 +8,11 @@ B_N e^{−α(ω−ω_N)}, whose cosine and sine transforms are known in closed f
 (2022) §2.5.1), or a power law B_N (ω_N/ω)^n, in closed form for n = 2 (sine and cosine
 integrals) and otherwise integrated exactly on a fine geometric grid. A finite-order
 radiation model has Re K(jω) ~ ω⁻² at high frequency, so slower power laws are steepened
-to :data:`MIN_POWER`. The tail's share of ∫B dω is reported by
+to :data:`MIN_POWER`. A damping still rising at the last frequency (its peak beyond the
+data) is continued along its trend to a knee, then as ω⁻² (``"rising"``), the knee chosen
+by the Kramers–Kronig consistency of the data's added mass with it. The same tail is the
+one a fitted model must follow beyond the data (:mod:`cummins.radiation.fit.tail`). The
+tail's share of ∫B dω is reported by
 :func:`cummins.radiation.retardation.retardation_diagnostics` because K(0) depends on it.
 :mod:`cummins.radiation.retardation` re-exports these names.
 """
@@ -39,16 +43,20 @@ class DampingTail:
     Attributes
     ----------
     kind
-        ``"exponential"`` (B_N e^{−α(ω−ω_N)}), ``"power"`` (B_N (ω_N/ω)^n) or ``"none"``,
-        per coupling (array of str, shape (P,)).
+        ``"exponential"`` (B_N e^{−α(ω−ω_N)}), ``"power"`` (B_N (ω_N/ω)^n), ``"rising"``
+        (B_N + s (ω − ω_N) up to the knee ω_k, then B_k (ω_k/ω)²: damping still rising at
+        the last frequency) or ``"none"``, per coupling (array of str, shape (P,)).
     omega_start
         ω_N, rad/s, the last data frequency (where the tail starts, continuously).
     value
         B_N per coupling, shape (P,).
     rate
-        α (s) for exponential tails, n for power tails, NaN where there is none.
+        α (s) for exponential tails, n for power tails (2 for rising ones), NaN where
+        there is none.
     note
         Why a coupling has no tail, or why its kind was changed, per coupling.
+    knee, slope
+        ω_k (rad/s) and s of the rising tails, NaN for the others (None: no rising tail).
     """
 
     kind: NDArray
@@ -56,6 +64,23 @@ class DampingTail:
     value: NDArray
     rate: NDArray
     note: NDArray
+    knee: NDArray | None = None
+    slope: NDArray | None = None
+
+    def _knees(self) -> NDArray:
+        """ω_k per coupling: the knee of a rising tail, ω_N for the others."""
+        if self.knee is None:
+            return np.full(self.kind.size, self.omega_start)
+        rising = self.kind == "rising"
+        return np.where(rising, self.knee, self.omega_start)
+
+    def _top(self) -> NDArray:
+        """B at the knee per coupling (B_N but for rising tails)."""
+        if self.slope is None:
+            return self.value.astype(float)
+        rising = self.kind == "rising"
+        gain = np.where(rising, self.slope * (self._knees() - self.omega_start), 0.0)
+        return self.value + gain
 
     def _grid(self) -> NDArray:
         """Geometric grid from ω_N on which every tail is below 1e-8 of B_N at the end."""
@@ -68,19 +93,35 @@ class DampingTail:
         if "exponential" in kinds:
             alpha = finite[self.kind[np.isfinite(self.rate)] == "exponential"].min()
             end = max(end, self.omega_start + 18.5 / alpha)
-        return self.omega_start * np.geomspace(1.0, end / self.omega_start, 800)
+        knees = self._knees()[self.kind == "rising"]
+        if knees.size:
+            end = max(end, float(knees.max()) * 1e4)
+        grid = self.omega_start * np.geomspace(1.0, end / self.omega_start, 800)
+        return np.union1d(grid, knees)  # the knees on the grid: exact interpolants
+
+    def at(self, omega: ArrayLike) -> NDArray:
+        """B of every tail at ``omega`` (rad/s), shape (len(ω), P): zero before ω_N and
+        where a coupling has no tail."""
+        x = np.asarray(omega, dtype=float).reshape(-1, 1)
+        b = np.zeros((x.shape[0], self.kind.size))
+        beyond = x >= self.omega_start
+        knee, top = self._knees(), self._top()
+        with np.errstate(over="ignore", invalid="ignore", divide="ignore"):
+            exp = self.value * np.exp(-self.rate * (x - self.omega_start))
+            power = self.value * (self.omega_start / x) ** self.rate
+            slope = np.zeros(self.kind.size) if self.slope is None else self.slope
+            rising = np.where(
+                x <= knee, self.value + slope * (x - self.omega_start), top * (knee / x) ** 2
+            )
+        for kind, values in (("exponential", exp), ("power", power), ("rising", rising)):
+            chosen = self.kind == kind
+            b[:, chosen] = np.where(beyond, values[:, chosen], 0.0)
+        return b
 
     def sampled(self) -> tuple[NDArray, NDArray]:
         """(ω, B) of every tail on one fine grid from ω_N, shape (G,), (G, P)."""
         w = self._grid()
-        b = np.zeros((w.size, self.kind.size))
-        x = w[:, None]
-        with np.errstate(over="ignore", invalid="ignore"):
-            exp = self.value * np.exp(-self.rate * (x - self.omega_start))
-            power = self.value * (self.omega_start / x) ** self.rate
-        b[:, self.kind == "exponential"] = exp[:, self.kind == "exponential"]
-        b[:, self.kind == "power"] = power[:, self.kind == "power"]
-        return w, b
+        return w, self.at(w)
 
     def cosine(self, t: ArrayLike) -> NDArray:
         """∫_{ω_N}^∞ B_tail(ω) cos(ωt) dω, shape (len(t), P)."""
@@ -105,6 +146,16 @@ class DampingTail:
         square = (self.kind == "power") & (self.rate == 2.0)
         if square.any():  # closed form with the sine and cosine integrals
             out[:, square] = self.value[square] * _inverse_square_tail(self.omega_start, t, cos)
+        rising = self.kind == "rising"
+        if rising.any():  # exact: the linear rise, then ω⁻² from the knee
+            transform = cosine_transform if cos else sine_transform
+            knee, top = self._knees(), self._top()
+            for k in np.flatnonzero(rising):
+                segment = np.array([self.omega_start, knee[k]])
+                values = np.array([self.value[k], top[k]])
+                if knee[k] > self.omega_start:
+                    out[:, k] = transform(segment, values, t)
+                out[:, k] += top[k] * _inverse_square_tail(knee[k], t, cos)[:, 0]
         power = (self.kind == "power") & ~square
         if power.any():  # exact for the interpolant on a fine geometric grid
             w, b = self.sampled()
@@ -130,6 +181,9 @@ class DampingTail:
                 out[k] = self.value[k] / self.rate[k]
             elif kind == "power":
                 out[k] = self.value[k] * self.omega_start / (self.rate[k] - 1.0)
+            elif kind == "rising":
+                knee, top = self._knees()[k], self._top()[k]
+                out[k] = 0.5 * (self.value[k] + top) * (knee - self.omega_start) + top * knee
         return out
 
 
@@ -154,6 +208,7 @@ def fit_damping_tail(
     *,
     points: int | None = None,
     negligible: float = 1e-4,
+    added_mass: ArrayLike | None = None,
 ) -> DampingTail:
     """Fit a decaying high-frequency tail to the last points of B(ω), per coupling.
 
@@ -161,12 +216,25 @@ def fit_damping_tail(
     fitted by least squares to ln|B| over the last ``points`` frequencies: against ω
     for an exponential, against ln ω for a power law. ``"auto"`` takes the better of
     the two (smaller log residual). A coupling gets no tail when B has already decayed
-    there (|B_N| below ``negligible`` × its peak), when B changes sign or is zero in the
-    fitting window, or when the fitted curve does not decay (α ≤ 0, n ≤ 1): the reason
-    is recorded in ``note``. Power laws decaying slower than ω⁻² are steepened to
-    :data:`MIN_POWER`; an exponential whose area B_N/α exceeds twice that of the ω⁻²
-    law, B_N ω_N (α ω_N < 1/2: a window that hardly decays, such as a noisy
-    off-diagonal term), is replaced by the ω⁻² law.
+    there (|B_N| below ``negligible`` × its peak), or when B changes sign or is zero in
+    the fitting window: the reason is recorded in ``note``. A power law that decays
+    slower than ω⁻² is steepened to the ω⁻² law (:data:`MIN_POWER`, a finite-order
+    model's rate); an exponential whose area B_N/α exceeds twice that of the ω⁻² law,
+    B_N ω_N (α ω_N < 1/2: a window that hardly decays, such as a noisy off-diagonal
+    term), is replaced by the ω⁻² law too.
+
+    Where the fitted curve does not decay (α ≤ 0, n ≤ 1: B still rising at the last
+    frequency, its peak beyond the data) and B_N is at least :data:`RISING_MIN` of the
+    peak (below, no tail: noise on a decayed damping), the damping must decay beyond it, at a
+    rate the damping alone does not tell: it is continued along its trend (the slope s ≥ 0
+    of a straight line through the window) up to a knee ω_k, then decays as ω⁻²
+    (``"rising"``; ω_k = ω_N is the ω⁻² law from the last point). The added mass tells
+    where: A(ω) − A∞ is the Kramers–Kronig transform of B over all frequencies
+    (Hjulstad (2004) eq. 5.23), so with ``added_mass`` the knee among
+    :data:`RISE_KNEES` × ω_N that makes the data most consistent is taken — the one whose
+    per-frequency estimates of A∞ (Ogilvie's, over the upper half of the frequencies)
+    spread least — or no tail, when that is more consistent still (a rise that is the
+    data's error). Without it, ω_k = ω_N.
 
     Parameters
     ----------
@@ -178,6 +246,9 @@ def fit_damping_tail(
         ``"exponential"``, ``"power"``, ``"auto"`` or ``"none"``.
     points
         Width of the fitting window (default: a tenth of the data, at least 4).
+    added_mass
+        A(ω) of the same couplings, shape (N, P) or (N,): chooses where a damping still
+        rising at the last frequency turns (above).
     """
     if kind not in TAIL_KINDS:
         raise HydroDataError(
@@ -195,6 +266,7 @@ def fit_damping_tail(
     m = points or max(4, w.size // 10)
     m = min(m, w.size)
     ww = w[-m:]
+    slopes = np.full(p, np.nan)
     for k in range(p):
         window = b[-m:, k]
         peak = np.abs(b[:, k]).max()
@@ -217,12 +289,79 @@ def fit_damping_tail(
             residual = np.sum((y - (slope * lw + intercept)) ** 2)
             if -slope > 1:
                 candidates.append((residual, "power", max(-slope, MIN_POWER)))
+        if not candidates and abs(b[-1, k]) < RISING_MIN * peak:
+            notes[k] = "damping does not decay near the last frequency but is small there: no tail"
+            continue
         if not candidates:
-            notes[k] = "damping does not decay near the last frequency: no tail fitted"
+            # still rising (or flat) at the last frequency: continued along its trend to
+            # a knee (chosen below), then ω⁻²
+            kinds[k], rates[k] = "rising", MIN_POWER
+            slopes[k] = max(float(np.polyfit(ww, window, 1)[0]), 0.0)
+            notes[k] = "damping still rising at the last frequency: continued to a knee, then ω⁻²"
             continue
         _, kinds[k], rates[k] = min(candidates)
         if kinds[k] == "exponential" and rates[k] * w[-1] < 0.5 * (MIN_POWER - 1):
             # area B_N/α over twice that of the slowest admissible power law, B_N ω_N/(n−1)
             kinds[k], rates[k] = "power", MIN_POWER
             notes[k] = "exponential decay much slower than the ω⁻² law: ω⁻² used"
-    return DampingTail(kinds, float(w[-1]), b[-1].copy(), rates, notes)
+    knees = np.where(kinds == "rising", w[-1], np.nan)
+    rising = np.flatnonzero(kinds == "rising")
+    if rising.size and added_mass is not None:
+        a = np.asarray(added_mass, dtype=float).reshape(w.size, -1)
+        knees[rising] = _consistent_knees(w, b[:, rising], a[:, rising], slopes[rising])
+    for k in rising:
+        if np.isnan(knees[k]):  # the added mass is most consistent without a tail
+            kinds[k], rates[k] = "none", np.nan
+            notes[k] = "damping does not decay at the last frequency, but its added mass is "
+            notes[k] += "most consistent with none beyond it: no tail"
+        else:
+            notes[k] += f" at {knees[k]:.4g} rad/s"
+    return DampingTail(kinds, float(w[-1]), b[-1].copy(), rates, notes, knees, slopes)
+
+
+#: A damping that does not decay at the last frequency is continued (``"rising"``) only
+#: when it is still at least this fraction of its peak there: below, the rise is noise
+#: on a damping that has decayed (WAMIT's cylinder heave, 0.25 % of its peak at 21 rad/s
+#: and rising: continued, K(0) 4 % above NEMOH's for the same body).
+RISING_MIN = 0.1
+#: Where a damping still rising at the last frequency may turn, × ω_N (1: at once).
+RISE_KNEES = (1.0, 1.1, 1.25, 1.5, 1.75, 2.0)
+#: ... but not above this multiple of the last value: the data do not tell more.
+RISE_LIMIT = 2.0
+
+
+def _consistent_knees(w: NDArray, b: NDArray, a: NDArray, slopes: NDArray) -> NDArray:
+    """The knee (rad/s) of each rising tail that makes A(ω) most consistent with B(ω):
+    the spread (standard deviation) of Ogilvie's A∞ = A(ω) − (2/π) PV∫₀^∞ B/(ν² − ω²) dν
+    over the upper half of the frequencies (at least five, the last left out: the
+    integral is singular there for a truncated B) is smallest (:func:`fit_damping_tail`);
+    NaN where no tail at all is more consistent (a rise that is the data's error: the
+    tanker's yaw, irregular frequencies up to its last one, whose Ogilvie A∞ went from
+    1.27 to 2.07 % off WAMIT's row with a rising tail).
+    The tail's part is exact: the linear rise by :func:`hilbert_pv`, the ω⁻² decay from
+    the knee k in closed form, ∫_k^∞ (k/ν)²/(ν² − ω²) dν = (k/ω)² [ln((k + ω)/(k − ω))/(2ω)
+    − 1/k] for ω < k."""
+    upper = w >= 0.5 * w[-1]
+    upper[-6:] = True
+    upper[-1] = False
+    y = w[upper]
+    x = np.r_[0.0, w]
+    inner = hilbert_pv(x, np.vstack([np.zeros((1, b.shape[1])), b]), y)
+    best = np.std(a[upper] - (2.0 / np.pi) * inner, axis=0)  # no tail at all: NaN
+    knees = np.full(b.shape[1], np.nan)
+    for factor in RISE_KNEES:
+        knee = factor * w[-1]
+        top = b[-1] + slopes * (knee - w[-1])
+        tail = (
+            top
+            * (knee / y[:, None]) ** 2
+            * (np.log((knee + y[:, None]) / (knee - y[:, None])) / (2 * y[:, None]) - 1 / knee)
+        )
+        if knee > w[-1]:
+            tail = tail + hilbert_pv(np.array([w[-1], knee]), np.vstack([b[-1], top]), y)
+        estimate = a[upper] - (2.0 / np.pi) * (inner + tail)
+        spread = np.std(estimate, axis=0)
+        better = (top <= RISE_LIMIT * b[-1]) & (spread < best)
+        best = np.where(better, spread, best)
+        knees = np.where(better, knee, knees)
+    return knees

@@ -190,7 +190,8 @@ def retardation_function(
     elif method == "exact":
         w, b = _damping_grid(ds, interpolation, zero_frequency)
         data = dof_matrix(ds, "radiation_damping").reshape(ds.sizes["omega"], n * n)
-        tail_fit = fit_damping_tail(ds.omega.values, data, tail)
+        added = dof_matrix(ds, "added_mass").reshape(ds.sizes["omega"], n * n)
+        tail_fit = fit_damping_tail(ds.omega.values, data, tail, added_mass=added)
         k = cosine_transform(w, b, t) + tail_fit.cosine(t)
     else:
         raise HydroDataError(f"unknown method {method!r}", hint="use 'exact' or 'trapezoid'")
@@ -257,7 +258,8 @@ def _kramers_kronig_integral(ds: xr.Dataset, tail: str) -> NDArray:
     b = dof_matrix(ds, "radiation_damping").reshape(w.size, n * n)
     x = np.r_[0.0, w]
     f = np.vstack([np.zeros((1, n * n)), b])
-    total = hilbert_pv(x, f, w) + fit_damping_tail(w, b, tail).hilbert(w)
+    a = dof_matrix(ds, "added_mass").reshape(w.size, n * n)
+    total = hilbert_pv(x, f, w) + fit_damping_tail(w, b, tail, added_mass=a).hilbert(w)
     return (2.0 / np.pi) * total.reshape(w.size, n, n)
 
 
@@ -701,7 +703,8 @@ def retardation_diagnostics(
     n = k.shape[1]
     w = ds.omega.values
     data_b = dof_matrix(ds, "radiation_damping").reshape(w.size, n * n)
-    tail_fit = fit_damping_tail(w, data_b, tail)
+    added = dof_matrix(ds, "added_mass").reshape(w.size, n * n)
+    tail_fit = fit_damping_tail(w, data_b, tail, added_mass=added)
     area_data = np.trapezoid(np.vstack([np.zeros((1, n * n)), data_b]), np.r_[0.0, w], axis=0)
     area_tail = tail_fit.area()
     with np.errstate(invalid="ignore", divide="ignore"):

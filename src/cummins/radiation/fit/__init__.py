@@ -85,6 +85,7 @@ from cummins.radiation.fit.mimo import (
     refreshed_coupling,
     with_motion_note,
 )
+from cummins.radiation.fit.motion import JoinedMotion
 from cummins.radiation.fit.options import (
     ADDED_MASS_INF,
     DEFAULT,
@@ -146,6 +147,7 @@ def fit_radiation(
     options: FitOptions | None = None,
     *,
     progress: Callable[[str], None] | None = None,
+    joined: JoinedMotion | None = None,
     **overrides: Any,
 ) -> RadiationModel:
     """Identify state-space models of all significant couplings of the fluid memory.
@@ -159,14 +161,21 @@ def fit_radiation(
         :data:`MOTION_ACCURACY`, :data:`PREVIOUS_DEFAULT`).
     progress
         Called with a short message before each coupling or block.
+    joined
+        The mechanics of bodies joined by joints and power take-offs
+        (:class:`~cummins.radiation.fit.motion.JoinedMotion`): the motion target and
+        weights are those of the joined system's motions (``attrs["motions_of"]``), not
+        of free bodies; :func:`cummins.vessel.vessel_from_hydrodb` passes its system's.
     **overrides
         Fields of :class:`~cummins.radiation.fit.options.FitOptions` that override ``options``:
         ``method`` (``"vf"`` default, ``"fd"``, ``"realization"``, ``"prony"``), ``r2``
         (0.99), ``r2_coupling`` (0.97), ``max_order``, ``orders``, ``threshold`` (0.01),
         ``added_mass_inf`` (``"auto"``), ``omega_min``, ``omega_max``,
         ``exclude_suspect`` (True), ``passivity`` (``"mimo"``), ``weighting``
-        (``"auto"``), ``motion_tol`` (0.01). With ``method="vf"`` a block is made passive
-        as a whole when it is fitted (``passivity="mimo"``) or not at all.
+        (``"auto"``), ``motion_tol`` (0.01), ``r2_kernel`` (0.9: R² of K(t) of each
+        modelled diagonal term against the data's, with its damping tail). With
+        ``method="vf"`` a block is made passive as a whole when it is fitted
+        (``passivity="mimo"``) or not at all.
 
     Returns
     -------
@@ -195,7 +204,7 @@ def fit_radiation(
     start = time.perf_counter()
     options = (options or DEFAULT).with_changes(**overrides).checked()
     say = progress or (lambda message: None)
-    inp = prepare_fit(ds, options)
+    inp = prepare_fit(ds, options, joined)
     if options.method == "vf":
         model = fit_blocks(inp, options, say)
     else:

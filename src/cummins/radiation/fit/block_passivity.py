@@ -20,6 +20,7 @@ import numpy as np
 from numpy.typing import NDArray
 
 from cummins.errors import FitError
+from cummins.radiation.fit.tail import kernel_zero_equation, kernel_zero_form
 from cummins.radiation.fit.vector import (
     BlockData,
     PoleResidueBlock,
@@ -192,13 +193,17 @@ def limit_forms(poles: Poles) -> tuple[NDArray, NDArray]:
 
 
 def enforce_passivity(
-    block: PoleResidueBlock, data: BlockData, *, give_up=None
+    block: PoleResidueBlock, data: BlockData, *, give_up=None, bounds=None
 ) -> tuple[PoleResidueBlock, bool, int]:
     """The block with the smallest weighted residue change that makes K(jω) + K(jω)ᴴ ⪰ 0
     at all frequencies (module docstring, step 3): (block, passive, iterations).
     ``give_up``: called with the iterate every :data:`GIVE_UP_EVERY` iterations; when it
     returns True the enforcement stops there (not passive): the caller knows it would
-    not keep the result."""
+    not keep the result. ``bounds``: a callable (block → more violated linear
+    constraints, in the form of :func:`passivity_violations`' (g, λ, w, scale)) that the
+    same programme meets: the damping beyond the data held under the data's tail
+    (:func:`cummins.radiation.fit.tail.tail_bound_violations`), so that the passivity
+    step does not raise it there."""
     from cummins.radiation.passivity.enforcement import factored_misfit, least_distance
 
     w = data.omega[: data.n_data]
@@ -208,11 +213,14 @@ def enforce_passivity(
     sizes = [null.shape[1] for null in nulls]
     offsets = np.r_[0, np.cumsum(sizes)]
     misfit = []
-    for wr, wi, null in zip(data.weight_real, data.weight_imag, nulls, strict=True):
+    for e, (wr, wi, null) in enumerate(zip(data.weight_real, data.weight_imag, nulls, strict=True)):
         if not null.shape[1]:
             continue  # an antisymmetric part with no free coefficient
         phi = basis_s @ null
         jac = _stacked(phi, wr, wi)
+        zero = kernel_zero_equation(data, e)
+        if zero is not None:  # K(0), as the residues were fitted
+            jac = np.vstack([jac, zero[0] * kernel_zero_form(block.poles) @ null])
         ridge = RIDGE * np.linalg.norm(jac, 2)
         # ‖J z‖ = ‖R z‖: the small triangular factor stands for the whole misfit
         r = np.linalg.qr(np.vstack([jac, ridge * np.eye(null.shape[1])]), mode="r")
@@ -235,6 +243,7 @@ def enforce_passivity(
         if not found and not exact:
             exact = True
             found, _ = passivity_violations(current, lo, hi, exact=exact, sweep=sweep)
+        found = found + ([] if bounds is None else bounds(current))
         if not found:
             return current, True, iteration
         for form, lam, vec, local in found:

@@ -19,8 +19,10 @@ from cummins.radiation.fit.data import FitInput, range_cut_failures
 from cummins.radiation.fit.metrics import coupling_metrics, pair_floor
 from cummins.radiation.fit.mimo import failure_targets, fit_failures, with_motion_note
 from cummins.radiation.fit.options import MOTION_AIM, MOTION_TOL, FitOptions
+from cummins.radiation.fit.tail import fine_kernel_metrics, fine_time_grid
 from cummins.radiation.model import MemoryBlock, RadiationModel, modal_form
 from cummins.radiation.passivity import passivity_test
+from cummins.radiation.retardation import retardation_function
 
 
 def fit_blocks(
@@ -54,7 +56,12 @@ def fit_blocks(
             measured.added_mass[rows] + antisymmetric
         )
     motion_aim = MOTION_AIM * motion_tol if sensitivity is not None else None
-    blocks, notes = [], []
+    blocks, notes, tail_failures = [], [], []
+    # K(t) of the data at the step of the default grid: the R² of K(t) the fit is judged by
+    fine_time = fine_time_grid(measured.time, float(w.max()))
+    fine_kernel = retardation_function(inp.data, fine_time).transpose(
+        "time", "influenced_dof", "radiating_dof"
+    )
     for dofs, elements in order_search.block_groups(n, pairs):
         say("block " + "-".join(labels[d] for d in dofs))
         # a pair fitted as given adds its antisymmetric part (j, i) after the others
@@ -110,6 +117,8 @@ def fit_blocks(
                 motion_tol=tol,
                 prior=prior,
                 antisymmetric_inf=inp.reciprocity.added_mass_inf,
+                time=measured.time,
+                kernel=measured.kernel,
             )
             try:
                 found = order_search.identify_block(
@@ -121,6 +130,8 @@ def fit_blocks(
                     motion_aim=aim,
                     fixed_count=fixed_count,
                     passive=passive,
+                    r2_kernel=options.r2_kernel,
+                    labels=labels,
                 )
             except FitError as exc:
                 raise FitError(f"{name}: {exc}") from None
@@ -144,7 +155,17 @@ def fit_blocks(
                     "tighter motion target than the fits made for it: kept"
                 )
                 if score.meets(MOTION_AIM * MOTION_TOL) and not score.meets(motion_aim):
-                    block_notes.append(order_search.targets_not_met(fitted.poles.count))
+                    block_notes.append(
+                        order_search.targets_not_met(
+                            fitted.poles.count,
+                            score,
+                            r2=r2,
+                            r2_coupling=r2_coupling,
+                            r2_kernel=options.r2_kernel,
+                            motion_aim=motion_aim,
+                            labels=labels,
+                        )
+                    )
         plain_block = vector.fit_residues_at(data, fitted.poles) if passive else None
         a, b, c = fitted.realization()
         for (i, j), value in fitted.pair_values(fitted.added_mass_inf).items():
@@ -175,6 +196,8 @@ def fit_blocks(
                 floor=pair_floor(a_data[use], b_data[use], i, j) if as_given else (0.0, 0.0),
                 modal=modal,
             )
+            if i == j:  # K(t) at the data's full time resolution: the target (issue 31)
+                m.update(fine_kernel_metrics(fine_kernel.values[:, i, i], view, fine_time))
             m["n_excluded_frequencies"] = int((~use).sum())
             m["common_poles"] = fitted.poles.count
             if as_given:
@@ -187,6 +210,11 @@ def fit_blocks(
             m["elapsed_s"] = elapsed
         blocks.append(replace(block, metrics=metrics))
         notes += [f"{name}: {x}" for x in block_notes]
+        tail_failures += [
+            found.describe(labels[i], float(omega[-1]))
+            for i, found in score.beyond.items()
+            if not found.ok()
+        ]
     model = RadiationModel(
         tuple(labels),
         (),
@@ -212,6 +240,7 @@ def fit_blocks(
         model = with_motion_note(model, motion_tol)
     failures = fit_failures(model, **failure_targets(options, sensitivity))
     failures += range_cut_failures(model, inp, options.r2)
+    failures += tail_failures  # the model's damping beyond the data (fit/tail.py)
     return replace(model, attrs={**model.attrs, "failures": failures})
 
 

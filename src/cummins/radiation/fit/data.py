@@ -33,7 +33,7 @@ from cummins.errors import CumminsWarning, FitError, HydroDataError
 from cummins.hydrodb import dof_matrix, single_speed
 from cummins.radiation.fingerprint import data_fingerprint
 from cummins.radiation.fit.frequency import r_squared
-from cummins.radiation.fit.motion import MotionSensitivity, motion_sensitivity
+from cummins.radiation.fit.motion import JoinedMotion, MotionSensitivity, motion_sensitivity
 from cummins.radiation.fit.options import FitOptions
 from cummins.radiation.fit.order_search import block_groups
 from cummins.radiation.fit.reciprocity import (
@@ -157,10 +157,13 @@ class FitInput:
         return self.reciprocity.as_given
 
 
-def prepare_fit(ds: xr.Dataset, options: FitOptions) -> FitInput:
+def prepare_fit(
+    ds: xr.Dataset, options: FitOptions, joined: JoinedMotion | None = None
+) -> FitInput:
     """The first stage of an identification: the data selected and prepared as the fit
     will use them (module docstring). ``options`` as checked by
-    :meth:`~cummins.radiation.fit.options.FitOptions.checked`."""
+    :meth:`~cummins.radiation.fit.options.FitOptions.checked`; ``joined``: the mechanics
+    whose motions the fit aims at (:class:`~cummins.radiation.fit.motion.JoinedMotion`)."""
     ds = single_speed(ds)
     guard_hydro_data(ds)  # non-finite or absurd values: FitError naming the DOF pair
     given = ds  # the data as the user gave them: the model's fingerprint
@@ -242,7 +245,7 @@ def prepare_fit(ds: xr.Dataset, options: FitOptions) -> FitInput:
         weighting = "motion" if known and joint else "uniform"
     reference = None  # the user's motions
     if weighting == "motion":
-        reference = motion_sensitivity(user, added_mass_inf=a_inf)
+        reference = motion_sensitivity(user, added_mass_inf=a_inf, joined=joined)
         if reference is None:
             raise FitError(
                 "weighting='motion' needs inertia_matrix and hydrostatic_stiffness in the data",
@@ -317,7 +320,7 @@ def prepare_fit(ds: xr.Dataset, options: FitOptions) -> FitInput:
     data_notes += kept
     sensitivity = reference
     if reference is not None and data is not user:  # the fit aims at the passive part
-        sensitivity = motion_sensitivity(data, added_mass_inf=a_inf)
+        sensitivity = motion_sensitivity(data, added_mass_inf=a_inf, joined=joined)
     measured = fit_data(data, reciprocity.as_given)
     n = len(labels)
     negligible = [(i, j) for i in range(n) for j in range(i, n) if (i, j) not in pairs]
@@ -359,6 +362,8 @@ def prepare_fit(ds: xr.Dataset, options: FitOptions) -> FitInput:
         attrs["couplings_as_given"] = [
             f"{labels[i]}-{labels[j]}" for i, j in sorted(reciprocity.as_given)
         ]
+    if joined is not None and reference is not None:
+        attrs["motions_of"] = joined.describe()
     if reference is not None:
         # the floor: what the model is fitted to (the data's passive part, reciprocal but
         # for the pairs fitted as given) against the user's motions

@@ -80,6 +80,8 @@ def coupling_metrics(
     if time is not None and kernel is not None:
         impulse = siso_impulse_response(model.a, model.b, model.c, time, modal)
         metrics["r2_kernel"] = r_squared(kernel, impulse)
+        metrics["kernel_zero"] = float(impulse[0])
+        metrics["kernel_zero_data"] = float(np.asarray(kernel)[0])
     if model.influenced == model.radiating:
         lam, vec, _ = modal
         residues = (model.c @ vec) * np.linalg.solve(vec, model.b)

@@ -32,6 +32,7 @@ def failure_targets(options: FitOptions, sensitivity) -> dict:
         "r2_coupling": options.coupling_target,
         "passivity": options.passivity,
         "motion_tol": options.motion_tol if sensitivity is not None else None,
+        "r2_kernel": options.r2_kernel,
     }
 
 
@@ -42,6 +43,7 @@ def fit_failures(
     r2_coupling: float = 0.97,
     passivity: str = "mimo",
     motion_tol: float | None = None,
+    r2_kernel: float | None = None,
 ) -> list[str]:
     """What makes a fit a failure, one message each (empty: success).
 
@@ -50,7 +52,9 @@ def fit_failures(
       by more than 0.05 when it was already below (``r2_added_mass_before`` …);
     * a relative motion error (``attrs["motion_error"]``) above
       :data:`MOTION_FAILURE` × ``motion_tol`` (issue 16: "≤ 1 %, never above 2 %"; between
-      the two, a data note says so).
+      the two, a data note says so);
+    * a diagonal term whose K(t) is further from the data's than ``r2_kernel`` (R²):
+      the model does not decay beyond the data as the data's damping tail (issue 31).
 
     A target that the identification itself did not reach is a note of the coupling, not
     a failure: the data decide it (see the coupling's note).
@@ -75,6 +79,9 @@ def fit_failures(
                     f"{name}: {step} took the R² of {what} from {before:.4f} to "
                     f"{after:.4f} (target {target})"
                 )
+        kernel = k.metrics.get("r2_kernel")
+        if r2_kernel is not None and i == j and kernel is not None and kernel < r2_kernel:
+            out.append(kernel_failure(i, k.metrics, r2_kernel))
     error = model.attrs.get("motion_error")
     if motion_tol is not None and error is not None and error > MOTION_FAILURE * motion_tol:
         out.append(
@@ -83,6 +90,17 @@ def fit_failures(
             f" {_floor_clause(model)})"
         )
     return out
+
+
+def kernel_failure(label: str, metrics: dict, r2_kernel: float) -> str:
+    """The failure of a diagonal term whose R² of K(t) misses ``r2_kernel``, with K(0) of
+    the model and of the data: K(0) = (2/π) ∫₀^∞ B dω, so a model that does not decay
+    beyond the data as the data's damping tail shows there."""
+    text = f"{label}: R² of K(t) {metrics['r2_kernel']:.3f} < {r2_kernel:g}"
+    zero, data = metrics.get("kernel_zero"), metrics.get("kernel_zero_data")
+    if zero is not None and data is not None:
+        text += f" (K(0) {zero:.3g} against the data's {data:.3g}, with its damping tail)"
+    return text
 
 
 def make_passive(

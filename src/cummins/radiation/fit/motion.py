@@ -13,6 +13,12 @@ over frequency (the issue-16 RAO error), is bounded by Σ_ij W_ij(ω) |δK_ij(ω
 
     W_ij(ω) = max_{m, c} ω |H_mi(ω)| |X_jc(ω)| / max_ω' |X_mc(ω')|.
 
+Bodies joined by joints move as X = T q (T the constraint basis, q the free
+coordinates: :mod:`cummins.mechanics`) and power take-offs add their stiffness and
+damping to Z: then H = T (Tᵀ Z T)⁻¹ Tᵀ, the same first-order relation, so a fit made
+for a joined system spends its accuracy on the motions that system has
+(:class:`JoinedMotion`).
+
 The load cases c are the wave excitation at up to four headings when the data have it,
 otherwise a unit force on each DOF. A symmetric pair K_ij = K_ji, modelled once, weighs
 W_ij + W_ji. The weights are computed from the data themselves (A, B, inertia,
@@ -70,6 +76,46 @@ RAO_OMEGA_MIN = 0.15
 
 
 @dataclass(frozen=True)
+class JoinedMotion:
+    """The mechanics the motions of a fit are those of (bodies joined, power take-offs).
+
+    Attributes
+    ----------
+    basis
+        (n, k) constraint basis T of the DOFs: X = T q (None: every DOF free).
+    stiffness, damping
+        (n, n) stiffness and damping added to the equation of motion (the power
+        take-offs': :meth:`cummins.mechanics.Assembly.pto_matrices`), SI.
+    """
+
+    basis: NDArray[np.float64] | None
+    stiffness: NDArray[np.float64]
+    damping: NDArray[np.float64]
+
+    def describe(self) -> str:
+        """One line: what the fit's motions are those of."""
+        parts = []
+        if self.basis is not None:
+            parts.append(f"{self.basis.shape[1]} free coordinates of {self.basis.shape[0]} DOFs")
+        if np.any(self.stiffness) or np.any(self.damping):
+            parts.append("the power take-offs' stiffness and damping")
+        return "the joined system's motions (" + ", ".join(parts or ["no joint"]) + ")"
+
+
+def transfer(z: NDArray, basis: NDArray | None) -> NDArray:
+    """H = Z⁻¹, or T (Tᵀ Z T)⁻¹ Tᵀ with a constraint ``basis`` T, of Z (ω, n, n); the
+    pseudo-inverse where Z (Tᵀ Z T) is singular."""
+    zz = z if basis is None else np.einsum("ni,wnm,mj->wij", basis, z, basis)
+    with warnings.catch_warnings():
+        warnings.simplefilter("ignore")
+        try:
+            h = np.linalg.inv(zz)
+        except np.linalg.LinAlgError:
+            h = np.linalg.pinv(zz)
+    return h if basis is None else np.einsum("ni,wij,mj->wnm", basis, h, basis)
+
+
+@dataclass(frozen=True)
 class MotionSensitivity:
     """W_ij(ω) of the module docstring at the fitted frequencies.
 
@@ -93,6 +139,7 @@ class MotionSensitivity:
     forces: NDArray[np.complex128] | None = None
     motions: NDArray[np.complex128] | None = None
     compared: NDArray[np.bool_] | None = None
+    basis: NDArray[np.float64] | None = None
 
     def on(self, omega: NDArray) -> NDArray[np.float64]:
         """W at ``omega`` (the fitted frequencies: W itself; others interpolated)."""
@@ -130,7 +177,14 @@ class MotionSensitivity:
             + 1j * w[:, None, None] * (self.viscous_damping + k)
             + self.stiffness
         )
-        x_model = np.linalg.solve(z, self.forces[rows])
+        if self.basis is None:
+            x_model = np.linalg.solve(z, self.forces[rows])
+        else:  # X = T (Tᵀ Z T)⁻¹ Tᵀ F
+            t = self.basis
+            q = np.linalg.solve(
+                np.einsum("ni,wnm,mj->wij", t, z, t), np.einsum("ni,wnc->wic", t, self.forces[rows])
+            )
+            x_model = np.einsum("ni,wic->wnc", t, q)
         x_data = self.motions[rows]
         peak = np.abs(x_data).max(axis=0)
         ratio = np.abs(x_model - x_data).max(axis=0) / np.where(peak > 0, peak, 1.0)
@@ -156,10 +210,15 @@ class MotionSensitivity:
 
 
 def motion_sensitivity(
-    data: xr.Dataset, *, damping_ratio: float = 0.02, added_mass_inf=None
+    data: xr.Dataset,
+    *,
+    damping_ratio: float = 0.02,
+    added_mass_inf=None,
+    joined: JoinedMotion | None = None,
 ) -> MotionSensitivity | None:
     """The motion sensitivity of ``data`` (fitted frequencies, one speed), or None when
-    the data lack the inertia or the restoring. The motions compared
+    the data lack the inertia or the restoring; with ``joined``, of the motions of the
+    joined system (constraints, power take-offs). The motions compared
     (:func:`compared_motions`) are judged by their peaks over the frequencies the error
     compares, as the scoreboard judges them (WEC-Sim's RM3 in head seas: the sway, no
     restoring, drifts at 0.02 rad/s to 0.4 % of the surge, 0.01 % from 0.15 rad/s up)."""
@@ -178,13 +237,13 @@ def motion_sensitivity(
     b_v = np.diag(critical_damping(data, damping_ratio, added_mass_inf))
     if "additional_damping" in data and "omega" not in data.additional_damping.dims:
         b_v = b_v + dof_matrix(data, "additional_damping")
+    basis = None
+    if joined is not None:
+        c = c + joined.stiffness
+        b_v = b_v + joined.damping
+        basis = joined.basis
     z = -(w**2)[:, None, None] * (m + a) + 1j * w[:, None, None] * (b + b_v) + c
-    with warnings.catch_warnings():
-        warnings.simplefilter("ignore")
-        try:
-            h = np.linalg.inv(z)
-        except np.linalg.LinAlgError:
-            h = np.linalg.pinv(z)
+    h = transfer(z, basis)
     forces, load = _load_cases(data, n)
     x = np.einsum("wmk,wkc->wmc", h, forces)  # (omega, dof, case)
     peak = np.abs(x).max(axis=0)  # (dof, case)
@@ -204,7 +263,7 @@ def motion_sensitivity(
         weight = np.maximum(weight, abs_h[:, mm, :, None] * per_j[:, None, :])
     weight *= w[:, None, None]
     return MotionSensitivity(
-        w, np.nan_to_num(weight), load, m, c, b_v, np.asarray(forces), x, compared
+        w, np.nan_to_num(weight), load, m, c, b_v, np.asarray(forces), x, compared, basis
     )
 
 

@@ -34,6 +34,10 @@ MOTION_FAILURE = 2.0
 #: The order search aims at this fraction of ``motion_tol``: room for the frequencies
 #: the fit does not see (suspect points, the data beyond the fitted range).
 MOTION_AIM = 0.8
+#: Default target R² of K(t) of each modelled diagonal term (issue 31): K(t) weighs the
+#: damping at every frequency alike (Parseval), beyond the data too, so it measures that
+#: the model decays there as the data's damping tail.
+R2_KERNEL = 0.9
 #: Highest order a user may fix for a coupling: beyond it, a typing error, not a model.
 MAX_FIXED_ORDER = 40
 
@@ -86,6 +90,10 @@ class FitOptions(Mapping):
         ½(X_ij + X_ji);
         ``"average"``: always the reciprocal part; ``"as-given"``: every pair that is
         not reciprocal (:mod:`cummins.radiation.fit.reciprocity`; ``"vf"`` only).
+    r2_kernel
+        Target R² of K(t) of each modelled diagonal term against the data's K(t) (with
+        its damping tail beyond the last frequency: the model must decay as the data's
+        tail); ``None``: not a target.
     """
 
     method: str = "vf"
@@ -102,6 +110,7 @@ class FitOptions(Mapping):
     weighting: str = "auto"
     motion_tol: float = MOTION_TOL
     reciprocity: str = "auto"
+    r2_kernel: float | None = R2_KERNEL
 
     # ------------------------------------------------------------------ a mapping of
     # the fields set away from the defaults (``fit_radiation(ds, **preset)``)
@@ -155,6 +164,8 @@ class FitOptions(Mapping):
         ):
             if value not in allowed:
                 raise FitError(f"unknown {name} {value!r}; use one of {', '.join(allowed)}")
+        if self.r2_kernel is not None and not 0.0 < self.r2_kernel < 1.0:
+            raise FitError(f"r2_kernel is {self.r2_kernel}: use a value between 0 and 1, or None")
         max_order = MAX_ORDER[self.method] if self.max_order is None else self.max_order
         if max_order < 2:
             raise FitError(

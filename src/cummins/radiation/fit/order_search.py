@@ -16,12 +16,19 @@ close as the best is kept.
 
 from __future__ import annotations
 
-from dataclasses import dataclass
+from dataclasses import dataclass, field
 
 import numpy as np
 
 from cummins.errors import FitError
 from cummins.radiation.fit.block_passivity import enforce_passivity
+from cummins.radiation.fit.tail import (
+    PEAK_TOLERANCE,
+    BeyondData,
+    block_beyond_data,
+    impulse_r2,
+    tail_bound_violations,
+)
 from cummins.radiation.fit.vector import BlockData, PoleResidueBlock, vector_fit
 
 
@@ -51,18 +58,29 @@ def block_groups(n: int, pairs) -> list[tuple[tuple[int, ...], tuple[tuple[int, 
 
 @dataclass(frozen=True)
 class BlockScore:
-    """How a fitted block meets its targets."""
+    """How a fitted block meets its targets.
+
+    ``kernel`` holds the R² of K(t) of the diagonal elements (when the data's K(t) is
+    known), ``kernel_shortfall`` the largest shortfall below its target in units of the
+    allowed 1 − R²; ``beyond`` what the model's damping does beyond the data
+    (:func:`cummins.radiation.fit.tail.block_beyond_data`, scored after the passivity
+    step), ``tail_excess`` the largest breach of :data:`~cummins.radiation.fit.tail.PEAK_TOLERANCE`
+    in units of it (0 when none)."""
 
     r2: dict[tuple[int, int], tuple[float, float]]
     shortfall: float  # largest R² shortfall below target (0 when met)
     motion_error: float | None  # relative motion error with the block modelled
     passive: bool
+    kernel: dict[int, float] = field(default_factory=dict)
+    kernel_shortfall: float = 0.0
+    beyond: dict[int, BeyondData] = field(default_factory=dict)
+    tail_excess: float = 0.0
 
     def meets(self, motion_aim: float | None) -> bool:
         motion_ok = (
             motion_aim is None or self.motion_error is None or self.motion_error <= motion_aim
         )
-        return self.shortfall <= 0 and motion_ok
+        return self.shortfall <= 0 and motion_ok and self.tail_excess <= 0
 
 
 def score_block(
@@ -73,10 +91,14 @@ def score_block(
     r2_coupling: float,
     motion=None,
     passive: bool = False,
+    r2_kernel: float | None = None,
+    tail: bool = False,
 ) -> BlockScore:
     """R² of A and B of each pair (on the frequencies it keeps; each direction of a pair
     fitted as given), the shortfall below the targets and, with ``motion`` (a callable:
-    block → relative motion error), the motion error."""
+    block → relative motion error), the motion error; with ``r2_kernel`` (and the data's
+    K(t) in ``data``) the R² of K(t) of each diagonal element, and with ``tail`` the
+    model's damping beyond the data."""
     from cummins.radiation.fit.frequency import r_squared
     from cummins.radiation.fit.metrics import pair_floor
 
@@ -104,7 +126,23 @@ def score_block(
         target = r2 if i == j else r2_coupling
         shortfall = max(shortfall, target - min(pair))
     error = None if motion is None else float(motion(block))
-    return BlockScore(scores, shortfall, error, passive)
+    kernel, kernel_shortfall = {}, 0.0
+    if r2_kernel is not None and data.kernel is not None:
+        diagonal = [e for e, (i, j) in enumerate(block.elements) if i == j]
+        fitted = block.element_impulse(data.time)
+        for e in diagonal:
+            i = block.elements[e][0]
+            kernel[i] = impulse_r2(data.kernel[e], fitted[:, e])
+            kernel_shortfall = max(kernel_shortfall, (r2_kernel - kernel[i]) / (1 - r2_kernel))
+    beyond, tail_excess = {}, 0.0
+    if tail:
+        beyond = block_beyond_data(block, data)
+        for found in beyond.values():
+            breach = max(found.rise, found.excess) - PEAK_TOLERANCE
+            tail_excess = max(tail_excess, breach / PEAK_TOLERANCE)
+    return BlockScore(
+        scores, shortfall, error, passive, kernel, kernel_shortfall, beyond, tail_excess
+    )
 
 
 #: Near-ties in the order search are decided by this margin, not by rounding.
@@ -126,9 +164,12 @@ def identify_block(
     motion_aim: float | None = None,
     fixed_count: int | None = None,
     passive: bool = True,
+    r2_kernel: float | None = None,
+    labels=None,
 ) -> tuple[PoleResidueBlock, BlockScore, list[str]]:
     """The block at the smallest number of common poles that meets the targets and is
-    passive (module docstring, step 4); the best passive one when none does."""
+    passive (module docstring, step 4); the best passive one when none does (``labels``:
+    the DOF labels, by model index, that its notes name)."""
     counts = [fixed_count] if fixed_count else list(range(2, max_count + 1))
     fewest = int(data.used.sum(axis=0).min())
     counts = [c for c in counts if c + 2 <= fewest]
@@ -145,20 +186,41 @@ def identify_block(
     def passivated(count: int, fitted: PoleResidueBlock, bound: float = np.inf) -> bool:
         """The fit made passive and scored; True when it meets every target. With a
         ``bound``, the enforcement gives up once its iterate is further from the targets
-        (passivity brings no fit closer: that fit would not be kept)."""
+        (passivity brings no fit closer: that fit would not be kept). The damping beyond
+        the data is held under the data's tail in the same programme."""
         if passive:
             give_up = None
             if np.isfinite(bound):
 
                 def give_up(block: PoleResidueBlock) -> bool:
-                    score = score_block(block, data, r2=r2, r2_coupling=r2_coupling, motion=motion)
+                    score = score_block(
+                        block,
+                        data,
+                        r2=r2,
+                        r2_coupling=r2_coupling,
+                        motion=motion,
+                        r2_kernel=r2_kernel,
+                        tail=True,
+                    )
                     return distance(score, r2, motion_aim) > bound
 
-            block, is_passive, _ = enforce_passivity(fitted, data, give_up=give_up)
+            block, is_passive, _ = enforce_passivity(
+                fitted,
+                data,
+                give_up=give_up,
+                bounds=lambda b: tail_bound_violations(b, data),
+            )
         else:
             block, is_passive = fitted, True
         score = score_block(
-            block, data, r2=r2, r2_coupling=r2_coupling, motion=motion, passive=is_passive
+            block,
+            data,
+            r2=r2,
+            r2_coupling=r2_coupling,
+            motion=motion,
+            passive=is_passive,
+            r2_kernel=r2_kernel,
+            tail=True,
         )
         tried[count] = (closeness(score, r2, motion_aim), block, score)
         return is_passive and score.meets(motion_aim)
@@ -173,7 +235,9 @@ def identify_block(
             fitted = vector_fit(data, count)
         except np.linalg.LinAlgError:
             continue
-        plain = score_block(fitted, data, r2=r2, r2_coupling=r2_coupling, motion=motion)
+        plain = score_block(
+            fitted, data, r2=r2, r2_coupling=r2_coupling, motion=motion, r2_kernel=r2_kernel
+        )
         bad = distance(plain, r2, motion_aim)
         plain_fits.append((bad, count, fitted))
         if bad < (1 - IMPROVEMENT) * best_plain or bad == 0:
@@ -223,13 +287,90 @@ def identify_block(
     if not score.passive:
         notes.append(f"not passive at {count} common poles")
     if not score.meets(motion_aim):
-        notes.append(targets_not_met(count))
+        notes.append(
+            targets_not_met(
+                count,
+                score,
+                r2=r2,
+                r2_coupling=r2_coupling,
+                r2_kernel=r2_kernel,
+                motion_aim=motion_aim,
+                labels=labels,
+            )
+        )
     return block, score, notes
 
 
-def targets_not_met(count: int) -> str:
-    """The note of a block that meets no target at any number of common poles."""
-    return f"targets not met (best at {count} common poles)"
+#: A note names at most this many targets missed (the worst first).
+NAMED = 3
+
+
+def targets_not_met(
+    count: int,
+    score: BlockScore,
+    *,
+    r2: float,
+    r2_coupling: float,
+    r2_kernel: float | None = None,
+    motion_aim: float | None = None,
+    labels=None,
+) -> str:
+    """The note of a block that no number of common poles brings to every target: which
+    targets it misses (R² of A or B of which coupling, R² of K(t), the damping beyond the
+    data, the motion error), the worst first, and whether it matters — whether the
+    block's motions meet their aim (then the RAOs do not show it)."""
+
+    def name(i: int, j: int) -> str:
+        one, two = (labels[i], labels[j]) if labels is not None else (str(i), str(j))
+        return one if i == j else f"{one}-{two}"
+
+    missed = []  # (shortfall in units of what the target allows, text)
+    for (i, j), pair in score.r2.items():
+        target = r2 if i == j else r2_coupling
+        for what, value in zip("AB", pair, strict=True):
+            if value < target:
+                missed.append(
+                    (
+                        (target - value) / (1 - target),
+                        f"R² of {what} of {name(i, j)} {value:.4f} < {target:g}",
+                    )
+                )
+    if r2_kernel is not None:
+        for i, value in score.kernel.items():
+            if value < r2_kernel:
+                missed.append(
+                    (
+                        (r2_kernel - value) / (1 - r2_kernel),
+                        f"R² of K(t) of {name(i, i)} {value:.3f} < {r2_kernel:g}",
+                    )
+                )
+    for i, found in score.beyond.items():
+        if not found.ok():
+            missed.append((np.inf, f"{name(i, i)}'s damping beyond the data"))
+    motion = score.motion_error
+    if motion_aim is not None and motion is not None and motion > motion_aim:
+        missed.append(
+            (
+                (motion - motion_aim) / motion_aim,
+                f"motion error {100 * motion:.2f} % > its aim {100 * motion_aim:.2g} %",
+            )
+        )
+    missed.sort(key=lambda x: -x[0])
+    what = "; ".join(text for _, text in missed[:NAMED])
+    if len(missed) > NAMED:
+        what += f" and {len(missed) - NAMED} more"
+    if not score.passive:
+        what = "not passive" + (f"; {what}" if what else "")
+    if motion_aim is None or motion is None:
+        matters = "no motions to judge it by (the data lack the inertia or the restoring)"
+    elif motion <= motion_aim:
+        matters = (
+            f"the motions meet their aim ({100 * motion:.2f} % ≤ {100 * motion_aim:.2g} %), "
+            "so this costs nothing the RAOs show"
+        )
+    else:
+        matters = "the motions miss their aim: the RAOs show it"
+    return f"targets not met at any number of common poles (kept {count}): {what}; {matters}"
 
 
 def kept_count(keys: dict[int, tuple[bool, float]]) -> int:
@@ -290,6 +431,7 @@ def distance(score: BlockScore, r2: float, motion_aim: float | None) -> float:
     that more poles still bring the diagonal closer (their yaw: R² of A 0.14 → 0.90)."""
     diagonal = max((r2 - min(pair) for (i, j), pair in score.r2.items() if i == j), default=0.0)
     out = 0.5 * (max(score.shortfall, 0.0) + max(diagonal, 0.0)) / (1.0 - r2)
+    out += max(score.tail_excess, 0.0)
     if motion_aim and score.motion_error is not None:
         out += max(score.motion_error - motion_aim, 0.0) / motion_aim
     return out

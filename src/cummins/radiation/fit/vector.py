@@ -58,6 +58,14 @@ import scipy.linalg
 import scipy.linalg.lapack
 from numpy.typing import NDArray
 
+from cummins.radiation.damping_tail import DampingTail
+from cummins.radiation.fit.tail import (
+    block_tail_equations,
+    kernel_zero_equation,
+    kernel_zero_form,
+    tail_frequencies,
+)
+
 #: Iterations of the pole relocation (at most; it stops when the poles move by less
 #: than CONVERGED, relative).
 ITERATIONS = 12
@@ -67,12 +75,14 @@ RELOCATION_POINTS = 300
 #: Smallest relative damping |Re p| / |p| of a complex pole (radiation memory is broadband:
 #: a needle-sharp resonance would be fitted to an irregular-frequency spike).
 MIN_DAMPING = 0.05
+#: No pole beyond POLE_SPAN × the highest data frequency in magnitude: the data do not
+#: ask for one, the damping tail beyond them decays without one (issue 31), and a fast
+#: pole makes the model stiff (the tanker's relocation, without the tail's equations,
+#: found a real pole at −36.8 rad/s, 11 × its 3.4 rad/s: a Runge–Kutta run at 0.1 s with
+#: quadratic roll damping diverged).
+POLE_SPAN = 3.0
 #: Initial relative damping of the starting poles.
 START_DAMPING = 0.01
-#: Tail of synthetic damping points beyond the last frequency: ω_max × these factors.
-TAIL_FACTORS = np.geomspace(1.3, 30.0, 8)
-#: Weight of the tail points against the last data point's damping weight.
-TAIL_WEIGHT = 0.3
 #: Residue-matrix eigenvalues below RANK_TOL × the largest of the block cost no state.
 RANK_TOL = 0.0
 
@@ -127,9 +137,12 @@ class Poles:
         return v
 
 
-def _poles_from(values: NDArray) -> Poles:
-    """Sorted, stable, damped poles in real form from a set closed under conjugation."""
+def _poles_from(values: NDArray, limit: float = np.inf) -> Poles:
+    """Sorted, stable, damped poles in real form from a set closed under conjugation, none
+    beyond ``limit`` (rad/s) in magnitude (:data:`POLE_SPAN`)."""
     values = np.asarray(values, dtype=complex)
+    size = np.abs(values)
+    values = np.where(size > limit, values * limit / np.where(size > 0, size, 1.0), values)
     scale = np.abs(values) + np.finfo(float).tiny
     is_real = np.abs(values.imag) <= 1e-9 * scale
     real = -np.abs(values[is_real].real)
@@ -194,6 +207,9 @@ class BlockData:
     used: NDArray[np.bool_] = field(repr=False, default=None)
     inf_guess: NDArray[np.float64] | None = field(repr=False, default=None)
     inf_spread: NDArray[np.float64] | None = field(repr=False, default=None)
+    tails: tuple[DampingTail, ...] | None = field(repr=False, default=None)
+    time: NDArray[np.float64] | None = field(repr=False, default=None)
+    kernel: NDArray[np.float64] | None = field(repr=False, default=None)
 
     @property
     def free_inf(self) -> NDArray[np.bool_]:
@@ -222,6 +238,9 @@ def block_data(
     motion_tol: float = 0.01,
     prior=None,
     antisymmetric_inf=None,
+    tail_weight: float = 1.0,
+    time=None,
+    kernel=None,
 ) -> BlockData:
     """Equations of a block (see :class:`BlockData`).
 
@@ -231,16 +250,37 @@ def block_data(
     :class:`cummins.radiation.fit.motion.MotionSensitivity` or None; ``prior``: (guess,
     spread) matrices of A∞ when it is estimated (symmetric); ``antisymmetric_inf``: the
     antisymmetric part of A∞ of the pairs fitted as given (their A at ω → 0, where
-    passivity pins it: :mod:`cummins.radiation.fit.reciprocity`).
+    passivity pins it: :mod:`cummins.radiation.fit.reciprocity`); ``tail_weight``: a
+    factor on the weight of the damping tail beyond the data
+    (:func:`cummins.radiation.fit.tail.tail_equations`); ``time``, ``kernel``: the data's
+    K(t) (time, n, n), for the R² of K(t) of the diagonal elements.
 
     An element (i, j), i ≤ j, is fitted to ½(X_ij + X_ji); an antisymmetric one (p, q),
     p > q (:func:`is_antisymmetric`), to ½(X_pq − X_qp), with the weights of its pair:
-    the least-squares misfit of the two is then that of X_pq and X_qp each.
+    the least-squares misfit of the two is then that of X_pq and X_qp each. Beyond the
+    data a symmetric element follows the data's damping tail (of the symmetric parts);
+    an antisymmetric one has no tail equation (its damping integrates to zero, K(t = 0)
+    symmetric: what it owes, it may put beyond the data).
     """
     w = np.asarray(omega, dtype=float)
-    tail = w.max() * TAIL_FACTORS
-    values, wr, wi = [], [], []
+    tail = tail_frequencies(w.max())
+    values, wr, wi, tails = [], [], [], []
     given = {(q, p) for p, q in elements if p > q}  # pairs fitted as given
+    symmetric = [e for e, (i, j) in enumerate(elements) if i <= j]
+    beyond = dict(
+        zip(
+            symmetric,
+            block_tail_equations(
+                w,
+                0.5 * (added_mass + np.swapaxes(added_mass, 1, 2)),
+                0.5 * (damping + np.swapaxes(damping, 1, 2)),
+                used[:, symmetric],
+                [elements[e] for e in symmetric],
+                tail,
+            ),
+            strict=True,
+        )
+    )
     for e, (i, j) in enumerate(elements):
         use = used[:, e]
         n_use = max(int(use.sum()), 1)
@@ -273,17 +313,12 @@ def block_data(
             offset = antisymmetric_inf[i, j]
         elif added_mass_inf is not None:
             offset = added_mass_inf[i, j]
-        last = np.flatnonzero(use)[-5:]
-        rate = float(np.mean(b_ij[last] * w[last] ** 2)) if last.size else 0.0
-        if i == j:
-            rate = max(rate, 0.0)
-        b_tail = rate / tail**2
+        # beyond the data: the data's damping tail, weighed as the data it stands for
+        b_tail, weight, element_tail = beyond.get(e, (np.zeros(tail.size), 0.0, None))
+        tails.append(element_tail)
         values.append(np.r_[a_ij - offset - 1j * b_ij / w, -1j * b_tail / tail])
-        last_weight = r_b[last[-1]] if last.size else 0.0
-        if i > j:  # an antisymmetric part's damping integrates to zero (K(t = 0) symmetric):
-            last_weight = 0.0  # what it owes, it may put beyond the data
         wr.append(np.r_[r_a, np.zeros(tail.size)])
-        wi.append(np.r_[r_b, TAIL_WEIGHT * last_weight * tail / w.max()])
+        wi.append(np.r_[r_b, tail_weight * weight * tail / spread_b / np.sqrt(n_use)])
     fixed = guess = spread = None
     if added_mass_inf is not None or any(i > j for i, j in elements):
         # an antisymmetric part's A∞ is given (its A at ω → 0); a symmetric one's is
@@ -313,6 +348,9 @@ def block_data(
         used,
         guess,
         spread,
+        tuple(tails),
+        None if kernel is None else np.asarray(time, dtype=float),
+        None if kernel is None else np.array([kernel[:, i, j] for i, j in elements]),
     )
 
 
@@ -370,7 +408,8 @@ def relocate(data: BlockData, poles: Poles) -> Poles:
         c, *_ = np.linalg.lstsq(stack[:, :n], -stack[:, n], rcond=None)
         d = 1.0
     lam, b = poles.state_form()
-    return _poles_from(np.linalg.eigvals(lam - np.outer(b, c) / d))
+    limit = POLE_SPAN * float(data.omega[: data.n_data].max())
+    return _poles_from(np.linalg.eigvals(lam - np.outer(b, c) / d), limit)
 
 
 def _r_factor(matrix: NDArray) -> NDArray:
@@ -395,13 +434,14 @@ def _qr_workspace(rows: int, columns: int) -> int:
 def _thinned(data: BlockData) -> BlockData:
     """The equations of the pole relocation: every k-th data frequency when there are
     more than RELOCATION_POINTS (the weights scaled by √k, so that the equations keep
-    their total weight), the tail whole. The residues are then fitted to all."""
-    step = int(np.ceil(data.n_data / RELOCATION_POINTS))
-    if step <= 1:
-        return data
-    rows = np.r_[np.arange(0, data.n_data, step), np.arange(data.n_data, data.omega.size)]
-    scale = np.r_[np.full(rows.size - (data.omega.size - data.n_data), np.sqrt(step)),
-                  np.ones(data.omega.size - data.n_data)]  # fmt: skip
+    their total weight), without the damping tail beyond the data: the poles come from
+    the data, the residues are then fitted to all, tail included. (With the tail's
+    equations, which carry real weight since issue 31, the relocation placed poles for
+    them erratically: the supply vessel's R² of B 0.69 or 0.99 as their number went
+    from 12 to 24, and 56 states against 43 without them.)"""
+    step = max(int(np.ceil(data.n_data / RELOCATION_POINTS)), 1)
+    rows = np.arange(0, data.n_data, step)
+    scale = np.sqrt(step)
     return BlockData(
         data.dofs,
         data.elements,
@@ -492,6 +532,12 @@ def fit_residues(data: BlockData, poles: Poles) -> tuple[NDArray, NDArray]:
             prior_row[-1] = weight
             rows = np.vstack([rows, prior_row])
             rhs = np.r_[rhs, weight * data.inf_guess[e]]
+        zero = kernel_zero_equation(data, e)
+        if zero is not None:  # K(0): the damping beyond the data is data too
+            form = np.zeros(m.shape[1])
+            form[: null.shape[1]] = kernel_zero_form(poles) @ null
+            rows = np.vstack([rows, zero[0] * form])
+            rhs = np.r_[rhs, zero[0] * zero[1]]
         z, *_ = np.linalg.lstsq(rows, rhs, rcond=None)
         x[e] = null @ z[: null.shape[1]]
         if free[e]:
@@ -513,6 +559,20 @@ class PoleResidueBlock:
         """K of each element, (n_omega, n_elements)."""
         w = np.asarray(omega, dtype=float)
         return 1j * w[:, None] * (self.poles.basis(1j * w) @ self.coefficients.T)
+
+    def element_impulse(self, t: NDArray) -> NDArray[np.float64]:
+        """K(t) of each element, (n_t, n_elements): K(s) = Σ x p/(s − p) over the real
+        poles and (a + jb) p/(s − p) + c.c. over the pairs (Σ R_k = 0), so K(t) =
+        Σ x p e^{pt} + 2 Re[(a + jb) p e^{pt}]."""
+        t = np.asarray(t, dtype=float).reshape(-1, 1)
+        nr = self.poles.real.size
+        real = self.poles.real[None, :]
+        out = (real * np.exp(real * t)) @ self.coefficients[:, :nr].T
+        if self.poles.pairs.size:
+            p = self.poles.pairs[None, :]
+            residue = self.coefficients[:, nr::2] + 1j * self.coefficients[:, nr + 1 :: 2]
+            out = out + 2.0 * np.real((p * np.exp(p * t)) @ residue.T)
+        return out
 
     def response(self, omega: NDArray) -> NDArray[np.complex128]:
         """K(jω) of the block, (n_omega, m, m), local DOF order."""
