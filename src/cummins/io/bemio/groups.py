@@ -231,38 +231,42 @@ def write_excitation_irf(out: H5Out, data: BemioData, body: BodyRows) -> None:
     if data.excitation_irf is None:
         return
     t, k = data.excitation_irf
-    group = f"{body.group}/hydro_coeffs/excitation/impulse_response_fun"
-    values = np.transpose(k[:, :, body.rows], (2, 1, 0)) / (data.rho * data.g)
-    out.number(f"{group}/f", values, "Impulse response function (normalized by rho*g)", "")
-    out.number(f"{group}/t", t[:, None], "Time vector for the impulse resonse function", "s")
-    out.number(
-        f"{group}/w",
-        data.omega[:, None],
-        "Frequencies of the data the impulse response function integrates",
-        "rad/s",
+    _write_irf(
+        out,
+        f"{body.group}/hydro_coeffs/excitation/impulse_response_fun",
+        "f",
+        t,
+        np.transpose(k[:, :, body.rows], (2, 1, 0)) / (data.rho * data.g),
+        data.omega,
+        ("Impulse response function (normalized by rho*g)", "Components of the IRF:f"),
     )
-    m, nb = values.shape[:2]
-    for i in range(m):
-        for j in range(nb):
-            out.number(
-                f"{group}/components/f/{i + 1}_{j + 1}",
-                np.c_[t, values[i, j]],
-                "Components of the IRF:f",
-                "",
-            )
 
 
 def write_radiation_irf(out: H5Out, data: BemioData, body: BodyRows) -> None:
     """``hydro_coeffs/radiation_damping/impulse_response_fun``: ``K`` K(t)/ρ (m, N, nt),
     ``t``, ``w``, and ``components/K``."""
     t, kernel = data.radiation_irf
-    group = f"{body.group}/hydro_coeffs/radiation_damping/impulse_response_fun"
-    values = np.transpose(kernel[:, body.rows, :], (1, 2, 0)) / data.rho
-    out.number(f"{group}/K", values, "Impulse response function (normalized by rho)", "")
+    _write_irf(
+        out,
+        f"{body.group}/hydro_coeffs/radiation_damping/impulse_response_fun",
+        "K",
+        t,
+        np.transpose(kernel[:, body.rows, :], (1, 2, 0)) / data.rho,
+        data.omega,
+        ("Impulse response function (normalized by rho)", "Components of the IRF"),
+    )
+
+
+def _write_irf(out: H5Out, group: str, name: str, t, values, omega, descriptions) -> None:
+    """An impulse-response group of BEMIO's layout: ``name`` (m, n, nt), ``t``, ``w`` and
+    ``components/name/i_j`` ([t, value] columns), with BEMIO's descriptions (its spelling
+    of "resonse" included)."""
+    whole, component = descriptions
+    out.number(f"{group}/{name}", values, whole, "")
     out.number(f"{group}/t", t[:, None], "Time vector for the impulse resonse function", "s")
     out.number(
         f"{group}/w",
-        data.omega[:, None],
+        omega[:, None],
         "Frequencies of the data the impulse response function integrates",
         "rad/s",
     )
@@ -270,10 +274,7 @@ def write_radiation_irf(out: H5Out, data: BemioData, body: BodyRows) -> None:
     for i in range(m):
         for j in range(count):
             out.number(
-                f"{group}/components/K/{i + 1}_{j + 1}",
-                np.c_[t, values[i, j]],
-                "Components of the IRF",
-                "",
+                f"{group}/components/{name}/{i + 1}_{j + 1}", np.c_[t, values[i, j]], component, ""
             )
 
 
