@@ -136,6 +136,25 @@ def test_help_starts_without_the_library():
     assert np  # numpy is fine: the commands' options use it
 
 
+def test_info_imports_no_scipy_it_does_not_use():
+    """``cummins info`` reads and describes a run without SciPy's integrate, interpolate,
+    optimize or signal (0.3 s of imports: the wave spectra, K(t)'s interpolation and the
+    damping tail import them when they are used)."""
+    code = (
+        "import sys\n"
+        "from cummins.cli import main\n"
+        "try:\n"
+        f"    main(['info', {str(cummins.demo_files() / 'tanker.1')!r}])\n"
+        "except SystemExit:\n"
+        "    pass\n"
+        "heavy = ('scipy.integrate', 'scipy.interpolate', 'scipy.optimize', 'scipy.signal')\n"
+        "print(sorted(m for m in heavy if m in sys.modules))"
+    )
+    run = subprocess.run([sys.executable, "-c", code], capture_output=True, text=True)
+    assert run.returncode == 0, run.stderr
+    assert run.stdout.strip().splitlines()[-1] == "[]"
+
+
 def test_the_demo_marks_a_missed_target_not_with_a_check_mark(monkeypatch, tmp_path):
     from click.testing import CliRunner
 

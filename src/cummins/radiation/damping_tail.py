@@ -23,7 +23,6 @@ from dataclasses import dataclass
 
 import numpy as np
 from numpy.typing import ArrayLike, NDArray
-from scipy.special import sici
 
 from cummins.errors import HydroDataError
 from cummins.radiation.transforms import cosine_transform, hilbert_pv, sine_transform
@@ -193,6 +192,8 @@ def _inverse_square_tail(a: float, t: NDArray, cos: bool) -> NDArray:
     a² [cos(at)/a − t (π/2 − Si(at))]  and  a² [sin(at)/a − t Ci(at)]   (t ≥ 0).
     """
     tt = np.abs(t)[:, None]
+    from scipy.special import sici  # on use: 0.1 s to import
+
     si, ci = sici(a * tt)
     if cos:
         return a * np.cos(a * tt) - a**2 * tt * (0.5 * np.pi - si)

@@ -36,8 +36,6 @@ from typing import Any
 
 import numpy as np
 from numpy.typing import ArrayLike, NDArray
-from scipy import integrate
-from scipy.special import gammaln
 
 from cummins.errors import ArgumentError
 from cummins.seakeeping.spectra import (
@@ -101,6 +99,8 @@ def cos2s_spreading(theta: ArrayLike, mean_direction: float, s: float) -> NDArra
     if not (np.isfinite(s) and s >= 0):
         raise ArgumentError(f"the spreading exponent s must be finite and >= 0, got {s!r}")
     delta = _wrap(np.asarray(theta, dtype=float) - float(mean_direction))
+    from scipy.special import gammaln  # on use: SciPy's import is 0.1 s
+
     c = np.exp(gammaln(s + 1.0) - gammaln(s + 0.5)) / (2.0 * np.sqrt(np.pi))
     base = np.clip(np.cos(delta / 2.0), 0.0, None)
     with np.errstate(under="ignore"):
@@ -130,7 +130,9 @@ def spreading_directions(
         return np.array([float(mean_direction)]), np.ones(1)
     grid = np.linspace(-np.pi, np.pi, 20001)
     d = cos2s_spreading(grid, 0.0, s)
-    cdf = integrate.cumulative_trapezoid(d, grid, initial=0.0)
+    from scipy.integrate import cumulative_trapezoid  # on use
+
+    cdf = cumulative_trapezoid(d, grid, initial=0.0)
     half = float(np.pi - np.interp(fraction / 2 * cdf[-1], cdf, grid + np.pi))
     half = min(max(half, 1e-6), np.pi)
     edges = np.linspace(-half, half, n + 1)
