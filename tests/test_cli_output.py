@@ -155,6 +155,34 @@ def test_info_imports_no_scipy_it_does_not_use():
     assert run.stdout.strip().splitlines()[-1] == "[]"
 
 
+def test_info_describes_the_model_files_of_fit_and_fit_excitation(tmp_path):
+    """``cummins info`` on a model file says what it is — its DOFs, states, stability, the
+    data it was fitted to and its failures — rather than "unrecognised file format"."""
+    from click.testing import CliRunner
+
+    from cummins.cli import main
+    from cummins.excitation_model import fit_excitation
+
+    ds = cummins.demo_dataset()
+    radiation = cummins.fit_radiation(ds)
+    radiation.save(tmp_path / "model.nc")
+    run = CliRunner().invoke(main, ["info", str(tmp_path / "model.nc"), "--json"])
+    assert run.exit_code == 0, run.output
+    told = json.loads(run.output)
+    assert told["kind"].startswith("radiation model")
+    assert told["states"] == radiation.total_order and told["passive"] is True
+    assert told["dofs"].split(", ") == list(radiation.dofs)
+    assert told["fitted_to"].endswith("tanker.1") and told["failures"] == []
+    excitation = fit_excitation(ds, [np.pi])
+    excitation.save(tmp_path / "exc.nc")
+    run = CliRunner().invoke(main, ["info", str(tmp_path / "exc.nc")])
+    assert run.exit_code == 0, run.output
+    assert "wave excitation model" in run.output
+    assert f"states  {excitation.total_order}" in run.output
+    for failure in excitation.attrs.get("failures", []):
+        assert f"failure: {failure}" in run.output
+
+
 def test_the_demo_marks_a_missed_target_not_with_a_check_mark(monkeypatch, tmp_path):
     from click.testing import CliRunner
 

@@ -42,7 +42,9 @@ def second_order_lines(summary: dict) -> list[str]:
 def info_command(path, format_, rho, g, ulen, as_json):
     """Describe what PATH holds: format, DOFs, frequencies, headings, constants used,
     and where the restoring came from (whether it holds the weight's terms, for which
-    mass and centre of gravity).
+    mass and centre of gravity). A model file of `cummins fit` or `cummins fit-excitation`
+    is described as a model: DOFs, states, stability, passivity, the data it was fitted
+    to and its failures.
 
     \b
     Example:
@@ -51,6 +53,17 @@ def info_command(path, format_, rho, g, ulen, as_json):
     """
     from cummins.hydrodb import describe
 
+    model = model_description(path)
+    if model is not None:  # a model file of cummins fit / fit-excitation, not data
+        if as_json:
+            click.echo(json.dumps(model, indent=2))
+            return
+        for key, value in model.items():
+            if key != "failures":
+                console.print(f"[bold]{key}[/]  {value}", highlight=False)
+        for line in model["failures"]:
+            console.print(f"failure: {line}", highlight=False)
+        return
     ds = read_hydrodb(path, format_, rho, g, ulen)
     d = describe(ds)
     if as_json:
@@ -105,3 +118,62 @@ def info_command(path, format_, rho, g, ulen, as_json):
     for k, line in enumerate(d["history"]):
         table.add_row("provenance" if k == 0 else "", line)
     console.print(table)
+
+
+def model_description(path) -> dict | None:
+    """What a model file written by ``cummins fit`` or ``cummins fit-excitation`` holds
+    (kind, DOFs, states, stability, passivity, the data it was fitted to, its failures),
+    or None when ``path`` is not one."""
+    from pathlib import Path
+
+    p = Path(path)
+    if not (p.is_file() and p.suffix.lower() == ".nc"):
+        return None
+    import h5py
+
+    try:
+        with h5py.File(p, "r") as f:
+            kind = f.attrs.get("cummins_format")
+    except OSError:
+        return None
+    kind = kind.decode() if isinstance(kind, bytes) else kind
+    from cummins.excitation_model.model_file import FORMAT_NAME as EXCITATION
+    from cummins.radiation.model_file import FORMAT_NAME as RADIATION
+
+    if kind == RADIATION:
+        from cummins.cli.fit import fit_summary
+        from cummins.radiation.model import RadiationModel
+
+        model = RadiationModel.load(p)
+        summary = fit_summary(model, float(model.attrs.get("elapsed_s", 0.0)))
+        out = {
+            "file": str(p),
+            "kind": "radiation model (cummins fit): the fluid memory K(t) as a state space",
+            "dofs": ", ".join(model.dofs),
+            "states": summary["total_order"],
+            "blocks": len(summary["blocks"]),
+            "stable": summary["mimo_stable"],
+            "passive": summary["mimo_passive"],
+        }
+    elif kind == EXCITATION:
+        import numpy as np
+
+        from cummins.cli.fit_excitation import excitation_summary
+        from cummins.excitation_model import ExcitationModel
+
+        model = ExcitationModel.load(p)
+        summary = excitation_summary(model, float(model.attrs.get("elapsed_s", 0.0)))
+        out = {
+            "file": str(p),
+            "kind": "wave excitation model (cummins fit-excitation): force from the wave "
+            "elevation, time advance t_c per heading",
+            "dofs": ", ".join(model.dofs),
+            "headings_deg": ", ".join(f"{np.degrees(b):g}" for b in model.headings),
+            "states": summary["total_states"],
+            "stable": summary["stable"],
+        }
+    else:
+        return None
+    out["fitted_to"] = str(model.attrs.get("source_file", "")) or "not recorded"
+    out["failures"] = summary["failures"]
+    return out
