@@ -173,6 +173,8 @@ def test_info_describes_the_model_files_of_fit_and_fit_excitation(tmp_path):
     assert told["states"] == radiation.total_order and told["passive"] is True
     assert told["dofs"].split(", ") == list(radiation.dofs)
     assert told["fitted_to"].endswith("tanker.1") and told["failures"] == []
+    run = CliRunner().invoke(main, ["info", str(tmp_path / "model.nc"), "--rho", "1000"])
+    assert run.exit_code == 2 and "is a model file, not solver data: --rho" in run.output
     excitation = fit_excitation(ds, [np.pi])
     excitation.save(tmp_path / "exc.nc")
     run = CliRunner().invoke(main, ["info", str(tmp_path / "exc.nc")])

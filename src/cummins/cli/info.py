@@ -55,6 +55,21 @@ def info_command(path, format_, rho, g, ulen, as_json):
 
     model = model_description(path)
     if model is not None:  # a model file of cummins fit / fit-excitation, not data
+        given = [
+            option
+            for option, value in (
+                ("--format", format_),
+                ("--rho", rho),
+                ("--g", g),
+                ("--ulen", ulen),
+            )
+            if value is not None
+        ]
+        if given:
+            raise click.UsageError(
+                f"{path} is a model file, not solver data: {', '.join(given)} apply to data "
+                "(the model records the constants it was fitted with)"
+            )
         if as_json:
             click.echo(json.dumps(model, indent=2))
             return
