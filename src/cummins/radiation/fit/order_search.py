@@ -188,21 +188,25 @@ def identify_block(
         ``bound``, the enforcement gives up once its iterate is further from the targets
         (passivity brings no fit closer: that fit would not be kept). The damping beyond
         the data is held under the data's tail in the same programme."""
+
+        def scored(block: PoleResidueBlock, is_passive: bool = False) -> BlockScore:
+            return score_block(
+                block,
+                data,
+                r2=r2,
+                r2_coupling=r2_coupling,
+                motion=motion,
+                passive=is_passive,
+                r2_kernel=r2_kernel,
+                tail=True,
+            )
+
         if passive:
             give_up = None
             if np.isfinite(bound):
 
                 def give_up(block: PoleResidueBlock) -> bool:
-                    score = score_block(
-                        block,
-                        data,
-                        r2=r2,
-                        r2_coupling=r2_coupling,
-                        motion=motion,
-                        r2_kernel=r2_kernel,
-                        tail=True,
-                    )
-                    return distance(score, r2, motion_aim) > bound
+                    return distance(scored(block), r2, motion_aim) > bound
 
             block, is_passive, _ = enforce_passivity(
                 fitted,
@@ -212,16 +216,7 @@ def identify_block(
             )
         else:
             block, is_passive = fitted, True
-        score = score_block(
-            block,
-            data,
-            r2=r2,
-            r2_coupling=r2_coupling,
-            motion=motion,
-            passive=is_passive,
-            r2_kernel=r2_kernel,
-            tail=True,
-        )
+        score = scored(block, is_passive)
         tried[count] = (closeness(score, r2, motion_aim), block, score)
         return is_passive and score.meets(motion_aim)
 
