@@ -15,10 +15,11 @@ from pathlib import Path
 
 import pytest
 
+from _browser import CHROMIUM, not_blank, playwright_chromium
+
 ROOT = Path(__file__).resolve().parents[1]
 SITE = ROOT / "docs" / "_build" / "html"
 EXAMPLES = sorted((ROOT / "examples").glob("[0-9][0-9]_*.py"))
-CHROMIUM = Path("/usr/bin/chromium")
 BROWSER_ARGS = ["--no-sandbox", "--disable-gpu", "--disable-background-networking"]
 BUILD = "python -m sphinx -W -b html docs docs/_build/html"
 
@@ -50,24 +51,6 @@ def test_the_gallery_holds_every_example_with_its_figures(site):
             assert (page.parent / src).is_file(), f"{example.name}: {src} is missing"
 
 
-def _browser():
-    if not CHROMIUM.exists():
-        message = f"Chromium not found at {CHROMIUM} (apt-get install chromium)"
-        if os.environ.get("CI", "").lower() == "true":
-            pytest.fail(message + "; under CI=true the browser test must run")
-        pytest.skip(message)
-    sync_api = pytest.importorskip("playwright.sync_api")
-    return sync_api.sync_playwright()
-
-
-def _not_blank(png: Path) -> tuple[float, float]:
-    """(standard deviation of the grey levels, share of non-white pixels)."""
-    from matplotlib.image import imread
-
-    grey = imread(png)[..., :3].mean(axis=2)
-    return float(grey.std()), float((grey < 0.95).mean())
-
-
 @pytest.mark.parametrize(
     ("page", "least"),
     [("index.html", 1), ("auto_examples/04_fit_state_space.html", 1)],
@@ -77,7 +60,7 @@ def test_a_page_renders_with_its_figures(site, page, least, tmp_path):
     0), it shows at least ``least`` figures made by the gallery, and the screenshots of
     the page and of its first figure are not blank."""
     shot = tmp_path / "page.png"
-    with _browser() as p:
+    with playwright_chromium() as p:
         browser = p.chromium.launch(executable_path=str(CHROMIUM), args=BROWSER_ARGS)
         try:
             view = browser.new_page(viewport={"width": 1280, "height": 1100})
@@ -99,5 +82,5 @@ def test_a_page_renders_with_its_figures(site, page, least, tmp_path):
     assert images and all(width > 0 for _, width in images), images
     assert sum("sphx_glr_" in src for src, _ in images) >= least, images
     for png in (shot, shot.with_suffix(".figure.png")):
-        spread, ink = _not_blank(png)
+        spread, ink = not_blank(png)
         assert spread > 0.05 and ink > 0.02, f"{page}: blank {png.name} {spread} {ink}"

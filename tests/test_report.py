@@ -4,7 +4,6 @@ and shown by a real headless browser (Debian's Chromium) with their figures."""
 from __future__ import annotations
 
 import itertools
-import os
 import re
 import shutil
 from pathlib import Path
@@ -14,6 +13,7 @@ import pytest
 from click.testing import CliRunner
 
 import cummins
+from _browser import CHROMIUM, not_blank, playwright_chromium
 from cummins.cli import main
 from cummins.cli.html_report import detect_kind, write_report
 from cummins.studies.batch import (
@@ -26,7 +26,6 @@ from cummins.studies.batch import (
 )
 
 TANKER = cummins.demo_files() / "tanker.1"
-CHROMIUM = Path("/usr/bin/chromium")
 BROWSER_ARGS = [
     "--no-sandbox",
     "--disable-gpu",
@@ -201,24 +200,6 @@ def test_report_with_a_bad_rho_is_one_error_line(tmp_path):
     assert len(errors) == 1 and "--rho" in errors[0] and "nan" in errors[0], result.output
 
 
-def _browser():
-    if not CHROMIUM.exists():
-        message = f"Chromium not found at {CHROMIUM} (apt-get install chromium)"
-        if os.environ.get("CI", "").lower() == "true":
-            pytest.fail(message + "; under CI=true the browser test must run")
-        pytest.skip(message)
-    sync_api = pytest.importorskip("playwright.sync_api")
-    return sync_api.sync_playwright()
-
-
-def _not_blank(png: Path) -> tuple[float, float]:
-    """(standard deviation of the grey levels, share of non-white pixels)."""
-    from matplotlib.image import imread
-
-    grey = imread(png)[..., :3].mean(axis=2)
-    return float(grey.std()), float((grey < 0.95).mean())
-
-
 def _open(browser, page_file: Path, shot: Path) -> tuple[list[str], list[int], list[str]]:
     """Load a page: (console and page errors, widths of its decoded images, URLs asked)."""
     page = browser.new_page(viewport={"width": 1200, "height": 1000})
@@ -239,7 +220,7 @@ def _open(browser, page_file: Path, shot: Path) -> tuple[list[str], list[int], l
 def test_reports_open_in_chromium_with_their_figures(reports, tmp_path):
     """Every page loads without console or page errors, every figure is decoded
     (naturalWidth > 0) and the screenshot shows something (not a blank page)."""
-    with _browser() as p:
+    with playwright_chromium() as p:
         browser = p.chromium.launch(executable_path=str(CHROMIUM), args=BROWSER_ARGS)
         try:
             for kind, page_file in reports.items():
@@ -249,7 +230,7 @@ def test_reports_open_in_chromium_with_their_figures(reports, tmp_path):
                 assert widths and min(widths) > 0, f"{kind}: figures not shown {widths}"
                 assert all(u.startswith(("file:", "data:")) for u in requests), requests
                 for png in (shot, shot.with_suffix(".figure.png")):  # the page, its first figure
-                    spread, ink = _not_blank(png)
+                    spread, ink = not_blank(png)
                     assert spread > 0.05 and ink > 0.03, f"{kind}: blank {png.name} {spread} {ink}"
         finally:
             browser.close()
