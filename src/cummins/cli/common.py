@@ -615,6 +615,23 @@ def select_speed(ds, speed: float | None):
     return ds.isel(forward_speed=matches[0])
 
 
+def cummins_model_format(path) -> str | None:
+    """The ``cummins_format`` attribute of a model file written by cummins (a ``.nc``
+    file: ``"cummins-radiation-model"``, ``"cummins-excitation-model"``), or None for any
+    other file."""
+    p = Path(path)
+    if not (p.is_file() and p.suffix.lower() == ".nc"):
+        return None
+    import h5py
+
+    try:
+        with h5py.File(p, "r") as f:
+            kind = f.attrs.get("cummins_format")
+    except OSError:
+        return None
+    return kind.decode() if isinstance(kind, bytes) else kind
+
+
 def model_and_data(path):
     """(model or None, data path): a model file names the data it was fitted to."""
     from cummins.radiation.model import RadiationModel
@@ -622,26 +639,16 @@ def model_and_data(path):
 
     p = Path(path)
     note_inputs(p)
-    if p.is_file() and p.suffix.lower() == ".nc":
-        import h5py
-
-        try:
-            with h5py.File(p, "r") as f:
-                kind = f.attrs.get("cummins_format")
-        except OSError:
-            kind = None
-        if isinstance(kind, bytes):
-            kind = kind.decode()
-        if kind == FORMAT_NAME:
-            model = RadiationModel.load(p)
-            source = model.attrs.get("source_file")
-            if not source or not Path(source).exists():
-                raise click.UsageError(
-                    f"{p} does not name an existing data file ({source!r}): give the data "
-                    "file instead (the model is then fitted again)"
-                )
-            return model, source
-    return None, path
+    if cummins_model_format(p) != FORMAT_NAME:
+        return None, path
+    model = RadiationModel.load(p)
+    source = model.attrs.get("source_file")
+    if not source or not Path(source).exists():
+        raise click.UsageError(
+            f"{p} does not name an existing data file ({source!r}): give the data "
+            "file instead (the model is then fitted again)"
+        )
+    return model, source
 
 
 def select_body(ds, body: str, option: str = "--body"):

@@ -139,19 +139,11 @@ def model_description(path) -> dict | None:
     """What a model file written by ``cummins fit`` or ``cummins fit-excitation`` holds
     (kind, DOFs, states, stability, passivity, the data it was fitted to, its failures),
     or None when ``path`` is not one."""
-    from pathlib import Path
+    from cummins.cli.common import cummins_model_format
 
-    p = Path(path)
-    if not (p.is_file() and p.suffix.lower() == ".nc"):
+    kind = cummins_model_format(path)
+    if kind is None:
         return None
-    import h5py
-
-    try:
-        with h5py.File(p, "r") as f:
-            kind = f.attrs.get("cummins_format")
-    except OSError:
-        return None
-    kind = kind.decode() if isinstance(kind, bytes) else kind
     from cummins.excitation_model.model_file import FORMAT_NAME as EXCITATION
     from cummins.radiation.model_file import FORMAT_NAME as RADIATION
 
@@ -159,10 +151,10 @@ def model_description(path) -> dict | None:
         from cummins.cli.fit import fit_summary
         from cummins.radiation.model import RadiationModel
 
-        model = RadiationModel.load(p)
+        model = RadiationModel.load(path)
         summary = fit_summary(model, float(model.attrs.get("elapsed_s", 0.0)))
         out = {
-            "file": str(p),
+            "file": str(path),
             "kind": "radiation model (cummins fit): the fluid memory K(t) as a state space",
             "dofs": ", ".join(model.dofs),
             "states": summary["total_order"],
@@ -176,10 +168,10 @@ def model_description(path) -> dict | None:
         from cummins.cli.fit_excitation import excitation_summary
         from cummins.excitation_model import ExcitationModel
 
-        model = ExcitationModel.load(p)
+        model = ExcitationModel.load(path)
         summary = excitation_summary(model, float(model.attrs.get("elapsed_s", 0.0)))
         out = {
-            "file": str(p),
+            "file": str(path),
             "kind": "wave excitation model (cummins fit-excitation): force from the wave "
             "elevation, time advance t_c per heading",
             "dofs": ", ".join(model.dofs),
