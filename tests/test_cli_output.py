@@ -154,6 +154,27 @@ def test_info_imports_no_scipy_it_does_not_use():
     assert run.returncode == 0, run.stderr
     assert run.stdout.strip().splitlines()[-1] == "[]"
 
+def test_writing_a_file_asks_dask_nothing(tmp_path):
+    """Writing a NetCDF file of in-memory data does not import ``dask.distributed``
+    (xarray's default write lock asks dask which scheduler runs: a quarter of a second
+    of every command that writes a file, when the ``[dask]`` extra is installed), and
+    the file reads back the same."""
+    pytest.importorskip("dask")
+    path = tmp_path / "tanker.nc"
+    code = (
+        "import sys\n"
+        "import cummins\n"
+        f"cummins.write(cummins.demo_dataset(), {str(path)!r})\n"
+        "print('distributed' in sys.modules)"
+    )
+    run = subprocess.run([sys.executable, "-c", code], capture_output=True, text=True)
+    assert run.returncode == 0, run.stderr
+    assert run.stdout.strip().splitlines()[-1] == "False"
+    written = cummins.read(path)
+    data = cummins.demo_dataset()
+    np.testing.assert_array_equal(written.radiation_damping.values, data.radiation_damping.values)
+
+
 
 def test_info_describes_the_model_files_of_fit_and_fit_excitation(tmp_path):
     """``cummins info`` on a model file says what it is — its DOFs, states, stability, the

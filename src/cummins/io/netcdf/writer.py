@@ -113,16 +113,18 @@ def save_netcdf(ds: xr.Dataset, path: str | os.PathLike[str], *, checksum: bool 
 def _to_h5netcdf(ds: xr.Dataset, path: Path, encoding: dict | None) -> None:
     """``ds.to_netcdf(path, engine="h5netcdf", encoding=encoding)``. An in-memory dataset
     (no dask chunks) goes to xarray's h5netcdf store directly (``Dataset.dump_to_store``,
-    what ``to_netcdf`` does for it): ``to_netcdf`` first asks dask which scheduler runs,
-    which imports dask.distributed — a quarter of a second of every command that writes
-    a file, when dask is installed."""
+    what ``to_netcdf`` does for it), under HDF5's process lock only: ``to_netcdf`` and the
+    store's default write lock first ask dask which scheduler runs, which imports
+    dask.distributed — a quarter of a second of every command that writes a file, when
+    dask is installed."""
     if any(v.chunks is not None for v in ds.variables.values()):
         ds.to_netcdf(path, engine="h5netcdf", encoding=encoding)
         return
     from xarray.backends import H5NetCDFStore
+    from xarray.backends.locks import HDF5_LOCK
 
     unlimited = ds.encoding.get("unlimited_dims")
-    store = H5NetCDFStore.open(path, mode="w")
+    store = H5NetCDFStore.open(path, mode="w", lock=HDF5_LOCK)
     try:
         ds.dump_to_store(
             store,
