@@ -154,6 +154,7 @@ def test_info_imports_no_scipy_it_does_not_use():
     assert run.returncode == 0, run.stderr
     assert run.stdout.strip().splitlines()[-1] == "[]"
 
+
 def test_writing_a_file_asks_dask_nothing(tmp_path):
     """Writing a NetCDF file of in-memory data does not import ``dask.distributed``
     (xarray's default write lock asks dask which scheduler runs: a quarter of a second
@@ -173,7 +174,6 @@ def test_writing_a_file_asks_dask_nothing(tmp_path):
     written = cummins.read(path)
     data = cummins.demo_dataset()
     np.testing.assert_array_equal(written.radiation_damping.values, data.radiation_damping.values)
-
 
 
 def test_info_describes_the_model_files_of_fit_and_fit_excitation(tmp_path):
@@ -231,8 +231,8 @@ def test_the_demo_reduction_keeps_the_motions_within_its_tolerance(tmp_path):
     """The demo's reduction of the fit to 1 % of the data's motion RAOs: fewer states,
     passive, and the motion error it reports recomputed from the saved model."""
     import cummins.cli.demo as demo
-    from cummins.radiation.model import RadiationModel
     from cummins.radiation.fit.scorecard import motion_rao_error
+    from cummins.radiation.model import RadiationModel
 
     ds = cummins.demo_dataset()
     model = cummins.fit_radiation(ds)
