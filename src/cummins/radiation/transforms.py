@@ -30,15 +30,18 @@ import numpy as np
 from numpy.typing import ArrayLike, NDArray
 
 
-def _j1(z: NDArray) -> NDArray:
-    """Spherical Bessel function j₁(z) = (sin z − z cos z)/z², stable near 0."""
-    out = np.empty_like(z)
+def _sinc_j1(z: NDArray) -> tuple[NDArray, NDArray]:
+    """sinc(z) = sin(z)/z and j₁(z) = (sin z − z cos z)/z² (z ≥ 0 or any sign), from one
+    sine and one cosine of z; 1 and the series of j₁ (to z⁵) near 0."""
+    sin, cos = np.sin(z), np.cos(z)
     small = np.abs(z) < 1e-2
-    zs = z[small]
-    out[small] = zs / 3 - zs**3 / 30 + zs**5 / 840
-    zb = z[~small]
-    out[~small] = (np.sin(zb) - zb * np.cos(zb)) / zb**2
-    return out
+    safe = np.where(small, 1.0, z)
+    sinc = np.where(z == 0, 1.0, sin / np.where(z == 0, 1.0, z))
+    j1 = (sin - z * cos) / safe**2
+    if small.any():
+        zs = z[small]
+        j1[small] = zs / 3 - zs**3 / 30 + zs**5 / 840
+    return sinc, j1
 
 
 def _segments(x: ArrayLike, f: ArrayLike):
@@ -79,9 +82,9 @@ def cosine_transform(x: ArrayLike, f: ArrayLike, y: ArrayLike) -> NDArray[np.flo
     """
     m, h, f_mean, f_half, shape = _segments(x, f)
     y = np.asarray(y, dtype=float).reshape(-1, 1)
-    hy = h[None, :] * y
-    even = 2 * h[None, :] * np.cos(m[None, :] * y) * np.sinc(hy / np.pi)
-    odd = 2 * h[None, :] * np.sin(m[None, :] * y) * _j1(hy)
+    sinc, j1 = _sinc_j1(h[None, :] * y)
+    even = 2 * h[None, :] * np.cos(m[None, :] * y) * sinc
+    odd = 2 * h[None, :] * np.sin(m[None, :] * y) * j1
     out = even @ f_mean - odd @ f_half
     return out.reshape((y.size, *shape))
 
@@ -93,9 +96,9 @@ def sine_transform(x: ArrayLike, f: ArrayLike, y: ArrayLike) -> NDArray[np.float
     """
     m, h, f_mean, f_half, shape = _segments(x, f)
     y = np.asarray(y, dtype=float).reshape(-1, 1)
-    hy = h[None, :] * y
-    even = 2 * h[None, :] * np.sin(m[None, :] * y) * np.sinc(hy / np.pi)
-    odd = 2 * h[None, :] * np.cos(m[None, :] * y) * _j1(hy)
+    sinc, j1 = _sinc_j1(h[None, :] * y)
+    even = 2 * h[None, :] * np.sin(m[None, :] * y) * sinc
+    odd = 2 * h[None, :] * np.cos(m[None, :] * y) * j1
     out = even @ f_mean + odd @ f_half
     return out.reshape((y.size, *shape))
 
@@ -117,10 +120,10 @@ def fourier_transform(x: ArrayLike, f: ArrayLike, y: ArrayLike) -> NDArray[np.co
     f = np.asarray(f, dtype=complex)
     m, h, f_mean, f_half, shape = _segments_complex(x, f)
     y = np.asarray(y, dtype=float).reshape(-1, 1)
-    hy = h[None, :] * y
+    sinc, j1 = _sinc_j1(h[None, :] * y)
     phase = np.exp(1j * m[None, :] * y)
-    even = 2 * h[None, :] * phase * np.sinc(hy / np.pi)
-    odd = 2j * h[None, :] * phase * _j1(hy)
+    even = 2 * h[None, :] * phase * sinc
+    odd = 2j * h[None, :] * phase * j1
     out = even @ f_mean + odd @ f_half
     return out.reshape((y.size, *shape))
 
