@@ -14,6 +14,11 @@ the load changes least. Printed per case: order, smallest diagonal R² of A and 
 (independent sweep), motion-RAO error, failures of the fit and CPU seconds for both trees,
 and the time ratio (this tree / reference); a summary of the ratios and of what changed.
 
+With ``BENCH_DOFS=6`` only the cases of that many DOFs are fitted, and the summary counts
+the cases within the time target of issue 30 for that size (6 DOFs: 0.3 s, 12: 3 s,
+18: 8 s) in each tree — the single-body check of issue 30 is
+``BENCH_DOFS=6 BENCH_REPEAT=3 python benchmarks/bench_fit_reference.py``.
+
 Run: ``python benchmarks/bench_fit_reference.py [filter]`` (a substring of the case name
 selects cases; ``BENCH_REPEAT`` defaults to 2).
 """
@@ -37,6 +42,10 @@ import numpy as np
 HERE = Path(__file__).resolve().parent
 ROOT = HERE.parent
 REPEAT = int(os.environ.get("BENCH_REPEAT", "2"))
+#: Only the cases of this many DOFs (all when unset).
+DOFS = int(os.environ.get("BENCH_DOFS", "0"))
+#: CPU time targets of issue 30 by the number of DOFs, s.
+TARGETS = {6: 0.3, 12: 3.0, 18: 8.0}
 
 
 def worker(name: str) -> None:
@@ -48,6 +57,9 @@ def worker(name: str) -> None:
 
     path = dict(all_cases())[name]
     ds = read_case(path)
+    if DOFS and ds.sizes["influenced_dof"] != DOFS:
+        print(json.dumps({"skipped": True}))
+        return
     best, model = np.inf, None
     for _ in range(REPEAT):
         with warnings.catch_warnings():
@@ -104,7 +116,8 @@ def run(tree: Path, name: str) -> dict | None:
         tail = (done.stderr.strip().splitlines()[-1:] or ["?"])[0]
         print(f"  {name}: failed under {tree}: {tail[:120]}")
         return None
-    return json.loads(done.stdout.strip().splitlines()[-1])
+    result = json.loads(done.stdout.strip().splitlines()[-1])
+    return None if result.get("skipped") else result
 
 
 def cells(r: dict | None) -> str:
@@ -129,10 +142,14 @@ def main(selection: str | None = None) -> None:
     print(f"reference: {reference}")
     print(f"{'case':40s} {'dof':>3s} | {head} | {head} | ratio")
     ratios, changed = [], []
+    met, sized = [0, 0], 0
     for name, _ in all_cases():
         if selection and selection not in name:
             continue
-        ref, new = run(reference, name), run(mine, name)
+        new = run(mine, name)
+        if DOFS and new is None:
+            continue  # another size (or a case that does not fit: the reference says)
+        ref = run(reference, name)
         ratio = new["cpu_s"] / ref["cpu_s"] if ref and new else float("nan")
         dofs = (new or ref or {"dofs": 0})["dofs"]
         print(
@@ -147,10 +164,20 @@ def main(selection: str | None = None) -> None:
             )
             if not same:
                 changed.append(name)
+            target = TARGETS.get(new["dofs"])
+            if target is not None:
+                met[0] += ref["cpu_s"] <= target
+                met[1] += new["cpu_s"] <= target
+                sized += 1
     if ratios:
         print(
             f"\ntime ratio this tree / reference: median {np.median(ratios):.2f}, "
             f"range {min(ratios):.2f}–{max(ratios):.2f} over {len(ratios)} cases"
+        )
+    if sized:
+        print(
+            f"within the time target of their size (issue 30): reference {met[0]}, "
+            f"this tree {met[1]} of {sized} cases"
         )
     print(f"scoreboard changed on {len(changed)} cases: {', '.join(changed) or 'none'}")
 

@@ -37,8 +37,8 @@ from numpy.typing import ArrayLike, NDArray
 
 from cummins.errors import HydroDataError
 from cummins.hydrodb import add_history, dof_matrix, validate
+from cummins.radiation.damping_tail import kramers_kronig_integral
 from cummins.radiation.retardation import (
-    added_mass_inf_per_frequency,
     bridged_couplings,
     causal_limits,
 )
@@ -350,12 +350,12 @@ def sharp_resonances(
         return ()
 
     def estimate(bridged: NDArray[np.bool_]) -> NDArray[np.float64]:
+        """Ogilvie's A∞ at each frequency with the ``bridged`` points bridged, less its
+        median (the numbers of
+        :func:`~cummins.radiation.retardation.added_mass_inf_per_frequency`, on arrays)."""
         kept = ~bridged
-        one = ds
-        for name, x in (("added_mass", a), ("radiation_damping", b)):
-            y = np.interp(w, w[kept], x[kept])
-            one = one.assign({name: ds[name].copy(data=y.reshape(ds[name].shape))})
-        curve = added_mass_inf_per_frequency(one).values.reshape(w.size)
+        a_kept, b_kept = np.interp(w, w[kept], a[kept]), np.interp(w, w[kept], b[kept])
+        curve = a_kept - kramers_kronig_integral(w, b_kept[:, None], a_kept[:, None])[:, 0]
         return curve - np.median(curve[~suspect])
 
     without = estimate(suspect)

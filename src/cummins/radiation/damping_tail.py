@@ -122,44 +122,49 @@ class DampingTail:
         w = self._grid()
         return w, self.at(w)
 
-    def cosine(self, t: ArrayLike) -> NDArray:
-        """∫_{ω_N}^∞ B_tail(ω) cos(ωt) dω, shape (len(t), P)."""
-        return self._transform(t, cos=True)
+    def cosine(self, t: ArrayLike, columns: ArrayLike | None = None) -> NDArray:
+        """∫_{ω_N}^∞ B_tail(ω) cos(ωt) dω, shape (len(t), P), or of the couplings
+        ``columns`` (indices) alone: the same numbers (the power tails' grid stays that
+        of all)."""
+        return self._transform(t, cos=True, columns=columns)
 
     def sine(self, t: ArrayLike) -> NDArray:
         """∫_{ω_N}^∞ B_tail(ω) sin(ωt) dω, shape (len(t), P)."""
         return self._transform(t, cos=False)
 
-    def _transform(self, t: ArrayLike, cos: bool) -> NDArray:
+    def _transform(self, t: ArrayLike, cos: bool, columns: ArrayLike | None = None) -> NDArray:
         t = np.asarray(t, dtype=float).reshape(-1)
-        out = np.zeros((t.size, self.kind.size))
-        exponential = self.kind == "exponential"
+        every = np.arange(self.kind.size)
+        which = every if columns is None else every[np.asarray(columns, dtype=int)]
+        kinds, rates, values = self.kind[which], self.rate[which], self.value[which]
+        out = np.zeros((t.size, which.size))
+        exponential = kinds == "exponential"
         if exponential.any():  # closed form (de Haan (2022) §2.5.1)
-            a, c = self.rate[exponential], self.value[exponential]
+            a, c = rates[exponential], values[exponential]
             w0, tt = self.omega_start, t[:, None]
             denominator = a**2 + tt**2
             if cos:
                 out[:, exponential] = c * (a * np.cos(w0 * tt) - tt * np.sin(w0 * tt)) / denominator
             else:
                 out[:, exponential] = c * (a * np.sin(w0 * tt) + tt * np.cos(w0 * tt)) / denominator
-        square = (self.kind == "power") & (self.rate == 2.0)
+        square = (kinds == "power") & (rates == 2.0)
         if square.any():  # closed form with the sine and cosine integrals
-            out[:, square] = self.value[square] * _inverse_square_tail(self.omega_start, t, cos)
-        rising = self.kind == "rising"
+            out[:, square] = values[square] * _inverse_square_tail(self.omega_start, t, cos)
+        rising = kinds == "rising"
         if rising.any():  # exact: the linear rise, then ω⁻² from the knee
             transform = cosine_transform if cos else sine_transform
-            knee, top = self._knees(), self._top()
+            knee, top = self._knees()[which], self._top()[which]
             for k in np.flatnonzero(rising):
                 segment = np.array([self.omega_start, knee[k]])
-                values = np.array([self.value[k], top[k]])
+                ends = np.array([values[k], top[k]])
                 if knee[k] > self.omega_start:
-                    out[:, k] = transform(segment, values, t)
+                    out[:, k] = transform(segment, ends, t)
                 out[:, k] += top[k] * _inverse_square_tail(knee[k], t, cos)[:, 0]
-        power = (self.kind == "power") & ~square
+        power = (kinds == "power") & ~square
         if power.any():  # exact for the interpolant on a fine geometric grid
             w, b = self.sampled()
             transform = cosine_transform if cos else sine_transform
-            out[:, power] = transform(w, b[:, power], t)
+            out[:, power] = transform(w, b[:, which][:, power], t)
         return out
 
     def hilbert(self, omega: ArrayLike) -> NDArray:
@@ -184,6 +189,20 @@ class DampingTail:
                 knee, top = self._knees()[k], self._top()[k]
                 out[k] = 0.5 * (self.value[k] + top) * (knee - self.omega_start) + top * knee
         return out
+
+
+def kramers_kronig_integral(
+    omega: ArrayLike, damping: ArrayLike, added_mass: ArrayLike, tail: str = "auto"
+) -> NDArray:
+    """(2/π) PV ∫₀^∞ B(ν)/(ν² − ω²) dν at the frequencies ``omega`` (rad/s, increasing) of
+    the damping B (shape (N, P)): the piecewise-linear B from B(0) = 0 and its tail
+    (:func:`fit_damping_tail` of kind ``tail``, with the ``added_mass`` A(ω), (N, P)), exact
+    (Hjulstad (2004) eq. 5.23); shape (N, P). A(ω) less it is Ogilvie's A∞ at each ω."""
+    w = np.asarray(omega, dtype=float)
+    b = np.asarray(damping, dtype=float).reshape(w.size, -1)
+    x, f = np.r_[0.0, w], np.vstack([np.zeros((1, b.shape[1])), b])
+    total = hilbert_pv(x, f, w) + fit_damping_tail(w, b, tail, added_mass=added_mass).hilbert(w)
+    return (2.0 / np.pi) * total
 
 
 def _inverse_square_tail(a: float, t: NDArray, cos: bool) -> NDArray:

@@ -37,8 +37,8 @@ from cummins.hydrodb import dof_matrix, is_rotation, single_speed
 from cummins.radiation.damping_tail import MIN_POWER as MIN_POWER  # re-exported
 from cummins.radiation.damping_tail import TAIL_KINDS as TAIL_KINDS  # re-exported
 from cummins.radiation.damping_tail import DampingTail as DampingTail  # re-exported
-from cummins.radiation.damping_tail import fit_damping_tail
-from cummins.radiation.transforms import cosine_transform, hilbert_pv, sine_transform
+from cummins.radiation.damping_tail import fit_damping_tail, kramers_kronig_integral
+from cummins.radiation.transforms import cosine_transform, sine_transform
 
 INTERPOLATIONS = ("linear", "pchip")
 
@@ -189,11 +189,7 @@ def retardation_function(
         k = np.trapezoid(np.cos(np.outer(w, t))[:, :, None] * b[:, None, :], w, axis=0)
         tail_fit = fit_damping_tail(w, b, "none")
     elif method == "exact":
-        w, b = _damping_grid(ds, interpolation, zero_frequency)
-        data = dof_matrix(ds, "radiation_damping").reshape(ds.sizes["omega"], n * n)
-        added = dof_matrix(ds, "added_mass").reshape(ds.sizes["omega"], n * n)
-        tail_fit = fit_damping_tail(ds.omega.values, data, tail, added_mass=added)
-        k = cosine_transform(w, b, t) + tail_fit.cosine(t)
+        k, tail_fit = _exact_kernel(ds, t, tail, interpolation, zero_frequency)
     else:
         raise HydroDataError(f"unknown method {method!r}", hint="use 'exact' or 'trapezoid'")
     values = (2.0 / np.pi) * k.reshape(t.size, n, n)
@@ -217,6 +213,28 @@ def retardation_function(
             "zero_frequency": int(zero_frequency),
         },
     )
+
+
+def _exact_kernel(ds, t, tail, interpolation, zero_frequency, columns=None):
+    """(∫ B cos ωt dω of the data's interpolant and its tail, (len(t), n²) or of the
+    ``columns`` of the flattened couplings alone; the tail fit)."""
+    n, w, b = ds.sizes["influenced_dof"], *_damping_grid(ds, interpolation, zero_frequency)
+    data = dof_matrix(ds, "radiation_damping").reshape(ds.sizes["omega"], n * n)
+    added = dof_matrix(ds, "added_mass").reshape(ds.sizes["omega"], n * n)
+    tail_fit = fit_damping_tail(ds.omega.values, data, tail, added_mass=added)
+    if columns is not None:
+        b = b[:, columns]
+    return cosine_transform(w, b, t) + tail_fit.cosine(t, columns), tail_fit
+
+
+def diagonal_retardation_functions(ds: xr.Dataset, t: ArrayLike, dofs) -> NDArray[np.float64]:
+    """K_ii(t) of the DOFs ``dofs`` (indices) alone, shape (len(t), len(dofs)): the numbers
+    of :func:`retardation_function` (default options) on its diagonal, without the
+    transforms of the other couplings (their tails are fitted all the same: the grid of
+    the power-law tails is common to all)."""
+    ds, t = single_speed(ds), np.asarray(t, dtype=float).reshape(-1)
+    columns = np.asarray(dofs, dtype=int) * (ds.sizes["influenced_dof"] + 1)
+    return (2.0 / np.pi) * _exact_kernel(ds, t, "auto", "linear", True, columns)[0]
 
 
 def retardation_function_from_added_mass(
@@ -257,11 +275,8 @@ def _kramers_kronig_integral(ds: xr.Dataset, tail: str) -> NDArray:
     w = ds.omega.values
     n = ds.sizes["influenced_dof"]
     b = dof_matrix(ds, "radiation_damping").reshape(w.size, n * n)
-    x = np.r_[0.0, w]
-    f = np.vstack([np.zeros((1, n * n)), b])
     a = dof_matrix(ds, "added_mass").reshape(w.size, n * n)
-    total = hilbert_pv(x, f, w) + fit_damping_tail(w, b, tail, added_mass=a).hilbert(w)
-    return (2.0 / np.pi) * total.reshape(w.size, n, n)
+    return kramers_kronig_integral(w, b, a, tail).reshape(w.size, n, n)
 
 
 def added_mass_inf_per_frequency(ds: xr.Dataset, *, tail: str = "auto") -> xr.DataArray:

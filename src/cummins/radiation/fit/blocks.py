@@ -22,7 +22,7 @@ from cummins.radiation.fit.options import MOTION_AIM, MOTION_TOL, FitOptions
 from cummins.radiation.fit.tail import fine_kernel_metrics, fine_time_grid
 from cummins.radiation.model import MemoryBlock, RadiationModel, modal_form
 from cummins.radiation.passivity import passivity_test
-from cummins.radiation.retardation import retardation_function
+from cummins.radiation.retardation import diagonal_retardation_functions
 
 
 def fit_blocks(
@@ -59,9 +59,9 @@ def fit_blocks(
     blocks, notes, tail_failures = [], [], []
     # K(t) of the data at the step of the default grid: the R² of K(t) the fit is judged by
     fine_time = fine_time_grid(measured.time, float(w.max()))
-    fine_kernel = retardation_function(inp.data, fine_time).transpose(
-        "time", "influenced_dof", "radiating_dof"
-    )
+    diagonal = sorted({i for i, j in pairs if i == j})  # the diagonal terms alone
+    fine_values = diagonal_retardation_functions(inp.data, fine_time, diagonal)
+    fine_kernel = dict(zip(diagonal, fine_values.T, strict=True))
     for dofs, elements in order_search.block_groups(n, pairs):
         say("block " + "-".join(labels[d] for d in dofs))
         # a pair fitted as given adds its antisymmetric part (j, i) after the others
@@ -197,7 +197,7 @@ def fit_blocks(
                 modal=modal,
             )
             if i == j:  # K(t) at the data's full time resolution: the target (issue 31)
-                m.update(fine_kernel_metrics(fine_kernel.values[:, i, i], view, fine_time))
+                m.update(fine_kernel_metrics(fine_kernel[i], view, fine_time))
             m["n_excluded_frequencies"] = int((~use).sum())
             m["common_poles"] = fitted.poles.count
             if as_given:

@@ -25,9 +25,9 @@ from cummins.radiation.fit.block_passivity import enforce_passivity
 from cummins.radiation.fit.tail import (
     PEAK_TOLERANCE,
     BeyondData,
+    TailBounds,
     block_beyond_data,
     impulse_r2,
-    tail_bound_violations,
 )
 from cummins.radiation.fit.vector import BlockData, PoleResidueBlock, vector_fit
 
@@ -212,7 +212,7 @@ def identify_block(
                 fitted,
                 data,
                 give_up=give_up,
-                bounds=lambda b: tail_bound_violations(b, data),
+                bounds=TailBounds(data),
             )
         else:
             block, is_passive = fitted, True

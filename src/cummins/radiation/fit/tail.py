@@ -333,33 +333,57 @@ def tail_bound_violations(block, data) -> list[tuple[NDArray, float, NDArray, fl
     (g, q, v, scale) with g the linear form of −B_ii(ω) in the element's coefficients,
     q = cap − B (< 0) its current value, v the unit vector of the DOF and the data's peak
     as scale; the worst point of each band where the bound is broken."""
-    if data.tails is None:
-        return []
-    grid = check_frequencies(float(data.omega[data.n_data - 1]))
-    forms = np.real(1j * grid[:, None] * block.poles.basis(1j * grid))
-    where = {d: k for k, d in enumerate(block.dofs)}
-    out = []
-    for e, (i, j) in enumerate(block.elements):
-        if i != j:
-            continue
-        peak = float(np.abs(data.damping[data.used[:, e], i, i]).max(initial=0.0))
-        if peak <= 0:
-            continue
-        room = envelope(data.tails[e], grid, peak) + BOUND_TOLERANCE * peak
-        room = room - forms @ block.coefficients[e]
-        broken = room < 0
-        if not broken.any():
-            continue
-        unit = np.zeros(len(block.dofs))
-        unit[where[i]] = 1.0
-        edges = np.flatnonzero(np.diff(np.r_[False, broken, False].astype(int)))
-        for first, stop in zip(edges[::2], edges[1::2], strict=True):
-            # the worst point and five across the band
-            band = np.arange(first, stop)
-            spread = band[np.linspace(0, band.size - 1, 5).astype(int)]
-            for k in np.unique(np.r_[band[np.argmin(room[band])], spread]):
-                out.append((-forms[k], float(room[k]), unit, peak))
-    return out
+    return TailBounds(data)(block)
+
+
+class TailBounds:
+    """:func:`tail_bound_violations` against one block's ``data``, called with the iterates
+    of one passivity enforcement: the check grid, the linear forms of the poles there and
+    each element's cap are computed once for the poles (which the enforcement does not
+    move), the same numbers."""
+
+    def __init__(self, data):
+        self.data = data
+        self._poles = None
+        self._caps: tuple = ()
+
+    def _prepare(self, block) -> tuple:
+        data = self.data
+        grid = check_frequencies(float(data.omega[data.n_data - 1]))
+        forms = np.real(1j * grid[:, None] * block.poles.basis(1j * grid))
+        caps = []
+        for e, (i, j) in enumerate(block.elements):
+            if i != j:
+                continue
+            peak = float(np.abs(data.damping[data.used[:, e], i, i]).max(initial=0.0))
+            if peak > 0:
+                cap = envelope(data.tails[e], grid, peak) + BOUND_TOLERANCE * peak
+                caps.append((e, i, peak, cap))
+        return forms, caps
+
+    def __call__(self, block) -> list[tuple[NDArray, float, NDArray, float]]:
+        if self.data.tails is None:
+            return []
+        if block.poles is not self._poles:
+            self._poles, self._caps = block.poles, self._prepare(block)
+        forms, caps = self._caps
+        where = {d: k for k, d in enumerate(block.dofs)}
+        out = []
+        for e, i, peak, cap in caps:
+            room = cap - forms @ block.coefficients[e]
+            broken = room < 0
+            if not broken.any():
+                continue
+            unit = np.zeros(len(block.dofs))
+            unit[where[i]] = 1.0
+            edges = np.flatnonzero(np.diff(np.r_[False, broken, False].astype(int)))
+            for first, stop in zip(edges[::2], edges[1::2], strict=True):
+                # the worst point and five across the band
+                band = np.arange(first, stop)
+                spread = band[np.linspace(0, band.size - 1, 5).astype(int)]
+                for k in np.unique(np.r_[band[np.argmin(room[band])], spread]):
+                    out.append((-forms[k], float(room[k]), unit, peak))
+        return out
 
 
 #: Most points of the time grid of the R² of K(t) a fit is judged by: the step
