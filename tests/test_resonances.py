@@ -80,6 +80,43 @@ def test_a_piston_mode_sampled_by_a_few_points_is_still_a_resonance():
     assert piston.omega == pytest.approx((1.7, 1.8, 1.9, 2.0)) and piston.kept
 
 
+def test_a_piston_mode_lighter_than_the_pole_floor_is_followed():
+    """The sharper ring's piston mode needs poles damped less than the 5 % of critical
+    the fit allows a block without one (``MIN_DAMPING``): at that floor the heave block
+    missed its motion target (1.08 % of the peak, 20 states); fitted again with poles
+    down to 1 %, it meets it (measured 0.20 %, 7 states, R² of A and B 1.0000)."""
+    from cummins.radiation.fit.vector import MIN_DAMPING, RESONANCE_MIN_DAMPING
+
+    ds = cummins.read(DATA / "moonpool_sharp_capytaine.nc")
+    model = cummins.fit_radiation(ds)
+    assert not model.attrs.get("failures")
+    (block,) = model.blocks
+    assert f"poles damped down to {RESONANCE_MIN_DAMPING:.0%}" in block.note
+    poles = np.linalg.eigvals(block.a)
+    relative = -poles.real / np.abs(poles)
+    assert relative.min() < 0.8 * MIN_DAMPING  # measured 0.038
+    assert relative.min() >= 0.99 * RESONANCE_MIN_DAMPING  # eigenvalues of repeated poles
+    r2_a, r2_b = _heave_r2_everywhere(ds, model)
+    assert r2_a > 0.99 and r2_b > 0.99
+    assert motion_rao_error(ds, model).error < 0.005
+
+
+def test_the_pole_floor_stays_where_no_resonance_is_kept(moonpool):
+    """A block whose resonance the fit meets at the usual floor (the first ring) and a
+    body without one (the semisubmersible) keep poles damped at least ``MIN_DAMPING``."""
+    from cummins.radiation.fit.vector import MIN_DAMPING
+
+    semisub = cummins.read(DATA / "semisub_capytaine.nc")
+    for ds in (moonpool, semisub):
+        model = cummins.fit_radiation(ds)
+        for block in model.blocks:
+            assert "poles damped down to" not in block.note
+            poles = np.linalg.eigvals(block.a)
+            poles = poles[np.abs(poles.imag) > 1e-9 * np.abs(poles)]
+            # (repeated poles of the realization: their eigenvalues to about 1e-3)
+            assert (-poles.real / np.abs(poles)).min() >= 0.99 * MIN_DAMPING
+
+
 def test_a_resonance_the_motions_do_not_depend_on_stays_out():
     """The semisubmersible's heave feature at 1.2–1.4 rad/s: bridged over, the motions
     move by 0.02 % of their peak: left out of the fit (putting it back cost the R² of B

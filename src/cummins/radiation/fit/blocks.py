@@ -103,8 +103,10 @@ def fit_blocks(
             motion=motion,
             fixed_count=fixed_count,
             name=name,
+            min_damping=vector.MIN_DAMPING,
         ):
-            """The block's data weighted for motion target ``tol`` and its fit."""
+            """The block's data weighted for motion target ``tol`` and its fit, its poles
+            damped at least ``min_damping`` of critical."""
             data = vector.block_data(
                 dofs,
                 elements,
@@ -119,6 +121,7 @@ def fit_blocks(
                 antisymmetric_inf=inp.reciprocity.added_mass_inf,
                 time=measured.time,
                 kernel=measured.kernel,
+                min_damping=min_damping,
             )
             try:
                 found = order_search.identify_block(
@@ -138,12 +141,27 @@ def fit_blocks(
             return data, *found
 
         data, fitted, score, block_notes = identify(motion_tol, motion_aim)
+        floor = vector.MIN_DAMPING
+        if set(dofs) & set(inp.resonant_dofs) and not score.meets(motion_aim):
+            # a sharp resonance the motions depend on (a piston or gap mode) and the
+            # targets missed: poles as lightly damped as the resonance, when that brings
+            # the block closer to its targets
+            sharp = identify(motion_tol, motion_aim, min_damping=vector.RESONANCE_MIN_DAMPING)
+            if order_search.closeness(sharp[2], r2, motion_aim) < order_search.closeness(
+                score, r2, motion_aim
+            ):
+                data, fitted, score, block_notes = sharp
+                floor = vector.RESONANCE_MIN_DAMPING
+                block_notes.append(
+                    f"a sharp resonance kept: poles damped down to {floor:.0%} of critical "
+                    f"(else {vector.MIN_DAMPING:.0%})"
+                )
         if motion_aim is not None and motion_tol < MOTION_TOL and not score.meets(motion_aim):
             # a tighter motion target weighs the motions more, and passivity can then cost
             # them more than it costs the default's fit (the supply vessel's heave-pitch
             # block: 0.55 % at 10 common poles against the default's 0.29 % at 9): the
             # tighter target never keeps a block further from it than the default's
-            default = identify(MOTION_TOL, MOTION_AIM * MOTION_TOL)
+            default = identify(MOTION_TOL, MOTION_AIM * MOTION_TOL, min_damping=floor)
             if order_search.closeness(default[2], r2, motion_aim) < order_search.closeness(
                 score, r2, motion_aim
             ):

@@ -128,6 +128,11 @@ class FitInput:
         The DOFs that keep frequencies outside the fitting range (cut where every
         modelled DOF keeps its points), with their curves in and out of it
         (:func:`range_cut_failures`); None when no DOF does.
+    resonant_dofs
+        Indices of the DOFs that keep a sharp resonance of the data in the fit because the
+        motions depend on it (a piston or gap mode: :func:`cummins.repair.suspects_by_dof`);
+        a block of theirs that misses its targets is fitted again with poles as lightly
+        damped as :data:`cummins.radiation.fit.vector.RESONANCE_MIN_DAMPING`.
     """
 
     ds: xr.Dataset
@@ -150,6 +155,7 @@ class FitInput:
     attrs: dict[str, Any] = field(default_factory=dict)
     beyond_range: BeyondRange | None = None
     reciprocity: Reciprocity = field(default_factory=Reciprocity)
+    resonant_dofs: tuple[int, ...] = ()
 
     @property
     def as_given(self) -> frozenset[tuple[int, int]]:
@@ -174,7 +180,7 @@ def prepare_fit(
     user, passive_part = ds, None
     if options.passivity != "none":
         ds, passive_part = nearest_passive_damping(ds, significant_couplings(ds, options.threshold))
-    raw, keep_dof, sound, data_notes = _fit_data(
+    raw, keep_dof, sound, data_notes, resonant_dofs = _fit_data(
         ds, options.omega_min, options.omega_max, options.exclude_suspect
     )
     every_frequency = raw  # for Ogilvie's A∞, before the range is cut
@@ -389,6 +395,7 @@ def prepare_fit(
         beyond_range=beyond_range,
         antisymmetric_added_mass=antisymmetric,
         reciprocity=reciprocity,
+        resonant_dofs=resonant_dofs,
     )
 
 
@@ -550,10 +557,11 @@ def response_weights(data: xr.Dataset) -> NDArray[np.float64]:
 
 def _fit_data(
     ds, omega_min, omega_max, exclude_suspect
-) -> tuple[xr.Dataset, NDArray[np.bool_], NDArray[np.bool_], list[str]]:
+) -> tuple[xr.Dataset, NDArray[np.bool_], NDArray[np.bool_], list[str], tuple[int, ...]]:
     """The data to fit, which frequencies each DOF keeps (omega, dof), which hold sound
     data (those and its suspect points that are sharp features of the data:
-    :func:`cummins.repair.sharp_features`) and what the user should know.
+    :func:`cummins.repair.sharp_features`), what the user should know and the DOFs that
+    keep a sharp resonance the motions depend on.
 
     A suspect frequency (:func:`cummins.repair.find_suspect_frequencies`, run on each
     DOF's own curves) costs that point, and only to the couplings of the DOFs whose curves
@@ -568,6 +576,7 @@ def _fit_data(
     w = data.omega.values
     keep = np.ones((w.size, len(labels)), dtype=bool)
     sound = np.zeros_like(keep)  # suspect points that are sharp features of the data
+    resonant: list[int] = []
     if exclude_suspect == "above_first":  # the rule of the previous default
         cleaned, suspects = remove_suspect_frequencies(data, above_first=True)
         for s in suspects:
@@ -588,6 +597,8 @@ def _fit_data(
                     keep[np.isclose(w, s.omega, rtol=1e-12, atol=0.0), d] = False
             for omega in own[label].features:
                 sound[np.isclose(w, omega, rtol=1e-12, atol=0.0), d] = True
+            if any(r.kept and r.motion_change is not None for r in own[label].resonances):
+                resonant.append(d)  # a resonance the motions depend on
             resonances += [r.description(label) for r in own[label].resonances]
         for s in find_suspect_frequencies(data):
             if not keep[np.isclose(w, s.omega, rtol=1e-12, atol=0.0)].all():
@@ -614,7 +625,7 @@ def _fit_data(
     for finding in copied_dofs(data):
         if finding.severity != "ok":
             notes.append(f"{finding.message}: {finding.advice}")
-    return data, keep, sound | keep, notes
+    return data, keep, sound | keep, notes, tuple(resonant)
 
 
 def _range_cut_notes(raw: xr.Dataset, keep_dof: NDArray, inside: NDArray) -> list[str]:
