@@ -81,9 +81,18 @@ def test_reduce_a_failed_model_says_so_and_the_reduced_model_keeps_it(failed, tm
 
 
 def test_report_of_a_failed_model_and_of_its_run_say_so(failed, tmp_path):
+    import html
+    import re
+
     result = _run("report", failed, "-o", tmp_path / "model.html")
     assert result.exit_code == 0, result.output
     assert len(_warnings(result.output)) == 1
+    # and the page, in a box above the fit table: every failure the model records
+    page = (tmp_path / "model.html").read_text(encoding="utf-8")
+    box = re.search(r'<div class="failures">(.*?)</div>', page, re.S)
+    assert box is not None and page.index(box[0]) < page.index("<table")
+    items = [html.unescape(i) for i in re.findall(r"<li>(.*?)</li>", box[1])]
+    assert items == list(cummins.RadiationModel.load(failed).attrs["failures"])
     run = tmp_path / "run.nc"
     assert _run("simulate", failed, *WAVE, "-o", run).exit_code == 0
     result = _run("report", run, "-o", tmp_path / "run.html")

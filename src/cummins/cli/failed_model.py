@@ -6,7 +6,9 @@ radiation model they use missed its fit targets, and what their result files rec
 target, a motion error above twice its target; exit status 3). ``simulate``, ``reduce``
 and ``report`` given such a model, and ``simulate`` fitting one on the fly, say so in one
 line, and ``simulate``'s run file and the reduced model carry the failures
-(``model_failures``; the reduced model in its own ``failures``).
+(``model_failures``; the reduced model in its own ``failures``). ``cummins
+fit-excitation`` records its failures the same way (a DOF above its NRMSE target; exit
+status 3), and ``report`` of its model file says so in the same line.
 """
 
 from __future__ import annotations
@@ -43,21 +45,25 @@ _WHOSE = {
 }
 
 
-def failed_model_line(failures: list[str], source: str, kind: str = "model") -> str:
+def failed_model_line(
+    failures: list[str], source: str, kind: str = "model", command: str = "cummins fit"
+) -> str:
     """The one line: where the model comes from (``kind``: ``"model"`` a model file,
     ``"fitted"`` fitted on the fly to the data ``source``, ``"result"`` a file made with
-    a model), what it missed (each failure up to its first parenthesis), and that the
-    results inherit it."""
+    a model), what it missed (each failure up to its first parenthesis), the exit status
+    of the ``command`` that fitted it, and that the results inherit it."""
     short = [f.split(" (")[0].rstrip(":;, ") for f in failures]
     short.sort(key=lambda f: not f.startswith("motion error"))  # what users check first
     missed = "; ".join(short[:SHOWN])
     if len(short) > SHOWN:
         missed += f" and {len(short) - SHOWN} more"
-    status = "cummins fit would exit 3" if kind == "fitted" else "cummins fit exit 3"
+    status = f"{command} would exit 3" if kind == "fitted" else f"{command} exit 3"
     return f"{source}: {_WHOSE[kind]}: {missed} ({status}); results inherit it"
 
 
-def warn_failed_model(attrs: Mapping, source, kind: str = "model") -> dict[str, str]:
+def warn_failed_model(
+    attrs: Mapping, source, kind: str = "model", command: str = "cummins fit"
+) -> dict[str, str]:
     """Print the one line (:func:`failed_model_line`) when ``attrs`` (a model's, or a
     result file's) hold failures; return the attributes a result made with that model
     records (empty when none)."""
@@ -65,13 +71,16 @@ def warn_failed_model(attrs: Mapping, source, kind: str = "model") -> dict[str, 
     if not failures:
         return {}
     name = Path(str(source)).name if source else "the model"
-    err_console.print(f"[yellow]warning:[/] {escape(failed_model_line(failures, name, kind))}")
+    err_console.print(
+        f"[yellow]warning:[/] {escape(failed_model_line(failures, name, kind, command))}"
+    )
     return {ATTRIBUTE: "\n".join(failures)}
 
 
 def warn_failed_file(path) -> None:
     """:func:`warn_failed_model` of a file's own attributes when it is a NetCDF file made
-    by cummins (a model, a run, an RAO file); other files say nothing."""
+    by cummins (a radiation or excitation model, a run, an RAO file); other files say
+    nothing."""
     p = Path(path)
     if not (p.is_file() and p.suffix.lower() == ".nc"):
         return
@@ -86,4 +95,8 @@ def warn_failed_file(path) -> None:
     except (OSError, HydroDataError):
         return  # not HDF5 (a NetCDF-3 data file), or damaged: the report says so
     attrs = {k: v.decode() if isinstance(v, bytes) else v for k, v in attrs.items()}
-    warn_failed_model(attrs, p, "model" if attrs.get("failures") else "result")
+    from cummins.excitation_model.model_file import FORMAT_NAME as EXCITATION
+
+    command = "cummins fit-excitation" if attrs.get("cummins_format") == EXCITATION else None
+    kind = "model" if attrs.get("failures") else "result"
+    warn_failed_model(attrs, p, kind, command or "cummins fit")

@@ -2,9 +2,9 @@
 its assembly.
 
 :class:`Section` (a title and its HTML body), a matplotlib figure as an ``<img>`` with an
-embedded PNG (``data:`` URI, :func:`figure_html`), tables (:func:`table_html`), notes, and
-the whole page with its inline style sheet and table of contents (:func:`render_html`):
-no scripts, no request of its own.
+embedded PNG (``data:`` URI, :func:`figure_html`), tables (:func:`table_html`), notes,
+a box for a model's failures (:func:`failures_html`), and the whole page with its inline
+style sheet and table of contents (:func:`render_html`): no scripts, no request of its own.
 """
 
 from __future__ import annotations
@@ -38,6 +38,9 @@ figure{margin:1em 0}
 figure img{max-width:100%;border:1px solid #dde3ea}
 figcaption{font-size:.85em;color:#4a5568}
 p.note{color:#4a5568;font-size:.9em}
+div.failures{background:#fbe3e3;border-left:6px solid #c53030;padding:.5em 1em;margin:.8em 0}
+div.failures p{margin:.2em 0;font-weight:600}
+div.failures ul{margin:.2em 0 .2em 1.2em;padding:0}
 nav a{margin-right:1em}
 """
 
@@ -101,6 +104,15 @@ def _cell(value: object) -> str:
 
 def _note(text: str) -> str:
     return f'<p class="note">{html.escape(text)}</p>'
+
+
+def failures_html(failures: Sequence[str], what: str) -> str:
+    """A box that cannot be missed: ``what`` (the sentence that heads it) and one item
+    per failure; empty without failures."""
+    if not failures:
+        return ""
+    items = "".join(f"<li>{html.escape(str(f))}</li>" for f in failures)
+    return f'<div class="failures"><p>{html.escape(what)}</p><ul>{items}</ul></div>'
 
 
 def render_html(title: str, subtitle: str, sections: Sequence[Section]) -> str:

@@ -9,6 +9,9 @@ one HTML page of the pipeline's figures and tables for it:
 ``model`` (a radiation model from ``cummins fit``/``reduce``)
     the per-coupling table (order, R² of A, B, K(t), passivity) and, when the data it was
     fitted to are at hand, the data against the model for every coupling, and K(t);
+``excitation-model`` (a wave excitation model from ``cummins fit-excitation``)
+    states, t_c and NRMSE per heading and DOF, and F(ω) and K_ex(t) of the model against
+    its data (:mod:`cummins.cli.html_excitation`);
 ``rao`` (a RAO file from ``cummins rao``)
     the RAOs and their largest values;
 ``run`` (a simulation from ``cummins simulate``)
@@ -42,8 +45,9 @@ from pathlib import Path
 import numpy as np
 import xarray as xr
 
+from cummins.cli.html_excitation import excitation_model_sections
 from cummins.cli.html_page import Section as Section
-from cummins.cli.html_page import _note, figure_html, table_html
+from cummins.cli.html_page import _note, failures_html, figure_html, table_html
 from cummins.cli.html_page import render_html as render_html
 from cummins.errors import CumminsError, check_writable
 from cummins.files import files_read, refuse_overwriting_inputs, replacing
@@ -55,6 +59,7 @@ __all__ = ["KINDS", "Section", "detect_kind", "render_html", "report_sections", 
 KINDS: dict[str, str] = {
     "data": "hydrodynamic database",
     "model": "radiation model",
+    "excitation-model": "wave excitation model",
     "rao": "motion RAOs",
     "run": "time-domain simulation",
     "dp": "nonlinear 6-DOF (DP) simulation",
@@ -92,11 +97,15 @@ def detect_kind(path: str | os.PathLike[str]) -> str:
         return "data"
     import h5py
 
-    from cummins.radiation.model_file import FORMAT_NAME
+    from cummins.cli.common import cummins_model_format
+    from cummins.excitation_model.model_file import FORMAT_NAME as EXCITATION
+    from cummins.radiation.model_file import FORMAT_NAME as RADIATION
 
+    model = {RADIATION: "model", EXCITATION: "excitation-model"}.get(cummins_model_format(p))
+    if model is not None:
+        return model
     try:
         with h5py.File(p, "r") as f:
-            kind = f.attrs.get("cummins_format")
             result_kind = f.attrs.get("cummins_kind")
             names = set(f.keys())
     except OSError as exc:  # an HDF5 signature on a damaged or truncated file
@@ -104,10 +113,7 @@ def detect_kind(path: str | os.PathLike[str]) -> str:
             f"{p} starts like an HDF5/NetCDF file but cannot be opened ({exc})",
             hint="The file is damaged or truncated: write it again",
         ) from None
-    kind = kind.decode() if isinstance(kind, bytes) else kind
     result_kind = result_kind.decode() if isinstance(result_kind, bytes) else result_kind
-    if kind == FORMAT_NAME:
-        return "model"
     from cummins.studies.study import _RESULT_KIND
 
     if result_kind == _RESULT_KIND:
@@ -254,11 +260,18 @@ def rao_table_html(rao: xr.DataArray) -> str:
 
 def model_sections(path: Path) -> list[Section]:
     """The fit table, K(t) of the model and, with its data, the fit of every coupling."""
+    from cummins.cli.failed_model import model_failures
     from cummins.fit_figures import fit_figures
     from cummins.plots import plot_retardation
     from cummins.radiation.model import RadiationModel
 
     model = RadiationModel.load(path)
+    failures = model_failures(model.attrs)
+    box = failures_html(
+        failures,
+        f"This model missed its fit targets ({len(failures)}; cummins fit exits with status "
+        "3): results made with it inherit it.",
+    )
     rows = []
     for k in model.modelled:
         if k.influenced > k.radiating:
@@ -278,7 +291,8 @@ def model_sections(path: Path) -> list[Section]:
     sections = [
         Section(
             "Fitted couplings",
-            _note(
+            box
+            + _note(
                 f"{len(model.dofs)} DOFs, total order {model.total_order}, MIMO passive: "
                 f"{model.attrs.get('mimo_passive', 'not recorded')}."
                 + "".join(
@@ -622,6 +636,7 @@ def report_sections(
         "data": lambda: data_sections(_read_data(p, read_options)),
         "kernel": lambda: kernel_sections(p),
         "model": lambda: model_sections(p),
+        "excitation-model": lambda: excitation_model_sections(p, read_options),
         "rao": lambda: rao_sections(p),
         "run": lambda: run_sections(p),
         "dp": lambda: dp_sections(p),

@@ -21,7 +21,9 @@ from cummins.cli.option_rules import Command
 )
 @click.option(
     "--kind",
-    type=click.Choice(["data", "model", "rao", "run", "dp", "lf", "kernel", "batch"]),
+    type=click.Choice(
+        ["data", "model", "excitation-model", "rao", "run", "dp", "lf", "kernel", "batch"]
+    ),
     default=None,
     help="What PATH is (default: detected from its content); a kind given must be what "
     "the file holds.",
@@ -36,6 +38,8 @@ def report_command(path, output, kind, format_, rho, g, ulen, force):
     What it shows depends on what the file is (detected from its content):
       data file/folder   data checks, A(w), B(w), excitation, K(t), motion RAOs
       model (cummins fit) per-coupling orders and R², K(t), data against the model
+      excitation model   states, t_c and NRMSE per heading and DOF, |F| and K_ex(t)
+       (fit-excitation)  of the data against the model
       RAO file (rao)     RAOs and their largest values
       run (simulate)     statistics, time series, response spectra
       run (dp-demo)      checks (heel, watch circle), pose, every load, track
@@ -47,6 +51,7 @@ def report_command(path, output, kind, format_, rho, g, ulen, force):
     \b
     Examples:
       cummins report tanker.1 -o tanker.html
+      cummins report exc.nc -o exc.html
       cummins report results.nc -o report.html
       cummins report run.nc -o run.html --force
     """

@@ -81,7 +81,16 @@ from cummins.radiation.fit.vector import BlockData, Poles, _same_poles, relocate
 from cummins.radiation.model import siso_frequency_response
 from cummins.validation import in_range, positive
 
-__all__ = ["METHODS", "NRMSE_TARGET", "fit_excitation", "fit_response", "fitting_grid", "nrmse"]
+__all__ = [
+    "METHODS",
+    "NRMSE_TARGET",
+    "fit_excitation",
+    "fit_response",
+    "fitting_grid",
+    "heading_grid",
+    "model_nrmse",
+    "nrmse",
+]
 
 #: Identification methods: vector fitting of the response, or ERA of the impulse response.
 METHODS = ("vf", "realization")
@@ -343,13 +352,41 @@ def delay_candidates(irf, causality: float, excited) -> list[list[float]]:
     return out
 
 
-def _fit_heading(ds, beta, heading, excited, zero, delay, options) -> list[DofExcitation]:
-    """The models of every DOF at one heading, for one t_c."""
+def heading_grid(
+    ds: xr.Dataset, beta: float, delay: float, band: float = BAND
+) -> tuple[NDArray[np.float64], NDArray[np.complex128]]:
+    """(ω, F) the DOFs of one heading are fitted and judged on: the fitting grid
+    (:func:`fitting_grid`, refined in the wave band of any DOF) and F there, (nω, n)."""
     data_w = np.asarray(ds.omega.values, dtype=float)
     data_f = force_on_grid(ds, np.array([beta]), data_w)[:, 0, :]
-    in_band = np.any(np.abs(data_f) > options["band"] * np.abs(data_f).max(axis=0), axis=1)
+    in_band = np.any(np.abs(data_f) > band * np.abs(data_f).max(axis=0), axis=1)
     w = fitting_grid(data_w, delay, in_band)
-    force = force_on_grid(ds, np.array([beta]), w)[:, 0, :]
+    return w, force_on_grid(ds, np.array([beta]), w)[:, 0, :]
+
+
+def model_nrmse(ds: xr.Dataset, model: ExcitationModel) -> NDArray[np.float64]:
+    """The NRMSE of every (heading, DOF) of ``model`` against the data ``ds`` (zero
+    speed), measured as the fit measures it (module docstring: on :func:`heading_grid`
+    with the model's t_c, over the DOF's wave band of ``model.attrs["band"]``); (nβ, n),
+    NaN where a DOF has no states. On the data the model was fitted to it is the
+    recorded ``metrics["nrmse"]``; a difference says the data are not those."""
+    ds = _check_zero_speed(ds)
+    band = float(model.attrs.get("band", BAND))
+    out = np.full(model.orders.shape, np.nan)
+    for h, beta in enumerate(model.headings):
+        w, force = heading_grid(ds, float(beta), float(model.delays[h]), band)
+        fitted = model.frequency_response(w)[:, h, :]
+        for d in range(len(model.dofs)):
+            if model.model(h, d).order:
+                f = force[:, d]
+                inside = np.abs(f) > band * np.abs(f).max()
+                out[h, d] = nrmse(fitted[:, d], f, inside, w)
+    return out
+
+
+def _fit_heading(ds, beta, heading, excited, zero, delay, options) -> list[DofExcitation]:
+    """The models of every DOF at one heading, for one t_c."""
+    w, force = heading_grid(ds, beta, delay, options["band"])
     impulse = None
     if options["method"] == "realization":
         dt = np.pi / (4 * float(w[-1]))
