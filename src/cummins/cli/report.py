@@ -39,7 +39,7 @@ def report_command(path, output, kind, format_, rho, g, ulen, force):
       data file/folder   data checks, A(w), B(w), excitation, K(t), motion RAOs
       model (cummins fit) per-coupling orders and R², K(t), data against the model
       excitation model   states, t_c and NRMSE per heading and DOF, |F| and K_ex(t)
-       (fit-excitation)  of the data against the model
+      (fit-excitation)   against the data (read with the model's rho, g)
       RAO file (rao)     RAOs and their largest values
       run (simulate)     statistics, time series, response spectra
       run (dp-demo)      checks (heel, watch circle), pose, every load, track
