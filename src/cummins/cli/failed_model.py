@@ -97,6 +97,8 @@ def warn_failed_file(path) -> None:
     attrs = {k: v.decode() if isinstance(v, bytes) else v for k, v in attrs.items()}
     from cummins.excitation_model.model_file import FORMAT_NAME as EXCITATION
 
-    command = "cummins fit-excitation" if attrs.get("cummins_format") == EXCITATION else None
+    command = (
+        "cummins fit-excitation" if attrs.get("cummins_format") == EXCITATION else "cummins fit"
+    )
     kind = "model" if attrs.get("failures") else "result"
-    warn_failed_model(attrs, p, kind, command or "cummins fit")
+    warn_failed_model(attrs, p, kind, command)

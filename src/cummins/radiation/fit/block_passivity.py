@@ -202,7 +202,7 @@ def enforce_passivity(
     not keep the result. ``bounds``: a callable (block → more violated linear
     constraints, in the form of :func:`passivity_violations`' (g, λ, w, scale)) that the
     same programme meets: the damping beyond the data held under the data's tail
-    (:func:`cummins.radiation.fit.tail.tail_bound_violations`), so that the passivity
+    (:class:`cummins.radiation.fit.tail.TailBounds`), so that the passivity
     step does not raise it there."""
     from cummins.radiation.passivity.enforcement import factored_misfit, least_distance
 

@@ -326,21 +326,16 @@ def block_beyond_data(block, data) -> dict[int, BeyondData]:
 BOUND_TOLERANCE = 0.5 * PEAK_TOLERANCE
 
 
-def tail_bound_violations(block, data) -> list[tuple[NDArray, float, NDArray, float]]:
+class TailBounds:
     """Where a diagonal element's damping beyond the data exceeds the :func:`envelope` of
     the data's tail by more than :data:`BOUND_TOLERANCE` of the data's peak, as linear
-    constraints of the passivity step (:func:`cummins.radiation.fit.vector.enforce_passivity`):
-    (g, q, v, scale) with g the linear form of −B_ii(ω) in the element's coefficients,
-    q = cap − B (< 0) its current value, v the unit vector of the DOF and the data's peak
-    as scale; the worst point of each band where the bound is broken."""
-    return TailBounds(data)(block)
-
-
-class TailBounds:
-    """:func:`tail_bound_violations` against one block's ``data``, called with the iterates
-    of one passivity enforcement: the check grid, the linear forms of the poles there and
-    each element's cap are computed once for the poles (which the enforcement does not
-    move), the same numbers."""
+    constraints of the passivity step
+    (:func:`cummins.radiation.fit.block_passivity.enforce_passivity`): called with a block
+    of ``data``, the list of (g, q, v, scale) with g the linear form of −B_ii(ω) in the
+    element's coefficients, q = cap − B (< 0) its current value, v the unit vector of the
+    DOF and the data's peak as scale; the worst point of each band where the bound is
+    broken. The check grid, the linear forms of the poles there and each element's cap
+    are computed once for the poles (which one enforcement does not move)."""
 
     def __init__(self, data):
         self.data = data
