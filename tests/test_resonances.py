@@ -94,7 +94,8 @@ def test_a_piston_mode_lighter_than_the_pole_floor_is_followed():
     assert f"poles damped down to {RESONANCE_MIN_DAMPING:.0%}" in block.note
     poles = np.linalg.eigvals(block.a)
     relative = -poles.real / np.abs(poles)
-    assert relative.min() < 0.8 * MIN_DAMPING  # measured 0.038
+    # a pole the usual floor forbids (measured 0.038; 1 %: eigenvalues of repeated poles)
+    assert relative.min() < 0.99 * MIN_DAMPING
     assert relative.min() >= 0.99 * RESONANCE_MIN_DAMPING  # eigenvalues of repeated poles
     r2_a, r2_b = _heave_r2_everywhere(ds, model)
     assert r2_a > 0.99 and r2_b > 0.99
