@@ -10,6 +10,9 @@ shown once each as one-line notes.
 from __future__ import annotations
 
 import importlib
+import sys
+from collections.abc import Iterator
+from contextlib import contextmanager
 
 import click
 
@@ -40,8 +43,40 @@ COMMANDS: dict[str, str] = {
 }
 
 
+#: The commands that use Dask (``batch`` runs its cases on ``dask.distributed``; ``bem``
+#: runs Capytaine, whose use of optional packages cummins does not control). The others
+#: run with Dask kept out of xarray's sight (:func:`dask_kept_out`).
+USES_DASK = frozenset({"batch", "bem"})
+
+
+@contextmanager
+def dask_kept_out() -> Iterator[None]:
+    """Run a command that uses no Dask without xarray importing it.
+
+    With Dask installed (the ``[dask]`` extra), xarray imports ``dask.array`` at the
+    first ``Variable`` it builds, to ask whether the data are a Dask array
+    (``as_compatible_data`` → ``array_type("dask")``): 0.3 s of every command, more
+    than the rest of ``cummins info``. Python's documented way to make a module
+    unimportable, ``sys.modules[name] = None``, makes xarray see no Dask, as in the
+    default install. This is done only in a fresh process — neither Dask nor xarray
+    imported yet, so that every check xarray caches (``module_available``, its duck-array
+    types) says the same, "no Dask" — and Dask is importable again when the command
+    ends (xarray keeps its view for the rest of the process: in-memory NumPy data,
+    which is all these commands build).
+    """
+    fresh = not any(name in sys.modules for name in ("dask", "xarray"))
+    if fresh:
+        sys.modules["dask"] = None  # type: ignore[assignment]
+    try:
+        yield
+    finally:
+        if fresh and "dask" in sys.modules and sys.modules["dask"] is None:
+            del sys.modules["dask"]
+
+
 class LazyGroup(click.Group):
-    """A group whose commands (:data:`COMMANDS`) are imported when first asked for."""
+    """A group whose commands (:data:`COMMANDS`) are imported when first asked for, and
+    run without Dask unless they use it (:data:`USES_DASK`)."""
 
     def list_commands(self, ctx: click.Context) -> list[str]:
         return [*COMMANDS, *(n for n in super().list_commands(ctx) if n not in COMMANDS)]
@@ -53,6 +88,13 @@ class LazyGroup(click.Group):
         command = getattr(importlib.import_module(module), name)
         self.commands[cmd_name] = command
         return command
+
+    def resolve_command(self, ctx: click.Context, args: list[str]):
+        # before the command's module is imported (it may import xarray); the group's
+        # context leaves dask_kept_out when the command has run
+        if args and args[0] in COMMANDS and args[0] not in USES_DASK and not ctx.resilient_parsing:
+            ctx.with_resource(dask_kept_out())
+        return super().resolve_command(ctx, args)
 
     def format_help_text(self, ctx: click.Context, formatter: click.HelpFormatter) -> None:
         super().format_help_text(ctx, formatter)
