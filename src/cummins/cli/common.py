@@ -622,12 +622,12 @@ def cummins_model_format(path) -> str | None:
     p = Path(path)
     if not p.is_file():
         return None
-    import h5py
-
     try:
         with open(p, "rb") as f:
             if f.read(8) != b"\x89HDF\r\n\x1a\n":
                 return None
+        import h5py  # here: a text file (most solvers' output) need not load it
+
         with h5py.File(p, "r") as f:
             kind = f.attrs.get("cummins_format")
     except OSError:

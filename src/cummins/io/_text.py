@@ -117,11 +117,13 @@ def check_cut_numbers(text: TextFile, lines, columns, *, minimum_rows: int = 10)
     if len(lines) < minimum_rows:
         return
     fields = [text.lines[i].split() for i in lines]
+    widths = [len(f) for f in fields]
     for c in columns:
-        rows = [k for k, f in enumerate(fields) if len(f) > c]
+        rows = [k for k, w in enumerate(widths) if w > c]
         if len(rows) < minimum_rows:
             continue
-        lengths = np.fromiter((len(fields[k][c].lstrip("+-")) for k in rows), int, len(rows))
+        digits = [fields[k][c].lstrip("+-") for k in rows]
+        lengths = np.fromiter(map(len, digits), int, len(rows))
         values, counts = np.unique(lengths, return_counts=True)
         if counts.max() < lengths.size - max(1, int(0.02 * lengths.size)):
             continue  # free format: no fixed width to check against

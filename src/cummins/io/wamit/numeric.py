@@ -53,11 +53,27 @@ def _period_blocks(
     text: TextFile, periods: np.ndarray, where: np.ndarray, key_columns: np.ndarray
 ) -> list[tuple[float, np.ndarray]]:
     """Group row indices by period; reject duplicate keys and interleaved blocks."""
-    blocks: list[tuple[float, list[int]]] = []
+    periods = np.asarray(periods, dtype=float)
+    starts = np.flatnonzero(np.diff(periods, prepend=np.nan) != 0)
+    interleaved = np.unique(periods[starts]).size < starts.size
+    keys = np.column_stack([periods, key_columns])
+    if interleaved or np.unique(keys, axis=0).shape[0] < len(keys):  # the loop names the line
+        _period_block_error(text, periods, where, key_columns)
+    ends = [*starts[1:], periods.size]
+    return [(float(periods[a]), np.arange(a, b)) for a, b in zip(starts, ends, strict=True)]
+
+
+def _period_block_error(
+    text: TextFile, periods: np.ndarray, where: np.ndarray, key_columns: np.ndarray
+) -> None:
+    """The error of :func:`_period_blocks` at the first row in fault: a key seen before,
+    or a period whose rows are not contiguous."""
     seen_at: dict[float, int] = {}
     keys_seen: dict[tuple, int] = {}
-    for r, per in enumerate(periods):
-        key = (per, *key_columns[r])
+    keys = key_columns.tolist()
+    previous = None
+    for r, per in enumerate(periods.tolist()):
+        key = (per, *keys[r])
         if key in keys_seen:
             raise text.error(
                 f"entry {tuple(float(k) for k in key)} appears twice (first on line "
@@ -66,7 +82,7 @@ def _period_blocks(
                 hint="the file is damaged or two runs were joined",
             )
         keys_seen[key] = r
-        if not blocks or blocks[-1][0] != per:
+        if per != previous:
             if per in seen_at:
                 raise text.error(
                     f"rows of period {per:g} are not contiguous (also on line "
@@ -75,9 +91,7 @@ def _period_blocks(
                     hint="WAMIT writes one block per period; the file seems edited or damaged",
                 )
             seen_at[per] = r
-            blocks.append((per, []))
-        blocks[-1][1].append(r)
-    return [(p, np.asarray(rows)) for p, rows in blocks]
+            previous = per
 
 
 def _dof_indices(text: TextFile, indices: np.ndarray, where: np.ndarray) -> int:
