@@ -155,6 +155,75 @@ def test_info_imports_no_scipy_it_does_not_use():
     assert run.stdout.strip().splitlines()[-1] == "[]"
 
 
+#: What ``cummins info`` of a WAMIT run has no use for: Dask (xarray would import
+#: ``dask.array`` at its first Variable), the other formats' readers (detection asks every
+#: format, by its detection module), h5py (a text file is no model file), SciPy's optimize.
+NOT_FOR_INFO = (
+    "dask",
+    "cummins.io.nemoh.reader",
+    "cummins.io.aqwa.lis",
+    "cummins.io.aqwa.ah1",
+    "cummins.io.mss.reader",
+    "cummins.io.bemio.reader",
+    "cummins.io.netcdf.reader",
+    "h5py",
+    "scipy.optimize",
+)
+
+
+def test_info_leaves_dask_and_the_other_readers_unimported():
+    """``cummins info tanker.1`` with Dask installed imports none of :data:`NOT_FOR_INFO`,
+    and leaves the process as it found it: Dask importable again (``batch`` in the same
+    process runs on it), the garbage collector's thresholds restored, and the run read
+    the same as ``cummins.read`` (the same DOFs and frequencies printed)."""
+    pytest.importorskip("dask")
+    code = (
+        "import gc, json, sys\n"
+        "from cummins.cli import main\n"
+        "before = gc.get_threshold()\n"
+        f"main(['info', {str(cummins.demo_files() / 'tanker.1')!r}, '--json'], "
+        "standalone_mode=False)\n"
+        f"print(json.dumps(sorted(m for m in {NOT_FOR_INFO!r} if m in sys.modules)))\n"
+        "print(gc.get_threshold() == before)\n"
+        "from cummins.studies.batch import _dask\n"
+        "print(_dask().Client is not None and 'dask' in sys.modules)\n"
+    )
+    run = subprocess.run([sys.executable, "-c", code], capture_output=True, text=True)
+    assert run.returncode == 0, run.stderr
+    *output, imported, restored, distributed = run.stdout.strip().splitlines()
+    assert json.loads(imported) == []
+    assert restored == "True" and distributed == "True"
+    described = json.loads("\n".join(output))
+    data = cummins.demo_dataset()
+    assert described["dofs"] == [str(d) for d in data.influenced_dof.values]
+    assert described["n_omega"] == data.sizes["omega"]
+
+
+def test_fit_imports_no_dask(tmp_path):
+    """``cummins fit`` (no Dask in its work) runs without xarray importing ``dask.array``
+    (0.3 s), and writes the same model as ``fit_radiation`` in a process with Dask."""
+    pytest.importorskip("dask")
+    path = tmp_path / "m.nc"
+    code = (
+        "import sys\n"
+        "from cummins.cli import main\n"
+        f"main(['fit', {str(cummins.demo_files() / 'tanker.1')!r}, '-o', {str(path)!r}], "
+        "standalone_mode=False)\n"
+        "print(sorted(m for m in ('dask', 'dask.array', 'matplotlib') if m in sys.modules))"
+    )
+    run = subprocess.run([sys.executable, "-c", code], capture_output=True, text=True)
+    assert run.returncode == 0, run.stderr
+    assert run.stdout.strip().splitlines()[-1] == "[]"
+    model = cummins.RadiationModel.load(path)
+    import dask  # noqa: F401  (xarray sees Dask here, as a user's script does)
+
+    again = cummins.fit_radiation(cummins.demo_dataset())
+    assert model.total_order == again.total_order
+    np.testing.assert_array_equal(model.added_mass_inf, again.added_mass_inf)
+    poles, expected = (np.sort_complex(np.linalg.eigvals(m.A)) for m in (model, again))
+    np.testing.assert_allclose(poles, expected, rtol=1e-8)
+
+
 def test_writing_a_file_asks_dask_nothing(tmp_path):
     """Writing a NetCDF file of in-memory data does not import ``dask.distributed``
     (xarray's default write lock asks dask which scheduler runs: a quarter of a second

@@ -36,17 +36,17 @@ from __future__ import annotations
 
 import os
 from pathlib import Path
-
-import xarray as xr
+from typing import TYPE_CHECKING
 
 from cummins.errors import HydroDataError
-from cummins.io.aqwa.ah1 import _read_ah1
 from cummins.io.aqwa.conventions import ASYMMETRY_LIMIT as ASYMMETRY_LIMIT
 from cummins.io.aqwa.conventions import HIGH_FREQUENCY_LIMIT as HIGH_FREQUENCY_LIMIT
 from cummins.io.aqwa.conventions import asymmetry as asymmetry
 from cummins.io.aqwa.conventions import wavenumber as wavenumber
 from cummins.io.aqwa.detection import _head, _is_ah1, _is_lis, _is_qtf, sniff, sniff_dir
-from cummins.io.aqwa.lis import _read_lis
+
+if TYPE_CHECKING:
+    import xarray as xr
 
 __all__ = ["read_aqwa", "sniff", "sniff_dir"]
 
@@ -110,8 +110,13 @@ def read_aqwa(
                 else "read the run's .LIS or .AH1 (same name), which reads the .QTF beside it"
             ),
         )
+    # the readers imported here: recognising a file of another format need not load them
     if _is_lis(text_head[:8192]):
+        from cummins.io.aqwa.lis import _read_lis
+
         return _read_lis(path, rho, g)
     if _is_ah1(text_head):
+        from cummins.io.aqwa.ah1 import _read_ah1
+
         return _read_ah1(path, rho, g)
     raise HydroDataError("not an AQWA .LIS or .AH1 file (unrecognised content)", path=path)

@@ -58,9 +58,36 @@ Modules
 
 from __future__ import annotations
 
+import importlib
+from typing import TYPE_CHECKING
+
 from cummins.io.bemio.files import COPY_GROUP, sniff, sniff_dir  # noqa: F401
-from cummins.io.bemio.reader import read_bemio
-from cummins.io.bemio.state_space import read_bemio_state_space
-from cummins.io.bemio.writer import write_bemio
+
+#: Where the names of the package live; imported on first use (PEP 562), so that
+#: recognising a file of another format (``cummins.io.detect_format`` asks every format)
+#: imports the detection module only.
+_LAZY = {
+    "read_bemio": "reader",
+    "read_bemio_state_space": "state_space",
+    "write_bemio": "writer",
+}
+
+if TYPE_CHECKING:  # pragma: no cover
+    from cummins.io.bemio.reader import read_bemio
+    from cummins.io.bemio.state_space import read_bemio_state_space
+    from cummins.io.bemio.writer import write_bemio
+
+
+def __getattr__(name: str):
+    if name not in _LAZY:
+        raise AttributeError(f"module {__name__!r} has no attribute {name!r}")
+    value = getattr(importlib.import_module(f"{__name__}.{_LAZY[name]}"), name)
+    globals()[name] = value
+    return value
+
+
+def __dir__() -> list[str]:
+    return sorted([*globals(), *_LAZY])
+
 
 __all__ = ["read_bemio", "read_bemio_state_space", "sniff", "sniff_dir", "write_bemio"]

@@ -72,12 +72,35 @@ The package's modules: :mod:`~cummins.io.mss.matfile` (detection, struct access)
 
 from __future__ import annotations
 
+import importlib
+from typing import TYPE_CHECKING
+
 from cummins.io.mss.matfile import DRIFT_DOFS as DRIFT_DOFS
 from cummins.io.mss.matfile import MSS_INFINITE_FREQUENCY as MSS_INFINITE_FREQUENCY
 from cummins.io.mss.matfile import load_mat_struct as load_mat_struct
 from cummins.io.mss.matfile import sniff, sniff_dir
-from cummins.io.mss.rao import read_force_rao as read_force_rao
-from cummins.io.mss.reader import read_mss
-from cummins.io.mss.writer import write_mss
+
+#: Where the names of the package live; imported on first use (PEP 562), so that
+#: recognising a file of another format (``cummins.io.detect_format`` asks every format)
+#: imports the detection module only.
+_LAZY = {"read_force_rao": "rao", "read_mss": "reader", "write_mss": "writer"}
+
+if TYPE_CHECKING:  # pragma: no cover
+    from cummins.io.mss.rao import read_force_rao as read_force_rao
+    from cummins.io.mss.reader import read_mss
+    from cummins.io.mss.writer import write_mss
+
+
+def __getattr__(name: str):
+    if name not in _LAZY:
+        raise AttributeError(f"module {__name__!r} has no attribute {name!r}")
+    value = getattr(importlib.import_module(f"{__name__}.{_LAZY[name]}"), name)
+    globals()[name] = value
+    return value
+
+
+def __dir__() -> list[str]:
+    return sorted([*globals(), *_LAZY])
+
 
 __all__ = ["read_mss", "sniff", "sniff_dir", "write_mss"]

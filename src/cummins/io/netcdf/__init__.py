@@ -62,21 +62,62 @@ bodies), :mod:`~cummins.io.netcdf.checks` (damaged numbers, conventions),
 
 from __future__ import annotations
 
-from cummins.io.netcdf.attributes import (  # noqa: F401
-    CANONICAL_TIME_CONVENTION,
-    FILE_TIME_CONVENTION,
-    JSON_ATTRS,
-    VERSION_ATTR,
-    decode_attribute,
-    decode_attributes,
-    encode_attribute,
-    encode_attributes,
-)
-from cummins.io.netcdf.checks import IMPLAUSIBLE  # noqa: F401
+import importlib
+from typing import TYPE_CHECKING
+
 from cummins.io.netcdf.files import load_netcdf, merge_complex, sniff, sniff_dir  # noqa: F401
-from cummins.io.netcdf.layout import DofLayout, dof_layout  # noqa: F401
-from cummins.io.netcdf.legacy import LegacyExport  # noqa: F401
-from cummins.io.netcdf.reader import from_capytaine_dataset, read_netcdf
-from cummins.io.netcdf.writer import save_netcdf, to_capytaine_layout, write_netcdf  # noqa: F401
+
+#: Where the names of the package live; imported on first use (PEP 562), so that
+#: recognising a file of another format (``cummins.io.detect_format`` asks every format)
+#: imports the detection module only.
+_LAZY = {
+    "CANONICAL_TIME_CONVENTION": "attributes",
+    "FILE_TIME_CONVENTION": "attributes",
+    "JSON_ATTRS": "attributes",
+    "VERSION_ATTR": "attributes",
+    "decode_attribute": "attributes",
+    "decode_attributes": "attributes",
+    "encode_attribute": "attributes",
+    "encode_attributes": "attributes",
+    "IMPLAUSIBLE": "checks",
+    "DofLayout": "layout",
+    "dof_layout": "layout",
+    "LegacyExport": "legacy",
+    "from_capytaine_dataset": "reader",
+    "read_netcdf": "reader",
+    "save_netcdf": "writer",
+    "to_capytaine_layout": "writer",
+    "write_netcdf": "writer",
+}
+
+if TYPE_CHECKING:  # pragma: no cover
+    from cummins.io.netcdf.attributes import (  # noqa: F401
+        CANONICAL_TIME_CONVENTION,
+        FILE_TIME_CONVENTION,
+        JSON_ATTRS,
+        VERSION_ATTR,
+        decode_attribute,
+        decode_attributes,
+        encode_attribute,
+        encode_attributes,
+    )
+    from cummins.io.netcdf.checks import IMPLAUSIBLE  # noqa: F401
+    from cummins.io.netcdf.layout import DofLayout, dof_layout  # noqa: F401
+    from cummins.io.netcdf.legacy import LegacyExport  # noqa: F401
+    from cummins.io.netcdf.reader import from_capytaine_dataset, read_netcdf
+    from cummins.io.netcdf.writer import save_netcdf, to_capytaine_layout, write_netcdf  # noqa: F401
+
+
+def __getattr__(name: str):
+    if name not in _LAZY:
+        raise AttributeError(f"module {__name__!r} has no attribute {name!r}")
+    value = getattr(importlib.import_module(f"{__name__}.{_LAZY[name]}"), name)
+    globals()[name] = value
+    return value
+
+
+def __dir__() -> list[str]:
+    return sorted([*globals(), *_LAZY])
+
 
 __all__ = ["from_capytaine_dataset", "read_netcdf", "sniff", "sniff_dir", "write_netcdf"]
