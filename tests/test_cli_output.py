@@ -174,13 +174,15 @@ NOT_FOR_INFO = (
 def test_info_leaves_dask_and_the_other_readers_unimported():
     """``cummins info tanker.1`` with Dask installed imports none of :data:`NOT_FOR_INFO`,
     and leaves the process as it found it: Dask importable again (``batch`` in the same
-    process runs on it), the garbage collector's thresholds restored, and the run read
-    the same as ``cummins.read`` (the same DOFs and frequencies printed)."""
+    process runs on it), the garbage collector's thresholds restored (its objects frozen
+    only at exit), and the run read the same as ``cummins.read`` (the same DOFs and
+    frequencies printed)."""
     pytest.importorskip("dask")
     code = (
-        "import gc, json, sys\n"
+        "import atexit, gc, json, sys\n"
         "from cummins.cli import main\n"
         "before = gc.get_threshold()\n"
+        "atexit.register(lambda: print('frozen at exit', gc.get_freeze_count() > 0))\n"
         f"main(['info', {str(cummins.demo_files() / 'tanker.1')!r}, '--json'], "
         "standalone_mode=False)\n"
         f"print(json.dumps(sorted(m for m in {NOT_FOR_INFO!r} if m in sys.modules)))\n"
@@ -190,9 +192,10 @@ def test_info_leaves_dask_and_the_other_readers_unimported():
     )
     run = subprocess.run([sys.executable, "-c", code], capture_output=True, text=True)
     assert run.returncode == 0, run.stderr
-    *output, imported, restored, distributed = run.stdout.strip().splitlines()
+    *output, imported, restored, distributed, frozen = run.stdout.strip().splitlines()
     assert json.loads(imported) == []
     assert restored == "True" and distributed == "True"
+    assert frozen == "frozen at exit True"  # no collection over the whole heap at exit
     described = json.loads("\n".join(output))
     data = cummins.demo_dataset()
     assert described["dofs"] == [str(d) for d in data.influenced_dof.values]

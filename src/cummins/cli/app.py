@@ -9,6 +9,7 @@ shown once each as one-line notes.
 
 from __future__ import annotations
 
+import atexit
 import gc
 import importlib
 import sys
@@ -96,6 +97,20 @@ def fewer_collections() -> Iterator[None]:
         gc.set_threshold(*before)
 
 
+def exit_without_collecting() -> None:
+    """Have the interpreter's exit skip the garbage collector's passes over the objects
+    alive then (``gc.freeze`` at exit, an ``atexit`` function run after the commands').
+
+    At exit, Python collects garbage over every object still alive — the modules of
+    NumPy, pandas, xarray, SciPy — before it frees them: 0.09 s of CPU time after
+    ``cummins info`` that finds nothing to collect. Frozen objects are freed all the same
+    (the memory goes back with the process); only ``__del__`` of objects in reference
+    cycles, which Python does not promise to run at exit, are not run. Files are closed
+    by the commands themselves, and ``atexit`` functions (h5py's, Dask's) run as before."""
+    atexit.unregister(gc.freeze)  # once, however many commands run in the process
+    atexit.register(gc.freeze)
+
+
 class LazyGroup(click.Group):
     """A group whose commands (:data:`COMMANDS`) are imported when first asked for, and
     run without Dask unless they use it (:data:`USES_DASK`)."""
@@ -115,6 +130,7 @@ class LazyGroup(click.Group):
         # before the command's module is imported (it may import xarray); the group's
         # context leaves dask_kept_out when the command has run
         if args and args[0] in COMMANDS and not ctx.resilient_parsing:
+            exit_without_collecting()
             ctx.with_resource(fewer_collections())
             if args[0] not in USES_DASK:
                 ctx.with_resource(dask_kept_out())
