@@ -113,7 +113,9 @@ def exit_without_collecting() -> None:
 
 class LazyGroup(click.Group):
     """A group whose commands (:data:`COMMANDS`) are imported when first asked for, and
-    run without Dask unless they use it (:data:`USES_DASK`)."""
+    run with fewer garbage collections (:func:`fewer_collections`,
+    :func:`exit_without_collecting`) and without Dask unless they use it
+    (:data:`USES_DASK`)."""
 
     def list_commands(self, ctx: click.Context) -> list[str]:
         return [*COMMANDS, *(n for n in super().list_commands(ctx) if n not in COMMANDS)]

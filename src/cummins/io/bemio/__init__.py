@@ -58,9 +58,9 @@ Modules
 
 from __future__ import annotations
 
-import importlib
 from typing import TYPE_CHECKING
 
+from cummins._lazy import lazy_attributes
 from cummins.io.bemio.files import COPY_GROUP, sniff, sniff_dir  # noqa: F401
 
 #: Where the names of the package live; imported on first use (PEP 562), so that
@@ -77,17 +77,7 @@ if TYPE_CHECKING:  # pragma: no cover
     from cummins.io.bemio.state_space import read_bemio_state_space
     from cummins.io.bemio.writer import write_bemio
 
-
-def __getattr__(name: str):
-    if name not in _LAZY:
-        raise AttributeError(f"module {__name__!r} has no attribute {name!r}")
-    value = getattr(importlib.import_module(f"{__name__}.{_LAZY[name]}"), name)
-    globals()[name] = value
-    return value
-
-
-def __dir__() -> list[str]:
-    return sorted([*globals(), *_LAZY])
+__getattr__, __dir__ = lazy_attributes(__name__, _LAZY, globals())
 
 
 __all__ = ["read_bemio", "read_bemio_state_space", "sniff", "sniff_dir", "write_bemio"]

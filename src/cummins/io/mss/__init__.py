@@ -72,9 +72,9 @@ The package's modules: :mod:`~cummins.io.mss.matfile` (detection, struct access)
 
 from __future__ import annotations
 
-import importlib
 from typing import TYPE_CHECKING
 
+from cummins._lazy import lazy_attributes
 from cummins.io.mss.matfile import DRIFT_DOFS as DRIFT_DOFS
 from cummins.io.mss.matfile import MSS_INFINITE_FREQUENCY as MSS_INFINITE_FREQUENCY
 from cummins.io.mss.matfile import load_mat_struct as load_mat_struct
@@ -90,17 +90,7 @@ if TYPE_CHECKING:  # pragma: no cover
     from cummins.io.mss.reader import read_mss
     from cummins.io.mss.writer import write_mss
 
-
-def __getattr__(name: str):
-    if name not in _LAZY:
-        raise AttributeError(f"module {__name__!r} has no attribute {name!r}")
-    value = getattr(importlib.import_module(f"{__name__}.{_LAZY[name]}"), name)
-    globals()[name] = value
-    return value
-
-
-def __dir__() -> list[str]:
-    return sorted([*globals(), *_LAZY])
+__getattr__, __dir__ = lazy_attributes(__name__, _LAZY, globals())
 
 
 __all__ = ["read_mss", "sniff", "sniff_dir", "write_mss"]

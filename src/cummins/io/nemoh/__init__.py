@@ -69,9 +69,9 @@ restoring, checked against the run), :mod:`~cummins.io.nemoh.reader` (the datase
 
 from __future__ import annotations
 
-import importlib
 from typing import TYPE_CHECKING
 
+from cummins._lazy import lazy_attributes
 from cummins.io.nemoh.files import sniff, sniff_dir
 
 #: Where the names of the package live; imported on first use (PEP 562), so that
@@ -94,17 +94,7 @@ if TYPE_CHECKING:  # pragma: no cover
     from cummins.io.nemoh.tecplot import IRF_TOLERANCE as IRF_TOLERANCE
     from cummins.io.nemoh.tecplot import _read_tecplot as _read_tecplot
 
-
-def __getattr__(name: str):
-    if name not in _LAZY:
-        raise AttributeError(f"module {__name__!r} has no attribute {name!r}")
-    value = getattr(importlib.import_module(f"{__name__}.{_LAZY[name]}"), name)
-    globals()[name] = value
-    return value
-
-
-def __dir__() -> list[str]:
-    return sorted([*globals(), *_LAZY])
+__getattr__, __dir__ = lazy_attributes(__name__, _LAZY, globals())
 
 
 __all__ = ["read_nemoh", "sniff", "sniff_dir"]

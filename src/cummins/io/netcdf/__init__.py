@@ -62,9 +62,9 @@ bodies), :mod:`~cummins.io.netcdf.checks` (damaged numbers, conventions),
 
 from __future__ import annotations
 
-import importlib
 from typing import TYPE_CHECKING
 
+from cummins._lazy import lazy_attributes
 from cummins.io.netcdf.files import load_netcdf, merge_complex, sniff, sniff_dir  # noqa: F401
 
 #: Where the names of the package live; imported on first use (PEP 562), so that
@@ -107,17 +107,7 @@ if TYPE_CHECKING:  # pragma: no cover
     from cummins.io.netcdf.reader import from_capytaine_dataset, read_netcdf
     from cummins.io.netcdf.writer import save_netcdf, to_capytaine_layout, write_netcdf  # noqa: F401
 
-
-def __getattr__(name: str):
-    if name not in _LAZY:
-        raise AttributeError(f"module {__name__!r} has no attribute {name!r}")
-    value = getattr(importlib.import_module(f"{__name__}.{_LAZY[name]}"), name)
-    globals()[name] = value
-    return value
-
-
-def __dir__() -> list[str]:
-    return sorted([*globals(), *_LAZY])
+__getattr__, __dir__ = lazy_attributes(__name__, _LAZY, globals())
 
 
 __all__ = ["from_capytaine_dataset", "read_netcdf", "sniff", "sniff_dir", "write_netcdf"]
