@@ -147,3 +147,64 @@ def test_without_the_volume_the_preload_is_said_missing(oswec):
     with pytest.warns(AssumptionWarning, match="pre-load is not included"):
         assembly = assemble(data, HINGED)
     assert "additional_stiffness" not in assembly.ds
+
+
+def test_a_flap_on_a_pitching_base_matches_the_exact_kinematics():
+    """A chain: a flap (body1, +F at o_f) on a hinge about y at h on a base (body2, −F
+    at o_b: the system floats as a whole) that surges, heaves and pitches. The Hessian of
+    the forces' potential in the generalized coordinates (the base's x, z, φ and the
+    flap's rotation relative to it), by finite differences of the exact positions, equals
+    Jᵀ K J, J the Jacobian of the body DOFs in those coordinates."""
+    labels = tuple(f"body{b}__{d}" for b in (1, 2) for d in DOF_NAMES)
+    o_b, o_f, h = np.array([0.2, 0, 0.0]), np.array([0.2, 0, 3.0]), np.array([0.2, 0, 1.0])
+    frame = BodyFrame(labels, ("body1", "body2"), ("flap", "base"), np.array([o_f, o_b]))
+    joint = Joint("revolute", "body1", "body2", axis=(0, 1, 0), point=tuple(h))
+    rows = [joint_rows(joint, frame)[0]]
+    for i, label in enumerate(labels):  # the base in the x-z plane
+        if label.split("__")[1] in ("Sway", "Roll", "Yaw") and label.startswith("body2"):
+            rows.append(np.eye(len(labels))[i][None])
+    g = np.vstack(rows)
+    t, coordinates = null_space_basis(g, labels)
+    preload = preload_stiffness(frame, (joint,), g, t, coordinates, np.array([F, -F]))
+    assert not preload.unbalanced and not preload.left_out
+
+    def rotation(angle: float) -> np.ndarray:
+        return Rotation.from_rotvec([0.0, angle, 0.0]).as_matrix()
+
+    def positions(q):  # q = (x_b, z_b, φ, θ relative)
+        base = o_b + np.array([q[0], 0.0, q[1]])
+        hinge = base + rotation(q[2]) @ (h - o_b)
+        return hinge + rotation(q[2] + q[3]) @ (o_f - h), base
+
+    def potential(q) -> float:
+        flap, base = positions(q)
+        return -(F * flap[2] - F * base[2])
+
+    def dofs(q) -> np.ndarray:
+        flap, base = positions(q)
+        out = np.zeros(12)
+        out[0:3], out[4], out[6:9], out[10] = flap - o_f, q[2] + q[3], base - o_b, q[2]
+        return out
+
+    step, eye = 1e-4, np.eye(4)
+    hessian = np.array(
+        [
+            [
+                (
+                    potential(step * (eye[i] + eye[j]))
+                    - potential(step * (eye[i] - eye[j]))
+                    - potential(step * (eye[j] - eye[i]))
+                    + potential(-step * (eye[i] + eye[j]))
+                )
+                / (4 * step**2)
+                for j in range(4)
+            ]
+            for i in range(4)
+        ]
+    )
+    jacobian = np.array([(dofs(1e-7 * e) - dofs(-1e-7 * e)) / 2e-7 for e in eye]).T
+    assert np.abs(g @ jacobian).max() < 1e-6  # the coordinates move as the joints allow
+    np.testing.assert_allclose(
+        jacobian.T @ preload.stiffness @ jacobian, hessian, atol=1e-6 * np.abs(hessian).max()
+    )
+    assert np.abs(hessian).max() > F  # not trivial: 3 F·m on the base's pitch
