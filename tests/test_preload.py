@@ -13,15 +13,14 @@ import numpy as np
 import pytest
 from scipy.spatial.transform import Rotation
 
-import cummins
 from cummins.dofs import DOF_NAMES
 from cummins.errors import AssumptionWarning
-from cummins.mass_properties import with_inertia
-from cummins.mechanics import PTO, Joint, MechanicalSystem, assemble
+from cummins.mechanics import Joint, assemble
 from cummins.mechanics.bodies import BodyFrame
 from cummins.mechanics.constraints import null_space_basis
 from cummins.mechanics.joints import joint_rows
 from cummins.mechanics.preload import preload_stiffness
+from test_wec import oswec_flap
 
 F = 1.7e6  # N, upward: buoyancy above weight
 
@@ -104,23 +103,8 @@ def test_a_load_the_joints_do_not_carry_is_named():
 
 @pytest.fixture(scope="module")
 def oswec(corpus):
-    ds = cummins.read(corpus / "WEC-Sim" / "wamit_OSWEC_2015_with_bemio_h5" / "oswec.out", rho=1e3)
-    return with_inertia(
-        ds,
-        mass=[127000.0, 999.0],
-        center_of_gravity=[[0, 0, -3.9], [0, 0, -10.9]],
-        radii_of_gyration=[[np.sqrt(1.85e6 / 127000.0)] * 3, [1.0, 1.0, 1.0]],
-    )
-
-
-HINGED = MechanicalSystem(
-    joints=(
-        Joint("fixed", "body2", "ground"),
-        Joint("revolute", "body1", "body2", axis=(0, 1, 0), point=(0, 0, -8.9), name="hinge"),
-    ),
-    ptos=(PTO(joint="hinge", damping=1.2e5),),
-    body_coupling=False,
-)
+    """(data, system) of WEC-Sim's OSWEC (tests/test_wec.py)."""
+    return oswec_flap(corpus)
 
 
 def test_oswec_flap_gains_its_hinge_preload(oswec):
@@ -128,11 +112,12 @@ def test_oswec_flap_gains_its_hinge_preload(oswec):
     F (z_o − z_h) added on its pitch, as the user gave it by hand before, and said in
     the history; the base's far larger net force goes to the ground through its fixed
     joint and adds nothing the flap feels."""
-    volume = float(np.ravel(oswec.attrs["displaced_volume"])[0])
-    expected = (1000.0 * volume - 127000.0) * float(oswec.attrs["g"]) * (-3.9 + 8.9)
+    data, system = oswec
+    volume = float(np.ravel(data.attrs["displaced_volume"])[0])
+    expected = (1000.0 * volume - 127000.0) * float(data.attrs["g"]) * (-3.9 + 8.9)
     with warnings.catch_warnings():
         warnings.simplefilter("error", AssumptionWarning)
-        assembly = assemble(oswec, HINGED)
+        assembly = assemble(data, system)
     added = assembly.ds["additional_stiffness"].sel(
         influenced_dof="body1__Pitch", radiating_dof="body1__Pitch"
     )
@@ -142,10 +127,11 @@ def test_oswec_flap_gains_its_hinge_preload(oswec):
 
 
 def test_without_the_volume_the_preload_is_said_missing(oswec):
-    data = oswec.copy()
+    data, system = oswec
+    data = data.copy()
     del data.attrs["displaced_volume"]
     with pytest.warns(AssumptionWarning, match="pre-load is not included"):
-        assembly = assemble(data, HINGED)
+        assembly = assemble(data, system)
     assert "additional_stiffness" not in assembly.ds
 
 
