@@ -84,3 +84,30 @@ def test_a_page_renders_with_its_figures(site, page, least, tmp_path):
     for png in (shot, shot.with_suffix(".figure.png")):
         spread, ink = not_blank(png)
         assert spread > 0.05 and ink > 0.02, f"{page}: blank {png.name} {spread} {ink}"
+
+
+def test_equations_render_offline(site):
+    """A theory page's equations are typeset by the MathJax the site carries
+    (``_static/mathjax``), every request staying on the local files: the site reads
+    right without network (this machine has none, as many users' offshore have none)."""
+    page = site / "theory" / "retardation.html"
+    text = page.read_text(encoding="utf-8")
+    assert "_static/mathjax/tex-chtml.js" in text and "cdn.jsdelivr" not in text
+    assert (site / "_static" / "mathjax" / "tex-chtml.js").is_file()
+    with playwright_chromium() as p:
+        browser = p.chromium.launch(executable_path=str(CHROMIUM), args=BROWSER_ARGS)
+        try:
+            view = browser.new_page()
+            requests: list[str] = []
+            view.on("request", lambda r: requests.append(r.url))
+            view.goto(page.as_uri())
+            view.wait_for_function(
+                "document.querySelectorAll('mjx-container').length > 0", timeout=30_000
+            )
+            typeset = view.evaluate("document.querySelectorAll('mjx-container').length")
+            raw = view.evaluate("document.body.innerText.includes('\\\\int')")
+        finally:
+            browser.close()
+    assert typeset >= 3, typeset
+    assert not raw  # no equation left as TeX source
+    assert all(u.startswith(("file:", "data:")) for u in requests), requests

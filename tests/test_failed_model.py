@@ -125,3 +125,20 @@ def test_the_line_puts_the_motion_error_first_and_counts_the_rest():
         "Surge: passivity took the R² of A from 0.99 to 0.97 and 2 more (cummins fit exit 3); "
         "results inherit it"
     )
+
+
+def test_a_failed_model_of_any_name_says_so(failed, tmp_path):
+    """Told by its content, not its name: the same model saved as ``fit.model`` gives
+    the same one line in `report` (and `simulate`), and the page is a model's."""
+    import shutil
+
+    renamed = tmp_path / "fit.model"
+    shutil.copy(failed, renamed)
+    result = _run("report", renamed, "-o", tmp_path / "page.html")
+    assert result.exit_code == 0, result.output
+    (line,) = _warnings(result.output)
+    assert line.startswith("warning: fit.model: this model missed its fit targets")
+    assert "Fitted couplings" in (tmp_path / "page.html").read_text(encoding="utf-8")
+    result = _run("simulate", renamed, *WAVE, "-o", tmp_path / "run.nc")
+    assert result.exit_code == 0, result.output
+    assert _warnings(result.output)[0].startswith("warning: fit.model: this model missed")

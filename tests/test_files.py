@@ -15,7 +15,13 @@ import pytest
 
 import cummins
 from cummins.errors import ArgumentError
-from cummins.files import files_read, refuse_overwriting_inputs, replacing, same_file
+from cummins.files import (
+    files_read,
+    is_hdf5,
+    refuse_overwriting_inputs,
+    replacing,
+    same_file,
+)
 
 
 def test_a_wamit_read_records_every_companion_file_it_takes_numbers_from(tmp_path):
@@ -78,3 +84,30 @@ def test_two_processes_writing_one_netcdf_file_both_succeed(tmp_path):
     back = cummins.read(target)
     assert back.sizes["omega"] == cummins.demo_dataset().sizes["omega"]
     assert sorted(p.name for p in tmp_path.iterdir()) == ["tanker.nc"]
+
+
+def test_hdf5_is_told_by_content_at_the_offsets_the_specification_allows(tmp_path):
+    """A NetCDF-4 file cummins writes, under any name; the signature after a user block
+    of 512 or 2048 bytes (h5py writes one with ``userblock_size``, and opens the file);
+    not at an offset the HDF5 specification does not allow (100), not a NetCDF-3 file,
+    a text file, an empty file, a folder or a missing file."""
+    import h5py
+    import numpy as np
+    import xarray as xr
+
+    model = tmp_path / "model.whatever"
+    cummins.write(cummins.read(cummins.demo_files() / "tanker.1"), tmp_path / "data.nc")
+    shutil.copy(tmp_path / "data.nc", model)
+    assert is_hdf5(model)
+    for size in (512, 2048):
+        path = tmp_path / f"block{size}.h5"
+        with h5py.File(path, "w", userblock_size=size) as f:
+            f["x"] = np.arange(3)
+        assert is_hdf5(path)
+    signature = b"\x89HDF\r\n\x1a\n"
+    (tmp_path / "at100").write_bytes(b"\0" * 100 + signature + b"\0" * 1000)
+    xr.Dataset({"x": ("t", np.arange(3.0))}).to_netcdf(tmp_path / "v3.nc", engine="scipy")
+    (tmp_path / "text.1").write_text("WAMIT numbers\n")
+    (tmp_path / "empty").write_bytes(b"")
+    for path in ("at100", "v3.nc", "text.1", "empty", ".", "missing.nc"):
+        assert not is_hdf5(tmp_path / path), path

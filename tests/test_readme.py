@@ -122,6 +122,8 @@ def workdir(tmp_path, shared_data, monkeypatch):
     shutil.copy(cummins.demo_files().parent / "s175" / "s175.mat", tmp_path / "s175.mat")
     for f in (shared_data / "corpus" / "WEC-Sim" / "wamit_RM3_2body").glob("rm3.*"):
         shutil.copy(f, tmp_path / f.name)  # the wave-energy converter
+    oswec = shared_data / "corpus" / "WEC-Sim" / "wamit_OSWEC_2015_with_bemio_h5" / "oswec.out"
+    shutil.copy(oswec, tmp_path / "oswec.out")  # the hinged flap
     weis = shared_data / "corpus" / "WEIS"
     for suffix in (".1", ".hst", ".12d", ".12s"):  # the OC4 semi's WAMIT run with its QTFs
         shutil.copy(weis / "ss_fitting_OC4_semi" / f"marin_semi{suffix}", tmp_path)

@@ -177,3 +177,35 @@ def test_data_recorded_relative_are_found_beside_the_model(files, tmp_path, monk
     result, page_file = _report(folder / "exc.nc")
     assert result.exit_code == 0, result.output
     assert "Fits against the data (tanker.1)" in page_file.read_text(encoding="utf-8")
+
+
+def test_pages_open_in_chromium_with_their_figure(files, tmp_path):
+    """The page of a model and of a failed one, in a real headless browser: no console
+    or page error, the figure decoded, nothing fetched beyond the file, not blank, and the
+    failed model's box rendered (visible, with one item per failure)."""
+    from _browser import CHROMIUM, not_blank, playwright_chromium
+    from test_report import BROWSER_ARGS, _open
+
+    with playwright_chromium() as p:
+        browser = p.chromium.launch(executable_path=str(CHROMIUM), args=BROWSER_ARGS)
+        try:
+            for name in ("good", "failed"):
+                result, page_file = _report(files[name])
+                assert result.exit_code == 0, result.output
+                shot = tmp_path / f"{name}.png"
+                errors, widths, requests = _open(browser, page_file, shot)
+                assert not errors, f"{name}: {errors}"
+                assert widths and min(widths) > 0, f"{name}: figure not shown {widths}"
+                assert all(u.startswith(("file:", "data:")) for u in requests), requests
+                for png in (shot, shot.with_suffix(".figure.png")):
+                    spread, ink = not_blank(png)
+                    assert spread > 0.05 and ink > 0.03, f"{name}: blank {png.name} {spread} {ink}"
+            page = browser.new_page()
+            page.goto(_report(files["failed"])[1].as_uri())
+            box = page.locator("div.failures")
+            assert box.is_visible()
+            failures = ExcitationModel.load(files["failed"]).attrs["failures"]
+            assert box.locator("li").count() == len(failures)
+            page.close()
+        finally:
+            browser.close()

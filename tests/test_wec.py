@@ -14,7 +14,7 @@ import xarray as xr
 
 import cummins
 from cummins.errors import ArgumentError
-from cummins.mass_properties import with_external_terms, with_inertia
+from cummins.mass_properties import with_inertia
 from cummins.mechanics import PTO, Joint, MechanicalSystem, assemble, system_from_mapping
 from cummins.seakeeping.excitation import excitation_transfer
 from cummins.seakeeping.frequency_domain import (
@@ -238,16 +238,10 @@ def test_wecsim_rm3_planar_joint(rm3):
 # --------------------------------------------------------------------------- OSWEC
 
 
-def test_oswec_hinge(corpus):
-    """An OSWEC-like hinge on the 2015 WAMIT OSWEC (WEC-Sim's examples/OSWEC inputs: flap
-    127 t, 1.85e6 kg m² about its CG at z = −3.9 m; base fixed; hinge at z = −8.9 m about y):
-    the flap pitches about the hinge, a rotational PTO damps it. The flap is held by the
-    hinge with a buoyancy (ρ∇ = 297 t, WAMIT's .out) above its weight: the moment of that
-    net force about the hinge, F (z_o − z_h), is added as a stiffness (the data's
-    restoring is that of a free body). Time domain against the frequency domain of the
-    data within 0.5 % in pitch and 1 % in power, ∝ pitch² (measured 0.33 % and 0.65 % at
-    T = 8 s; the fit aims at the hinged flap's motions, within 0.06 % of their peak at
-    the data's frequencies)."""
+def oswec_flap(corpus):
+    """The 2015 WAMIT OSWEC with WEC-Sim's examples/OSWEC inputs (flap 127 t, 1.85e6 kg m²
+    about its CG at z = −3.9 m; the base, fixed, 999 kg) and its system: the base fixed,
+    the flap on a hinge about y at z = −8.9 m, a rotational PTO of 1.2e5 N m s/rad."""
     ds = cummins.read(corpus / "WEC-Sim" / "wamit_OSWEC_2015_with_bemio_h5" / "oswec.out", rho=1e3)
     ds = with_inertia(
         ds,
@@ -255,8 +249,6 @@ def test_oswec_hinge(corpus):
         center_of_gravity=[[0, 0, -3.9], [0, 0, -10.9]],
         radii_of_gyration=[[np.sqrt(1.85e6 / 127000.0)] * 3, [1.0, 1.0, 1.0]],
     )
-    preload = (1000.0 * 297.010 - 127000.0) * float(ds.attrs["g"]) * (-3.9 + 8.9)
-    ds = with_external_terms(ds, stiffness={("body1__Pitch", "body1__Pitch"): preload})
     system = MechanicalSystem(
         joints=(
             Joint("fixed", "body2", "ground"),
@@ -265,6 +257,19 @@ def test_oswec_hinge(corpus):
         ptos=(PTO(joint="hinge", damping=1.2e5),),
         body_coupling=False,
     )
+    return ds, system
+
+
+def test_oswec_hinge(corpus):
+    """An OSWEC-like hinge (:func:`oswec_flap`): the flap pitches about the hinge, a
+    rotational PTO damps it. The flap is held by the hinge with a buoyancy (ρ∇ = 297 t,
+    WAMIT's .out) above its weight: the joint's pre-load, F (z_o − z_h) about the hinge,
+    is added by ``assemble`` (the data's restoring is that of a free body;
+    tests/test_preload.py). Time domain against the frequency domain of the data within
+    0.5 % in pitch and 1 % in power, ∝ pitch² (measured 0.33 % and 0.65 % at T = 8 s; the
+    fit aims at the hinged flap's motions, within 0.06 % of their peak at the data's
+    frequencies)."""
+    ds, system = oswec_flap(corpus)
     assembly = assemble(ds, system)
     assert assembly.dofs == ("body1__Surge", "body1__Pitch") and assembly.basis.shape == (2, 1)
     # by hand: a rotation θ about y through the hinge moves o = (0, 0, −3.9) by θ × (o − h)

@@ -10,6 +10,8 @@ an earlier one.
   folder (a unique name, so two runs writing the same path at once do not share it) and
   renames it over the target at the end (:func:`os.replace`, atomic on one file system):
   a failure leaves the earlier file as it was and no half-written one.
+* :func:`is_hdf5` tells an HDF5 file (NetCDF-4, a cummins model or result, BEMIO's
+  ``.h5``) by its content, whatever its name.
 """
 
 from __future__ import annotations
@@ -161,3 +163,35 @@ def refuse_overwriting_inputs(
                     "there would destroy its input, with --force or not",
                     hint="Give the output another name",
                 )
+
+
+#: The HDF5 format signature (HDF5 File Format Specification, "Format Signature").
+HDF5_SIGNATURE = b"\x89HDF\r\n\x1a\n"
+
+
+def is_hdf5(path: str | os.PathLike[str]) -> bool:
+    """Whether ``path`` is an HDF5 file, by its content: the HDF5 signature at byte 0, or
+    at 512, 1024, 2048 … bytes after a user block (where the HDF5 specification lets the
+    superblock begin), whatever the file is called. False for a folder, a missing or an
+    unreadable file.
+
+    Examples
+    --------
+    >>> import tempfile
+    >>> with tempfile.NamedTemporaryFile(suffix=".model", delete=False) as f:
+    ...     _ = f.write(bytes(512) + HDF5_SIGNATURE)  # after a user block of 512 bytes
+    >>> is_hdf5(f.name), is_hdf5(tempfile.gettempdir())
+    (True, False)
+    """
+    try:
+        with open(path, "rb") as f:
+            size = os.fstat(f.fileno()).st_size
+            offset = 0
+            while offset + len(HDF5_SIGNATURE) <= size:
+                f.seek(offset)
+                if f.read(len(HDF5_SIGNATURE)) == HDF5_SIGNATURE:
+                    return True
+                offset = 512 if offset == 0 else 2 * offset
+    except OSError:
+        return False
+    return False

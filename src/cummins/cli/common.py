@@ -619,16 +619,14 @@ def cummins_model_format(path) -> str | None:
     """The ``cummins_format`` attribute of a model file written by cummins (NetCDF-4:
     ``"cummins-radiation-model"``, ``"cummins-excitation-model"``), or None for any other
     file (known by its content: an HDF5 file of any name)."""
-    p = Path(path)
-    if not p.is_file():
-        return None
-    try:
-        with open(p, "rb") as f:
-            if f.read(8) != b"\x89HDF\r\n\x1a\n":
-                return None
-        import h5py  # here: a text file (most solvers' output) need not load it
+    from cummins.files import is_hdf5
 
-        with h5py.File(p, "r") as f:
+    if not is_hdf5(path):
+        return None
+    import h5py  # here: a text file (most solvers' output) need not load it
+
+    try:
+        with h5py.File(path, "r") as f:
             kind = f.attrs.get("cummins_format")
     except OSError:
         return None

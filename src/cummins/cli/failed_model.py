@@ -78,11 +78,13 @@ def warn_failed_model(
 
 
 def warn_failed_file(path) -> None:
-    """:func:`warn_failed_model` of a file's own attributes when it is a NetCDF file made
+    """:func:`warn_failed_model` of a file's own attributes when it is a NetCDF-4 file made
     by cummins (a radiation or excitation model, a run, an RAO file); other files say
     nothing."""
+    from cummins.files import is_hdf5
+
     p = Path(path)
-    if not (p.is_file() and p.suffix.lower() == ".nc"):
+    if not is_hdf5(p):  # by content, as the report tells the kind: any name
         return
     import h5py
 

@@ -91,21 +91,18 @@ def detect_kind(path: str | os.PathLike[str]) -> str:
         return "data"
     if p.suffix.lower() == ".zarr":
         return "batch"
-    with open(p, "rb") as f:
-        magic = f.read(8)
-    if magic != b"\x89HDF\r\n\x1a\n":
+    from cummins.files import is_hdf5
+
+    if not is_hdf5(p):
         return "data"
     import h5py
 
-    from cummins.cli.common import cummins_model_format
     from cummins.excitation_model.model_file import FORMAT_NAME as EXCITATION
     from cummins.radiation.model_file import FORMAT_NAME as RADIATION
 
-    model = {RADIATION: "model", EXCITATION: "excitation-model"}.get(cummins_model_format(p))
-    if model is not None:
-        return model
     try:
         with h5py.File(p, "r") as f:
+            model_format = f.attrs.get("cummins_format")
             result_kind = f.attrs.get("cummins_kind")
             names = set(f.keys())
     except OSError as exc:  # an HDF5 signature on a damaged or truncated file
@@ -113,6 +110,10 @@ def detect_kind(path: str | os.PathLike[str]) -> str:
             f"{p} starts like an HDF5/NetCDF file but cannot be opened ({exc})",
             hint="The file is damaged or truncated: write it again",
         ) from None
+    model_format = model_format.decode() if isinstance(model_format, bytes) else model_format
+    model = {RADIATION: "model", EXCITATION: "excitation-model"}.get(model_format)
+    if model is not None:
+        return model
     result_kind = result_kind.decode() if isinstance(result_kind, bytes) else result_kind
     from cummins.studies.study import _RESULT_KIND
 

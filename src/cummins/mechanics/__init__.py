@@ -7,6 +7,7 @@ module              concept
 ``joints``          :class:`Joint`: fixed, translational, revolute, planar, as rows of G ξ = 0
 ``pto``             :class:`PTO`: a linear spring-damper on a relative motion; its outputs
 ``constraints``     ξ = T q, the null space of G (coordinate partitioning); inertia check
+``preload``         the stiffness of the static loads the joints carry (ρ∇ ≠ m)
 ``coupling``        :func:`without_body_coupling` (WEC-Sim's default)
 ``system``          :class:`MechanicalSystem` and :func:`assemble`
 =================== =====================================================================
@@ -28,6 +29,8 @@ _LAZY = {
     "JOINT_KINDS": "joints",
     "Joint": "joints",
     "joint_rows": "joints",
+    "Preload": "preload",
+    "preload_stiffness": "preload",
     "PTO": "pto",
     "PTOLine": "pto",
     "pto_frequency_response": "pto",
@@ -44,6 +47,7 @@ if TYPE_CHECKING:  # pragma: no cover
     from cummins.mechanics.constraints import null_space_basis
     from cummins.mechanics.coupling import without_body_coupling
     from cummins.mechanics.joints import JOINT_KINDS, Joint, joint_rows
+    from cummins.mechanics.preload import Preload, preload_stiffness
     from cummins.mechanics.pto import (
         PTO,
         PTOLine,
@@ -80,10 +84,12 @@ __all__ = [
     "Joint",
     "MechanicalSystem",
     "PTOLine",
+    "Preload",
     "assemble",
     "body_frame",
     "joint_rows",
     "null_space_basis",
+    "preload_stiffness",
     "pto_frequency_response",
     "pto_matrices",
     "pto_time_series",

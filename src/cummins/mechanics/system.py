@@ -32,6 +32,7 @@ heave-only joint to the ground):
 from __future__ import annotations
 
 import json
+import warnings
 from collections.abc import Mapping, Sequence
 from dataclasses import dataclass
 from typing import Any
@@ -40,12 +41,13 @@ import numpy as np
 import xarray as xr
 from numpy.typing import NDArray
 
-from cummins.errors import ArgumentError
+from cummins.errors import ArgumentError, AssumptionWarning
 from cummins.hydrodb import add_history, dof_matrix, select_dofs
 from cummins.mechanics.bodies import body_frame
 from cummins.mechanics.constraints import check_inertia, held_dofs, is_locked, null_space_basis
 from cummins.mechanics.coupling import without_body_coupling
 from cummins.mechanics.joints import JOINT_KINDS, Joint, joint_rows
+from cummins.mechanics.preload import Preload, net_static_forces, preload_stiffness
 from cummins.mechanics.pto import PTO, PTOLine, pto_matrices, resolve_pto
 
 
@@ -251,6 +253,9 @@ def assemble(ds: xr.Dataset, system: MechanicalSystem) -> Assembly:
     ptos = tuple(line.on(keep, labels) for line in lines)
     if "inertia_matrix" in out:
         check_inertia(dof_matrix(out, "inertia_matrix"), basis, keep, "rigid-body inertia")
+    preload = _joint_preload(ds, frame, system, g, t, coordinates)
+    if preload is not None:
+        out = _with_preload(out, preload, [labels.index(k) for k in keep])
     out.attrs["body_coupling"] = "on" if system.body_coupling else "off"
     if not system.is_plain or held.any():
         add_history(
@@ -260,6 +265,75 @@ def assemble(ds: xr.Dataset, system: MechanicalSystem) -> Assembly:
             + (f"; held at zero: {', '.join(np.asarray(labels)[held])}" if held.any() else ""),
         )
     return Assembly(system, out, basis, coordinates, ptos, tuple(np.asarray(labels)[held].tolist()))
+
+
+def _joint_preload(ds, frame, system, g, t, coordinates) -> Preload | None:
+    """The joints' pre-load (:mod:`cummins.mechanics.preload`), its warnings given; None
+    without joints, or when the data lack a body's displaced volume or mass (said in
+    ``history`` by the caller's data: nothing to add)."""
+    if not system.joints:
+        return None
+    forces = net_static_forces(ds, frame)
+    if forces is None:
+        warnings.warn(
+            "the joints' pre-load is not included: the data lack the displaced volume or "
+            "the mass of a body, so the static force (ρ∇ − m)g the joints carry is unknown "
+            "(a body held by a hinge with buoyancy above its weight gains the stiffness "
+            "F·(z_o − z_h) about it)",
+            AssumptionWarning,
+            stacklevel=3,
+        )
+        return None
+    preload = preload_stiffness(frame, system.joints, g, t, coordinates, forces)
+    for coordinate, value in preload.unbalanced:
+        warnings.warn(
+            f"the mean position is not a static equilibrium: the joints leave a static "
+            f"load of {value:.4g} N (N·m for a rotation) on {coordinate} (the bodies' "
+            f"buoyancy less weight, {', '.join(f'{f:.4g} N' for f in preload.forces)}); "
+            "the linear model is about the mean position all the same",
+            AssumptionWarning,
+            stacklevel=3,
+        )
+    if preload.left_out:
+        warnings.warn(
+            f"the second-order terms of the static reactions of {', '.join(preload.left_out)} "
+            "(directions that turn with a moving base) are not included in the pre-load "
+            "stiffness",
+            AssumptionWarning,
+            stacklevel=3,
+        )
+    return preload
+
+
+def _with_preload(ds: xr.Dataset, preload: Preload, keep: Sequence[int]) -> xr.Dataset:
+    """``ds`` (on the DOFs ``keep`` of the full data) with the pre-load stiffness added to
+    its ``additional_stiffness``, said in ``history``."""
+    added = preload.stiffness[np.ix_(keep, keep)]
+    if not np.any(np.abs(added) > 0):
+        return ds
+    labels = [str(d) for d in ds.influenced_dof.values]
+    out = ds.copy()
+    before = dof_matrix(out, "additional_stiffness") if "additional_stiffness" in out else 0.0
+    total = before + added
+    out["additional_stiffness"] = xr.DataArray(
+        total,
+        dims=("influenced_dof", "radiating_dof"),
+        coords={"influenced_dof": labels, "radiating_dof": labels},
+        attrs={"units": "N/m | N/rad, N | N m/rad"},
+    )
+    entries = ", ".join(
+        f"{labels[i]}-{labels[j]} {added[i, j]:.6g}"
+        for i in range(len(labels))
+        for j in range(len(labels))
+        if abs(added[i, j]) > 0
+    )
+    forces = ", ".join(f"{f:.6g} N" for f in preload.forces)
+    add_history(
+        out,
+        f"joint pre-load: the bodies' static forces (ρ∇ − m)g = {forces} carried by the "
+        f"joints add the stiffness {entries} (additional_stiffness)",
+    )
+    return out
 
 
 def _unique_names(lines: Sequence[PTOLine]) -> None:
