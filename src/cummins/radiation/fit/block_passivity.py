@@ -53,6 +53,10 @@ CHECK_POINTS = 1500
 MINIMA = 8
 #: How often (iterations) :func:`enforce_passivity` asks its ``give_up``.
 GIVE_UP_EVERY = 3
+#: λ_min on the check grid: a point is positive definite, its eigenvalues not computed,
+#: where the Cholesky factorisation of its matrix less POSITIVE_SHIFT × its Frobenius
+#: norm runs to the end (:func:`lowest_eigenvalues`).
+POSITIVE_SHIFT = 1e-9
 
 
 class BlockSweep:
@@ -130,9 +134,9 @@ def passivity_violations(
         points = grid
         k_all = k_grid
     scaled = k_all * np.outer(dof_scale, dof_scale)[None]
-    lam_all = np.linalg.eigvalsh(scaled)  # the eigenvectors where constraints are asked
+    low_all = lowest_eigenvalues(scaled)  # the eigenvectors where constraints are asked
     if not exact:
-        negative = lam_all[:, 0] < 0
+        negative = low_all < 0
         change = np.flatnonzero(negative[1:] != negative[:-1])
         edges = np.r_[0.0, np.sqrt(grid[change] * grid[change + 1]), np.inf]
     out, chosen = [], []
@@ -143,11 +147,10 @@ def passivity_violations(
         if last <= first:
             continue
         inside = np.arange(first, last)
-        lam = lam_all[inside]
-        worst = int(np.argmin(lam[:, 0]))
-        if lam[worst, 0] >= -VIOLATION:  # S K S: the diagonal peaks are 1
+        low = low_all[inside]
+        worst = int(np.argmin(low))
+        if low[worst] >= -VIOLATION:  # S K S: the diagonal peaks are 1
             continue
-        low = lam[:, 0]
         bound = np.full(1, np.inf)
         before, after = np.concatenate([bound, low[:-1]]), np.concatenate([low[1:], bound])
         minima = np.flatnonzero((low < -VIOLATION) & (low <= before) & (low <= after))
@@ -177,6 +180,49 @@ def passivity_violations(
         for e in np.flatnonzero(lam < -VIOLATION * local):
             out.append((form, float(lam[e]), dof_scale * vec[:, e], local))
     return out, dof_scale
+
+
+def lowest_eigenvalues(matrices: NDArray) -> NDArray:
+    """λ_min of each Hermitian matrix M of a stack (m, n, n), as
+    :func:`numpy.linalg.eigvalsh` gives it (the same numbers), except where M is proven
+    positive definite: there σ/2 > 0, a lower bound (σ = :data:`POSITIVE_SHIFT` tr M).
+
+    The proof: the Cholesky factorisation of M − σI, run in floating point (the whole
+    stack at once), reaches its end with positive pivots. Its factor R is then the exact
+    one of H = M − σI + E with ‖E‖₂ ≤ n γ_{n+1} ‖H‖₂ (Higham (2002) Thm 10.3 and ‖|R|‖₂²
+    ≤ n ‖R‖₂²; γ_k = k u / (1 − k u), u the unit round-off; a few times that in complex
+    arithmetic), and H ≻ 0, so ‖H‖₂ ≤ tr H ≤ tr M + n ‖E‖₂: λ_min(M) ≥ σ − ‖E‖₂ ≥ σ −
+    1.01 n (n + 1) u tr M, above σ/2 for n up to 1000. eigvalsh's own λ_min, within a
+    small multiple of n u ‖M‖₂ of the true one, is then above zero too: a point whose
+    sign is decided within rounding of zero goes to eigvalsh."""
+    count, n = matrices.shape[0], matrices.shape[-1]
+    if n == 1:  # eigvalsh's value: the element itself
+        return matrices[:, 0, 0].real.copy()
+    trace = np.trace(matrices, axis1=1, axis2=2).real
+    shift = POSITIVE_SHIFT * trace
+    positive = shift > 0  # False for NaN
+    # the lower triangle, column by column: a[i][j] for i ≥ j, each a vector over the stack
+    a = [[matrices[:, i, j] for j in range(i + 1)] for i in range(n)]
+    with np.errstate(all="ignore"):
+        for k in range(n):
+            pivot = a[k][k].real - shift
+            positive &= pivot > 0
+            if k == n - 1:
+                break
+            root = np.sqrt(np.where(positive, pivot, 1.0))
+            column = [a[i][k] / root for i in range(k + 1, n)]
+            for i in range(k + 1, n):
+                for j in range(k + 1, i + 1):
+                    product = column[i - k - 1] * (
+                        column[j - k - 1].conj() if np.iscomplexobj(matrices) else column[j - k - 1]
+                    )
+                    a[i][j] = a[i][j] - product
+    out = np.empty(count)
+    out[positive] = 0.5 * shift[positive]
+    rest = ~positive
+    if rest.any():
+        out[rest] = np.linalg.eigvalsh(matrices[rest])[:, 0]
+    return out
 
 
 def limit_forms(poles: Poles) -> tuple[NDArray, NDArray]:
@@ -226,7 +272,7 @@ def enforce_passivity(
         r = np.linalg.qr(np.vstack([jac, ridge * np.eye(null.shape[1])]), mode="r")
         misfit.append((r, np.zeros(null.shape[1])))
     misfit = factored_misfit(misfit)  # once: every programme below shares it
-    where = {d: k for k, d in enumerate(block.dofs)}
+    constraint_rows = ConstraintRows(block, nulls, offsets)
     lo, hi = float(w.min()), float(w.max())
     sweep = BlockSweep(block, lo, hi)
     rows, rhs = [], []
@@ -246,9 +292,9 @@ def enforce_passivity(
         found = found + ([] if bounds is None else bounds(current))
         if not found:
             return current, True, iteration
-        for form, lam, vec, local in found:
-            rows.append(_constraint_row(block.elements, where, nulls, offsets, form, vec))
-            rhs.append(MARGIN * local - lam + rows[-1] @ delta)
+        for row, (_, lam, _, local) in zip(constraint_rows(found), found, strict=True):
+            rows.append(row)
+            rhs.append(MARGIN * local - lam + row @ delta)
         try:
             delta, active = least_distance(misfit, np.array(rows), np.array(rhs))
         except FitError:
@@ -275,6 +321,75 @@ def enforce_passivity(
             return current, False, iteration + 1
     found, _ = passivity_violations(current, lo, hi, sweep=sweep)
     return current, not found, PASSIVITY_ITERATIONS
+
+
+class ConstraintRows:
+    """The linearised constraints of violations (:func:`passivity_violations`' (g, λ, w,
+    scale)): d(wᴴ H w)/dz for the free coefficients z of every element (x_e = N_e z_e),
+    H = Re K_s + j Im K_a, w the (scaled) eigenvector. A symmetric element (i, j) enters
+    H at (i, j) and (j, i) through Re g, an antisymmetric one (p, q) as ±j Im g: wᴴ H w
+    gains 2 Re(w̄_i w_j) Re(g)·x (|w_i|² on the diagonal) and −2 Im(w̄_p w_q) Im(g)·x.
+
+    Made once per enforcement (the elements and null spaces do not change); each call
+    gives the rows of all the violations of an iteration at once. The weights are
+    computed with the operations of one scalar at a time (|w_i|² as a power, w̄_i w_j
+    without fused multiply-adds), so that each row is the same to the last bit whether
+    the violations come together or one by one: the programme, and the order search
+    after it, branch on them."""
+
+    def __init__(self, block: PoleResidueBlock, nulls, offsets):
+        where = {d: k for k, d in enumerate(block.dofs)}
+        self.size = int(offsets[-1])
+        free = [e for e in range(len(block.elements)) if offsets[e + 1] > offsets[e]]
+        pairs = [block.elements[e] for e in free]
+        self.first = np.array([where[i] for i, _ in pairs], dtype=int)
+        self.second = np.array([where[j] for _, j in pairs], dtype=int)
+        self.diagonal = np.array([i == j for i, j in pairs], dtype=bool)
+        self.anti = np.array([i > j for i, j in pairs], dtype=bool)
+        self.sizes = np.array([offsets[e + 1] - offsets[e] for e in free], dtype=int)
+        keys: dict = {}  # g·N per null space and part (real, imaginary)
+        for e in free:
+            keys.setdefault((id(nulls[e]), is_antisymmetric(block.elements[e])), nulls[e])
+        self.keys = [(anti, null) for (_, anti), null in keys.items()]
+        index = {key: k for k, key in enumerate(keys)}
+        key_of = [index[(id(nulls[e]), is_antisymmetric(block.elements[e]))] for e in free]
+        self.key_of = np.array(key_of, dtype=int)
+
+    def weights(self, vectors: NDArray) -> NDArray:
+        """(m, elements) the factor of each element's g·N in the row of each w (m, n)."""
+        i, j = self.first, self.second
+        if not np.iscomplexobj(vectors):  # w_i w_i, 2 w_i w_j, and −2 Im(w_p w_q) = −0
+            out = 2 * vectors[:, i] * vectors[:, j]
+            out[:, self.diagonal] = vectors[:, i[self.diagonal]] * vectors[:, i[self.diagonal]]
+            out[:, self.anti] = -0.0
+            return out
+        # w̄_i w_j as numpy's complex scalar product: (a − jb)(c + jd) = (ac − (−b)d) + …
+        real, imag = vectors.real, -vectors.imag
+        ac, bd = real[:, i] * vectors.real[:, j], imag[:, i] * vectors.imag[:, j]
+        ad, bc = real[:, i] * vectors.imag[:, j], imag[:, i] * vectors.real[:, j]
+        out = 2.0 * (ac - bd)
+        out[:, self.anti] = -2.0 * (ad + bc)[:, self.anti]
+        diagonal = np.abs(vectors[:, i[self.diagonal]])
+        out[:, self.diagonal] = np.float_power(diagonal, 2.0)  # |w_i| ** 2, as pow
+        return out
+
+    def __call__(self, found) -> NDArray:
+        """(m, unknowns) the rows of the violations ``found``."""
+        if not found:
+            return np.zeros((0, self.size))
+        weights = np.empty((len(found), self.sizes.size))
+        complex_vector = np.array([np.iscomplexobj(v) for _, _, v, _ in found], dtype=bool)
+        for kind in (False, True):
+            chosen = np.flatnonzero(complex_vector == kind)
+            if chosen.size:
+                weights[chosen] = self.weights(np.array([found[k][2] for k in chosen]))
+        # g·N one form at a time (a matrix product of all of them rounds differently)
+        projected = [
+            np.array([(np.imag(g) if anti else np.real(g)) @ null for g, _, _, _ in found])
+            for anti, null in self.keys
+        ]
+        factors = np.concatenate([projected[k] for k in self.key_of], axis=1)
+        return np.repeat(weights, self.sizes, axis=1) * factors
 
 
 def _constraint_row(elements, where, nulls, offsets, form, vec) -> NDArray:
