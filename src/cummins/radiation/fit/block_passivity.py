@@ -74,13 +74,21 @@ class BlockSweep:
 
     def hermitian_part(self, block: PoleResidueBlock) -> NDArray:
         """:meth:`PoleResidueBlock.hermitian_part` on the grid (the same numbers)."""
-        values = 1j * self.grid[:, None] * (self.basis @ block.coefficients.T)
-        if not self.anti.any():
-            values = values.real
-        else:
-            values = np.where(self.anti[None, :], 1j * values.imag, values.real + 0j)
-        out = np.zeros((self.grid.size, self.size, self.size), dtype=values.dtype)
+        product = self.basis @ block.coefficients.T
+        # jω × product as numpy's complex product rounds it: (0 + jω)(x + jy) = (0x − ωy)
+        # + j(0y + ωx), without the complex temporaries
+        omega = self.grid[:, None]
         sym = ~self.anti
+        if not self.anti.any():
+            values = 0.0 * product.real - omega * product.imag
+            out = np.zeros((self.grid.size, self.size, self.size))
+        else:
+            real = 0.0 * product.real[:, sym] - omega * product.imag[:, sym]
+            imag = 0.0 * product.imag[:, self.anti] + omega * product.real[:, self.anti]
+            values = np.empty(product.shape, dtype=complex)
+            values[:, sym] = real + 0j
+            values[:, self.anti] = 1j * imag
+            out = np.zeros((self.grid.size, self.size, self.size), dtype=complex)
         out[:, self.rows[sym], self.columns[sym]] = values[:, sym]
         out[:, self.columns[sym], self.rows[sym]] = values[:, sym]
         if self.anti.any():
@@ -143,20 +151,21 @@ def passivity_violations(
     # between consecutive crossings the sign of λ_min is constant
     starts = np.searchsorted(points, edges, side="right")
     stops = np.searchsorted(points, edges, side="left")
-    for first, last in zip(starts[:-1], stops[1:], strict=True):
-        if last <= first:
-            continue
-        inside = np.arange(first, last)
-        low = low_all[inside]
+    firsts, lasts = starts[:-1], stops[1:]
+    firsts, lasts = firsts[lasts > firsts], lasts[lasts > firsts]
+    # the local minima of λ_min inside the bands (beyond a band's ends: +∞)
+    before, after = np.r_[np.inf, low_all[:-1]], np.r_[low_all[1:], np.inf]
+    before[firsts], after[lasts - 1] = np.inf, np.inf
+    minimum = (low_all < -VIOLATION) & (low_all <= before) & (low_all <= after)
+    for first, last in zip(firsts.tolist(), lasts.tolist(), strict=True):
+        low = low_all[first:last]
         worst = int(np.argmin(low))
         if low[worst] >= -VIOLATION:  # S K S: the diagonal peaks are 1
             continue
-        bound = np.full(1, np.inf)
-        before, after = np.concatenate([bound, low[:-1]]), np.concatenate([low[1:], bound])
-        minima = np.flatnonzero((low < -VIOLATION) & (low <= before) & (low <= after))
-        spread = np.linspace(0, inside.size - 1, 5).astype(int)
+        minima = np.flatnonzero(minimum[first:last])
+        spread = np.arange(5) * (last - first - 1) // 4  # 5 across, as linspace truncated
         chosen.append(
-            inside[np.unique(np.r_[worst, minima[np.argsort(low[minima])][:MINIMA], spread])]
+            first + np.unique(np.r_[worst, minima[np.argsort(low[minima])][:MINIMA], spread])
         )
     if chosen:
         at = np.concatenate(chosen)
@@ -164,16 +173,18 @@ def passivity_violations(
         if block.symmetric:
             forms = np.real(forms)
         lam_at, vec_at = np.linalg.eigh(scaled[at])
-        for form, lam, vec in zip(forms, lam_at, vec_at, strict=True):
-            local = float(np.abs(lam).max())
-            for e in np.flatnonzero(lam < 0):
-                out.append((form, float(lam[e]), dof_scale * vec[:, e], local))
+        local = np.abs(lam_at).max(axis=1)
+        point, e = np.nonzero(lam_at < 0)
+        vectors = dof_scale * vec_at[point, :, e]
+        out.extend(
+            (forms[k], float(lam_at[k, j]), v, float(local[k]))
+            for k, j, v in zip(point, e, vectors, strict=True)
+        )
     # the limits ω → 0 and ω → ∞, where Re K vanishes as ω² L₀ and L_∞/ω² (an
     # antisymmetric part, whose constraints remove its 1/ω and ω terms, adds an
     # antisymmetric real part there: no share of K + Kᴴ)
-    anti = np.array([is_antisymmetric(x) for x in block.elements])
     for form in limit_forms(block.poles):
-        values = np.where(anti, 0.0, block.coefficients @ form)
+        values = np.where(sweep.anti, 0.0, block.coefficients @ form)
         matrix = _element_matrix(block, values) * np.outer(dof_scale, dof_scale)
         lam, vec = np.linalg.eigh(matrix)
         local = float(np.abs(lam).max())

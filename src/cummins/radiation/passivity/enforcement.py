@@ -471,7 +471,7 @@ class FactoredMisfit:
         """R⁻¹ rhs (``trans="T"``: R⁻ᵀ rhs), rhs (n, …). (One solve with the
         block-diagonal R: the blocks one by one round differently, and the order search
         branches on the result.)"""
-        return scipy.linalg.solve_triangular(self.r_all, rhs, trans=trans)
+        return scipy.linalg.solve_triangular(self.r_all, rhs, trans=trans, check_finite=False)
 
     def transformed(self, g: NDArray) -> NDArray:
         """G R⁻¹ of constraint rows G (R upper triangular, block-diagonal)."""
