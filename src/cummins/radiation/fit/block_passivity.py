@@ -287,6 +287,7 @@ def enforce_passivity(
     lo, hi = float(w.min()), float(w.max())
     sweep = BlockSweep(block, lo, hi)
     rows, rhs = [], []
+    transformed = np.zeros((0, offsets[-1]))
     bound = np.zeros(0, dtype=bool)
     start = block.coefficients
     delta = np.zeros(offsets[-1])
@@ -303,11 +304,14 @@ def enforce_passivity(
         found = found + ([] if bounds is None else bounds(current))
         if not found:
             return current, True, iteration
-        for row, (_, lam, _, local) in zip(constraint_rows(found), found, strict=True):
+        new = constraint_rows(found)
+        for row, (_, lam, _, local) in zip(new, found, strict=True):
             rows.append(row)
             rhs.append(MARGIN * local - lam + row @ delta)
+        # G R⁻¹ of the new rows only, the others kept
+        transformed = np.concatenate([transformed, misfit.transformed_rows(new)])
         try:
-            delta, active = least_distance(misfit, np.array(rows), np.array(rhs))
+            delta, active = least_distance(misfit, np.array(rows), np.array(rhs), transformed)
         except FitError:
             return current, False, iteration
         # once the programme is large, a constraint that has never bound is left out of
@@ -317,6 +321,7 @@ def enforce_passivity(
         if len(rows) > PRUNE_ROWS * delta.size:
             rows = [r for r, a in zip(rows, bound, strict=True) if a]
             rhs = [h for h, a in zip(rhs, bound, strict=True) if a]
+            transformed = transformed[bound]
             bound = bound[bound]
         if block.symmetric:  # one null space: one product
             change = (nulls[0] @ delta.reshape(len(nulls), sizes[0]).T).T
