@@ -406,28 +406,3 @@ class ConstraintRows:
         ]
         factors = np.concatenate([projected[k] for k in self.key_of], axis=1)
         return np.repeat(weights, self.sizes, axis=1) * factors
-
-
-def _constraint_row(elements, where, nulls, offsets, form, vec) -> NDArray:
-    """The linearised constraint of one violation: d(wᴴ H w)/dz for the free coefficients
-    z of every element (x_e = N_e z_e), H = Re K_s + j Im K_a, w the (scaled)
-    eigenvector. A symmetric element (i, j) enters H at (i, j) and (j, i) through Re g,
-    an antisymmetric one (p, q) as ±j Im g: wᴴ H w gains 2 Re(w̄_i w_j) Re(g)·x (|w_i|²
-    on the diagonal) and −2 Im(w̄_p w_q) Im(g)·x."""
-    row = np.zeros(offsets[-1])
-    projected: dict = {}  # g·N per null space and part (real, imaginary)
-    for e, (i, j) in enumerate(elements):
-        if offsets[e + 1] == offsets[e]:
-            continue
-        key = (id(nulls[e]), i > j)
-        if key not in projected:
-            projected[key] = (np.imag(form) if i > j else np.real(form)) @ nulls[e]
-        vi, vj = vec[where[i]], vec[where[j]]
-        if i > j:
-            weight = -2.0 * np.imag(np.conj(vi) * vj)
-        elif np.iscomplexobj(vec):
-            weight = np.abs(vi) ** 2 if i == j else 2.0 * np.real(np.conj(vi) * vj)
-        else:
-            weight = vi * vi if i == j else 2 * vi * vj
-        row[offsets[e] : offsets[e + 1]] = weight * projected[key]
-    return row
