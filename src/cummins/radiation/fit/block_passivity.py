@@ -54,8 +54,8 @@ MINIMA = 8
 #: How often (iterations) :func:`enforce_passivity` asks its ``give_up``.
 GIVE_UP_EVERY = 3
 #: λ_min on the check grid: a point is positive definite, its eigenvalues not computed,
-#: where the Cholesky factorisation of its matrix less POSITIVE_SHIFT × its Frobenius
-#: norm runs to the end (:func:`lowest_eigenvalues`).
+#: where the Cholesky factorisation of its matrix M less POSITIVE_SHIFT × tr M runs to
+#: the end (:func:`lowest_eigenvalues`).
 POSITIVE_SHIFT = 1e-9
 
 
@@ -214,6 +214,7 @@ def lowest_eigenvalues(matrices: NDArray) -> NDArray:
     positive = shift > 0  # False for NaN
     # the lower triangle, column by column: a[i][j] for i ≥ j, each a vector over the stack
     a = [[matrices[:, i, j] for j in range(i + 1)] for i in range(n)]
+    conjugate = np.conj if np.iscomplexobj(matrices) else (lambda x: x)
     with np.errstate(all="ignore"):
         for k in range(n):
             pivot = a[k][k].real - shift
@@ -224,10 +225,7 @@ def lowest_eigenvalues(matrices: NDArray) -> NDArray:
             column = [a[i][k] / root for i in range(k + 1, n)]
             for i in range(k + 1, n):
                 for j in range(k + 1, i + 1):
-                    product = column[i - k - 1] * (
-                        column[j - k - 1].conj() if np.iscomplexobj(matrices) else column[j - k - 1]
-                    )
-                    a[i][j] = a[i][j] - product
+                    a[i][j] = a[i][j] - column[i - k - 1] * conjugate(column[j - k - 1])
     out = np.empty(count)
     out[positive] = 0.5 * shift[positive]
     rest = ~positive
