@@ -509,7 +509,7 @@ def least_distance(
     linearisation without changing its solution. ``misfit``: ``[(J_k, y_k)]`` or its
     :func:`factored_misfit` (factored once for many programmes). ``transformed``: G R⁻¹
     when known (the rows kept from earlier programmes: :meth:`FactoredMisfit.transformed_rows`
-    of each batch; the triangular solves of all rows at every programme were a fifth of
+    of each batch; the triangular solves of all rows at every programme were a tenth of
     an enforcement's time)."""
     factored = factored_misfit(misfit)
     shift = factored.shift
