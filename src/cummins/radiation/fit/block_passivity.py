@@ -53,6 +53,10 @@ CHECK_POINTS = 1500
 MINIMA = 8
 #: How often (iterations) :func:`enforce_passivity` asks its ``give_up``.
 GIVE_UP_EVERY = 3
+#: λ_min on the check grid: a point is positive definite, its eigenvalues not computed,
+#: where the Cholesky factorisation of its matrix M less POSITIVE_SHIFT × tr M runs to
+#: the end (:func:`lowest_eigenvalues`).
+POSITIVE_SHIFT = 1e-9
 
 
 class BlockSweep:
@@ -70,13 +74,21 @@ class BlockSweep:
 
     def hermitian_part(self, block: PoleResidueBlock) -> NDArray:
         """:meth:`PoleResidueBlock.hermitian_part` on the grid (the same numbers)."""
-        values = 1j * self.grid[:, None] * (self.basis @ block.coefficients.T)
-        if not self.anti.any():
-            values = values.real
-        else:
-            values = np.where(self.anti[None, :], 1j * values.imag, values.real + 0j)
-        out = np.zeros((self.grid.size, self.size, self.size), dtype=values.dtype)
+        product = self.basis @ block.coefficients.T
+        # jω × product as numpy's complex product rounds it: (0 + jω)(x + jy) = (0x − ωy)
+        # + j(0y + ωx), without the complex temporaries
+        omega = self.grid[:, None]
         sym = ~self.anti
+        if not self.anti.any():
+            values = 0.0 * product.real - omega * product.imag
+            out = np.zeros((self.grid.size, self.size, self.size))
+        else:
+            real = 0.0 * product.real[:, sym] - omega * product.imag[:, sym]
+            imag = 0.0 * product.imag[:, self.anti] + omega * product.real[:, self.anti]
+            values = np.empty(product.shape, dtype=complex)
+            values[:, sym] = real + 0j
+            values[:, self.anti] = 1j * imag
+            out = np.zeros((self.grid.size, self.size, self.size), dtype=complex)
         out[:, self.rows[sym], self.columns[sym]] = values[:, sym]
         out[:, self.columns[sym], self.rows[sym]] = values[:, sym]
         if self.anti.any():
@@ -130,30 +142,30 @@ def passivity_violations(
         points = grid
         k_all = k_grid
     scaled = k_all * np.outer(dof_scale, dof_scale)[None]
-    lam_all = np.linalg.eigvalsh(scaled)  # the eigenvectors where constraints are asked
+    low_all = lowest_eigenvalues(scaled)  # the eigenvectors where constraints are asked
     if not exact:
-        negative = lam_all[:, 0] < 0
+        negative = low_all < 0
         change = np.flatnonzero(negative[1:] != negative[:-1])
         edges = np.r_[0.0, np.sqrt(grid[change] * grid[change + 1]), np.inf]
     out, chosen = [], []
     # between consecutive crossings the sign of λ_min is constant
     starts = np.searchsorted(points, edges, side="right")
     stops = np.searchsorted(points, edges, side="left")
-    for first, last in zip(starts[:-1], stops[1:], strict=True):
-        if last <= first:
+    firsts, lasts = starts[:-1], stops[1:]
+    firsts, lasts = firsts[lasts > firsts], lasts[lasts > firsts]
+    # the local minima of λ_min inside the bands (beyond a band's ends: +∞)
+    before, after = np.r_[np.inf, low_all[:-1]], np.r_[low_all[1:], np.inf]
+    before[firsts], after[lasts - 1] = np.inf, np.inf
+    minimum = (low_all < -VIOLATION) & (low_all <= before) & (low_all <= after)
+    for first, last in zip(firsts.tolist(), lasts.tolist(), strict=True):
+        low = low_all[first:last]
+        worst = int(np.argmin(low))
+        if low[worst] >= -VIOLATION:  # S K S: the diagonal peaks are 1
             continue
-        inside = np.arange(first, last)
-        lam = lam_all[inside]
-        worst = int(np.argmin(lam[:, 0]))
-        if lam[worst, 0] >= -VIOLATION:  # S K S: the diagonal peaks are 1
-            continue
-        low = lam[:, 0]
-        bound = np.full(1, np.inf)
-        before, after = np.concatenate([bound, low[:-1]]), np.concatenate([low[1:], bound])
-        minima = np.flatnonzero((low < -VIOLATION) & (low <= before) & (low <= after))
-        spread = np.linspace(0, inside.size - 1, 5).astype(int)
+        minima = np.flatnonzero(minimum[first:last])
+        spread = np.arange(5) * (last - first - 1) // 4  # 5 across, as linspace truncated
         chosen.append(
-            inside[np.unique(np.r_[worst, minima[np.argsort(low[minima])][:MINIMA], spread])]
+            first + np.unique(np.r_[worst, minima[np.argsort(low[minima])][:MINIMA], spread])
         )
     if chosen:
         at = np.concatenate(chosen)
@@ -161,22 +173,65 @@ def passivity_violations(
         if block.symmetric:
             forms = np.real(forms)
         lam_at, vec_at = np.linalg.eigh(scaled[at])
-        for form, lam, vec in zip(forms, lam_at, vec_at, strict=True):
-            local = float(np.abs(lam).max())
-            for e in np.flatnonzero(lam < 0):
-                out.append((form, float(lam[e]), dof_scale * vec[:, e], local))
+        local = np.abs(lam_at).max(axis=1)
+        point, e = np.nonzero(lam_at < 0)
+        vectors = dof_scale * vec_at[point, :, e]
+        out.extend(
+            (forms[k], float(lam_at[k, j]), v, float(local[k]))
+            for k, j, v in zip(point, e, vectors, strict=True)
+        )
     # the limits ω → 0 and ω → ∞, where Re K vanishes as ω² L₀ and L_∞/ω² (an
     # antisymmetric part, whose constraints remove its 1/ω and ω terms, adds an
     # antisymmetric real part there: no share of K + Kᴴ)
-    anti = np.array([is_antisymmetric(x) for x in block.elements])
     for form in limit_forms(block.poles):
-        values = np.where(anti, 0.0, block.coefficients @ form)
+        values = np.where(sweep.anti, 0.0, block.coefficients @ form)
         matrix = _element_matrix(block, values) * np.outer(dof_scale, dof_scale)
         lam, vec = np.linalg.eigh(matrix)
         local = float(np.abs(lam).max())
         for e in np.flatnonzero(lam < -VIOLATION * local):
             out.append((form, float(lam[e]), dof_scale * vec[:, e], local))
     return out, dof_scale
+
+
+def lowest_eigenvalues(matrices: NDArray) -> NDArray:
+    """λ_min of each Hermitian matrix M of a stack (m, n, n), as
+    :func:`numpy.linalg.eigvalsh` gives it (the same numbers), except where M is proven
+    positive definite: there σ/2 > 0, a lower bound (σ = :data:`POSITIVE_SHIFT` tr M).
+
+    The proof: the Cholesky factorisation of M − σI, run in floating point (the whole
+    stack at once), reaches its end with positive pivots. Its factor R is then the exact
+    one of H = M − σI + E with ‖E‖₂ ≤ n γ_{n+1} ‖H‖₂ (Higham (2002) Thm 10.3 and ‖|R|‖₂²
+    ≤ n ‖R‖₂²; γ_k = k u / (1 − k u), u the unit round-off; a few times that in complex
+    arithmetic), and H ≻ 0, so ‖H‖₂ ≤ tr H ≤ tr M + n ‖E‖₂: λ_min(M) ≥ σ − ‖E‖₂ ≥ σ −
+    1.01 n (n + 1) u tr M, above σ/2 for n up to 1000. eigvalsh's own λ_min, within a
+    small multiple of n u ‖M‖₂ of the true one, is then above zero too: a point whose
+    sign is decided within rounding of zero goes to eigvalsh."""
+    count, n = matrices.shape[0], matrices.shape[-1]
+    if n == 1:  # eigvalsh's value: the element itself
+        return matrices[:, 0, 0].real.copy()
+    trace = np.trace(matrices, axis1=1, axis2=2).real
+    shift = POSITIVE_SHIFT * trace
+    positive = shift > 0  # False for NaN
+    # the lower triangle, column by column: a[i][j] for i ≥ j, each a vector over the stack
+    a = [[matrices[:, i, j] for j in range(i + 1)] for i in range(n)]
+    conjugate = np.conj if np.iscomplexobj(matrices) else (lambda x: x)
+    with np.errstate(all="ignore"):
+        for k in range(n):
+            pivot = a[k][k].real - shift
+            positive &= pivot > 0
+            if k == n - 1:
+                break
+            root = np.sqrt(np.where(positive, pivot, 1.0))
+            column = [a[i][k] / root for i in range(k + 1, n)]
+            for i in range(k + 1, n):
+                for j in range(k + 1, i + 1):
+                    a[i][j] = a[i][j] - column[i - k - 1] * conjugate(column[j - k - 1])
+    out = np.empty(count)
+    out[positive] = 0.5 * shift[positive]
+    rest = ~positive
+    if rest.any():
+        out[rest] = np.linalg.eigvalsh(matrices[rest])[:, 0]
+    return out
 
 
 def limit_forms(poles: Poles) -> tuple[NDArray, NDArray]:
@@ -226,10 +281,11 @@ def enforce_passivity(
         r = np.linalg.qr(np.vstack([jac, ridge * np.eye(null.shape[1])]), mode="r")
         misfit.append((r, np.zeros(null.shape[1])))
     misfit = factored_misfit(misfit)  # once: every programme below shares it
-    where = {d: k for k, d in enumerate(block.dofs)}
+    constraint_rows = ConstraintRows(block, nulls, offsets)
     lo, hi = float(w.min()), float(w.max())
     sweep = BlockSweep(block, lo, hi)
     rows, rhs = [], []
+    transformed = np.zeros((0, offsets[-1]))
     bound = np.zeros(0, dtype=bool)
     start = block.coefficients
     delta = np.zeros(offsets[-1])
@@ -246,11 +302,14 @@ def enforce_passivity(
         found = found + ([] if bounds is None else bounds(current))
         if not found:
             return current, True, iteration
-        for form, lam, vec, local in found:
-            rows.append(_constraint_row(block.elements, where, nulls, offsets, form, vec))
-            rhs.append(MARGIN * local - lam + rows[-1] @ delta)
+        new = constraint_rows(found)
+        for row, (_, lam, _, local) in zip(new, found, strict=True):
+            rows.append(row)
+            rhs.append(MARGIN * local - lam + row @ delta)
+        # G R⁻¹ of the new rows only, the others kept
+        transformed = np.concatenate([transformed, misfit.transformed_rows(new)])
         try:
-            delta, active = least_distance(misfit, np.array(rows), np.array(rhs))
+            delta, active = least_distance(misfit, np.array(rows), np.array(rhs), transformed)
         except FitError:
             return current, False, iteration
         # once the programme is large, a constraint that has never bound is left out of
@@ -260,6 +319,7 @@ def enforce_passivity(
         if len(rows) > PRUNE_ROWS * delta.size:
             rows = [r for r, a in zip(rows, bound, strict=True) if a]
             rhs = [h for h, a in zip(rhs, bound, strict=True) if a]
+            transformed = transformed[bound]
             bound = bound[bound]
         if block.symmetric:  # one null space: one product
             change = (nulls[0] @ delta.reshape(len(nulls), sizes[0]).T).T
@@ -277,26 +337,70 @@ def enforce_passivity(
     return current, not found, PASSIVITY_ITERATIONS
 
 
-def _constraint_row(elements, where, nulls, offsets, form, vec) -> NDArray:
-    """The linearised constraint of one violation: d(wᴴ H w)/dz for the free coefficients
-    z of every element (x_e = N_e z_e), H = Re K_s + j Im K_a, w the (scaled)
-    eigenvector. A symmetric element (i, j) enters H at (i, j) and (j, i) through Re g,
-    an antisymmetric one (p, q) as ±j Im g: wᴴ H w gains 2 Re(w̄_i w_j) Re(g)·x (|w_i|²
-    on the diagonal) and −2 Im(w̄_p w_q) Im(g)·x."""
-    row = np.zeros(offsets[-1])
-    projected: dict = {}  # g·N per null space and part (real, imaginary)
-    for e, (i, j) in enumerate(elements):
-        if offsets[e + 1] == offsets[e]:
-            continue
-        key = (id(nulls[e]), i > j)
-        if key not in projected:
-            projected[key] = (np.imag(form) if i > j else np.real(form)) @ nulls[e]
-        vi, vj = vec[where[i]], vec[where[j]]
-        if i > j:
-            weight = -2.0 * np.imag(np.conj(vi) * vj)
-        elif np.iscomplexobj(vec):
-            weight = np.abs(vi) ** 2 if i == j else 2.0 * np.real(np.conj(vi) * vj)
-        else:
-            weight = vi * vi if i == j else 2 * vi * vj
-        row[offsets[e] : offsets[e + 1]] = weight * projected[key]
-    return row
+class ConstraintRows:
+    """The linearised constraints of violations (:func:`passivity_violations`' (g, λ, w,
+    scale)): d(wᴴ H w)/dz for the free coefficients z of every element (x_e = N_e z_e),
+    H = Re K_s + j Im K_a, w the (scaled) eigenvector. A symmetric element (i, j) enters
+    H at (i, j) and (j, i) through Re g, an antisymmetric one (p, q) as ±j Im g: wᴴ H w
+    gains 2 Re(w̄_i w_j) Re(g)·x (|w_i|² on the diagonal) and −2 Im(w̄_p w_q) Im(g)·x.
+
+    Made once per enforcement (the elements and null spaces do not change); each call
+    gives the rows of all the violations of an iteration at once. The weights are
+    computed with the operations of one scalar at a time (|w_i|² as a power, w̄_i w_j
+    without fused multiply-adds), so that each row is the same to the last bit whether
+    the violations come together or one by one: the programme, and the order search
+    after it, branch on them."""
+
+    def __init__(self, block: PoleResidueBlock, nulls, offsets):
+        where = {d: k for k, d in enumerate(block.dofs)}
+        self.size = int(offsets[-1])
+        free = [e for e in range(len(block.elements)) if offsets[e + 1] > offsets[e]]
+        pairs = [block.elements[e] for e in free]
+        self.first = np.array([where[i] for i, _ in pairs], dtype=int)
+        self.second = np.array([where[j] for _, j in pairs], dtype=int)
+        self.diagonal = np.array([i == j for i, j in pairs], dtype=bool)
+        self.anti = np.array([i > j for i, j in pairs], dtype=bool)
+        self.sizes = np.array([offsets[e + 1] - offsets[e] for e in free], dtype=int)
+        keys: dict = {}  # g·N per null space and part (real, imaginary)
+        for e in free:
+            keys.setdefault((id(nulls[e]), is_antisymmetric(block.elements[e])), nulls[e])
+        self.keys = [(anti, null) for (_, anti), null in keys.items()]
+        index = {key: k for k, key in enumerate(keys)}
+        key_of = [index[(id(nulls[e]), is_antisymmetric(block.elements[e]))] for e in free]
+        self.key_of = np.array(key_of, dtype=int)
+
+    def weights(self, vectors: NDArray) -> NDArray:
+        """(m, elements) the factor of each element's g·N in the row of each w (m, n)."""
+        i, j = self.first, self.second
+        if not np.iscomplexobj(vectors):  # w_i w_i, 2 w_i w_j, and −2 Im(w_p w_q) = −0
+            out = 2 * vectors[:, i] * vectors[:, j]
+            out[:, self.diagonal] = vectors[:, i[self.diagonal]] * vectors[:, i[self.diagonal]]
+            out[:, self.anti] = -0.0
+            return out
+        # w̄_i w_j as numpy's complex scalar product: (a − jb)(c + jd) = (ac − (−b)d) + …
+        real, imag = vectors.real, -vectors.imag
+        ac, bd = real[:, i] * vectors.real[:, j], imag[:, i] * vectors.imag[:, j]
+        ad, bc = real[:, i] * vectors.imag[:, j], imag[:, i] * vectors.real[:, j]
+        out = 2.0 * (ac - bd)
+        out[:, self.anti] = -2.0 * (ad + bc)[:, self.anti]
+        diagonal = np.abs(vectors[:, i[self.diagonal]])
+        out[:, self.diagonal] = np.float_power(diagonal, 2.0)  # |w_i| ** 2, as pow
+        return out
+
+    def __call__(self, found) -> NDArray:
+        """(m, unknowns) the rows of the violations ``found``."""
+        if not found:
+            return np.zeros((0, self.size))
+        weights = np.empty((len(found), self.sizes.size))
+        complex_vector = np.array([np.iscomplexobj(v) for _, _, v, _ in found], dtype=bool)
+        for kind in (False, True):
+            chosen = np.flatnonzero(complex_vector == kind)
+            if chosen.size:
+                weights[chosen] = self.weights(np.array([found[k][2] for k in chosen]))
+        # g·N one form at a time (a matrix product of all of them rounds differently)
+        projected = [
+            np.array([(np.imag(g) if anti else np.real(g)) @ null for g, _, _, _ in found])
+            for anti, null in self.keys
+        ]
+        factors = np.concatenate([projected[k] for k in self.key_of], axis=1)
+        return np.repeat(weights, self.sizes, axis=1) * factors
