@@ -86,3 +86,54 @@ def test_bad_grids():
         cosine_transform([0.0, 1.0, 1.0], [0.0, 1.0, 2.0], [1.0])
     with pytest.raises(ValueError, match="y > 0"):
         hilbert_pv([0.0, 1.0], [0.0, 1.0], [0.0])
+
+
+def _segment_form(x, f, y):
+    """The cosine transform by the segment form alone (the rule before the node form)."""
+    from cummins.radiation.transforms import _even_odd, _segments
+
+    m, h, f_mean, f_half, _ = _segments(x, f)
+    cos, sin, sinc, j1 = _even_odd(m, h, np.asarray(y, dtype=float).reshape(-1, 1))
+    return (cos * sinc) @ f_mean - (sin * j1) @ f_half
+
+
+@pytest.mark.parametrize("uniform", [True, False])
+def test_node_form_against_segment_form(uniform):
+    """The node form of the cosine transform (slope jumps at the nodes, used where it is
+    well conditioned) gives the segment form's numbers: a damping-like curve on 400
+    uneven frequencies with noise, 300 times (a uniform grid: the angle-addition blocks;
+    uneven: direct cosines). Measured difference 2·10⁻¹⁵ of max |K|."""
+    from cummins.radiation.transforms import _node_rows, _slope_jumps
+
+    rng = np.random.default_rng(3)
+    x = np.r_[0.0, np.sort(rng.uniform(0.05, 8.0, 399))]
+    f = np.stack(
+        [x**2 * np.exp(-x), np.exp(-((x - 2) ** 2)) * (1 + 1e-3 * rng.normal(size=x.size))]
+    )
+    f = f.T
+    t = np.linspace(0.0, 60.0, 300) if uniform else np.sort(rng.uniform(0.0, 60.0, 300))
+    rows = _node_rows(x, f, _slope_jumps(x, f), t)
+    assert rows.mean() > 0.8 and not rows[0]  # the node form serves most times, not t = 0
+    new, old = cosine_transform(x, f, t), _segment_form(x, f, t)
+    np.testing.assert_allclose(new, old, rtol=0.0, atol=1e-12 * np.abs(old).max())
+
+
+def test_node_form_closed_form():
+    """∫₀¹ x cos(xy) dx = (cos y + y sin y − 1)/y² on 200 uniform y up to 500 (node form
+    beyond the smallest y), and ∫₀^π sin x cos(xy) dx = (1 + cos πy)/(1 − y²) for the
+    piecewise-linear sine on a fine grid, to its interpolation error (measured 3·10⁻¹⁷
+    and 1.0·10⁻⁷)."""
+    y = np.linspace(0.0, 500.0, 200)
+    with np.errstate(divide="ignore", invalid="ignore"):
+        exact = np.where(y > 0, (np.cos(y) + y * np.sin(y) - 1) / y**2, 0.5)
+    np.testing.assert_allclose(
+        cosine_transform(np.array([0.0, 0.25, 1.0]), np.array([0.0, 0.25, 1.0]), y),
+        exact,
+        rtol=0.0,
+        atol=1e-14,
+    )
+    x = np.linspace(0.0, np.pi, 4001)
+    y = np.linspace(0.0, 7.7, 100)  # avoids y = 1
+    exact = (1 + np.cos(np.pi * y)) / (1 - y**2)
+    # the interpolation error of the chord rule is (Δx²/8) max|f''| × π ≈ 2.4·10⁻⁷
+    np.testing.assert_allclose(cosine_transform(x, np.sin(x), y), exact, rtol=0.0, atol=1e-6)
