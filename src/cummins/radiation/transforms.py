@@ -37,6 +37,8 @@ calls that share the end point (data and tail).
 
 from __future__ import annotations
 
+import functools
+
 import numpy as np
 from numpy.typing import ArrayLike, NDArray
 
@@ -284,17 +286,47 @@ def hilbert_pv(x: ArrayLike, f: ArrayLike, y: ArrayLike) -> NDArray[np.float64]:
     x = np.asarray(x, dtype=float)
     f = np.asarray(f, dtype=float)
     m, h, f_mean, f_half, shape = _segments(x, f)
-    a, b = x[:-1], x[1:]  # the grid points themselves: y == x_k must give exactly 0
+    a = x[:-1]
     slope = f_half / h[:, None]  # (K, P)
     p = f_mean - slope * m[:, None]  # f = p + s x on each segment
     y = np.asarray(y, dtype=float).reshape(-1)
     if np.any(y <= 0):
         raise ValueError("hilbert_pv needs y > 0")
     yy = y[:, None]
+    if PV_CACHED_SIZE[0] <= y.size * a.size <= PV_CACHED_SIZE[1]:
+        difference, total = _pv_kernels_cached(x.tobytes(), y.tobytes())
+    else:
+        difference, total = _pv_kernels(x, y)
+    # (p + s y) ln|(b − y)/(a − y)| − (p − s y) ln|(b + y)/(a + y)|, per segment
+    out = difference @ p + total @ slope
+    out = out / (2 * yy)
+    return out.reshape((y.size, *shape))
+
+
+def _pv_kernels(x: NDArray, y: NDArray) -> tuple[NDArray, NDArray]:
+    """The logarithms of :func:`hilbert_pv` for the grid ``x`` and the points ``y``, (M, K)
+    each: ln|(b − y)/(a − y)| − ln|(b + y)/(a + y)| and y × their sum, per segment [a, b]."""
+    a, b = x[:-1], x[1:]  # the grid points themselves: y == x_k must give exactly 0
+    yy = y[:, None]
     logs = _log_abs(x[None, :] - yy)  # ln|x_k − y| once for both ends of each segment
     log_minus = logs[:, 1:] - logs[:, :-1]  # (M, K)
     log_plus = np.log((b[None, :] + yy) / (a[None, :] + yy))
-    # (p + s y) ln|(b − y)/(a − y)| − (p − s y) ln|(b + y)/(a + y)|, per segment
-    out = (log_minus - log_plus) @ p + ((log_minus + log_plus) * yy) @ slope
-    out = out / (2 * yy)
-    return out.reshape((y.size, *shape))
+    return log_minus - log_plus, (log_minus + log_plus) * yy
+
+
+#: :func:`hilbert_pv` keeps the logarithms of the last :data:`PV_CACHED` grids of this
+#: many points × segments (at most two arrays of 5 MB, 800 frequencies; the smallest are
+#: cheaper to compute again): the fit's data stage takes the Kramers–Kronig integral on
+#: the same frequencies and tail grids some ten times (Ogilvie's A∞ per frequency, the
+#: sharp-resonance and irregular-frequency tests).
+PV_CACHED_SIZE = (10_000, 700_000)
+PV_CACHED = 3
+
+
+@functools.lru_cache(maxsize=PV_CACHED)
+def _pv_kernels_cached(x: bytes, y: bytes) -> tuple[NDArray, NDArray]:
+    """:func:`_pv_kernels` of the grids given as their bytes, kept (read-only)."""
+    out = _pv_kernels(np.frombuffer(x, dtype=float), np.frombuffer(y, dtype=float))
+    for array in out:
+        array.flags.writeable = False
+    return out
