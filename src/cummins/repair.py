@@ -758,14 +758,15 @@ def nearest_passive_damping(
     inside = mask[sub]
     out = b.copy()
     changed, left, worst, worst_omega = [], [], 0.0, float("nan")
-    for k in range(w.size):
-        matrix = b[k][sub]
-        if not np.all(np.isfinite(matrix)):
-            continue
-        symmetric = np.where(inside, 0.5 * (matrix + matrix.T), 0.0)
-        lam, vec = np.linalg.eigh(symmetric * np.outer(scale, scale))
-        if lam[0] >= 0:
-            continue
+    matrices = b[:, dofs][:, :, dofs]
+    finite = np.flatnonzero(np.all(np.isfinite(matrices), axis=(1, 2)))
+    symmetric = np.where(inside, 0.5 * (matrices + np.swapaxes(matrices, 1, 2)), 0.0)
+    values, vectors = np.zeros((0, dofs.size)), np.zeros((0, dofs.size, dofs.size))
+    if finite.size:  # every frequency at once (LAPACK matrix by matrix all the same)
+        values, vectors = np.linalg.eigh(symmetric[finite] * np.outer(scale, scale))
+    for at in np.flatnonzero(values[:, 0] < 0):
+        k, lam, vec = finite[at], values[at], vectors[at]
+        matrix = matrices[k]
         if lam[0] < -limit:
             left.append(float(w[k]))
             continue

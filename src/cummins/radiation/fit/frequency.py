@@ -670,8 +670,9 @@ def minimum_real_part(poles: ArrayLike, residues: ArrayLike) -> tuple[float, flo
     def re_k(w):
         return np.real((r / (1j * np.atleast_1d(w)[:, None] - p)).sum(axis=1))
 
-    values = re_k(grid)
-    k_max = float(np.abs((r / (1j * grid[:, None] - p)).sum(axis=1)).max())
+    response = (r / (1j * grid[:, None] - p)).sum(axis=1)  # K(jω) on the grid, once
+    values = np.real(response)
+    k_max = float(np.abs(response).max())
     best, where = float(values.min()), float(grid[np.argmin(values)])
     interior = np.flatnonzero((values[1:-1] <= values[:-2]) & (values[1:-1] <= values[2:])) + 1
     for k in interior[np.argsort(values[interior])[:20]]:
