@@ -744,8 +744,10 @@ def _bridged_dataset(data: xr.Dataset, keep: NDArray) -> xr.Dataset:
     if keep.all():
         return data
     w = data.omega.values
-    out = data
+    values = {name: var.values for name, var in data.data_vars.items()}
     for name in ("added_mass", "radiation_damping"):
-        var = data[name].transpose("omega", "influenced_dof", "radiating_dof")
-        out = out.assign({name: var.copy(data=bridged_couplings(var.values, w, keep))})
-    return out
+        dims = data[name].dims  # the variable's own order, the coupling's axes last
+        order = [dims.index(d) for d in ("omega", "influenced_dof", "radiating_dof")]
+        bridged = bridged_couplings(np.transpose(values[name], order), w, keep)
+        values[name] = np.transpose(bridged, np.argsort(order))
+    return data.copy(data=values)  # the rest shared, without the merge of an assign
