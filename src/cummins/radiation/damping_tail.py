@@ -167,14 +167,17 @@ class DampingTail:
             out[:, power] = transform(w, b[:, which][:, power], t)
         return out
 
-    def hilbert(self, omega: ArrayLike) -> NDArray:
-        """PV ∫_{ω_N}^∞ B_tail(ν)/(ν² − ω²) dν at ``omega`` (≤ ω_N), shape (len(ω), P)."""
+    def hilbert(self, omega: ArrayLike, columns: ArrayLike | None = None) -> NDArray:
+        """PV ∫_{ω_N}^∞ B_tail(ν)/(ν² − ω²) dν at ``omega`` (≤ ω_N), shape (len(ω), P), or
+        of the couplings ``columns`` (indices) alone (on the grid of all)."""
         omega = np.asarray(omega, dtype=float).reshape(-1)
-        out = np.zeros((omega.size, self.kind.size))
-        some = self.kind != "none"
+        every = np.arange(self.kind.size)
+        which = every if columns is None else every[np.asarray(columns, dtype=int)]
+        out = np.zeros((omega.size, which.size))
+        some = self.kind[which] != "none"
         if some.any():
             w, b = self.sampled()
-            out[:, some] = hilbert_pv(w, b[:, some], omega)
+            out[:, some] = hilbert_pv(w, b[:, which[some]], omega)
         return out
 
     def area(self) -> NDArray:
@@ -192,16 +195,25 @@ class DampingTail:
 
 
 def kramers_kronig_integral(
-    omega: ArrayLike, damping: ArrayLike, added_mass: ArrayLike, tail: str = "auto"
+    omega: ArrayLike,
+    damping: ArrayLike,
+    added_mass: ArrayLike,
+    tail: str = "auto",
+    columns: ArrayLike | None = None,
 ) -> NDArray:
     """(2/π) PV ∫₀^∞ B(ν)/(ν² − ω²) dν at the frequencies ``omega`` (rad/s, increasing) of
     the damping B (shape (N, P)): the piecewise-linear B from B(0) = 0 and its tail
     (:func:`fit_damping_tail` of kind ``tail``, with the ``added_mass`` A(ω), (N, P)), exact
-    (Hjulstad (2004) eq. 5.23); shape (N, P). A(ω) less it is Ogilvie's A∞ at each ω."""
+    (Hjulstad (2004) eq. 5.23); shape (N, P), or (N, len(columns)) of the couplings
+    ``columns`` alone (the tails fitted to all: the same numbers). A(ω) less it is
+    Ogilvie's A∞ at each ω."""
     w = np.asarray(omega, dtype=float)
     b = np.asarray(damping, dtype=float).reshape(w.size, -1)
+    fitted = fit_damping_tail(w, b, tail, added_mass=added_mass)
+    if columns is not None:
+        b = b[:, np.asarray(columns, dtype=int)]
     x, f = np.r_[0.0, w], np.vstack([np.zeros((1, b.shape[1])), b])
-    total = hilbert_pv(x, f, w) + fit_damping_tail(w, b, tail, added_mass=added_mass).hilbert(w)
+    total = hilbert_pv(x, f, w) + fitted.hilbert(w, columns)
     return (2.0 / np.pi) * total
 
 
