@@ -37,7 +37,10 @@ calls that share the end point (data and tail).
 
 from __future__ import annotations
 
-import functools
+import collections
+import contextlib
+import threading
+from collections.abc import Iterator
 
 import numpy as np
 from numpy.typing import ArrayLike, NDArray
@@ -293,8 +296,8 @@ def hilbert_pv(x: ArrayLike, f: ArrayLike, y: ArrayLike) -> NDArray[np.float64]:
     if np.any(y <= 0):
         raise ValueError("hilbert_pv needs y > 0")
     yy = y[:, None]
-    if PV_CACHED_SIZE[0] <= y.size * a.size <= PV_CACHED_SIZE[1]:
-        difference, total = _pv_kernels_cached(x.tobytes(), y.tobytes())
+    if _PV_USERS[0] and PV_CACHED_SIZE[0] <= y.size * a.size <= PV_CACHED_SIZE[1]:
+        difference, total = _pv_kernels_cached(x, y)
     else:
         difference, total = _pv_kernels(x, y)
     # (p + s y) ln|(b − y)/(a − y)| − (p − s y) ln|(b + y)/(a + y)|, per segment
@@ -314,19 +317,60 @@ def _pv_kernels(x: NDArray, y: NDArray) -> tuple[NDArray, NDArray]:
     return log_minus - log_plus, (log_minus + log_plus) * yy
 
 
-#: :func:`hilbert_pv` keeps the logarithms of the last :data:`PV_CACHED` grids of this
-#: many points × segments (at most two arrays of 5 MB, 800 frequencies; the smallest are
-#: cheaper to compute again): the fit's data stage takes the Kramers–Kronig integral on
-#: the same frequencies and tail grids some ten times (Ogilvie's A∞ per frequency, the
+#: Within :func:`shared_kernels`, :func:`hilbert_pv` keeps the logarithms of the grids
+#: it is called with, of this many points × segments (the smallest are cheaper to
+#: compute again), up to :data:`PV_CACHED_BYTES` in all (two arrays of 5 MB for 800
+#: frequencies): the fit's data stage takes the Kramers–Kronig integral on the same
+#: frequencies and tail grids some ten to thirty times (Ogilvie's A∞ per frequency, the
 #: sharp-resonance and irregular-frequency tests).
 PV_CACHED_SIZE = (10_000, 700_000)
-PV_CACHED = 3
+PV_CACHED_BYTES = 32_000_000
+_PV_CACHE: collections.OrderedDict[tuple[bytes, bytes], tuple[NDArray, NDArray]] = (
+    collections.OrderedDict()
+)
+_PV_LOCK = threading.Lock()
+_PV_USERS = [0]  # the shared_kernels contexts open
 
 
-@functools.lru_cache(maxsize=PV_CACHED)
-def _pv_kernels_cached(x: bytes, y: bytes) -> tuple[NDArray, NDArray]:
-    """:func:`_pv_kernels` of the grids given as their bytes, kept (read-only)."""
-    out = _pv_kernels(np.frombuffer(x, dtype=float), np.frombuffer(y, dtype=float))
-    for array in out:
+@contextlib.contextmanager
+def shared_kernels() -> Iterator[None]:
+    """A context in which :func:`hilbert_pv` computes the logarithms of each grid once
+    (:data:`PV_CACHED_SIZE`): the same numbers, kept until the last such context ends."""
+    with _PV_LOCK:
+        _PV_USERS[0] += 1
+    try:
+        yield
+    finally:
+        with _PV_LOCK:
+            _PV_USERS[0] -= 1
+            if not _PV_USERS[0]:
+                _PV_CACHE.clear()
+
+
+def _pv_kernels_cached(x: NDArray, y: NDArray) -> tuple[NDArray, NDArray]:
+    """:func:`_pv_kernels`, kept (read-only) for the next call on the same grids inside
+    :func:`shared_kernels`; the least recently used dropped beyond
+    :data:`PV_CACHED_BYTES`."""
+    key = (x.tobytes(), y.tobytes())
+    with _PV_LOCK:
+        found = _PV_CACHE.get(key)
+        if found is not None:
+            _PV_CACHE.move_to_end(key)
+            return found
+    found = _pv_kernels(x, y)
+    for array in found:
         array.flags.writeable = False
-    return out
+    with _PV_LOCK:
+        if _PV_USERS[0]:
+            _PV_CACHE[key] = found
+        while sum(a.nbytes + b.nbytes for a, b in _PV_CACHE.values()) > PV_CACHED_BYTES:
+            _PV_CACHE.popitem(last=False)
+    return found
+    found = _pv_kernels(x, y)
+    for array in found:
+        array.flags.writeable = False
+    with _PV_LOCK:
+        _PV_CACHE[key] = found
+        while sum(a.nbytes + b.nbytes for a, b in _PV_CACHE.values()) > PV_CACHED_BYTES:
+            _PV_CACHE.popitem(last=False)
+    return found

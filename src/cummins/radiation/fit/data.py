@@ -56,6 +56,7 @@ from cummins.radiation.retardation import (
     default_retardation_function,
     significant_couplings,
 )
+from cummins.radiation.transforms import shared_kernels
 from cummins.repair import (
     find_suspect_frequencies,
     irregular_frequency_spans,
@@ -170,6 +171,12 @@ def prepare_fit(
     will use them (module docstring). ``options`` as checked by
     :meth:`~cummins.radiation.fit.options.FitOptions.checked`; ``joined``: the mechanics
     whose motions the fit aims at (:class:`~cummins.radiation.fit.motion.JoinedMotion`)."""
+    with shared_kernels():  # the Kramers–Kronig integrals' logarithms once per grid
+        return _prepare_fit(ds, options, joined)
+
+
+def _prepare_fit(ds: xr.Dataset, options: FitOptions, joined: JoinedMotion | None) -> FitInput:
+    """:func:`prepare_fit`'s work."""
     ds = single_speed(ds)
     guard_hydro_data(ds)  # non-finite or absurd values: FitError naming the DOF pair
     given = ds  # the data as the user gave them: the model's fingerprint
