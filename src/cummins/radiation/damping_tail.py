@@ -122,17 +122,21 @@ class DampingTail:
         w = self._grid()
         return w, self.at(w)
 
-    def cosine(self, t: ArrayLike, columns: ArrayLike | None = None) -> NDArray:
+    def cosine(
+        self, t: ArrayLike, columns: ArrayLike | None = None, *, node_form: bool = True
+    ) -> NDArray:
         """∫_{ω_N}^∞ B_tail(ω) cos(ωt) dω, shape (len(t), P), or of the couplings
         ``columns`` (indices) alone: the same numbers (the power tails' grid stays that
-        of all)."""
-        return self._transform(t, cos=True, columns=columns)
+        of all); ``node_form`` as in :func:`cosine_transform`."""
+        return self._transform(t, cos=True, columns=columns, node_form=node_form)
 
     def sine(self, t: ArrayLike) -> NDArray:
         """∫_{ω_N}^∞ B_tail(ω) sin(ωt) dω, shape (len(t), P)."""
         return self._transform(t, cos=False)
 
-    def _transform(self, t: ArrayLike, cos: bool, columns: ArrayLike | None = None) -> NDArray:
+    def _transform(
+        self, t: ArrayLike, cos: bool, columns: ArrayLike | None = None, node_form: bool = True
+    ) -> NDArray:
         t = np.asarray(t, dtype=float).reshape(-1)
         every = np.arange(self.kind.size)
         which = every if columns is None else every[np.asarray(columns, dtype=int)]
@@ -152,7 +156,7 @@ class DampingTail:
             out[:, square] = values[square] * _inverse_square_tail(self.omega_start, t, cos)
         rising = kinds == "rising"
         if rising.any():  # exact: the linear rise, then ω⁻² from the knee
-            transform = cosine_transform if cos else sine_transform
+            transform = _cosine(node_form) if cos else sine_transform
             knee, top = self._knees()[which], self._top()[which]
             for k in np.flatnonzero(rising):
                 segment = np.array([self.omega_start, knee[k]])
@@ -163,7 +167,7 @@ class DampingTail:
         power = (kinds == "power") & ~square
         if power.any():  # exact for the interpolant on a fine geometric grid
             w, b = self.sampled()
-            transform = cosine_transform if cos else sine_transform
+            transform = _cosine(node_form) if cos else sine_transform
             out[:, power] = transform(w, b[:, which][:, power], t)
         return out
 
@@ -192,6 +196,11 @@ class DampingTail:
                 knee, top = self._knees()[k], self._top()[k]
                 out[k] = 0.5 * (self.value[k] + top) * (knee - self.omega_start) + top * knee
         return out
+
+
+def _cosine(node_form: bool):
+    """:func:`cosine_transform` with its ``node_form`` set."""
+    return lambda x, f, y: cosine_transform(x, f, y, node_form=node_form)
 
 
 def kramers_kronig_integral(

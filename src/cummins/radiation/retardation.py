@@ -73,19 +73,20 @@ def default_time_grid(
 
 
 def default_retardation_function(
-    ds: xr.Dataset, *, threshold: float = 0.01, max_points: int = 20_000
+    ds: xr.Dataset, *, threshold: float = 0.01, max_points: int = 20_000, node_form: bool = True
 ) -> xr.DataArray:
-    """:func:`retardation_function` on :func:`default_time_grid`, computed once."""
-    return _default_kernel(ds, threshold, max_points)[1]
+    """:func:`retardation_function` on :func:`default_time_grid`, computed once
+    (``node_form`` as in :func:`retardation_function`)."""
+    return _default_kernel(ds, threshold, max_points, node_form)[1]
 
 
-def _default_kernel(ds: xr.Dataset, threshold: float, max_points: int):
+def _default_kernel(ds: xr.Dataset, threshold: float, max_points: int, node_form: bool = True):
     ds = single_speed(ds)
     w = ds.omega.values
     t_limit = 2 * np.pi / w[0]
     dt = max(np.pi / (4 * w[-1]), t_limit / max_points)
     probe = np.arange(0.0, t_limit + 0.5 * dt, dt)
-    kernel = retardation_function(ds, probe)
+    kernel = retardation_function(ds, probe, node_form=node_form)
     k = kernel.values.reshape(probe.size, -1)
     peak = np.abs(k).max(axis=0)
     keep = peak > 1e-9 * peak.max()
@@ -135,6 +136,7 @@ def retardation_function(
     interpolation: str = "linear",
     zero_frequency: bool = True,
     method: str = "exact",
+    node_form: bool = True,
 ) -> xr.DataArray:
     """Retardation functions K_ij(t) = (2/π) ∫₀^∞ B_ij(ω) cos(ωt) dω of all couplings.
 
@@ -161,6 +163,10 @@ def retardation_function(
         ``"exact"``: exact integration of the interpolant (Filon-type, see
         :mod:`cummins.radiation.transforms`); ``"trapezoid"``: the plain trapezoid rule on the
         data grid, no tail (the textbook approach, kept as a reference).
+    node_form
+        ``"exact"``: Filon's node form at the times where it is well conditioned, the
+        segment form elsewhere (:func:`cummins.radiation.transforms.cosine_transform`);
+        False: the segment form at every time (the same numbers to rounding, slower).
 
     Returns
     -------
@@ -189,7 +195,7 @@ def retardation_function(
         k = np.trapezoid(np.cos(np.outer(w, t))[:, :, None] * b[:, None, :], w, axis=0)
         tail_fit = fit_damping_tail(w, b, "none")
     elif method == "exact":
-        k, tail_fit = _exact_kernel(ds, t, tail, interpolation, zero_frequency)
+        k, tail_fit = _exact_kernel(ds, t, tail, interpolation, zero_frequency, node_form=node_form)
     else:
         raise HydroDataError(f"unknown method {method!r}", hint="use 'exact' or 'trapezoid'")
     values = (2.0 / np.pi) * k.reshape(t.size, n, n)
@@ -215,7 +221,7 @@ def retardation_function(
     )
 
 
-def _exact_kernel(ds, t, tail, interpolation, zero_frequency, columns=None):
+def _exact_kernel(ds, t, tail, interpolation, zero_frequency, columns=None, node_form=True):
     """(∫ B cos ωt dω of the data's interpolant and its tail, (len(t), n²) or of the
     ``columns`` of the flattened couplings alone; the tail fit)."""
     n, w, b = ds.sizes["influenced_dof"], *_damping_grid(ds, interpolation, zero_frequency)
@@ -224,7 +230,11 @@ def _exact_kernel(ds, t, tail, interpolation, zero_frequency, columns=None):
     tail_fit = fit_damping_tail(ds.omega.values, data, tail, added_mass=added)
     if columns is not None:
         b = b[:, columns]
-    return cosine_transform(w, b, t) + tail_fit.cosine(t, columns), tail_fit
+    return (
+        cosine_transform(w, b, t, node_form=node_form)
+        + tail_fit.cosine(t, columns, node_form=node_form),
+        tail_fit,
+    )
 
 
 def diagonal_retardation_functions(ds: xr.Dataset, t: ArrayLike, dofs) -> NDArray[np.float64]:
