@@ -46,19 +46,25 @@ import numpy as np
 from numpy.typing import ArrayLike, NDArray
 
 
+def _uniform_step(y: NDArray) -> float | None:
+    """The step of ``y`` when it is a uniform grid of 64 points or more (a time grid),
+    else None."""
+    size = y.size
+    step = (y[-1] - y[0]) / (size - 1) if size > 1 else 0.0
+    uniform = size >= 64 and np.all(
+        np.abs(y - (y[0] + step * np.arange(size))) <= 1e-14 * np.abs(y).max()
+    )
+    return float(step) if uniform else None
+
+
 def _cos_sin(x: NDArray, y: NDArray) -> tuple[NDArray, NDArray]:
     """cos(y xᵀ) and sin(y xᵀ), shape (M, N), for x (N,) and y (M,). On a uniform grid
     y_k = y₀ + kΔ (a time grid) by the angle addition cos(a + b) = cos a cos b −
     sin a sin b (and sin) from √M blocks and √M steps: 2√M instead of M sines and
     cosines of each x, to within the rounding of the products x·y themselves."""
     x, y = x.reshape(-1), y.reshape(-1)
-    size = y.size
-    block = int(np.sqrt(size))
-    step = (y[-1] - y[0]) / (size - 1) if size > 1 else 0.0
-    uniform = size >= 64 and np.all(
-        np.abs(y - (y[0] + step * np.arange(size))) <= 1e-14 * np.abs(y).max()
-    )
-    if not uniform:
+    size, block, step = y.size, int(np.sqrt(y.size)), _uniform_step(y)
+    if step is None:
         angle = y[:, None] * x[None, :]
         return np.cos(angle), np.sin(angle)
     starts = np.outer(y[0] + step * np.arange(0, size, block), x)  # (Q, N)
@@ -85,6 +91,48 @@ def _even_odd(m: NDArray, h: NDArray, y: NDArray) -> tuple[NDArray, ...]:
         zs = z[small]
         j1[small] = zs / 3 - zs**3 / 30 + zs**5 / 840
     return cos_m, sin_m, 2 * h[None, :] * sinc, 2 * h[None, :] * j1
+
+
+def _angle_blocks(x: NDArray, y: NDArray):
+    """(rows, cos(y[rows] xᵀ), sin(y[rows] xᵀ)) by blocks of rows: the numbers of
+    :func:`_cos_sin`, a block at a time (arrays that stay in cache)."""
+    size, block, step = y.size, int(np.sqrt(y.size)), _uniform_step(y)
+    if step is None:
+        for start in range(0, size, 64):
+            rows = slice(start, min(start + 64, size))
+            angle = y[rows, None] * x[None, :]
+            yield rows, np.cos(angle), np.sin(angle)
+        return
+    starts = np.outer(y[0] + step * np.arange(0, size, block), x)  # (Q, N)
+    steps = np.outer(step * np.arange(block), x)  # (L, N)
+    ca, sa, cb, sb = np.cos(starts), np.sin(starts), np.cos(steps), np.sin(steps)
+    for q in range(starts.shape[0]):
+        count = min(block, size - q * block)
+        rows = slice(q * block, q * block + count)
+        cos = (ca[q] * cb[:count]) - (sa[q] * sb[:count])
+        sin = (sa[q] * cb[:count]) + (ca[q] * sb[:count])
+        yield rows, cos, sin
+
+
+def _cosine_segments(m: NDArray, h: NDArray, y: NDArray) -> tuple[NDArray, NDArray]:
+    """cos(my) 2h sinc(hy) and sin(my) 2h j₁(hy), (M, K): the products of
+    :func:`_even_odd` the cosine transform takes, the same numbers, computed by blocks of
+    rows that stay in cache."""
+    even, odd = np.empty((y.size, m.size)), np.empty((y.size, m.size))
+    double = 2 * h[None, :]
+    blocks = zip(_angle_blocks(m, y), _angle_blocks(h, y), strict=True)
+    for (rows, cos_m, sin_m), (_, cos, sin) in blocks:
+        z = y[rows].reshape(-1, 1) * h[None, :]
+        small = np.abs(z) < 1e-2
+        safe = np.where(small, 1.0, z)
+        sinc = np.where(z == 0, 1.0, sin / np.where(z == 0, 1.0, z))
+        j1 = (sin - z * cos) / safe**2
+        if small.any():
+            zs = z[small]
+            j1[small] = zs / 3 - zs**3 / 30 + zs**5 / 840
+        np.multiply(cos_m, double * sinc, out=even[rows])
+        np.multiply(sin_m, double * j1, out=odd[rows])
+    return even, odd
 
 
 def _segments(x: ArrayLike, f: ArrayLike):
@@ -141,13 +189,8 @@ def _node_rows(x: NDArray, f: NDArray, c: NDArray, y: NDArray) -> NDArray[np.boo
 def _cosine_blocks(x: NDArray, y: NDArray):
     """(rows, cos(y[rows] xᵀ)) in blocks of rows that stay in cache: on a uniform grid
     from the angle addition of :func:`_cos_sin` (one start per block), else directly."""
-    size = y.size
-    block = max(int(np.sqrt(size)), 1)
-    step = (y[-1] - y[0]) / (size - 1) if size > 1 else 0.0
-    uniform = size >= 64 and np.all(
-        np.abs(y - (y[0] + step * np.arange(size))) <= 1e-14 * np.abs(y).max()
-    )
-    if not uniform:
+    size, block, step = y.size, max(int(np.sqrt(y.size)), 1), _uniform_step(y)
+    if step is None:
         block = 64
         for start in range(0, size, block):
             rows = slice(start, min(start + block, size))
@@ -212,8 +255,8 @@ def cosine_transform(
     node = _node_rows(x, f, c, y) if node_form else np.zeros(y.size, dtype=bool)
     out = np.empty((y.size, f.shape[1]))
     if not node.all():  # the segment form where the node form would lose digits
-        cos, sin, sinc, j1 = _even_odd(m, h, y[~node].reshape(-1, 1))
-        out[~node] = (cos * sinc) @ f_mean - (sin * j1) @ f_half
+        even, odd = _cosine_segments(m, h, y[~node])
+        out[~node] = even @ f_mean - odd @ f_half
     if node.any():
         out[node] = _node_cosine(x, f, c, y[node])
     return out.reshape((y.size, *shape))
