@@ -512,8 +512,9 @@ def suspects_by_dof(ds: xr.Dataset) -> dict[str, DofSuspects]:
     from 0.995 and body2's yaw was modelled at −5.3)."""
     labels = [str(d) for d in ds.influenced_dof.values]
     found, groups = {}, {}
+    curves = ds[["added_mass", "radiation_damping"]]  # all the tests read of each DOF
     for label in labels:
-        one = ds.sel(influenced_dof=[label], radiating_dof=[label])
+        one = curves.sel(influenced_dof=[label], radiating_dof=[label])
         found[label] = find_suspect_frequencies(one)
         groups[label] = sharp_resonances(one, found[label])
     if not any(groups.values()):
