@@ -128,3 +128,21 @@ def test_node_form_closed_form():
     exact = (1 + np.cos(np.pi * y)) / (1 - y**2)
     # the interpolation error of the chord rule is (Δx²/8) max|f''| × π ≈ 2.4·10⁻⁷
     np.testing.assert_allclose(cosine_transform(x, np.sin(x), y), exact, rtol=0.0, atol=1e-6)
+
+
+def test_shared_kernels_keep_the_numbers_and_no_memory():
+    """Inside ``shared_kernels`` hilbert_pv computes each grid's logarithms once and gives
+    the numbers it gives outside, bit for bit; they are dropped when the context ends."""
+    from cummins.radiation import transforms
+
+    x = np.r_[0.0, np.linspace(0.1, 8.0, 300)]
+    f = np.stack([x * np.exp(-x), np.sin(x) ** 2], axis=1)
+    y = x[1:]  # on the grid points: the principal values' cancellation too
+    outside = hilbert_pv(x, f, y)
+    with transforms.shared_kernels():
+        first = hilbert_pv(x, f, y)
+        again = hilbert_pv(x, 2 * f, y)
+        assert len(transforms._PV_CACHE) == 1  # one grid, computed once
+    assert not transforms._PV_CACHE
+    np.testing.assert_array_equal(first, outside)
+    np.testing.assert_array_equal(again, hilbert_pv(x, 2 * f, y))
