@@ -75,8 +75,7 @@ def default_time_grid(
 def default_retardation_function(
     ds: xr.Dataset, *, threshold: float = 0.01, max_points: int = 20_000, node_form: bool = True
 ) -> xr.DataArray:
-    """:func:`retardation_function` on :func:`default_time_grid`, computed once
-    (``node_form`` as in :func:`retardation_function`)."""
+    """:func:`retardation_function` (its ``node_form``) on :func:`default_time_grid`, once."""
     return _default_kernel(ds, threshold, max_points, node_form)[1]
 
 
@@ -164,9 +163,8 @@ def retardation_function(
         :mod:`cummins.radiation.transforms`); ``"trapezoid"``: the plain trapezoid rule on the
         data grid, no tail (the textbook approach, kept as a reference).
     node_form
-        ``"exact"``: Filon's node form at the times where it is well conditioned, the
-        segment form elsewhere (:func:`cummins.radiation.transforms.cosine_transform`);
-        False: the segment form at every time (the same numbers to rounding, slower).
+        As :func:`~cummins.radiation.transforms.cosine_transform`'s (``"exact"``): False,
+        the segment form at every time (the same numbers to rounding, slower).
 
     Returns
     -------
@@ -230,11 +228,8 @@ def _exact_kernel(ds, t, tail, interpolation, zero_frequency, columns=None, node
     tail_fit = fit_damping_tail(ds.omega.values, data, tail, added_mass=added)
     if columns is not None:
         b = b[:, columns]
-    return (
-        cosine_transform(w, b, t, node_form=node_form)
-        + tail_fit.cosine(t, columns, node_form=node_form),
-        tail_fit,
-    )
+    k = cosine_transform(w, b, t, node_form=node_form)
+    return k + tail_fit.cosine(t, columns, node_form=node_form), tail_fit
 
 
 def diagonal_retardation_functions(ds: xr.Dataset, t: ArrayLike, dofs) -> NDArray[np.float64]:
@@ -533,11 +528,9 @@ def causal_limits(
     w = ds.omega.values
     if w.size < 6:
         return {}
-    # Ogilvie's A∞ per frequency (added_mass_inf_per_frequency) of the diagonal alone
-    n = ds.sizes["influenced_dof"]
+    n = ds.sizes["influenced_dof"]  # Ogilvie's A∞ per frequency of the diagonal alone
     diagonal = np.arange(n) * (n + 1)
-    a = dof_matrix(ds, "added_mass").reshape(w.size, n * n)
-    b = dof_matrix(ds, "radiation_damping").reshape(w.size, n * n)
+    a, b = (dof_matrix(ds, x).reshape(w.size, n * n) for x in ("added_mass", "radiation_damping"))
     estimate = a[:, diagonal] - kramers_kronig_integral(w, b, a, columns=diagonal)
     added_mass = np.abs(a[:, diagonal])
     trusted = trusted_frequencies(ds)
