@@ -415,11 +415,3 @@ def _pv_kernels_cached(x: NDArray, y: NDArray) -> tuple[NDArray, NDArray]:
         while sum(a.nbytes + b.nbytes for a, b in _PV_CACHE.values()) > PV_CACHED_BYTES:
             _PV_CACHE.popitem(last=False)
     return found
-    found = _pv_kernels(x, y)
-    for array in found:
-        array.flags.writeable = False
-    with _PV_LOCK:
-        _PV_CACHE[key] = found
-        while sum(a.nbytes + b.nbytes for a, b in _PV_CACHE.values()) > PV_CACHED_BYTES:
-            _PV_CACHE.popitem(last=False)
-    return found
