@@ -71,12 +71,13 @@ class SuspectFrequency:
 
 
 def _leave_one_out_residual(w: NDArray, x: NDArray) -> NDArray:
-    """x_k minus the straight line through its neighbours (end points: extrapolated)."""
+    """x_k minus the straight line through its neighbours (end points: extrapolated);
+    ``x`` (N,) or (N, curves)."""
     r = np.empty_like(x)
     if w.size < 3:
         return np.zeros_like(x)
     inner = slice(1, -1)
-    frac = (w[inner] - w[:-2]) / (w[2:] - w[:-2])
+    frac = ((w[inner] - w[:-2]) / (w[2:] - w[:-2])).reshape((-1,) + (1,) * (x.ndim - 1))
     r[inner] = x[inner] - (x[:-2] + frac * (x[2:] - x[:-2]))
     r[0] = x[0] - (x[1] + (x[2] - x[1]) * (w[0] - w[1]) / (w[2] - w[1]))
     r[-1] = x[-1] - (x[-2] + (x[-2] - x[-3]) * (w[-1] - w[-2]) / (w[-2] - w[-3]))
@@ -155,33 +156,37 @@ def find_suspect_frequencies(
                     ),
                 )
     keep = np.ones(w.size, dtype=bool)
+    names = [quantity for quantity, _ in curves]
+    values = np.stack([x for _, x in curves], axis=1) if curves else np.zeros((w.size, 0))
     for _ in range(max(1, w.size // 3)):
         idx = np.flatnonzero(keep)
-        if idx.size < 4:
+        if idx.size < 4 or not names:
             break
-        worst: tuple[float, int, str, float] | None = None
-        judged = _judged_points(w[idx])
-        for quantity, x in curves:
-            r = _leave_one_out_residual(w[idx], x[idx])
-            spread = np.ptp(x[idx])
-            if spread == 0:
-                continue
-            mad = np.median(np.abs(r))
+        # every curve at once: its worst point, then the worst curve (the first on a tie)
+        x = values[idx]
+        r = _leave_one_out_residual(w[idx], x)
+        spread = np.ptp(x, axis=0)
+        flat = spread == 0
+        mad = np.median(np.abs(r), axis=0)
+        with np.errstate(divide="ignore", invalid="ignore"):
             rel = np.abs(r) / spread
-            rel[np.abs(r) <= mad_factor * mad] = 0.0
-            isolated = np.ones(r.size, dtype=bool)  # opposite to both neighbours' residuals
-            isolated[1:-1] = (np.sign(r[1:-1]) != np.sign(r[:-2])) & (
-                np.sign(r[1:-1]) != np.sign(r[2:])
-            )
-            rel[~isolated] = 0.0
-            rel[[0, -1]] = np.where(rel[[0, -1]] > 4 * spike_threshold, rel[[0, -1]], 0.0)
-            rel[~judged] = 0.0
-            j = int(np.argmax(rel))
-            if rel[j] > spike_threshold and (worst is None or rel[j] > worst[0]):
-                worst = (float(rel[j]), int(idx[j]), quantity, float(r[j] / spread))
-        if worst is None:
+        rel[np.abs(r) <= mad_factor * mad] = 0.0
+        isolated = np.ones(r.shape, dtype=bool)  # opposite to both neighbours' residuals
+        isolated[1:-1] = (np.sign(r[1:-1]) != np.sign(r[:-2])) & (
+            np.sign(r[1:-1]) != np.sign(r[2:])
+        )
+        rel[~isolated] = 0.0
+        rel[[0, -1]] = np.where(rel[[0, -1]] > 4 * spike_threshold, rel[[0, -1]], 0.0)
+        rel[~_judged_points(w[idx])] = 0.0
+        rel[:, flat] = 0.0
+        j = np.argmax(rel, axis=0)
+        best = rel[j, np.arange(rel.shape[1])]
+        best[flat | ~(best > spike_threshold)] = -np.inf
+        c = int(np.argmax(best))
+        if best[c] == -np.inf:
             break
-        score, k, quantity, signed = worst
+        score, k, quantity = float(best[c]), int(idx[j[c]]), names[c]
+        signed = float(r[j[c], c] / spread[c])
         keep[k] = False
         _keep_worst(
             found,
@@ -507,8 +512,9 @@ def suspects_by_dof(ds: xr.Dataset) -> dict[str, DofSuspects]:
     from 0.995 and body2's yaw was modelled at −5.3)."""
     labels = [str(d) for d in ds.influenced_dof.values]
     found, groups = {}, {}
+    curves = ds[["added_mass", "radiation_damping"]]  # all the tests read of each DOF
     for label in labels:
-        one = ds.sel(influenced_dof=[label], radiating_dof=[label])
+        one = curves.sel(influenced_dof=[label], radiating_dof=[label])
         found[label] = find_suspect_frequencies(one)
         groups[label] = sharp_resonances(one, found[label])
     if not any(groups.values()):
@@ -753,14 +759,15 @@ def nearest_passive_damping(
     inside = mask[sub]
     out = b.copy()
     changed, left, worst, worst_omega = [], [], 0.0, float("nan")
-    for k in range(w.size):
-        matrix = b[k][sub]
-        if not np.all(np.isfinite(matrix)):
-            continue
-        symmetric = np.where(inside, 0.5 * (matrix + matrix.T), 0.0)
-        lam, vec = np.linalg.eigh(symmetric * np.outer(scale, scale))
-        if lam[0] >= 0:
-            continue
+    matrices = b[:, dofs][:, :, dofs]
+    finite = np.flatnonzero(np.all(np.isfinite(matrices), axis=(1, 2)))
+    symmetric = np.where(inside, 0.5 * (matrices + np.swapaxes(matrices, 1, 2)), 0.0)
+    values, vectors = np.zeros((0, dofs.size)), np.zeros((0, dofs.size, dofs.size))
+    if finite.size:  # every frequency at once (LAPACK matrix by matrix all the same)
+        values, vectors = np.linalg.eigh(symmetric[finite] * np.outer(scale, scale))
+    for at in np.flatnonzero(values[:, 0] < 0):
+        k, lam, vec = finite[at], values[at], vectors[at]
+        matrix = matrices[k]
         if lam[0] < -limit:
             left.append(float(w[k]))
             continue

@@ -122,17 +122,21 @@ class DampingTail:
         w = self._grid()
         return w, self.at(w)
 
-    def cosine(self, t: ArrayLike, columns: ArrayLike | None = None) -> NDArray:
+    def cosine(
+        self, t: ArrayLike, columns: ArrayLike | None = None, *, node_form: bool = True
+    ) -> NDArray:
         """∫_{ω_N}^∞ B_tail(ω) cos(ωt) dω, shape (len(t), P), or of the couplings
         ``columns`` (indices) alone: the same numbers (the power tails' grid stays that
-        of all)."""
-        return self._transform(t, cos=True, columns=columns)
+        of all); ``node_form`` as in :func:`cosine_transform`."""
+        return self._transform(t, cos=True, columns=columns, node_form=node_form)
 
     def sine(self, t: ArrayLike) -> NDArray:
         """∫_{ω_N}^∞ B_tail(ω) sin(ωt) dω, shape (len(t), P)."""
         return self._transform(t, cos=False)
 
-    def _transform(self, t: ArrayLike, cos: bool, columns: ArrayLike | None = None) -> NDArray:
+    def _transform(
+        self, t: ArrayLike, cos: bool, columns: ArrayLike | None = None, node_form: bool = True
+    ) -> NDArray:
         t = np.asarray(t, dtype=float).reshape(-1)
         every = np.arange(self.kind.size)
         which = every if columns is None else every[np.asarray(columns, dtype=int)]
@@ -152,7 +156,7 @@ class DampingTail:
             out[:, square] = values[square] * _inverse_square_tail(self.omega_start, t, cos)
         rising = kinds == "rising"
         if rising.any():  # exact: the linear rise, then ω⁻² from the knee
-            transform = cosine_transform if cos else sine_transform
+            transform = _cosine(node_form) if cos else sine_transform
             knee, top = self._knees()[which], self._top()[which]
             for k in np.flatnonzero(rising):
                 segment = np.array([self.omega_start, knee[k]])
@@ -163,18 +167,21 @@ class DampingTail:
         power = (kinds == "power") & ~square
         if power.any():  # exact for the interpolant on a fine geometric grid
             w, b = self.sampled()
-            transform = cosine_transform if cos else sine_transform
+            transform = _cosine(node_form) if cos else sine_transform
             out[:, power] = transform(w, b[:, which][:, power], t)
         return out
 
-    def hilbert(self, omega: ArrayLike) -> NDArray:
-        """PV ∫_{ω_N}^∞ B_tail(ν)/(ν² − ω²) dν at ``omega`` (≤ ω_N), shape (len(ω), P)."""
+    def hilbert(self, omega: ArrayLike, columns: ArrayLike | None = None) -> NDArray:
+        """PV ∫_{ω_N}^∞ B_tail(ν)/(ν² − ω²) dν at ``omega`` (≤ ω_N), shape (len(ω), P), or
+        of the couplings ``columns`` (indices) alone (on the grid of all)."""
         omega = np.asarray(omega, dtype=float).reshape(-1)
-        out = np.zeros((omega.size, self.kind.size))
-        some = self.kind != "none"
+        every = np.arange(self.kind.size)
+        which = every if columns is None else every[np.asarray(columns, dtype=int)]
+        out = np.zeros((omega.size, which.size))
+        some = self.kind[which] != "none"
         if some.any():
             w, b = self.sampled()
-            out[:, some] = hilbert_pv(w, b[:, some], omega)
+            out[:, some] = hilbert_pv(w, b[:, which[some]], omega)
         return out
 
     def area(self) -> NDArray:
@@ -191,17 +198,31 @@ class DampingTail:
         return out
 
 
+def _cosine(node_form: bool):
+    """:func:`cosine_transform` with its ``node_form`` set."""
+    return lambda x, f, y: cosine_transform(x, f, y, node_form=node_form)
+
+
 def kramers_kronig_integral(
-    omega: ArrayLike, damping: ArrayLike, added_mass: ArrayLike, tail: str = "auto"
+    omega: ArrayLike,
+    damping: ArrayLike,
+    added_mass: ArrayLike,
+    tail: str = "auto",
+    columns: ArrayLike | None = None,
 ) -> NDArray:
     """(2/π) PV ∫₀^∞ B(ν)/(ν² − ω²) dν at the frequencies ``omega`` (rad/s, increasing) of
     the damping B (shape (N, P)): the piecewise-linear B from B(0) = 0 and its tail
     (:func:`fit_damping_tail` of kind ``tail``, with the ``added_mass`` A(ω), (N, P)), exact
-    (Hjulstad (2004) eq. 5.23); shape (N, P). A(ω) less it is Ogilvie's A∞ at each ω."""
+    (Hjulstad (2004) eq. 5.23); shape (N, P), or (N, len(columns)) of the couplings
+    ``columns`` alone (the tails fitted to all: the same numbers). A(ω) less it is
+    Ogilvie's A∞ at each ω."""
     w = np.asarray(omega, dtype=float)
     b = np.asarray(damping, dtype=float).reshape(w.size, -1)
+    fitted = fit_damping_tail(w, b, tail, added_mass=added_mass)
+    if columns is not None:
+        b = b[:, np.asarray(columns, dtype=int)]
     x, f = np.r_[0.0, w], np.vstack([np.zeros((1, b.shape[1])), b])
-    total = hilbert_pv(x, f, w) + fit_damping_tail(w, b, tail, added_mass=added_mass).hilbert(w)
+    total = hilbert_pv(x, f, w) + fitted.hilbert(w, columns)
     return (2.0 / np.pi) * total
 
 

@@ -73,19 +73,19 @@ def default_time_grid(
 
 
 def default_retardation_function(
-    ds: xr.Dataset, *, threshold: float = 0.01, max_points: int = 20_000
+    ds: xr.Dataset, *, threshold: float = 0.01, max_points: int = 20_000, node_form: bool = True
 ) -> xr.DataArray:
-    """:func:`retardation_function` on :func:`default_time_grid`, computed once."""
-    return _default_kernel(ds, threshold, max_points)[1]
+    """:func:`retardation_function` (its ``node_form``) on :func:`default_time_grid`, once."""
+    return _default_kernel(ds, threshold, max_points, node_form)[1]
 
 
-def _default_kernel(ds: xr.Dataset, threshold: float, max_points: int):
+def _default_kernel(ds: xr.Dataset, threshold: float, max_points: int, node_form: bool = True):
     ds = single_speed(ds)
     w = ds.omega.values
     t_limit = 2 * np.pi / w[0]
     dt = max(np.pi / (4 * w[-1]), t_limit / max_points)
     probe = np.arange(0.0, t_limit + 0.5 * dt, dt)
-    kernel = retardation_function(ds, probe)
+    kernel = retardation_function(ds, probe, node_form=node_form)
     k = kernel.values.reshape(probe.size, -1)
     peak = np.abs(k).max(axis=0)
     keep = peak > 1e-9 * peak.max()
@@ -135,6 +135,7 @@ def retardation_function(
     interpolation: str = "linear",
     zero_frequency: bool = True,
     method: str = "exact",
+    node_form: bool = True,
 ) -> xr.DataArray:
     """Retardation functions K_ij(t) = (2/π) ∫₀^∞ B_ij(ω) cos(ωt) dω of all couplings.
 
@@ -161,6 +162,9 @@ def retardation_function(
         ``"exact"``: exact integration of the interpolant (Filon-type, see
         :mod:`cummins.radiation.transforms`); ``"trapezoid"``: the plain trapezoid rule on the
         data grid, no tail (the textbook approach, kept as a reference).
+    node_form
+        As :func:`~cummins.radiation.transforms.cosine_transform`'s (``"exact"``): False,
+        the segment form at every time (the same numbers to rounding, slower).
 
     Returns
     -------
@@ -189,7 +193,7 @@ def retardation_function(
         k = np.trapezoid(np.cos(np.outer(w, t))[:, :, None] * b[:, None, :], w, axis=0)
         tail_fit = fit_damping_tail(w, b, "none")
     elif method == "exact":
-        k, tail_fit = _exact_kernel(ds, t, tail, interpolation, zero_frequency)
+        k, tail_fit = _exact_kernel(ds, t, tail, interpolation, zero_frequency, node_form=node_form)
     else:
         raise HydroDataError(f"unknown method {method!r}", hint="use 'exact' or 'trapezoid'")
     values = (2.0 / np.pi) * k.reshape(t.size, n, n)
@@ -215,7 +219,7 @@ def retardation_function(
     )
 
 
-def _exact_kernel(ds, t, tail, interpolation, zero_frequency, columns=None):
+def _exact_kernel(ds, t, tail, interpolation, zero_frequency, columns=None, node_form=True):
     """(∫ B cos ωt dω of the data's interpolant and its tail, (len(t), n²) or of the
     ``columns`` of the flattened couplings alone; the tail fit)."""
     n, w, b = ds.sizes["influenced_dof"], *_damping_grid(ds, interpolation, zero_frequency)
@@ -224,7 +228,8 @@ def _exact_kernel(ds, t, tail, interpolation, zero_frequency, columns=None):
     tail_fit = fit_damping_tail(ds.omega.values, data, tail, added_mass=added)
     if columns is not None:
         b = b[:, columns]
-    return cosine_transform(w, b, t) + tail_fit.cosine(t, columns), tail_fit
+    k = cosine_transform(w, b, t, node_form=node_form)
+    return k + tail_fit.cosine(t, columns, node_form=node_form), tail_fit
 
 
 def diagonal_retardation_functions(ds: xr.Dataset, t: ArrayLike, dofs) -> NDArray[np.float64]:
@@ -523,8 +528,11 @@ def causal_limits(
     w = ds.omega.values
     if w.size < 6:
         return {}
-    estimate = np.diagonal(added_mass_inf_per_frequency(ds).values, axis1=1, axis2=2)
-    added_mass = np.abs(np.diagonal(dof_matrix(ds, "added_mass"), axis1=1, axis2=2))
+    n = ds.sizes["influenced_dof"]  # Ogilvie's A∞ per frequency of the diagonal alone
+    diagonal = np.arange(n) * (n + 1)
+    a, b = (dof_matrix(ds, x).reshape(w.size, n * n) for x in ("added_mass", "radiation_damping"))
+    estimate = a[:, diagonal] - kramers_kronig_integral(w, b, a, columns=diagonal)
+    added_mass = np.abs(a[:, diagonal])
     trusted = trusted_frequencies(ds)
     out = {}
     for i, label in enumerate(str(d) for d in ds.influenced_dof.values):

@@ -666,17 +666,18 @@ def minimum_real_part(poles: ArrayLike, residues: ArrayLike) -> tuple[float, flo
     resonances = [abs(q.imag) + abs(q.real) * np.linspace(-10, 10, 81) for q in p if q.imag > 0]
     grid = np.concatenate([np.geomspace(lo, hi, n), *resonances])
     grid = np.unique(grid[grid > 0])
-
-    def re_k(w):
-        return np.real((r / (1j * np.atleast_1d(w)[:, None] - p)).sum(axis=1))
-
-    values = re_k(grid)
-    k_max = float(np.abs((r / (1j * grid[:, None] - p)).sum(axis=1)).max())
+    response = (r / (1j * grid[:, None] - p)).sum(axis=1)  # K(jω) on the grid, once
+    values = np.real(response)
+    k_max = float(np.abs(response).max())
     best, where = float(values.min()), float(grid[np.argmin(values)])
     interior = np.flatnonzero((values[1:-1] <= values[:-2]) & (values[1:-1] <= values[2:])) + 1
+
+    def re_k_at(w):  # one frequency: the same sums, without the arrays' overhead
+        return np.real(np.sum(r / (1j * w - p)))
+
     for k in interior[np.argsort(values[interior])[:20]]:
         res = minimize_scalar(
-            lambda w: re_k(w)[0],
+            re_k_at,
             bounds=(grid[k - 1], grid[k + 1]),
             method="bounded",
             options={"xatol": 1e-10 * grid[k]},

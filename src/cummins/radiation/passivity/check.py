@@ -153,12 +153,16 @@ def default_sweep(model: RadiationModel, points_per_decade: int = 100) -> np.nda
     return np.unique(grid[grid > 0])
 
 
-def dof_scaling(model: RadiationModel, omega: ArrayLike | None = None) -> NDArray[np.float64]:
+def dof_scaling(
+    model: RadiationModel, omega: ArrayLike | None = None, *, response: NDArray | None = None
+) -> NDArray[np.float64]:
     """s_i = 1/√(max_ω |K_ii(jω)|) (0 for a DOF without a diagonal model): S K S is
-    dimensionless and the DOFs weigh alike."""
+    dimensionless and the DOFs weigh alike. ``response``: K(jω) at ``omega`` when the
+    caller has it."""
     w = default_sweep(model) if omega is None else np.asarray(omega, dtype=float)
     scale = np.zeros(len(model.dofs))
-    diagonal = np.abs(np.diagonal(model.response(w), axis1=1, axis2=2)).max(axis=0)
+    k = model.response(w) if response is None else response
+    diagonal = np.abs(np.diagonal(k, axis1=1, axis2=2)).max(axis=0)
     for i in range(len(model.dofs)):
         modelled = model.coupling(i, i)
         if modelled is not None and modelled.order and diagonal[i] > 0:
@@ -237,7 +241,8 @@ def passivity_test(model: RadiationModel) -> PassivityReport:
     guard_radiation_model(model)  # non-finite or absurd matrices: FitError naming the pair
     labels = tuple(model.dofs)
     sweep = default_sweep(model)
-    scale = dof_scaling(model, sweep)
+    response = model.response(sweep)  # once, for the scaling and the sweep's eigenvalues
+    scale = dof_scaling(model, sweep, response=response)
     diagonal = scale > 0
     touched = np.zeros(len(labels), dtype=bool)
     for k in model.couplings:
@@ -253,7 +258,7 @@ def passivity_test(model: RadiationModel) -> PassivityReport:
         return PassivityReport(True, 0.0, float("nan"), np.empty(0), (), np.nan, np.nan, tested)
     a, b, c = _scaled_mimo(model, scale, keep)
     crossings = imaginary_axis_zeros(a, b, c)
-    lam_sweep = _scaled_eigenvalues(model, sweep, scale)
+    lam_sweep = _scaled_eigenvalues(model, sweep, scale, response)
     top = max(float(np.abs(lam_sweep).max()), np.finfo(float).tiny)
     low_sweep = lam_sweep[:, 0] / top
 
@@ -313,10 +318,13 @@ def is_passive(model: RadiationModel) -> bool:
 # ----------------------------------------------------------------------- internals
 
 
-def _scaled_eigenvalues(model: RadiationModel, w: NDArray, scale: NDArray) -> NDArray:
-    """Ascending eigenvalues of S (K + Kᴴ) S at each ω, over the DOFs with scale > 0."""
+def _scaled_eigenvalues(
+    model: RadiationModel, w: NDArray, scale: NDArray, response: NDArray | None = None
+) -> NDArray:
+    """Ascending eigenvalues of S (K + Kᴴ) S at each ω, over the DOFs with scale > 0
+    (``response``: K(jω) at ``w`` when known)."""
     keep = np.flatnonzero(scale > 0)
-    k = model.response(w)[:, keep][:, :, keep]
+    k = (model.response(w) if response is None else response)[:, keep][:, :, keep]
     s = scale[keep]
     herm = (k + np.conj(np.swapaxes(k, 1, 2))) * s[None, :, None] * s[None, None, :]
     return np.linalg.eigvalsh(herm)
