@@ -82,7 +82,13 @@ def _even_odd(m: NDArray, h: NDArray, y: NDArray) -> tuple[NDArray, ...]:
     z cos z)/z², from one sine and cosine of hy; 1 and the series of j₁ to z⁵ near 0)."""
     cos_m, sin_m = _cos_sin(m, y)
     cos, sin = _cos_sin(h, y)
-    z = y.reshape(-1, 1) * h[None, :]
+    sinc, j1 = _sinc_j1(y.reshape(-1, 1) * h[None, :], cos, sin)
+    return cos_m, sin_m, 2 * h[None, :] * sinc, 2 * h[None, :] * j1
+
+
+def _sinc_j1(z: NDArray, cos: NDArray, sin: NDArray) -> tuple[NDArray, NDArray]:
+    """sinc(z) = sin z / z and j₁(z) = (sin z − z cos z)/z² from cos z and sin z (1 and
+    the series of j₁ to z⁵ near 0)."""
     small = np.abs(z) < 1e-2
     safe = np.where(small, 1.0, z)
     sinc = np.where(z == 0, 1.0, sin / np.where(z == 0, 1.0, z))
@@ -90,7 +96,7 @@ def _even_odd(m: NDArray, h: NDArray, y: NDArray) -> tuple[NDArray, ...]:
     if small.any():
         zs = z[small]
         j1[small] = zs / 3 - zs**3 / 30 + zs**5 / 840
-    return cos_m, sin_m, 2 * h[None, :] * sinc, 2 * h[None, :] * j1
+    return sinc, j1
 
 
 def _angle_blocks(x: NDArray, y: NDArray):
@@ -122,14 +128,7 @@ def _cosine_segments(m: NDArray, h: NDArray, y: NDArray) -> tuple[NDArray, NDArr
     double = 2 * h[None, :]
     blocks = zip(_angle_blocks(m, y), _angle_blocks(h, y), strict=True)
     for (rows, cos_m, sin_m), (_, cos, sin) in blocks:
-        z = y[rows].reshape(-1, 1) * h[None, :]
-        small = np.abs(z) < 1e-2
-        safe = np.where(small, 1.0, z)
-        sinc = np.where(z == 0, 1.0, sin / np.where(z == 0, 1.0, z))
-        j1 = (sin - z * cos) / safe**2
-        if small.any():
-            zs = z[small]
-            j1[small] = zs / 3 - zs**3 / 30 + zs**5 / 840
+        sinc, j1 = _sinc_j1(y[rows].reshape(-1, 1) * h[None, :], cos, sin)
         np.multiply(cos_m, double * sinc, out=even[rows])
         np.multiply(sin_m, double * j1, out=odd[rows])
     return even, odd
