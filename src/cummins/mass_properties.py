@@ -264,6 +264,7 @@ def with_external_terms(
     *,
     stiffness: Mapping[tuple[str, str], float] | ArrayLike | None = None,
     damping: Mapping[tuple[str, str], float] | ArrayLike | None = None,
+    source: str = "given",
 ) -> xr.Dataset:
     """Add external linear stiffness and damping (moorings, a power take-off, a
     hinge spring) to the data's ``additional_stiffness`` and ``additional_damping``.
@@ -274,6 +275,9 @@ def with_external_terms(
         ``{(influenced DOF, radiating DOF): value}`` or an n×n array, N/m, N·m/rad …
         and kg/s, kg·m²/s …, added to what the data hold. A mapping sets the entries it
         names only: give ``(j, i)`` too for a symmetric coupling.
+    source
+        Where the terms come from, for ``history`` (``"given"``; the joints' pre-load
+        says what it added, :func:`cummins.mechanics.assemble`).
 
     Returns
     -------
@@ -307,7 +311,7 @@ def with_external_terms(
             for j in range(len(labels))
             if added[i, j]
         )
-        add_history(out, f"{name} added (given): {entries}")
+        add_history(out, f"{name} added ({source}): {entries}")
     return out
 
 

@@ -99,6 +99,13 @@ class BodyFrame:
             f"{where}: the data have no DOF {label!r}", hint=f"DOFs: {', '.join(self.labels)}"
         )
 
+    def dof_index(self, body: int, name: str) -> int | None:
+        """The index of body ``body``'s DOF ``name`` (``"Heave"``, ``"Pitch"`` …), None
+        when the data lack it."""
+        prefix = self.prefixes[body]
+        label = f"{prefix}__{name}" if prefix else name
+        return self.labels.index(label) if label in self.labels else None
+
     def point_motion(self, body: int | None, point: ArrayLike) -> NDArray[np.float64]:
         """P_b(p) (6 × n): [u(p); θ] of body ``body`` (None: the ground, zeros) in terms
         of the DOF vector ξ, u(p) = u(o) + θ × (p − o) (module docstring). DOFs the data
@@ -107,11 +114,10 @@ class BodyFrame:
         if body is None:
             return out
         h = screw_transform(np.asarray(point, dtype=float).reshape(3) - self.points[body])
-        prefix = self.prefixes[body]
         for j, name in enumerate(DOF_NAMES):
-            label = f"{prefix}__{name}" if prefix else name
-            if label in self.labels:
-                out[:, self.labels.index(label)] = h[:, j]
+            index = self.dof_index(body, name)
+            if index is not None:
+                out[:, index] = h[:, j]
         return out
 
 

@@ -94,11 +94,10 @@ def net_static_forces(ds: xr.Dataset, frame: BodyFrame) -> NDArray[np.float64] |
     inertia = dof_matrix(ds, "inertia_matrix")
     rho, g = float(ds.attrs["rho"]), float(ds.attrs["g"])
     out = np.zeros(count)
-    for b, prefix in enumerate(frame.prefixes):
-        label = f"{prefix}__Heave" if prefix else "Heave"
-        if label not in frame.labels:
+    for b in range(count):
+        k = frame.dof_index(b, "Heave")
+        if k is None:
             return None
-        k = frame.labels.index(label)
         buoyancy, mass = rho * volumes[b], inertia[k, k]
         if abs(buoyancy - mass) > BALANCED * max(abs(buoyancy), abs(mass)):
             out[b] = (buoyancy - mass) * g
@@ -114,9 +113,7 @@ def _rotations(frame: BodyFrame, body: int | None) -> list[int | None]:
     """The DOF indices of the body's roll, pitch and yaw (None where the data lack one)."""
     if body is None:
         return [None, None, None]
-    prefix = frame.prefixes[body]
-    labels = [f"{prefix}__{d}" if prefix else d for d in DOF_NAMES[3:]]
-    return [frame.labels.index(x) if x in frame.labels else None for x in labels]
+    return [frame.dof_index(body, name) for name in DOF_NAMES[3:]]
 
 
 def _embedded(h3: NDArray, index: Sequence[int | None], n: int) -> NDArray[np.float64]:
@@ -178,14 +175,14 @@ def preload_stiffness(
     first, in order, then the DOF selection's); ``basis``: T over all the DOFs, its
     columns the ``coordinates``."""
     n = frame.n
-    f0 = np.zeros(n)
-    for b, prefix in enumerate(frame.prefixes):
-        label = f"{prefix}__Heave" if prefix else "Heave"
-        if label in frame.labels:
-            f0[frame.labels.index(label)] = forces[b]
-    scale = max(float(np.abs(forces).max()), 1e-300)
     if not np.any(forces):
         return Preload(np.zeros((n, n)), forces)
+    f0 = np.zeros(n)
+    for b, force in enumerate(forces):
+        k = frame.dof_index(b, "Heave")
+        if k is not None:
+            f0[k] = force
+    scale = float(np.abs(forces).max())
     free = basis.T @ f0  # the static forces on the free coordinates
     unbalanced = tuple(
         (coordinates[k], float(value))

@@ -269,8 +269,8 @@ def assemble(ds: xr.Dataset, system: MechanicalSystem) -> Assembly:
 
 def _joint_preload(ds, frame, system, g, t, coordinates) -> Preload | None:
     """The joints' pre-load (:mod:`cummins.mechanics.preload`), its warnings given; None
-    without joints, or when the data lack a body's displaced volume or mass (said in
-    ``history`` by the caller's data: nothing to add)."""
+    without joints, or when the data lack a body's displaced volume or mass (a warning
+    says the pre-load is then left out)."""
     if not system.joints:
         return None
     forces = net_static_forces(ds, frame)
@@ -307,33 +307,20 @@ def _joint_preload(ds, frame, system, g, t, coordinates) -> Preload | None:
 
 def _with_preload(ds: xr.Dataset, preload: Preload, keep: Sequence[int]) -> xr.Dataset:
     """``ds`` (on the DOFs ``keep`` of the full data) with the pre-load stiffness added to
-    its ``additional_stiffness``, said in ``history``."""
+    its ``additional_stiffness`` (:func:`cummins.mass_properties.with_external_terms`),
+    said in ``history``."""
+    from cummins.mass_properties import with_external_terms
+
     added = preload.stiffness[np.ix_(keep, keep)]
     if not np.any(np.abs(added) > 0):
         return ds
-    labels = [str(d) for d in ds.influenced_dof.values]
-    out = ds.copy()
-    before = dof_matrix(out, "additional_stiffness") if "additional_stiffness" in out else 0.0
-    total = before + added
-    out["additional_stiffness"] = xr.DataArray(
-        total,
-        dims=("influenced_dof", "radiating_dof"),
-        coords={"influenced_dof": labels, "radiating_dof": labels},
-        attrs={"units": "N/m | N/rad, N | N m/rad"},
-    )
-    entries = ", ".join(
-        f"{labels[i]}-{labels[j]} {added[i, j]:.6g}"
-        for i in range(len(labels))
-        for j in range(len(labels))
-        if abs(added[i, j]) > 0
-    )
     forces = ", ".join(f"{f:.6g} N" for f in preload.forces)
-    add_history(
-        out,
-        f"joint pre-load: the bodies' static forces (ρ∇ − m)g = {forces} carried by the "
-        f"joints add the stiffness {entries} (additional_stiffness)",
+    return with_external_terms(
+        ds,
+        stiffness=added,
+        source=f"joint pre-load: the bodies' static forces (ρ∇ − m)g = {forces} carried "
+        "by the joints",
     )
-    return out
 
 
 def _unique_names(lines: Sequence[PTOLine]) -> None:
