@@ -15,8 +15,9 @@ module              concept
 See ``docs/wec.md``.
 """
 
-import importlib
 from typing import TYPE_CHECKING
+
+from cummins._lazy import lazy_attributes
 
 #: Where each public name lives; imported on first use (PEP 562), so that a command's
 #: options (``cli/system_options``) can name the joint kinds without importing xarray.
@@ -62,17 +63,7 @@ if TYPE_CHECKING:  # pragma: no cover
         system_from_mapping,
     )
 
-
-def __getattr__(name: str):
-    if name not in _LAZY:
-        raise AttributeError(f"module {__name__!r} has no attribute {name!r}")
-    value = getattr(importlib.import_module(f"{__name__}.{_LAZY[name]}"), name)
-    globals()[name] = value
-    return value
-
-
-def __dir__() -> list[str]:
-    return sorted([*globals(), *_LAZY])
+__getattr__, __dir__ = lazy_attributes(__name__, _LAZY, globals())
 
 
 __all__ = [
