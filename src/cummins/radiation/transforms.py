@@ -58,21 +58,12 @@ def _uniform_step(y: NDArray) -> float | None:
 
 
 def _cos_sin(x: NDArray, y: NDArray) -> tuple[NDArray, NDArray]:
-    """cos(y xᵀ) and sin(y xᵀ), shape (M, N), for x (N,) and y (M,). On a uniform grid
-    y_k = y₀ + kΔ (a time grid) by the angle addition cos(a + b) = cos a cos b −
-    sin a sin b (and sin) from √M blocks and √M steps: 2√M instead of M sines and
-    cosines of each x, to within the rounding of the products x·y themselves."""
+    """cos(y xᵀ) and sin(y xᵀ), shape (M, N), for x (N,) and y (M,): the blocks of
+    :func:`_angle_blocks` put together."""
     x, y = x.reshape(-1), y.reshape(-1)
-    size, block, step = y.size, int(np.sqrt(y.size)), _uniform_step(y)
-    if step is None:
-        angle = y[:, None] * x[None, :]
-        return np.cos(angle), np.sin(angle)
-    starts = np.outer(y[0] + step * np.arange(0, size, block), x)  # (Q, N)
-    steps = np.outer(step * np.arange(block), x)  # (L, N)
-    ca, sa, cb, sb = np.cos(starts), np.sin(starts), np.cos(steps), np.sin(steps)
-    shape = (starts.shape[0] * block, x.size)
-    cos = (ca[:, None, :] * cb[None] - sa[:, None, :] * sb[None]).reshape(shape)[:size]
-    sin = (sa[:, None, :] * cb[None] + ca[:, None, :] * sb[None]).reshape(shape)[:size]
+    cos, sin = np.empty((y.size, x.size)), np.empty((y.size, x.size))
+    for rows, cos_rows, sin_rows in _angle_blocks(x, y):
+        cos[rows], sin[rows] = cos_rows, sin_rows
     return cos, sin
 
 
@@ -99,16 +90,20 @@ def _sinc_j1(z: NDArray, cos: NDArray, sin: NDArray) -> tuple[NDArray, NDArray]:
     return sinc, j1
 
 
-def _angle_blocks(x: NDArray, y: NDArray):
-    """(rows, cos(y[rows] xᵀ), sin(y[rows] xᵀ)) by blocks of rows: the numbers of
-    :func:`_cos_sin`, a block at a time (arrays that stay in cache)."""
-    size, block, step = y.size, int(np.sqrt(y.size)), _uniform_step(y)
+def _angle_blocks(x: NDArray, y: NDArray, sine: bool = True):
+    """(rows, cos(y[rows] xᵀ), sin(y[rows] xᵀ)) by blocks of rows that stay in cache, for
+    x (N,) and y (M,); with ``sine`` False the sines are not computed (None). On a uniform
+    grid y_k = y₀ + kΔ (a time grid) by the angle addition cos(a + b) = cos a cos b −
+    sin a sin b (and sin) from √M block starts and √M steps: 2√M instead of M sines and
+    cosines of each x, to within the rounding of the products x·y themselves."""
+    size, step = y.size, _uniform_step(y)
     if step is None:
         for start in range(0, size, 64):
             rows = slice(start, min(start + 64, size))
             angle = y[rows, None] * x[None, :]
-            yield rows, np.cos(angle), np.sin(angle)
+            yield rows, np.cos(angle), np.sin(angle) if sine else None
         return
+    block = int(np.sqrt(size))
     starts = np.outer(y[0] + step * np.arange(0, size, block), x)  # (Q, N)
     steps = np.outer(step * np.arange(block), x)  # (L, N)
     ca, sa, cb, sb = np.cos(starts), np.sin(starts), np.cos(steps), np.sin(steps)
@@ -116,7 +111,7 @@ def _angle_blocks(x: NDArray, y: NDArray):
         count = min(block, size - q * block)
         rows = slice(q * block, q * block + count)
         cos = (ca[q] * cb[:count]) - (sa[q] * sb[:count])
-        sin = (sa[q] * cb[:count]) + (ca[q] * sb[:count])
+        sin = (sa[q] * cb[:count]) + (ca[q] * sb[:count]) if sine else None
         yield rows, cos, sin
 
 
@@ -185,32 +180,10 @@ def _node_rows(x: NDArray, f: NDArray, c: NDArray, y: NDArray) -> NDArray[np.boo
     return (a[:, 0] > 0) & np.all(rounding <= NODE_ROUNDING * scale[some], axis=1)
 
 
-def _cosine_blocks(x: NDArray, y: NDArray):
-    """(rows, cos(y[rows] xᵀ)) in blocks of rows that stay in cache: on a uniform grid
-    from the angle addition of :func:`_cos_sin` (one start per block), else directly."""
-    size, block, step = y.size, max(int(np.sqrt(y.size)), 1), _uniform_step(y)
-    if step is None:
-        block = 64
-        for start in range(0, size, block):
-            rows = slice(start, min(start + block, size))
-            yield rows, np.cos(np.outer(y[rows], x))
-        return
-    steps = np.outer(step * np.arange(block), x)  # (L, N)
-    cb, sb = np.cos(steps), np.sin(steps)
-    first, second = np.empty_like(cb), np.empty_like(cb)
-    for start in range(0, size, block):
-        angle = (y[0] + step * start) * x
-        np.multiply(cb, np.cos(angle), out=first)
-        np.multiply(sb, np.sin(angle), out=second)
-        np.subtract(first, second, out=first)
-        count = min(block, size - start)
-        yield slice(start, start + count), first[:count]
-
-
 def _node_cosine(x: NDArray, f: NDArray, c: NDArray, y: NDArray) -> NDArray:
     """The node form of the cosine transform at y ≠ 0 (module docstring), (M, P)."""
     out = np.empty((y.size, f.shape[1]))
-    for rows, cos in _cosine_blocks(x, y):
+    for rows, cos, _ in _angle_blocks(x, y, sine=False):
         out[rows] = cos @ c
     yy = y[:, None]
     out /= yy**2
