@@ -38,10 +38,8 @@ from numpy.typing import ArrayLike, NDArray
 from cummins.errors import HydroDataError
 from cummins.hydrodb import add_history, dof_matrix, validate
 from cummins.radiation.damping_tail import kramers_kronig_integral
-from cummins.radiation.retardation import (
-    bridged_couplings,
-    causal_limits,
-)
+from cummins.radiation.infinite_frequency import bridged_couplings
+from cummins.radiation.retardation import causal_limits
 
 #: Negative diagonal damping below this fraction of its peak makes a frequency suspect.
 NEGATIVE_DAMPING = 0.01
@@ -357,7 +355,7 @@ def sharp_resonances(
     def estimate(bridged: NDArray[np.bool_]) -> NDArray[np.float64]:
         """Ogilvie's A∞ at each frequency with the ``bridged`` points bridged, less its
         median (the numbers of
-        :func:`~cummins.radiation.retardation.added_mass_inf_per_frequency`, on arrays)."""
+        :func:`~cummins.radiation.infinite_frequency.added_mass_inf_per_frequency`, on arrays)."""
         kept = ~bridged
         a_kept, b_kept = np.interp(w, w[kept], a[kept]), np.interp(w, w[kept], b[kept])
         curve = a_kept - kramers_kronig_integral(w, b_kept[:, None], a_kept[:, None])[:, 0]

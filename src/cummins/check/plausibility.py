@@ -376,7 +376,8 @@ def kramers_kronig_scale(ds: xr.Dataset) -> xr.Dataset:
     >>> round(float(kk.scale.sel(influenced_dof="Heave")), 2)
     1.0
     """
-    from cummins.radiation.retardation import kramers_kronig_added_mass, trusted_frequencies
+    from cummins.radiation.infinite_frequency import trusted_frequencies
+    from cummins.radiation.retardation import kramers_kronig_added_mass
 
     keep = trusted_frequencies(ds)
     n = ds.sizes["influenced_dof"]
@@ -399,7 +400,7 @@ def kramers_kronig_scale(ds: xr.Dataset) -> xr.Dataset:
 
 
 def _kramers_kronig_findings(ds: xr.Dataset) -> list[Finding]:
-    from cummins.radiation.retardation import trusted_frequencies
+    from cummins.radiation.infinite_frequency import trusted_frequencies
 
     w = ds.omega.values
     keep = trusted_frequencies(ds)

@@ -97,7 +97,7 @@ def run_demo(
     from cummins.hydrodb import change_axes, describe, move_reference_point
     from cummins.io import read, write
     from cummins.plots import plot_added_mass_damping, plot_excitation, save_figure
-    from cummins.radiation.retardation import added_mass_inf
+    from cummins.radiation.infinite_frequency import added_mass_inf
 
     out = Path(outdir)
     for name in DEMO_FILES:

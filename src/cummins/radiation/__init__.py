@@ -4,8 +4,9 @@ From the frequency-domain coefficients to a state-space model of the radiation f
 
 * :mod:`~cummins.radiation.transforms`: exact cosine, sine and Kramers–Kronig integrals of
   piecewise-linear functions;
-* :mod:`~cummins.radiation.retardation`: retardation functions K(t), A∞ (Ogilvie, 1964),
-  causality diagnostics;
+* :mod:`~cummins.radiation.retardation`: retardation functions K(t), causality diagnostics;
+* :mod:`~cummins.radiation.infinite_frequency`: A∞, the data's row or Ogilvie's (1964)
+  estimate;
 * :mod:`~cummins.radiation.damping_tail`: the high-frequency tails of B(ω) beyond the data;
 * :mod:`~cummins.radiation.fit`: identification of stable, passive state-space models;
 * :mod:`~cummins.radiation.passivity`: the passivity test and its enforcement;

@@ -137,7 +137,7 @@ def _signature_differences(fp: dict, ds: xr.Dataset, labels: list[str]) -> list[
 
 def _added_mass_inf_difference(model, ds: xr.Dataset) -> list[str]:
     """A∞ of the model against the data's ω = ∞ row, else Ogilvie's estimate (diagonal)."""
-    from cummins.radiation.retardation import added_mass_inf
+    from cummins.radiation.infinite_frequency import added_mass_inf
 
     labels = [str(d) for d in ds.influenced_dof.values]
     with warnings.catch_warnings():

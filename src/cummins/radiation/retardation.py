@@ -38,6 +38,21 @@ from cummins.radiation.damping_tail import MIN_POWER as MIN_POWER  # re-exported
 from cummins.radiation.damping_tail import TAIL_KINDS as TAIL_KINDS  # re-exported
 from cummins.radiation.damping_tail import DampingTail as DampingTail  # re-exported
 from cummins.radiation.damping_tail import fit_damping_tail, kramers_kronig_integral
+from cummins.radiation.infinite_frequency import (
+    _added_mass_inf_matrix,
+    _kramers_kronig_integral,
+    coupling_coords,
+)
+from cummins.radiation.infinite_frequency import added_mass_inf as added_mass_inf  # re-exported
+from cummins.radiation.infinite_frequency import (
+    added_mass_inf_per_frequency as added_mass_inf_per_frequency,  # re-exported
+)
+from cummins.radiation.infinite_frequency import (
+    bridged_couplings as bridged_couplings,  # re-exported
+)
+from cummins.radiation.infinite_frequency import (
+    trusted_frequencies as trusted_frequencies,  # re-exported
+)
 from cummins.radiation.transforms import cosine_transform, sine_transform
 
 INTERPOLATIONS = ("linear", "pchip")
@@ -46,10 +61,6 @@ _K_UNITS = "kg/s^2 | kg m/s^2 | kg m^2/s^2 (translation | mixed | rotation)"
 
 
 # --------------------------------------------------------------------------- helpers
-
-
-def _coupling_coords(ds: xr.Dataset) -> dict:
-    return {"influenced_dof": ds.influenced_dof.values, "radiating_dof": ds.radiating_dof.values}
 
 
 def default_time_grid(
@@ -197,7 +208,7 @@ def retardation_function(
     else:
         raise HydroDataError(f"unknown method {method!r}", hint="use 'exact' or 'trapezoid'")
     values = (2.0 / np.pi) * k.reshape(t.size, n, n)
-    coords = {"time": ("time", t, {"units": "s"}), **_coupling_coords(ds)}
+    coords = {"time": ("time", t, {"units": "s"}), **coupling_coords(ds)}
     coords["tail_kind"] = (
         ("influenced_dof", "radiating_dof"),
         tail_fit.kind.reshape(n, n).astype(str),
@@ -266,171 +277,9 @@ def retardation_function_from_added_mass(
     return xr.DataArray(
         k.reshape(t.size, n, n),
         dims=("time", "influenced_dof", "radiating_dof"),
-        coords={"time": ("time", t, {"units": "s"}), **_coupling_coords(ds)},
+        coords={"time": ("time", t, {"units": "s"}), **coupling_coords(ds)},
         name="retardation_function",
         attrs={"units": _K_UNITS, "long_name": "K(t) from the added mass (sine transform)"},
-    )
-
-
-# --------------------------------------------------------------------------- A∞
-
-
-def _kramers_kronig_integral(ds: xr.Dataset, tail: str) -> NDArray:
-    """(2/π) PV ∫₀^∞ B(ν)/(ν² − ω²) dν at the data frequencies, shape (nω, n, n)."""
-    w = ds.omega.values
-    n = ds.sizes["influenced_dof"]
-    b = dof_matrix(ds, "radiation_damping").reshape(w.size, n * n)
-    a = dof_matrix(ds, "added_mass").reshape(w.size, n * n)
-    return kramers_kronig_integral(w, b, a, tail).reshape(w.size, n, n)
-
-
-def added_mass_inf_per_frequency(ds: xr.Dataset, *, tail: str = "auto") -> xr.DataArray:
-    """The Ogilvie estimate of A∞ at each frequency: A(ω) − (2/π) PV∫ B(ν)/(ν² − ω²) dν.
-
-    This is A∞ = A(ω) + (1/ω) ∫₀^∞ K(t) sin(ωt) dt (de Haan (2022) eq. 2.16,
-    Unneland (2007) eq. 2.46) evaluated in the frequency domain through the
-    Kramers–Kronig relation (Hjulstad (2004) eq. 5.23), exactly for the piecewise-linear
-    damping with its tail. For consistent data the result is the same at every
-    frequency; its variation measures the data's inconsistency and the effect of the
-    unknown tail (largest near the last frequency).
-    """
-    ds = single_speed(ds)
-    values = dof_matrix(ds, "added_mass") - _kramers_kronig_integral(ds, tail)
-    return xr.DataArray(
-        values,
-        dims=("omega", "influenced_dof", "radiating_dof"),
-        coords={"omega": ds.omega, **_coupling_coords(ds)},
-        name="added_mass_inf",
-        attrs={
-            "units": ds.added_mass.attrs.get("units", ""),
-            "long_name": "A(inf) estimated at each frequency",
-        },
-    )
-
-
-def trusted_frequencies(ds: xr.Dataset) -> NDArray[np.bool_]:
-    """Frequencies used to combine per-frequency estimates (mask over ``ds.omega``).
-
-    Excludes the last frequency (where the estimate depends most on the unknown tail)
-    and every frequency where a diagonal damping term is negative (irregular
-    frequencies of panel methods), unless that would leave fewer than three.
-    """
-    ds = single_speed(ds)
-    b = np.diagonal(dof_matrix(ds, "radiation_damping"), axis1=1, axis2=2)
-    peak = np.abs(b).max(axis=0)
-    negative = np.any(b < -1e-3 * peak, axis=1)
-    keep = ~negative
-    keep[-1] = False
-    if keep.sum() < 3:
-        keep = np.ones(ds.sizes["omega"], dtype=bool)
-    return keep
-
-
-def bridged_couplings(
-    values: ArrayLike, omega: ArrayLike, kept: ArrayLike, *, from_zero: bool = False
-) -> NDArray[np.float64]:
-    """``values`` (omega, n, n) with each coupling (i, j) replaced, at the frequencies DOF i
-    or j leaves out (``kept``: omega × DOF), by the linear interpolation of the points
-    both keep; below the first kept point the first value holds, or with ``from_zero``
-    the line from 0 at ω = 0 (the damping: then the same integral as without the points).
-    A coupling whose DOFs keep no point is left as it is."""
-    w = np.asarray(omega, dtype=float)
-    kept = np.asarray(kept, dtype=bool)
-    out = np.array(values, dtype=float, copy=True)
-    start = [0.0] if from_zero else []
-    for i in range(out.shape[1]):
-        for j in range(out.shape[2]):
-            both = kept[:, i] & kept[:, j]
-            if both.all() or not both.any():
-                continue
-            out[~both, i, j] = np.interp(
-                w[~both], np.r_[start, w[both]], np.r_[start, out[both, i, j]]
-            )
-    return out
-
-
-def _added_mass_inf_matrix(ds: xr.Dataset) -> NDArray:
-    if "added_mass_inf" in ds:
-        return dof_matrix(ds, "added_mass_inf")
-    return added_mass_inf(ds, method="ogilvie").values
-
-
-def added_mass_inf(
-    ds: xr.Dataset, method: str = "auto", *, tail: str = "auto", kept: ArrayLike | None = None
-) -> xr.DataArray:
-    """Infinite-frequency added mass A∞, from the data or estimated.
-
-    Parameters
-    ----------
-    ds
-        A ``HydroDB`` at one forward speed.
-    method
-        ``"data"``: the solver's ω = ∞ row (error if absent); ``"ogilvie"``: the median
-        over the trusted frequencies (:func:`trusted_frequencies`) of the Ogilvie
-        estimate at each frequency (:func:`added_mass_inf_per_frequency`); ``"auto"``:
-        the data row when present, else the estimate.
-    tail
-        Damping tail used by the estimate (see :func:`fit_damping_tail`).
-    kept
-        Optional (omega, dof) mask of the frequencies whose data each DOF keeps. Pair
-        (i, j) then takes B_ij bridged linearly over the points either DOF leaves out
-        (from B = 0 at ω = 0 below the first kept one: the same integral as without
-        those points) and the median over the trusted frequencies both keep (all the
-        trusted ones when fewer than three).
-
-    Returns
-    -------
-    xarray.DataArray
-        (influenced_dof, radiating_dof), with a coordinate ``spread`` of the same shape:
-        half the inter-quartile range of the per-frequency estimates (same units; zero
-        for the data row), and attribute ``method`` saying which was used.
-
-    Examples
-    --------
-    >>> import cummins
-    >>> ds = cummins.demo_dataset().drop_vars("added_mass_inf")
-    >>> a = cummins.added_mass_inf(ds)
-    >>> a.attrs["method"]
-    'ogilvie'
-    """
-    ds = single_speed(ds)
-    if method not in ("auto", "data", "ogilvie"):
-        raise HydroDataError(f"unknown method {method!r}", hint="use 'auto', 'data' or 'ogilvie'")
-    if method == "data" or (method == "auto" and "added_mass_inf" in ds):
-        if "added_mass_inf" not in ds:
-            raise HydroDataError(
-                "the data have no infinite-frequency added mass",
-                path=ds.attrs.get("source_file"),
-                hint="use method='ogilvie' to estimate it from A(ω) and B(ω)",
-            )
-        values = dof_matrix(ds, "added_mass_inf")
-        spread = np.zeros_like(values)
-        used = "data"
-    else:
-        if kept is not None:
-            kept = np.asarray(kept, dtype=bool)
-            damping = ds.radiation_damping.transpose("omega", "influenced_dof", "radiating_dof")
-            bridged = bridged_couplings(damping.values, ds.omega.values, kept, from_zero=True)
-            ds = ds.assign(radiation_damping=damping.copy(data=bridged))
-        curve = added_mass_inf_per_frequency(ds, tail=tail).values
-        keep = trusted_frequencies(ds)
-        values = np.median(curve[keep], axis=0)
-        q75, q25 = np.percentile(curve[keep], [75, 25], axis=0)
-        spread = 0.5 * (q75 - q25)
-        pairs = np.ndindex(curve.shape[1:]) if kept is not None else ()
-        for i, j in pairs:
-            use = keep & kept[:, i] & kept[:, j]
-            if 3 <= use.sum() < keep.sum():
-                values[i, j] = np.median(curve[use, i, j])
-                q75, q25 = np.percentile(curve[use, i, j], [75, 25])
-                spread[i, j] = 0.5 * (q75 - q25)
-        used = "ogilvie"
-    return xr.DataArray(
-        values,
-        dims=("influenced_dof", "radiating_dof"),
-        coords={**_coupling_coords(ds), "spread": (("influenced_dof", "radiating_dof"), spread)},
-        name="added_mass_inf",
-        attrs={"method": used, "units": ds.added_mass.attrs.get("units", "")},
     )
 
 
@@ -447,7 +296,7 @@ def kramers_kronig_added_mass(
     return xr.DataArray(
         values,
         dims=("omega", "influenced_dof", "radiating_dof"),
-        coords={"omega": ds.omega, **_coupling_coords(ds)},
+        coords={"omega": ds.omega, **coupling_coords(ds)},
         name="added_mass",
         attrs={"long_name": "added mass predicted from the damping (Kramers-Kronig)"},
     )
@@ -477,7 +326,7 @@ def kramers_kronig_error(
     return xr.DataArray(
         rel,
         dims=("influenced_dof", "radiating_dof"),
-        coords=_coupling_coords(ds),
+        coords=coupling_coords(ds),
         name="kramers_kronig_error",
         attrs={"long_name": "relative Kramers-Kronig error of A(w) predicted from B(w)"},
     )
@@ -618,7 +467,7 @@ def radiation_restoring(
     return xr.DataArray(
         c,
         dims=("omega", "influenced_dof", "radiating_dof"),
-        coords={"omega": ds.omega, **_coupling_coords(ds)},
+        coords={"omega": ds.omega, **coupling_coords(ds)},
         name="radiation_restoring",
         attrs={"long_name": "radiation restoring coefficient c(w) (0 for consistent data)"},
     )
@@ -761,7 +610,7 @@ def retardation_diagnostics(
             "significant": (dims, significant),
         },
         coords={
-            **_coupling_coords(ds),
+            **coupling_coords(ds),
             "tail_kind": kernel.tail_kind,
             "tail_rate": kernel.tail_rate,
         },

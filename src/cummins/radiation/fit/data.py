@@ -49,10 +49,10 @@ from cummins.radiation.fit.reciprocity import (
     reciprocity_of,
 )
 from cummins.radiation.fit.scorecard import data_frequencies
+from cummins.radiation.infinite_frequency import added_mass_inf as estimate_added_mass_inf
+from cummins.radiation.infinite_frequency import bridged_couplings
 from cummins.radiation.model import RadiationModel
-from cummins.radiation.retardation import added_mass_inf as estimate_added_mass_inf
 from cummins.radiation.retardation import (
-    bridged_couplings,
     default_retardation_function,
     significant_couplings,
 )
@@ -750,7 +750,7 @@ MIN_KEPT_FREQUENCIES = 8
 
 def _bridged_dataset(data: xr.Dataset, keep: NDArray) -> xr.Dataset:
     """``data`` with A(ω) and B(ω) bridged over each coupling's suspect points
-    (:func:`cummins.radiation.retardation.bridged_couplings`)."""
+    (:func:`cummins.radiation.infinite_frequency.bridged_couplings`)."""
     if keep.all():
         return data
     w = data.omega.values

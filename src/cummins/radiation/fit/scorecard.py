@@ -295,8 +295,8 @@ def own_data(ds: xr.Dataset, dof: str, keep: NDArray[np.bool_]) -> xr.Dataset:
     """The data of one DOF's diagonal term as the fit measures it: its added mass and
     damping bridged (linearly) over the frequencies it does not keep
     (:func:`own_frequencies`), up to the last one it keeps — so that its damping tail is
-    fitted to the same points (:func:`cummins.radiation.retardation.bridged_couplings`)."""
-    from cummins.radiation.retardation import bridged_couplings
+    fitted to the same points (:func:`cummins.radiation.infinite_frequency.bridged_couplings`)."""
+    from cummins.radiation.infinite_frequency import bridged_couplings
 
     last = int(np.flatnonzero(keep)[-1])
     one = ds.sel(influenced_dof=[dof], radiating_dof=[dof]).isel(omega=slice(0, last + 1))
@@ -403,7 +403,7 @@ def critical_damping(
     C is the hydrostatic plus any additional (mooring) stiffness; A∞ the data's ω = ∞
     row, else ``added_mass_inf``, else Ogilvie's estimate from the finite frequencies.
     """
-    from cummins.radiation.retardation import added_mass_inf as estimate
+    from cummins.radiation.infinite_frequency import added_mass_inf as estimate
 
     c = np.diag(dof_matrix(ds, "hydrostatic_stiffness")).copy()
     if "additional_stiffness" in ds:

@@ -53,7 +53,7 @@ def stf_causality(
         labels (``"Pitch"``, ``"Heave-Pitch"``) of the couplings above ``threshold``,
         only couplings whose speed terms are non-zero.
     """
-    from cummins.radiation.retardation import added_mass_inf as estimate
+    from cummins.radiation.infinite_frequency import added_mass_inf as estimate
 
     zero = _zero_speed(ds)
     a_inf = estimate(zero).values if added_mass_inf is None else np.asarray(added_mass_inf, float)

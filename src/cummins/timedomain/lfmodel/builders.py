@@ -223,7 +223,7 @@ def lf_model_from_retardation(
         K(t) (time from 0, influenced_dof, radiating_dof), kg/s² …; default
         :func:`cummins.radiation.retardation.default_retardation_function` of ``ds``.
     added_mass_inf
-        A∞ (n, n); default :func:`cummins.radiation.retardation.added_mass_inf` of ``ds``.
+        A∞ (n, n); default :func:`cummins.radiation.infinite_frequency.added_mass_inf` of ``ds``.
     viscous
         ``{dof: spec}``: :class:`ExponentialDamping`, :class:`CriticalDampingFraction`,
         a callable B_v(ω) or a constant, evaluated at the DOF's frequency and added to
