@@ -58,10 +58,12 @@ def test_fitted_below_the_span_the_barge_meets_its_targets(barge):
     K(t) ≥ 0.995 against the data's K(t) with its damping tail.
 
     Since the fit follows the data's damping tail beyond the last frequency (issue 31)
-    the default fit is no longer a failure (the passivity step used to take surge's and
-    sway's R² of A below 0.99; the plain fits now miss it first, a note) and the fit
-    below the span needs 49 states, not 35, against 58: the old 35 had heave's K(t) at
-    R² −2.18 (no decay beyond 2.8 rad/s as the data's tail), now 0.998."""
+    the passivity step no longer takes surge's and sway's R² of A below 0.99 (the plain
+    fits now miss it first, a note), and the fit below the span needs 49 states, not 35,
+    against 58: the old 35 had heave's K(t) at R² −2.18 (no decay beyond 2.8 rad/s as
+    the data's tail), now 0.998. The file holds no inertia, so no motions judge whether
+    heave's 0.58 matters: that is a failure (below 0.9), naming what to give; with the
+    inertia the motions decide, and heave's miss is its block's note only."""
     with warnings.catch_warnings():
         warnings.simplefilter("ignore")
         full = fit_radiation(barge)
@@ -71,12 +73,35 @@ def test_fitted_below_the_span_the_barge_meets_its_targets(barge):
     assert f"fitted below {start:.4g} rad/s" in notes
     heave = next(n for n in full.attrs["data_notes"] if n.startswith("Heave: targets not met"))
     assert float(heave.split("R² of A of Heave ")[1].split()[0]) < 0.8  # 0.579
+    (failure,) = full.attrs["failures"]
+    assert failure.startswith("Heave: R² of A 0.5") and "no motions judge" in failure
+    assert "lack the inertia" in failure and "--mass" in failure
     assert not below.attrs.get("failures")
     card = scorecard(barge.sel(omega=barge.omega[barge.omega <= start]), below)
     assert card.passive and card.stable
     assert min(card.r2_added_mass, card.r2_damping) >= 0.975  # 0.988
     assert card.r2_kernel >= 0.98  # 0.995
     assert scorecard(barge, full).r2_added_mass < 0.85  # 0.685
+
+
+def test_with_the_inertia_the_motions_judge_the_barge(barge):
+    """Given its inertia (ρ∇, the radii of a 40 m square barge, 4 m draught), the default
+    fit of the barge is judged by its motions: heave's R² of A is no longer a failure of
+    its own (the failures, if any, are the motions')."""
+    from cummins.mass_properties import with_inertia
+
+    ds = with_inertia(
+        barge,
+        mass=1025.0 * 40 * 40 * 4,
+        center_of_gravity=(0.0, 0.0, 0.0),
+        radii_of_gyration=(14, 14, 16),
+    )
+    with warnings.catch_warnings():
+        warnings.simplefilter("ignore")
+        model = fit_radiation(ds)
+    assert "motions_unjudged" not in model.attrs
+    assert model.attrs["motion_error"] is not None
+    assert not [f for f in model.attrs["failures"] if "no motions judge" in f]
 
 
 def test_the_check_says_where_and_what_to_do(barge):

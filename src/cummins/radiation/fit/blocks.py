@@ -135,6 +135,7 @@ def fit_blocks(
                     passive=passive,
                     r2_kernel=options.r2_kernel,
                     labels=labels,
+                    unjudged=inp.attrs.get("motions_unjudged"),
                 )
             except FitError as exc:
                 raise FitError(f"{name}: {exc}") from None

@@ -377,6 +377,8 @@ def _prepare_fit(ds: xr.Dataset, options: FitOptions, joined: JoinedMotion | Non
         ]
     if joined is not None and reference is not None:
         attrs["motions_of"] = joined.describe()
+    if reference is None:
+        attrs["motions_unjudged"] = motions_unjudged(user, options.weighting)
     if reference is not None:
         # the floor: what the model is fitted to (the data's passive part, reciprocal but
         # for the pairs fitted as given) against the user's motions
@@ -404,6 +406,22 @@ def _prepare_fit(ds: xr.Dataset, options: FitOptions, joined: JoinedMotion | Non
         reciprocity=reciprocity,
         resonant_dofs=resonant_dofs,
     )
+
+
+def motions_unjudged(data: xr.Dataset, weighting: str) -> str:
+    """Why the motions do not judge a fit of ``data`` (its weighting is not by the
+    motions): what the data lack of the inertia and the restoring, or the weighting the
+    user chose."""
+    missing = [
+        what
+        for what, name in (("inertia", "inertia_matrix"), ("restoring", "hydrostatic_stiffness"))
+        if name not in data
+    ]
+    if missing == ["inertia"]:
+        return "the data lack the inertia: give it, e.g. --mass, --radii-of-gyration"
+    if missing:
+        return f"the data lack the {' and the '.join(missing)}"
+    return f"weighting={weighting!r} does not judge the motions"
 
 
 def as_given_data(raw, data, pairs, reciprocity: Reciprocity, keep_dof, modelled):

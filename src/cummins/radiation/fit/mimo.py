@@ -13,7 +13,13 @@ from cummins.errors import FitError
 from cummins.radiation.fit.data import FitData
 from cummins.radiation.fit.metrics import coupling_metrics
 from cummins.radiation.fit.motion import MotionSensitivity
-from cummins.radiation.fit.options import MOTION_AIM, MOTION_FAILURE, MOTION_TOL, FitOptions
+from cummins.radiation.fit.options import (
+    MOTION_AIM,
+    MOTION_FAILURE,
+    MOTION_TOL,
+    UNJUDGED_R2,
+    FitOptions,
+)
 from cummins.radiation.model import CouplingModel, RadiationModel
 from cummins.radiation.passivity import augment_for_passivity, enforce_passivity, passivity_test
 
@@ -54,10 +60,12 @@ def fit_failures(
       :data:`MOTION_FAILURE` × ``motion_tol`` (issue 16: "≤ 1 %, never above 2 %"; between
       the two, a data note says so);
     * a diagonal term whose K(t) is further from the data's than ``r2_kernel`` (R²):
-      the model does not decay beyond the data as the data's damping tail (issue 31).
+      the model does not decay beyond the data as the data's damping tail (issue 31);
+    * when no motions judge the fit (``motion_tol`` None; why: ``attrs["motions_unjudged"]``),
+      a diagonal term whose R² of A or B is below :data:`UNJUDGED_R2`.
 
-    A target that the identification itself did not reach is a note of the coupling, not
-    a failure: the data decide it (see the coupling's note).
+    Else a target that the identification itself did not reach is a note of the
+    coupling, not a failure: the motions decide whether it matters (see the note).
     """
     out = []
     if passivity == "mimo" and not model.attrs.get("mimo_passive", True):
@@ -82,6 +90,17 @@ def fit_failures(
         kernel = k.metrics.get("r2_kernel")
         if r2_kernel is not None and i == j and kernel is not None and kernel < r2_kernel:
             out.append(kernel_failure(i, k.metrics, r2_kernel))
+        unjudged = model.attrs.get("motions_unjudged")
+        if motion_tol is None and unjudged and i == j:
+            named = " ".join(out)
+            for what, key in (("A", "r2_added_mass"), ("B", "r2_damping")):
+                value = k.metrics.get(key)
+                if value is None or value >= UNJUDGED_R2 or f"{i}: " in named:
+                    continue
+                out.append(
+                    f"{i}: R² of {what} {value:.4f} < {UNJUDGED_R2:g}, and no motions judge "
+                    f"whether that matters ({unjudged})"
+                )
     error = model.attrs.get("motion_error")
     if motion_tol is not None and error is not None and error > MOTION_FAILURE * motion_tol:
         out.append(

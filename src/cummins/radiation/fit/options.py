@@ -38,6 +38,13 @@ MOTION_AIM = 0.8
 #: damping at every frequency alike (Parseval), beyond the data too, so it measures that
 #: the model decays there as the data's damping tail.
 R2_KERNEL = 0.9
+#: When the motions cannot judge a fit (the data lack the inertia or the restoring, or
+#: the weighting is not by the motions), a diagonal term's R² of A or B below
+#: UNJUDGED_R2 is a failure, as the R² of K(t) below R2_KERNEL is: nothing then shows that
+#: what the model misses costs the motions nothing (with them, the motion error decides,
+#: and such a block is a note). The ITI barge's heave, R² of A 0.58 over the range its
+#: irregular frequencies spoil, is one; the same fit below them meets 0.99.
+UNJUDGED_R2 = 0.9
 #: Highest order a user may fix for a coupling: beyond it, a typing error, not a model.
 MAX_FIXED_ORDER = 40
 

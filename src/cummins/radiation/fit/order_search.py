@@ -166,10 +166,12 @@ def identify_block(
     passive: bool = True,
     r2_kernel: float | None = None,
     labels=None,
+    unjudged: str | None = None,
 ) -> tuple[PoleResidueBlock, BlockScore, list[str]]:
     """The block at the smallest number of common poles that meets the targets and is
     passive (module docstring, step 4); the best passive one when none does (``labels``:
-    the DOF labels, by model index, that its notes name)."""
+    the DOF labels, by model index, that its notes name; ``unjudged``: why no motions
+    judge it, when none do)."""
     counts = [fixed_count] if fixed_count else list(range(2, max_count + 1))
     fewest = int(data.used.sum(axis=0).min())
     counts = [c for c in counts if c + 2 <= fewest]
@@ -291,6 +293,7 @@ def identify_block(
                 r2_kernel=r2_kernel,
                 motion_aim=motion_aim,
                 labels=labels,
+                unjudged=unjudged,
             )
         )
     return block, score, notes
@@ -309,6 +312,7 @@ def targets_not_met(
     r2_kernel: float | None = None,
     motion_aim: float | None = None,
     labels=None,
+    unjudged: str | None = None,
 ) -> str:
     """The note of a block that no number of common poles brings to every target: which
     targets it misses (R² of A or B of which coupling, R² of K(t), the damping beyond the
@@ -357,7 +361,7 @@ def targets_not_met(
     if not score.passive:
         what = "not passive" + (f"; {what}" if what else "")
     if motion_aim is None or motion is None:
-        matters = "no motions to judge it by (the data lack the inertia or the restoring)"
+        matters = f"no motions to judge it by ({unjudged or 'no inertia or no restoring'})"
     elif motion <= motion_aim:
         matters = (
             f"the motions meet their aim ({100 * motion:.2f} % ≤ {100 * motion_aim:.2g} %), "
