@@ -103,10 +103,12 @@ def test_veres_struct_main_against_veres_hydrostatics(veres_at_co):
     VERES's hydrostatic 103.6 m, 6 % apart), CG from CO; the missing CB is named."""
     path, output = veres_at_co
     particulars = scipy.io.loadmat(path, squeeze_me=True, struct_as_record=False)["vessel"].main
-    assert particulars.GM_T == pytest.approx(2.144, rel=1e-3)
-    assert particulars.C_B == pytest.approx(0.651, rel=2e-3)
-    assert particulars.GM_L == pytest.approx(103.628, rel=0.12)
-    assert particulars.Lpp == pytest.approx(82.8) and particulars.T == 6.0 and particulars.Lwl == particulars.Lpp
+    gm_t, gm_l, c_b = (float(getattr(particulars, k)) for k in ("GM_T", "GM_L", "C_B"))
+    assert gm_t == pytest.approx(2.144, rel=1e-3)
+    assert c_b == pytest.approx(0.651, rel=2e-3)
+    assert gm_l == pytest.approx(103.628, rel=0.12)
+    length, draught, waterline = (float(getattr(particulars, k)) for k in ("Lpp", "T", "Lwl"))
+    assert length == pytest.approx(82.8) and draught == 6.0 and waterline == length
     np.testing.assert_allclose(particulars.CG, [-5.3859, 0.0, -1.3], atol=1e-3)
     assert "vessel.main lacks CB" in output
     raw = scipy.io.loadmat(path, squeeze_me=True)["vessel"]
