@@ -61,3 +61,32 @@ def test_cli_writes_the_model_of_the_python_api(tmp_path):
         assert float(line.split("difference ")[1].split(" %")[0]) < 3.0
     assert (tmp_path / "cmp" / "decay_Roll.png").stat().st_size > 10_000
     assert (tmp_path / "lf.png").stat().st_size > 10_000
+
+
+def test_data_damping_takes_mss_bv(shared_data, tmp_path):
+    """--data-damping (the CLI form of viscous={dof: 'data'}): surge, sway and yaw damped
+    by the supply vessel's MSS Bv at its lowest frequency, where without it D = 0 and the
+    note names the option, not the Python keyword."""
+    supply = shared_data / "mss" / "supply" / "supply.mat"
+    bare = CliRunner().invoke(main, ["lf-model", str(supply), "-o", str(tmp_path / "a.nc")])
+    assert bare.exit_code == 0, bare.output
+    assert "--data-damping" in bare.output and "viscous={" not in bare.output
+    with xr.open_dataset(tmp_path / "a.nc", engine="h5netcdf") as ds:
+        assert np.all(ds.damping.values[[0, 1, 5], [0, 1, 5]] == 0)
+    out = tmp_path / "b.nc"
+    args = ["lf-model", str(supply), "-o", str(out), "--data-damping", "all"]
+    result = CliRunner().invoke(main, args)
+    assert result.exit_code == 0, result.output
+    assert "varies with frequency" not in result.output
+    data = cummins.read(supply)
+    bv = data.additional_damping.isel(omega=0).values
+    same = lf_model_from_frequency_data(
+        data, viscous=dict.fromkeys(data.influenced_dof.values.tolist(), "data")
+    )
+    with xr.open_dataset(out, engine="h5netcdf") as ds:
+        np.testing.assert_allclose(ds.damping.values, same.damping)
+        for k in (0, 1, 5):
+            assert ds.damping.values[k, k] == pytest.approx(bv[k, k], rel=1e-9)
+    bad = CliRunner().invoke(main, ["lf-model", str(supply), "-o", str(out), "--force",
+                                    "--data-damping", "Swag"])  # fmt: skip
+    assert bad.exit_code == 2 and "--data-damping" in bad.output and "Swag" in bad.output

@@ -7,6 +7,7 @@ import pytest
 import xarray as xr
 from click.testing import CliRunner
 
+import cummins
 from cummins.cli import main
 from cummins.cli.dp_scenario import CRANE_LOAD, CRANE_POINT, run_scenario, s175_data, static_heel
 
@@ -86,3 +87,41 @@ def test_cli_dp_demo(tmp_path):
         assert (out / f"{name}.png").stat().st_size > 20_000
     again = CliRunner().invoke(main, args)
     assert again.exit_code == 2 and "--force" in again.output
+
+
+def test_cli_dp_demo_on_mss_supply_vessel(shared_data, tmp_path):
+    """--data supply.mat (one speed, no forward_speed dimension: a traceback before): the
+    supply vessel's own dimensions and MSS Bv; the crane load heels it to the static heel
+    of its restoring (measured −0.4 %) and the DP holds it within a few metres."""
+    out = tmp_path / "dp"
+    data = shared_data / "mss" / "supply" / "supply.mat"
+    args = ["dp-demo", "-o", str(out), "--duration", "330", "--data", str(data)]
+    result = CliRunner().invoke(main, args)
+    assert result.exit_code == 0, result.output
+    run = xr.open_dataset(out / "run.nc", engine="h5netcdf")
+    assert abs(run.attrs["check_heel_error"]) < 0.05
+    assert 3.0 < run.attrs["check_static_heel_deg"] < 10.0  # 6.4°: 6362 t, GM_T 2.1 m
+    assert run.attrs["check_watch_circle_m"] < 20.0
+
+
+def test_cli_dp_demo_names_what_the_data_lack(shared_data, tmp_path):
+    """WAMIT's tanker.1 has no mean drift and no main dimensions: one line naming both."""
+    data = shared_data / "mss" / "tanker" / "tanker.1"
+    result = CliRunner().invoke(main, ["dp-demo", "-o", str(tmp_path / "dp"), "--data", str(data)])
+    assert result.exit_code == 1, result.output
+    assert "Traceback" not in result.output
+    errors = [line for line in result.output.splitlines() if line.startswith("error:")]
+    assert len(errors) == 1
+    assert "mean drift" in errors[0] and "ship_length" in errors[0]
+    # a multi-speed file without zero speed is refused by name as well
+    from cummins.cli.dp_scenario import scenario_data
+    from cummins.errors import HydroDataError
+
+    s175 = shared_data / "mss" / "s175" / "s175.mat"
+    ds, damping = scenario_data(s175)
+    assert float(ds.forward_speed) == 0.0 and damping["Surge"] > 0
+    fast = cummins.read(s175).isel(forward_speed=[1, 2])
+    path = tmp_path / "fast.nc"
+    cummins.write(fast, path)
+    with pytest.raises(HydroDataError, match="zero forward speed"):
+        scenario_data(path)

@@ -180,10 +180,14 @@ def test_s175_reference_height_from_the_veres_files(s175_mat, mss_dir):
 
 
 def test_round_trip_wamit_tanker(tanker_wamit, tmp_path):
-    """WAMIT (z-up) → MSS struct → reader: the z-down data, to round-off (1e-12)."""
+    """WAMIT (z-up) → MSS struct → reader: the z-down data, to round-off (1e-12), its
+    0–180° headings completed to 0–350° by port/starboard symmetry, as MSS's tanker.mat."""
+    from cummins.seakeeping.headings import mirror_headings
+
     path = write_mss(tanker_wamit, tmp_path / "tanker.mat")
     back = read_mss(path)
-    expected = cummins.change_axes(tanker_wamit, "z-down")
+    expected, coverage = mirror_headings(cummins.change_axes(tanker_wamit, "z-down"))
+    assert coverage.mirror_used and expected.sizes["wave_direction"] == 36
     _assert_same(expected, back)
     assert set(back.data_vars) == set(expected.data_vars)
     np.testing.assert_array_equal(back.omega, expected.omega)

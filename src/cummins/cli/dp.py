@@ -74,7 +74,9 @@ from cummins.validation import check_simulation_size
     "data_path",
     type=click.Path(exists=True),
     default=None,
-    help="Another copy of MSS's s175.mat (default: the one bundled with cummins).",
+    help="The vessel: any file cummins reads that holds what DP needs (an MSS vessel "
+    ".mat such as supply.mat or tanker.mat, or VERES/WAMIT files with mean drift and main "
+    "dimensions), at zero speed; default: MSS's S-175, bundled with cummins.",
 )
 @second_order_option(
     "newman",
@@ -103,7 +105,7 @@ def dp_demo_command(
     second_order,
     force,
 ):
-    """The S-175 container ship on DP in a seaway, a crane load at t = 100 s.
+    """A ship on DP in a seaway (the S-175 unless --data), a crane load at t = 100 s.
 
     \b
     The scenario of Smogeli et al. (2004) §7, with the nonlinear 6-DOF model of the
@@ -114,7 +116,10 @@ def dp_demo_command(
     allocation to four thrusters. Sea: JONSWAP Hs 4 m, wp 0.60 rad/s, gamma 3.3,
     short-crested, from 45 deg off the starboard bow. At t = 100 s a 1000 kN crane load
     hangs 15 m to starboard: the ship heels to a new mean roll angle, checked against
-    the static heel of its restoring.
+    the static heel of its restoring. With --data another vessel takes the S-175's
+    place: its own dimensions and its MSS Bv (at the lowest frequency) as linear
+    damping of surge, sway and yaw; data lacking what the scenario needs (mean drift,
+    main dimensions ...) stop with one line naming it.
 
     \b
     Writes DIR/run.nc (eta: North, East, Down, Roll, Pitch, Yaw in m and rad, NED; nu:
@@ -124,8 +129,9 @@ def dp_demo_command(
     \b
     Example:
       cummins dp-demo -o dp --duration 600 --seed 1
+      cummins dp-demo -o dp_supply --duration 200 --data supply.mat
     """
-    from cummins.cli.dp_scenario import run_scenario, s175_data, write_scenario_plots
+    from cummins.cli.dp_scenario import run_scenario, scenario_data, write_scenario_plots
     from cummins.io.netcdf import save_netcdf
 
     out = Path(folder)
@@ -134,7 +140,7 @@ def dp_demo_command(
     prepare_outputs(*(out / n for n in names), force=force)
     # before the model is built: the run's size (the S-175 model has about 60 states)
     check_simulation_size(duration, dt, 60, 54, option="--duration")
-    ds = s175_data(data_path)
+    ds, damping = scenario_data(data_path, second_order)
     with progress_bar() as bar:
         task = bar.add_task(f"simulating {duration:g} s of DP", total=1.0)
         scenario = run_scenario(
@@ -147,6 +153,7 @@ def dp_demo_command(
             wind_speed=wind_speed,
             wind_from_deg=wind_from,
             second_order=second_order,
+            viscous_damping=damping,
             progress=lambda fraction: bar.update(task, completed=fraction),
         )
     save_netcdf(scenario.run, out / "run.nc")

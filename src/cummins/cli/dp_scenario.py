@@ -69,6 +69,107 @@ def s175_data(path: str | Path | None = None) -> xr.Dataset:
     return cummins.read(file).sel(forward_speed=0.0)
 
 
+def scenario_data(
+    path: str | Path | None = None, second_order: str = "newman"
+) -> tuple[xr.Dataset, dict[str, float]]:
+    """The vessel of the scenario at zero speed and the linear viscous damping of its
+    horizontal plane (N s/m, N m s/rad).
+
+    ``path`` None, or a folder holding ``mss/s175/s175.mat``: the S-175
+    (:func:`s175_data`) with :data:`LOW_FREQUENCY_DAMPING`. Any other file cummins reads
+    (MSS, WAMIT, VERES …): its zero-speed data, checked by :func:`check_dp_data`, and the
+    damping of :func:`data_viscous_damping`.
+    """
+    import cummins
+    from cummins.errors import HydroDataError
+
+    if path is None or (Path(path).is_dir() and (Path(path) / "mss" / "s175").is_dir()):
+        return s175_data(path), dict(LOW_FREQUENCY_DAMPING)
+    ds = cummins.read(path)
+    if "forward_speed" in ds.dims:
+        speeds = np.asarray(ds.forward_speed.values, dtype=float)
+        if not np.any(np.abs(speeds) < 1e-3):
+            listed = ", ".join(f"{u:g}" for u in speeds)
+            raise HydroDataError(
+                f"DP needs the data at zero forward speed; they hold {listed} m/s", path=path
+            )
+        ds = ds.isel(forward_speed=int(np.argmin(np.abs(speeds))))
+    elif "forward_speed" in ds.coords and abs(float(ds.forward_speed)) > 1e-3:
+        raise HydroDataError(
+            f"DP needs the data at zero forward speed; they hold {float(ds.forward_speed):g} m/s",
+            path=path,
+        )
+    check_dp_data(ds, second_order)
+    return ds, data_viscous_damping(ds)
+
+
+def check_dp_data(ds: xr.Dataset, second_order: str = "newman") -> None:
+    """Raise one HydroDataError naming all that the scenario needs and ``ds`` lacks: six
+    DOFs, added mass and damping, the rigid-body mass and restoring, first-order wave
+    excitation over headings, the mean drift (for ``second_order`` newman or mean) and
+    the main dimensions (length, breadth, draught) the resistance, drag and thruster
+    layout are scaled with."""
+    from cummins.errors import HydroDataError
+    from cummins.hydrodb import DOF_NAMES
+
+    missing = []
+    if [str(d) for d in ds.influenced_dof.values] != list(DOF_NAMES):
+        missing.append("the six DOFs of one body")
+    for name, what in (
+        ("added_mass", "added mass"),
+        ("radiation_damping", "radiation damping"),
+        ("inertia_matrix", "rigid-body mass (inertia_matrix)"),
+        ("hydrostatic_stiffness", "restoring (hydrostatic_stiffness)"),
+        ("excitation_force", "first-order wave excitation"),
+    ):
+        if name not in ds or (name == "inertia_matrix" and not np.any(ds[name].values)):
+            missing.append(what)
+    if "excitation_force" in ds and "wave_direction" not in ds["excitation_force"].dims:
+        missing.append("wave headings of the excitation")
+    if second_order in ("newman", "mean") and "drift_force" not in ds:
+        missing.append("mean drift forces (or --second-order none)")
+    dims = [k for k in ("ship_length", "ship_breadth", "ship_draught") if k not in ds.attrs]
+    if dims:
+        missing.append("main dimensions (" + ", ".join(dims) + ")")
+    if missing:
+        raise HydroDataError(
+            "the DP scenario needs " + "; ".join(missing),
+            path=ds.attrs.get("source_file"),
+            hint="an MSS vessel struct (.mat) holds all of it; WAMIT files give no main "
+            "dimensions: convert them with MSS (wamit2vessel) or use the MSS .mat",
+        )
+
+
+def data_viscous_damping(ds: xr.Dataset) -> dict[str, float]:
+    """Linear viscous damping of surge, sway and yaw: the data's ``additional_damping``
+    (MSS's ``Bv``) at their lowest frequency, the value :func:`cummins.timedomain.lfmodel`
+    takes with ``viscous={dof: 'data'}`` at ω = 0; DOFs without any are left out, with a
+    warning (the quadratic drag and the controller then damp them alone)."""
+    import warnings
+
+    from cummins.errors import AssumptionWarning
+
+    out: dict[str, float] = {}
+    if "additional_damping" in ds:
+        var = ds["additional_damping"].transpose(..., "influenced_dof", "radiating_dof")
+        if "omega" in var.dims:
+            var = var.isel(omega=int(np.argmin(ds.omega.values)))
+        for dof in LOW_FREQUENCY_DAMPING:
+            if dof in ds.influenced_dof.values:
+                value = float(var.sel(influenced_dof=dof, radiating_dof=dof))
+                if value > 0:
+                    out[dof] = value
+    lacking = [dof for dof in LOW_FREQUENCY_DAMPING if dof not in out]
+    if lacking:
+        warnings.warn(
+            f"no linear viscous damping of {', '.join(lacking)} in the data (MSS's Bv): "
+            "only the quadratic drag and the DP controller damp them",
+            AssumptionWarning,
+            stacklevel=2,
+        )
+    return out
+
+
 def build_scenario(
     ds: xr.Dataset,
     *,
@@ -84,6 +185,7 @@ def build_scenario(
     bandwidth: float = 0.1,
     filter_cutoff: float = 0.3,
     second_order: str = "newman",
+    viscous_damping: dict[str, float] | None = None,
 ):
     """The unified model, loads and controller of the scenario (module docstring);
     ``bandwidth`` (rad/s) of the position loop and ``filter_cutoff`` (rad/s) of the
@@ -91,7 +193,10 @@ def build_scenario(
     ``second_order``: the wave drift, ``"newman"`` (the paper's, at the instantaneous
     relative heading), ``"mean"``, ``"full"`` (a QTF of the data:
     :class:`cummins.timedomain.loads.SecondOrderWaveLoad`, the S-175 of MSS has none) or
-    ``"none"``.
+    ``"none"``; ``viscous_damping``: linear damping of surge, sway and yaw (default
+    :data:`LOW_FREQUENCY_DAMPING`, the S-175's; :func:`scenario_data` gives another
+    vessel's). Dimensions not in the data are the S-175's; the block coefficient is
+    ∇/(L B T) when the displaced volume is known.
 
     Returns (model, loads, controller, sea).
     """
@@ -106,13 +211,16 @@ def build_scenario(
     breadth = float(ds.attrs.get("ship_breadth", 25.4))
     draught = float(ds.attrs.get("ship_draught", 9.5))
     block = float(ds.attrs.get("block_coefficient", 0.572))
+    if "block_coefficient" not in ds.attrs and "displaced_volume" in ds.attrs:
+        block = float(ds.attrs["displaced_volume"]) / (length * breadth * draught)
+    damping = LOW_FREQUENCY_DAMPING if viscous_damping is None else viscous_damping
     current = None
     if current_speed > 0:
         # "from" as sailors give it: the current flows to the opposite direction
         current = ld.Current(current_speed, np.radians(current_from_deg) + np.pi)
     with warnings.catch_warnings():
         warnings.simplefilter("ignore")  # MSS's frequency-dependent Bv: replaced below
-        model = unified_vessel(ds, viscous_damping=LOW_FREQUENCY_DAMPING, current=current)
+        model = unified_vessel(ds, viscous_damping=damping, current=current)
     direction = np.radians(WAVES_FROM_DEG) + np.pi  # waves travel to 225°
     omega_max = float(ds.omega.values.max())
     sea = wv.irregular_waves(

@@ -3,6 +3,7 @@
 from __future__ import annotations
 
 import dataclasses
+import warnings
 from pathlib import Path
 
 import click
@@ -70,6 +71,16 @@ from cummins.cli.option_rules import Command
     "frequency (a proxy for Ikeda's estimate).",
 )
 @click.option(
+    "--data-damping",
+    "data_damping",
+    multiple=True,
+    metavar="DOF",
+    help="Take this DOF's viscous damping from the data's additional_damping (MSS's Bv) "
+    "at the DOF's frequency (w = 0 for surge, sway, yaw: the lowest frequency's value); "
+    "repeat it, or 'all' for every DOF the data damp. The Python form: "
+    "viscous={dof: 'data'}.",
+)
+@click.option(
     "--compare",
     "compare_dir",
     type=click.Path(file_okay=False),
@@ -99,6 +110,7 @@ def lf_model_command(
     sway_damping,
     yaw_damping,
     roll_damping,
+    data_damping,
     compare_dir,
     plot_file,
     speed,
@@ -117,6 +129,7 @@ def lf_model_command(
     Examples:
       cummins lf-model tanker.1 -o lf.nc --plot lf.png
       cummins lf-model tanker.1 -o lf.nc --route kernel --roll-damping 0.05 --compare lf-cmp
+      cummins lf-model supply.mat -o lf.nc --data-damping all
     """
     from rich.table import Table
 
@@ -126,6 +139,7 @@ def lf_model_command(
         lf_model_from_frequency_data,
         lf_model_from_retardation,
     )
+    from cummins.timedomain.lfmodel.builders import DATA_DAMPING_ADVICE
 
     outputs = [output, plot_file]
     if compare_dir:
@@ -138,9 +152,17 @@ def lf_model_command(
             viscous[dof] = ExponentialDamping(*spec)
     if roll_damping is not None:
         viscous["Roll"] = CriticalDampingFraction(roll_damping)
+    viscous.update(_data_damping(ds, data_damping, viscous))
     build = lf_model_from_frequency_data if route == "frequency" else lf_model_from_retardation
-    with console.status("deriving the low-frequency model"):
+    with (
+        console.status("deriving the low-frequency model"),
+        warnings.catch_warnings(record=True) as caught,
+    ):
+        warnings.simplefilter("always")
         model = build(ds, viscous=viscous or None)
+    for w in caught:  # the library's advice names its keyword; here: the option
+        text = str(w.message).replace(DATA_DAMPING_ADVICE, "--data-damping DOF (or all)")
+        warnings.warn_explicit(text, w.category, w.filename, w.lineno)
     table = Table(title=f"low-frequency model of {Path(path).name} ({route} route)")
     for column in ("DOF", "frequency [rad/s]", "M_RB + M_A", "D", "G", "taken as"):
         table.add_column(column, justify="right")
@@ -164,6 +186,38 @@ def lf_model_command(
         console.print(f"wrote {save_figure(plot_lf_model(ds, model), plot_file, force=force)}")
     if compare_dir:
         _compare(ds, model, Path(compare_dir), force)
+
+
+def _data_damping(ds, names, given) -> dict[str, str]:
+    """``--data-damping``: {DOF: 'data'} for the DOFs named ('all': every DOF whose
+    diagonal of ``additional_damping`` is nonzero somewhere); a DOF not in the data, one
+    given another damping option, or data without ``additional_damping``: exit 2."""
+    if not names:
+        return {}
+    dofs = [str(d) for d in ds.influenced_dof.values]
+    if "additional_damping" not in ds:
+        raise click.BadParameter(
+            "the data hold no additional_damping (MSS's Bv, a WAMIT/VERES viscous "
+            "matrix): give the damping with --surge-damping … instead",
+            param_hint="--data-damping",
+        )
+    values = ds["additional_damping"].transpose(..., "influenced_dof", "radiating_dof").values
+    if "all" in names:
+        diagonal = np.abs(np.diagonal(values, axis1=-2, axis2=-1)).reshape(-1, len(dofs))
+        chosen = [d for k, d in enumerate(dofs) if np.any(diagonal[:, k] > 0)]
+    else:
+        chosen = list(dict.fromkeys(names))
+    for name in chosen:
+        if name not in dofs:
+            raise click.BadParameter(
+                f"unknown DOF {name!r}; use {', '.join(dofs)} or all", param_hint="--data-damping"
+            )
+        if name in given and "all" not in names:
+            raise click.BadParameter(
+                f"{name} already has its damping from --{name.lower()}-damping",
+                param_hint="--data-damping",
+            )
+    return {name: "data" for name in chosen if name not in given}
 
 
 _COMPARISONS = (

@@ -147,7 +147,8 @@ def write_fit_plots(
 
 def write_model_mss_abc(model, ds: xr.Dataset, path: Path, *, force: bool = False) -> Path:
     """The model as an MSS ``vesselABC`` .mat, in Fossen's axes, with the data's rigid-body
-    inertia and restoring matrices (about the data's reference point)."""
+    inertia and restoring matrices (about the data's reference point) and ``r_g`` from the
+    data's centre of gravity (else from the inertia matrix; NaN and a warning if neither)."""
     from cummins.hydrodb import change_axes
     from cummins.io.mss_abc import write_mss_abc
     from cummins.radiation.model import change_model_axes
@@ -159,11 +160,21 @@ def write_model_mss_abc(model, ds: xr.Dataset, path: Path, *, force: bool = Fals
             return None
         return dof_matrix(fossen, name)
 
+    z_down = change_model_axes(model, "z-down")
+    cg = fossen.attrs.get("center_of_gravity")
+    if cg is not None:  # r_g = G − the data's reference point, in the model's origin
+        data_point = np.asarray(fossen.attrs.get("reference_point", np.zeros(3)), dtype=float)
+        model_point = np.asarray(z_down.attrs.get("reference_point", np.zeros(3)), dtype=float)
+        if data_point.size == 3 and model_point.size == 3 and np.size(cg) == 3:
+            cg = np.asarray(cg, dtype=float).reshape(3) - data_point.reshape(3) + model_point
+        else:
+            cg = None
     return write_mss_abc(
-        change_model_axes(model, "z-down"),
+        z_down,
         path,
         inertia_matrix=matrix("inertia_matrix"),
         hydrostatic_stiffness=matrix("hydrostatic_stiffness"),
+        center_of_gravity=cg,
         force=force,
     )
 

@@ -50,6 +50,7 @@ from __future__ import annotations
 
 import json
 import os
+import warnings
 from pathlib import Path
 from typing import Any
 
@@ -58,11 +59,12 @@ import scipy.io
 from numpy.typing import ArrayLike, NDArray
 
 from cummins._version import __version__
-from cummins.errors import HydroDataError, check_writable
+from cummins.errors import HydroDataError, HydroDataWarning, check_writable
 from cummins.files import replacing
 from cummins.hydrodb import DOF_NAMES
 from cummins.io._model_common import resolve_axis_convention
 from cummins.io.mss import load_mat_struct
+from cummins.io.mss.points import _rigid_body_cg
 from cummins.io.netcdf import decode_attribute, encode_attribute
 from cummins.radiation.model import CouplingModel, RadiationModel, change_model_axes
 
@@ -97,8 +99,11 @@ def write_mss_abc(
     What is written (see the module docstring): the couplings in the ``Ar``, ``Br``,
     ``Cr``, ``Dr`` cells, ``MA`` = A∞, ``MRB``, ``G``, ``Minv`` = inv(MRB + MA) and
     ``r_g``, all in Fossen's z-down axes about the model's reference point (MSS takes
-    CO: Lpp/2, centre line, waterline). Values that are not known are written as NaN
-    (``MRB``, ``G``, ``Minv``, ``r_g``), so that a simulation using them fails visibly.
+    CO: Lpp/2, centre line, waterline). ``r_g`` is G − reference point, from the centre
+    of gravity given or recorded, else from the m·r_g block of ``MRB`` (MRB about CO,
+    Fossen (2021) ch. 3). Values that are not known are written as NaN (``MRB``,
+    ``G``, ``Minv``, ``r_g``), so that a simulation using them fails visibly, and a
+    :class:`~cummins.errors.HydroDataWarning` names them.
 
     Parameters
     ----------
@@ -113,8 +118,9 @@ def write_mss_abc(
         Position of G in the model's axes, from the same origin as the model's
         ``reference_point`` attribute (r_g = G − reference point); default: the
         ``center_of_gravity`` attribute, else the ``mss_r_g`` attribute (files read
-        from MSS), else NaN. Values given here are also recorded, under these names,
-        in the attributes of the written model (``vesselABC.cummins``).
+        from MSS), else the m·r_g block of ``MRB``, else NaN. Values given here are
+        also recorded, under these names, in the attributes of the written model
+        (``vesselABC.cummins``).
     axis_convention
         The model's axes when it does not record them (``axis_convention`` attribute);
         a ``"z-up"`` model is converted.
@@ -179,13 +185,26 @@ def _vessel_abc(model: RadiationModel, path: Path) -> dict[str, Any]:
     ma = np.asarray(model.added_mass_inf, dtype=float)
     total = mrb + ma
     minv = np.linalg.inv(total) if np.all(np.isfinite(total)) else np.full((6, 6), np.nan)
+    r_g = _r_g(attrs, mrb, path)
+    unknown = [
+        name
+        for name, value in (("MRB", mrb), ("G", g), ("r_g", r_g))
+        if not np.all(np.isfinite(value))
+    ]
+    if unknown:
+        warnings.warn(
+            f"{path.name}: vesselABC.{', '.join(unknown)} unknown, written as NaN "
+            "(give the mass properties: inertia matrix, restoring, centre of gravity)",
+            HydroDataWarning,
+            stacklevel=4,
+        )
     return {
         **cells,
         "MRB": mrb,
         "MA": ma,
         "G": g,
         "Minv": minv,
-        "r_g": _r_g(attrs, path).reshape(1, 3),
+        "r_g": r_g.reshape(1, 3),
         "cummins": {
             "format": _JSON_FORMAT,
             "cummins_version": __version__,
@@ -204,7 +223,8 @@ def _matrix_attr(attrs, key: str, path: Path) -> NDArray[np.float64]:
     return value
 
 
-def _r_g(attrs, path: Path) -> NDArray[np.float64]:
+def _r_g(attrs, mrb: NDArray, path: Path) -> NDArray[np.float64]:
+    """r_g: the centre of gravity given or recorded, else MRB's m·r_g block, else NaN."""
     if attrs.get("center_of_gravity") is not None:
         cg = np.asarray(attrs["center_of_gravity"], dtype=float).reshape(-1)
         point = np.asarray(attrs.get("reference_point", np.zeros(3)), dtype=float).reshape(-1)
@@ -215,6 +235,10 @@ def _r_g(attrs, path: Path) -> NDArray[np.float64]:
         return cg - point
     if attrs.get("mss_r_g") is not None:
         return np.asarray(attrs["mss_r_g"], dtype=float).reshape(3)
+    if np.all(np.isfinite(mrb)):
+        r_g = _rigid_body_cg(mrb)
+        if r_g is not None:
+            return np.asarray(r_g, dtype=float)
     return np.full(3, np.nan)
 
 

@@ -211,6 +211,36 @@ def heading_coverage(ds: xr.Dataset, *, mirror: bool | None = None) -> HeadingCo
     )
 
 
+def mirror_headings(
+    ds: xr.Dataset, *, mirror: bool | None = None
+) -> tuple[xr.Dataset, HeadingCoverage]:
+    """The dataset on the headings of :func:`heading_coverage`: every variable with a
+    ``wave_direction`` dimension (excitation, RAOs, drift) taken at its source heading,
+    times T = diag(1, −1, 1, −1, 1, −1) where mirrored, F(ω, −β) = T F(ω, β) (module
+    docstring); ``wave_direction`` in [0, 2π), sorted. The coverage says whether any
+    heading was added and why (not). Several forward speeds: the symmetry is judged at
+    the first and the mirror applied to all."""
+    if "wave_direction" not in ds.dims:
+        return ds, HeadingCoverage(np.zeros(0), np.zeros(0, int), np.zeros(0, bool), False, "")
+    first = ds.isel(forward_speed=0) if "forward_speed" in ds.dims else ds
+    coverage = heading_coverage(first, mirror=mirror)
+    out = ds.isel(wave_direction=xr.DataArray(coverage.source, dims="wave_direction"))
+    out = out.assign_coords(wave_direction=coverage.directions)
+    mirrored = xr.DataArray(coverage.mirrored, dims="wave_direction")
+    for name, var in out.data_vars.items():
+        dof = next((d for d in ("influenced_dof", "radiating_dof") if d in var.dims), None)
+        if "wave_direction" not in var.dims or dof is None:
+            continue
+        labels = [split_dof(str(d))[1] for d in var[dof].values]
+        signs = xr.DataArray(
+            [MIRROR_SIGNS[DOF_NAMES.index(d)] if d in DOF_NAMES else 1.0 for d in labels],
+            dims=dof,
+        )
+        out[name] = xr.where(mirrored, var * signs, var).transpose(*var.dims)
+        out[name].attrs = var.attrs
+    return out, coverage
+
+
 def _wrap_pi(a: ArrayLike) -> NDArray[np.float64]:
     return np.mod(np.asarray(a, dtype=float) + np.pi, _TWO_PI) - np.pi
 

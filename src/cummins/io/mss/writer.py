@@ -8,6 +8,7 @@ besides ``hydrodynamic_reference`` (``'CO'``/``'CG'``).
 from __future__ import annotations
 
 import os
+import warnings
 from collections.abc import Sequence
 from pathlib import Path
 from typing import Any
@@ -16,9 +17,9 @@ import numpy as np
 import xarray as xr
 from numpy.typing import NDArray
 
-from cummins.errors import HydroDataError
+from cummins.errors import HydroDataError, HydroDataWarning
 from cummins.files import replacing
-from cummins.hydrodb import DOF_NAMES, change_axes
+from cummins.hydrodb import DOF_NAMES, add_history, change_axes
 from cummins.io.mss.matfile import DRIFT_DOFS, MSS_INFINITE_FREQUENCY
 from cummins.io.mss.points import _rigid_body_cg
 
@@ -91,7 +92,63 @@ def _main_struct(ds: xr.Dataset, mrb: NDArray | None, point: NDArray, name: str)
     for key, attr in (("Lpp", "ship_length"), ("B", "ship_breadth"), ("T", "ship_draught")):
         if attr in ds.attrs:
             main[key] = float(ds.attrs[attr])
+    main.update(_stability_fields(ds, main))
     return main
+
+
+#: The ``main`` fields MSS's functions read (vessel2ss: CG, T; vessel2simscape: CG, CB,
+#: T; the natural periods and viscous_skin: GM_T, GM_L, C_B, Lwl, S, m, nabla, k44 …).
+MAIN_FIELDS = ("m", "nabla", "Lpp", "B", "T", "CG", "CB", "GM_T", "GM_L", "C_B", "Lwl", "S")
+
+
+def _stability_fields(ds: xr.Dataset, main: dict) -> dict[str, float]:
+    """GM_T, GM_L from the restoring (as MSS builds G from them: G44 = ρg∇GM_T,
+    G55 = ρg∇GM_L + G33 x_F², x_F = −G35/G33; Fossen (2021) ch. 4), C_B = ∇/(Lpp B T),
+    and MSS's own approximations Lwl = Lpp and S = B (Lpp + 2T) (``veres2vessel``)."""
+    out: dict[str, float] = {}
+    nabla = main.get("nabla")
+    if nabla and "hydrostatic_stiffness" in ds:
+        c = ds["hydrostatic_stiffness"].transpose(..., "influenced_dof", "radiating_dof")
+        c = np.asarray(c.values, dtype=float).reshape(-1, 6, 6)[0]
+        weight = float(main["rho"]) * float(main["g"]) * float(nabla)
+        if c[3, 3] > 0:
+            out["GM_T"] = float(c[3, 3] / weight)
+        if c[4, 4] > 0 and c[2, 2] > 0:
+            out["GM_L"] = float((c[4, 4] - c[2, 4] * c[4, 2] / c[2, 2]) / weight)
+    if nabla and all(k in main for k in ("Lpp", "B", "T")):
+        out["C_B"] = float(nabla / (main["Lpp"] * main["B"] * main["T"]))
+    if "Lpp" in main:
+        out["Lwl"] = float(main["Lpp"])
+        if "B" in main and "T" in main:
+            out["S"] = float(main["B"] * (main["Lpp"] + 2 * main["T"]))
+    return out
+
+
+def _complete_headings(ds: xr.Dataset, path: Path) -> xr.Dataset:
+    """Headings over the full circle, as MSS's ``waveForceRAO`` needs (it wraps β into
+    [0, 2π) and extrapolates outside the table): one half-plane mirrored for a
+    port/starboard symmetric hull (:func:`cummins.seakeeping.headings.mirror_headings`,
+    the reader's rule), else a warning naming the arc without data."""
+    from cummins.seakeeping.headings import mirror_headings
+
+    try:
+        out, coverage = mirror_headings(ds)
+    except HydroDataError:  # several speeds or bodies the symmetry cannot be judged on
+        return ds
+    if coverage.mirror_used:
+        added = int(coverage.mirrored.sum())
+        add_history(out, f"write_mss: {added} headings added by port/starboard symmetry")
+    gaps = coverage.gaps(np.pi / 4)
+    if gaps:
+        a, b = gaps[0]
+        warnings.warn(
+            f"{path.name}: no wave heading between {np.degrees(a):.4g}° and "
+            f"{np.degrees(b):.4g}° ({coverage.reason}): MSS's waveForceRAO extrapolates "
+            "there; give data for all headings",
+            HydroDataWarning,
+            stacklevel=3,
+        )
+    return out
 
 
 def write_mss(ds: xr.Dataset, path: str | os.PathLike[str]) -> Path:
@@ -112,7 +169,9 @@ def write_mss(ds: xr.Dataset, path: str | os.PathLike[str]) -> Path:
     data, not completed by symmetry), ``velocities``, ``forceRAO``, ``motionRAO`` and
     ``driftfrc`` (surge, sway and yaw only: heave, roll and pitch drift are lost) when
     present, ``main`` (``name``, ``rho``, ``g``, ``m``, ``nabla``, ``CG`` and ``CB`` as
-    FSD vectors from CO, ``k44`` …, ``Lpp``, ``B``, ``T`` when known) and
+    FSD vectors from CO, ``k44`` …, ``Lpp``, ``B``, ``T``, ``GM_T``, ``GM_L``, ``C_B``,
+    ``Lwl``, ``S`` when known: :func:`_stability_fields`; a warning names those the data
+    do not give, and data about a point other than CO or CG) and
     ``hydrodynamic_axes = 'FSD'``, as current MSS does. ``vessel.cummins`` keeps the
     history, the reference point and what MSS has no field for; MSS ignores it.
 
@@ -139,6 +198,8 @@ def write_mss(ds: xr.Dataset, path: str | os.PathLike[str]) -> Path:
     if "wave_direction" in ds.dims:
         ds = ds.assign_coords(wave_direction=np.mod(ds.wave_direction.values, 2 * np.pi))
     out = change_axes(ds, "z-down")
+    if "wave_direction" in out.dims:  # MSS's headings, in its axes
+        out = _complete_headings(out, path)
     point = np.asarray(out.attrs.get("reference_point", np.zeros(3)), dtype=float).reshape(-1)
     if point.size != 3:
         raise HydroDataError("expected one reference point (3 coordinates)", path=path)
@@ -165,6 +226,22 @@ def write_mss(ds: xr.Dataset, path: str | os.PathLike[str]) -> Path:
         vessel["hydrodynamic_reference"] = "CO"
     elif "CG" in main and np.allclose(main["CG"].ravel(), point, atol=1e-9):
         vessel["hydrodynamic_reference"] = "CG"
+    else:
+        warnings.warn(
+            f"{path.name}: the data are about {(np.round(point, 4) + 0.0).tolist()} m, neither CO "
+            "nor CG: MSS's functions take them about CO (Lpp/2, centre line, waterline), "
+            "as its own supply.mat; move them first (cummins convert --reference-point "
+            "0 0 0, cummins.move_reference_point(ds, [0, 0, 0]))",
+            HydroDataWarning,
+            stacklevel=2,
+        )
+    lacking = [key for key in MAIN_FIELDS if key not in main]
+    if lacking:
+        warnings.warn(
+            f"{path.name}: vessel.main lacks {', '.join(lacking)} (not in the data)",
+            HydroDataWarning,
+            stacklevel=2,
+        )
     c = np.stack(
         [
             np.repeat(

@@ -8,6 +8,7 @@ at min(ω_i, ω_j) or at ω_j, and add the viscous damping asked for.
 
 from __future__ import annotations
 
+import re
 import warnings
 from collections.abc import Mapping
 from typing import Literal
@@ -27,6 +28,10 @@ from cummins.timedomain.lfmodel.viscous import ViscousSpec, _database_damping, _
 from cummins.vessel import vessel_from_hydrodb
 
 Couplings = Literal["min", "radiating"]
+
+#: How the advice on frequency-dependent ``additional_damping`` names the remedy; the
+#: command line rewrites it to its option (``cummins lf-model --data-damping``).
+DATA_DAMPING_ADVICE = "viscous={dof: 'data'}"
 
 
 def _nonnegative_damping(
@@ -97,9 +102,12 @@ def _build(
     for w in caught:  # the vessel's advice, restated for the LF model
         message = str(w.message)
         if issubclass(w.category, UserWarning) and "varies with frequency" in message:
+            pairs = re.findall(r"(\w+)-(\w+) \(", message)
+            if pairs and all(a == b and a in (viscous or {}) for a, b in pairs):
+                continue  # every entry named is diagonal, its viscous damping asked for
             message = message.split(": a linear")[0] + (
                 ": the low-frequency model leaves these entries out unless you ask for "
-                "viscous={dof: 'data'}, which takes them at the DOF's frequency"
+                f"{DATA_DAMPING_ADVICE}, which takes them at the DOF's frequency"
             )
         warnings.warn(message, w.category, stacklevel=3)
     m_rb, c = base.rigid_body_mass, base.stiffness
