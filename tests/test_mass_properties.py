@@ -9,6 +9,7 @@ from __future__ import annotations
 
 import numpy as np
 import pytest
+import xarray as xr
 from click.testing import CliRunner
 
 import cummins
@@ -158,6 +159,7 @@ def test_cli_completes_the_data_with_mass_properties_and_moorings(corpus, tmp_pa
     result = CliRunner().invoke(main, args)
     assert result.exit_code == 0, result.output
     assert "inertia_matrix" in result.output and "additional_stiffness" in result.output
+    assert "body coupling" not in result.output  # one body: nothing to couple
     from cummins.seakeeping.frequency_domain import load_rao
 
     rao = load_rao(out)
@@ -181,3 +183,27 @@ def test_matrix_file_reads_text_and_names_the_bad_line(tmp_path):
     bad.write_text("1 0\n0 x\n", encoding="utf-8")
     with pytest.raises(cummins.HydroDataError, match="line 2"):
         read_matrix_file(str(bad))
+
+
+def test_external_stiffness_is_the_restoring_of_data_without_one(corpus, tmp_path):
+    """The NEMOH cubes' KH files describe another mesh, so the reader leaves the
+    restoring out and tells the user to give it (--external-stiffness): given as the
+    cubes' ρ g A_wp (9.806e5 N/m, the reader's own Froude–Krylov estimate), it is the
+    whole restoring — said so — and the heave RAO of each cube tends to 1 m/m in long
+    waves (the excitation's quasi-static limit over that stiffness)."""
+    cubes = corpus / "WEC-Sim" / "nemoh_v3.0.2_Cubes_2body"
+    out = tmp_path / "rao.nc"
+    args = ["rao", str(cubes), "-o", str(out), "--headings", "0"]
+    for body, x in (("body1", "0"), ("body2", "100")):
+        args += ["--mass", "1e6", "--center-of-gravity", x, "0", "-2.5"]
+        args += ["--radii-of-gyration", "3", "3", "4", "--dof", f"{body}__Heave"]
+        args += ["--external-stiffness", f"{body}__Heave", f"{body}__Heave", "9.806e5"]
+    result = CliRunner().invoke(main, args)
+    assert result.exit_code == 0, result.output
+    text = " ".join(result.output.split())
+    assert "the external stiffness given is the whole restoring" in text
+    with xr.open_dataset(out, engine="h5netcdf") as rao:
+        parts = rao.rao.isel(omega=0, wave_direction=0).transpose("complex", "dof").values
+    lowest = np.hypot(*parts)  # the file keeps the real and imaginary parts
+    assert lowest.shape == (2,)
+    np.testing.assert_allclose(lowest, 1.0, atol=0.02)

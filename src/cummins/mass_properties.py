@@ -282,10 +282,27 @@ def with_external_terms(
     Returns
     -------
     xarray.Dataset
-        A copy; the additions are written to ``history``.
+        A copy; the additions are written to ``history``. Data without a
+        ``hydrostatic_stiffness`` (a NEMOH run whose KH files describe another mesh)
+        given a ``stiffness`` get a zero one: the stiffness given is then the whole
+        restoring, which a warning and ``history`` say.
     """
     labels = [str(d) for d in ds.influenced_dof.values]
     out = ds.copy()
+    if stiffness is not None and "hydrostatic_stiffness" not in out:
+        n = len(labels)
+        out["hydrostatic_stiffness"] = xr.DataArray(
+            np.zeros((n, n)),
+            dims=("influenced_dof", "radiating_dof"),
+            coords={"influenced_dof": labels, "radiating_dof": labels},
+            attrs={"units": "N/m | N/rad, N | N m/rad"},
+        )
+        said = (
+            "the data hold no hydrostatic restoring: the external stiffness given is the "
+            "whole restoring (hydrostatics, weight, moorings)"
+        )
+        add_history(out, f"hydrostatic_stiffness: zero; {said}")
+        warnings.warn(said, AssumptionWarning, stacklevel=2)
     for name, value, unit in (
         ("additional_stiffness", stiffness, "N/m | N/rad, N | N m/rad"),
         ("additional_damping", damping, "kg/s | kg m/s | kg m^2/s"),

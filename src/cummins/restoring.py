@@ -389,8 +389,8 @@ def instability_message(unstable: Sequence[StaticInstability]) -> str:
     listed = ", ".join(f"{u.dof} (C = {u.stiffness:.4g})" for u in unstable)
     return (
         f"the body is statically unstable in {listed}: the restoring matrix (hydrostatics, "
-        "weight, moorings) has a negative eigenvalue there, so the body has no equilibrium "
-        "to oscillate about"
+        "weight, moorings, PTO springs) has a negative eigenvalue there, so the body has "
+        "no equilibrium to oscillate about"
     )
 
 
@@ -399,7 +399,8 @@ INSTABILITY_HINT = (
     "Check the centre of gravity and whether the restoring holds the weight's terms "
     "(cummins info says where C came from; --center-of-gravity, "
     "--restoring-includes-weight), or give the hinge or mooring that holds the body "
-    "(--external-stiffness)"
+    "(--external-stiffness); a negative PTO stiffness (--pto-stiffness, reactive control) "
+    "must stay smaller than the restoring it acts against"
 )
 
 

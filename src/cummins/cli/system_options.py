@@ -293,10 +293,13 @@ def print_system(assembly) -> None:
     from rich.markup import escape
 
     from cummins.cli.common import console
+    from cummins.dofs import bodies
 
     system = assembly.system
+    several = len(bodies(assembly.ds)) > 1  # the body coupling means nothing for one
     if system.is_plain and not assembly.held:
-        console.print(system.coupling_note())
+        if several:
+            console.print(system.coupling_note())
         return
     held = ""
     if assembly.held:
@@ -315,7 +318,8 @@ def print_system(assembly) -> None:
                 f"stiffness {pto.stiffness:g}"
             )
         )
-    console.print(system.coupling_note())
+    if several:
+        console.print(system.coupling_note())
 
 
 def print_pto_run(run, vessel, regular_sea, ds, system, viscous_damping=None) -> None:

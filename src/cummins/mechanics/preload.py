@@ -49,9 +49,13 @@ from cummins.mechanics.joints import Joint, normal_basis
 #: as zero.
 NEGLIGIBLE = 1e-9
 #: A body whose buoyancy and weight differ by less than this fraction of them floats
-#: freely: the difference is the rounding of a mass given to six digits (WEC-Sim's RM3:
-#: 725 833 kg against ρ∇ = 725 833.3 kg), not a load for the joints to carry.
-BALANCED = 1e-5
+#: freely: the difference is the rounding of the numbers they come from, not a load for
+#: the joints to carry — a mass given to six digits (WEC-Sim's RM3: 725 833 kg against
+#: ρ∇ = 725 833.3 kg), or a mass and a volume both printed to five (AQWA's listing: up to
+#: 5e-5 each; the floating OWC's water column, 1.4e-5, warned of at 1e-5). A real
+#: imbalance that small would add 1e-4 of the weight times its lever arm to a
+#: restoring of the weight times the metacentric height.
+BALANCED = 1e-4
 
 
 @dataclass(frozen=True)

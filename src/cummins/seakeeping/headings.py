@@ -282,8 +282,9 @@ def _heading_weights(
                 f"wave direction {_deg(t[todo][inside][0])} lies in a gap of the data's "
                 f"headings, from {_deg(s)} to {_deg(np.mod(e, _TWO_PI))}{note}",
                 path=where,
-                hint=f"available headings: {listed}; pass mirror=True if the body is "
-                "port/starboard symmetric, or compute the missing headings",
+                hint=f"available headings: {listed}; choose one (on the command line "
+                "--heading DEG, the default being 180°), pass mirror=True (Python) if the "
+                "body is port/starboard symmetric, or compute the missing headings",
             )
     if gaps:  # an open arc: start after the widest gap, not-a-knot spline along it
         widths = [e - s for s, e in gaps]
