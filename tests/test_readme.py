@@ -127,7 +127,7 @@ def workdir(tmp_path, shared_data, monkeypatch):
     weis = shared_data / "corpus" / "WEIS"
     for suffix in (".1", ".hst", ".12d", ".12s"):  # the OC4 semi's WAMIT run with its QTFs
         shutil.copy(weis / "ss_fitting_OC4_semi" / f"marin_semi{suffix}", tmp_path)
-    for suffix in (".1", ".3", ".hst"):  # the OC3 spar of the OpenFAST note
+    for suffix in (".1", ".3", ".hst", ".ss"):  # the OC3 spar of the OpenFAST note
         shutil.copy(weis / "ss_fitting_OC3_spar" / f"spar{suffix}", tmp_path)
     shutil.copy(ROOT / "tests" / "data" / "semisub_capytaine.nc", tmp_path / "semisub.nc")
     t = np.arange(0.0, 600.0, 0.5)  # a wave probe's record, 10 minutes

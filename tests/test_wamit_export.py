@@ -49,7 +49,7 @@ def _same(back, ds):
 @pytest.mark.parametrize("ulen", [1.0, 3.5])
 def test_capytaine_run_round_trip(tmp_path, ulen):
     ds = _read(SEMISUB)
-    files = write_wamit(ds, tmp_path / "semi.1", ulen=ulen)
+    files = write_wamit(ds, tmp_path / "semi.1", ulen=ulen, hydrodyn=False)
     assert [f.suffix for f in files] == [".1", ".3", ".hst"]
     back = _read(files[0], rho=ds.attrs["rho"], g=ds.attrs["g"], ulen=ulen)
     assert _same(back, ds) == 6
@@ -61,7 +61,7 @@ def test_wamit_run_is_written_as_wamit_wrote_it(shared_data, tmp_path):
     structural zeros of the .1 out) and the same numbers, digit for digit."""
     original = shared_data / "mss" / "tanker" / "tanker.1"
     ds = _read(original)
-    files = write_wamit(ds, tmp_path / "tanker.1", ulen=float(ds.attrs["ulen"]))
+    files = write_wamit(ds, tmp_path / "tanker.1", ulen=float(ds.attrs["ulen"]), hydrodyn=False)
 
     def rows(path):
         return {
@@ -82,7 +82,7 @@ def test_wamit_run_is_written_as_wamit_wrote_it(shared_data, tmp_path):
 
 def test_two_bodies_and_fossen_axes(corpus, tmp_path):
     ds = _read(corpus / "WEC-Sim" / "wamit_RM3_2body" / "rm3.out")
-    files = write_wamit(cummins.change_axes(ds, "z-down"), tmp_path / "rm3.1")
+    files = write_wamit(cummins.change_axes(ds, "z-down"), tmp_path / "rm3.1", hydrodyn=False)
     back = _read(files[0], rho=ds.attrs["rho"], g=ds.attrs["g"], ulen=1.0, modes=[6, 6])
     assert _same(back, ds) >= 4  # written in WAMIT's z-up axes
 

@@ -630,8 +630,8 @@ def move_reference_point(ds: xr.Dataset, point: ArrayLike) -> xr.Dataset:
     With r the vector from the new point O to the old point W, matrices become
     ``H(r)ᵀ M H(r)``, forces ``H(r)ᵀ F`` (Smogeli et al. (2004) eqs. 15, 38, 45) and motions
     ``H(−r) ξ`` (eq. 16 inverted). This is exact for added mass, damping, inertia and
-    wave forces; for the hydrostatic stiffness it holds when the body floats in
-    equilibrium (weight = buoyancy, G above B), which is the case the data describe.
+    wave forces, and for a restoring holding the weight of ρ∇ (in equilibrium); one of the
+    hydrostatics alone gets C₄₄, C₅₅ −ρg∇Δz … (:func:`cummins.restoring.moved_restoring`).
 
     Parameters
     ----------
@@ -659,12 +659,12 @@ def move_reference_point(ds: xr.Dataset, point: ArrayLike) -> xr.Dataset:
     r = old - new
     h = _per_body_transform(ds, lambda k: screw_transform(r[k]))
     h_inv = _per_body_transform(ds, lambda k: screw_transform(-r[k]))
-    out = _apply(ds, h.T, h, h_inv)
+    from cummins.restoring import moved_restoring  # restoring imports this module
+
+    out, note = moved_restoring(_apply(ds, h.T, h, h_inv), old, new)
     out.attrs["reference_point"] = new.reshape(-1) if new.shape[0] > 1 else new[0].copy()
-    add_history(
-        out,
-        f"reference point moved from {np.round(old, 6).tolist()} to {np.round(new, 6).tolist()} m",
-    )
+    moved = f"{np.round(old, 6).tolist()} to {np.round(new, 6).tolist()} m"
+    add_history(out, f"reference point moved from {moved}" + (f" ({note})" if note else ""))
     return out
 
 

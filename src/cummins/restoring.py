@@ -44,7 +44,7 @@ import xarray as xr
 from numpy.typing import ArrayLike, NDArray
 
 from cummins.dofs import DOF_NAMES, bodies, is_rigid_body_dof, is_rotation
-from cummins.errors import ArgumentError, AssumptionWarning
+from cummins.errors import ArgumentError, AssumptionWarning, HydroDataError
 from cummins.hydrodb import add_history
 
 #: The attributes of a dataset that say what its restoring holds (module docstring).
@@ -314,6 +314,187 @@ def _file_name(ds: xr.Dataset) -> str:
     return Path(source).name if source else "the data"
 
 
+def body_volumes(ds: xr.Dataset, count: int) -> NDArray[np.float64]:
+    """The displaced volume of each of ``count`` bodies, m³ (NaN where not recorded)."""
+    v = np.atleast_1d(np.asarray(ds.attrs.get("displaced_volume", np.nan), dtype=float))
+    v = v.reshape(-1)
+    return v if v.size == count else np.full(count, np.nan)
+
+
+def moved_restoring(
+    ds: xr.Dataset, old: NDArray[np.float64], new: NDArray[np.float64]
+) -> tuple[xr.Dataset, str]:
+    """The correction the screw transform of the restoring misses when the restoring holds
+    the hydrostatics alone, for a move of the reference point from ``old`` to ``new``
+    (m, one row per body), applied to ``ds`` (whose matrices are already transformed).
+
+    The restoring of buoyancy and weight together, in equilibrium (weight ρ∇ above the
+    centre of buoyancy), has no static load and transforms as the other matrices,
+    Hᵀ C H (Smogeli et al. (2004) eq. 38). The buoyancy's own part about O,
+    ρ g (∫y² dA + ∇ (z_B − z_O)) in C₄₄, −ρ g ∇ (x_B − x_O) in C₄₆ … (WAMIT (2020)
+    §3.1), carries the static load ρ g ∇: since the weight's part W(m (G − O))
+    (:func:`weight_stiffness`) is unchanged by Hᵀ · H, it becomes
+
+        C(O_new) = Hᵀ C(O_old) H + W(ρ∇ (O_new − O_old)),
+
+    C₄₄ and C₅₅ −ρ g ∇ Δz. A restoring recorded to hold a weight (the body's own
+    ρ∇, or a given mass taken as in equilibrium) is left to the screw transform.
+
+    Returns
+    -------
+    (xarray.Dataset, str)
+        The dataset, and a note for ``history`` (empty when nothing changed). A restoring
+        not recorded to hold a weight is taken as the hydrostatics alone (OpenFAST's
+        convention, as :func:`with_weight`); when its volume is not recorded, the dataset
+        is returned as it is with an :class:`~cummins.errors.AssumptionWarning`.
+    """
+    if "hydrostatic_stiffness" not in ds:
+        return ds, ""
+    groups = bodies(ds)
+    shift = np.asarray(new, dtype=float).reshape(-1, 3) - np.asarray(old, dtype=float).reshape(
+        -1, 3
+    )
+    if not np.any(shift != 0):
+        return ds, ""
+    recorded = recorded_weight(ds)
+    if recorded is not None and len(recorded) != len(groups):
+        recorded = None
+    rho, g = float(ds.attrs["rho"]), float(ds.attrs["g"])
+    volumes = body_volumes(ds, len(groups))
+    axes = str(ds.attrs.get("axis_convention", "z-up"))
+    labels = [str(d) for d in ds.influenced_dof.values]
+    delta = np.zeros((len(labels), len(labels)))
+    notes, unknown = [], []
+    for k, body in enumerate(groups):
+        step = shift[min(k, len(shift) - 1)]
+        if not np.any(step != 0) or (recorded is not None and recorded[k].mass != 0):
+            continue  # a weight held (NaN: the body's own): the screw transform
+        if not np.isfinite(volumes[k]):
+            unknown.append(body or "the body")
+            continue
+        load = weight_stiffness(rho * volumes[k] * step, g, axes)
+        index = _rigid_index(labels, body)
+        for a, i in index.items():
+            for b, j in index.items():
+                if i is not None and j is not None:
+                    delta[i, j] += load[a, b]
+        notes.append(
+            f"{body + ': ' if body else ''}restoring of the hydrostatics alone"
+            + (" (assumed: not recorded)" if recorded is None else "")
+            + f" moved with its static load rho g V (C44, C55 {load[3, 3]:+.6g})"
+        )
+    if unknown:
+        warnings.warn(
+            AssumptionWarning(
+                f"{_file_name(ds)}: the restoring of {', '.join(unknown)} was moved to the new "
+                "reference point as the other matrices, which is exact if it holds the "
+                "weight of m = rho V; if it holds the hydrostatics alone (as OpenFAST's "
+                "files) C44, C55 change by -rho g V dz: give the displaced volume "
+                "(--displaced-volume)"
+            ),
+            stacklevel=3,
+        )
+    if not notes:
+        return ds, ""
+    da = ds["hydrostatic_stiffness"]
+    coords = {"influenced_dof": ds.influenced_dof.values, "radiating_dof": ds.radiating_dof.values}
+    moved = da + xr.DataArray(delta, dims=("influenced_dof", "radiating_dof"), coords=coords)
+    out = ds.copy()
+    out["hydrostatic_stiffness"] = moved.transpose(*da.dims).assign_attrs(da.attrs)
+    return out, "; ".join(notes)
+
+
+@dataclass(frozen=True)
+class HydrostaticRestoring:
+    """The restoring of buoyancy and waterplane alone about the reference point
+    (:func:`hydrostatic_restoring`): the dataset, and one line saying what was done
+    (``known``: False when the files do not say whether the weight was included)."""
+
+    ds: xr.Dataset
+    note: str
+    known: bool
+
+
+def hydrostatic_restoring(ds: xr.Dataset) -> HydrostaticRestoring:
+    """The dataset whose restoring holds the buoyancy and the waterplane alone, about its
+    reference point: the weight's terms the files record (:func:`recorded_weight`)
+    removed, C − W(m (G − O)) (:func:`weight_stiffness`; WAMIT (2020) §3.1). This is what
+    OpenFAST's HydroDyn reads from a WAMIT ``.hst``: ElastoDyn adds the platform's weight.
+
+    A restoring whose weight is the body's own mass, not recorded (WAMIT's ``.frc``
+    without the ``.out``), takes m = ρ∇ from ``displaced_volume``. When the files do not
+    say whether the weight is included, the restoring is returned as it is (``known``
+    False: the caller warns).
+
+    Raises
+    ------
+    HydroDataError
+        The weight's mass is the body's own, its centre is not the reference point and
+        the displaced volume is not known.
+    """
+    if "hydrostatic_stiffness" not in ds:
+        return HydrostaticRestoring(ds, "", True)
+    groups = bodies(ds)
+    recorded = recorded_weight(ds)
+    if recorded is None or len(recorded) != len(groups):
+        return HydrostaticRestoring(
+            ds,
+            f"{_file_name(ds)}: the files do not say whether the restoring holds the weight's "
+            "terms: written as read, taken as the hydrostatics alone (OpenFAST's convention)",
+            False,
+        )
+    refs = np.asarray(ds.attrs.get("reference_point", (0.0, 0.0, 0.0)), dtype=float).reshape(-1, 3)
+    volumes = body_volumes(ds, len(groups))
+    rho = float(ds.attrs["rho"])
+    masses = []
+    for k, w in enumerate(recorded):
+        ref = refs[k] if len(refs) == len(groups) else refs[0]
+        lever = np.any(np.abs(w.center - ref) > 1e-9)
+        if np.isnan(w.mass) and lever and not np.isfinite(volumes[k]):
+            raise HydroDataError(
+                f"the restoring holds the weight of {groups[k] or 'the body'}'s own mass at "
+                f"{np.round(w.center, 6).tolist()} m, which the files do not give: it cannot "
+                "be taken out",
+                path=ds.attrs.get("source_file"),
+                hint="give the displaced volume (--displaced-volume M3): m = rho V",
+            )
+        masses.append(rho * volumes[k] if np.isnan(w.mass) else w.mass)
+    if all(
+        m == 0 or not np.any(np.abs(w.center - refs[min(k, len(refs) - 1)]) > 1e-9)
+        for k, (m, w) in enumerate(zip(masses, recorded, strict=True))
+    ):
+        return HydrostaticRestoring(
+            ds,
+            "restoring: buoyancy and waterplane alone (no weight terms about the reference point)",
+            True,
+        )
+    filled = ds.copy()
+    filled.attrs[WEIGHT_MASS] = masses[0] if len(masses) == 1 else np.asarray(masses)
+    with warnings.catch_warnings():
+        warnings.simplefilter("ignore", AssumptionWarning)
+        out = with_weight(
+            filled,
+            [0.0] * len(groups),
+            [refs[min(k, len(refs) - 1)] for k in range(len(groups))],
+            why="removed: hydrostatics alone, as HydroDyn reads them",
+        )
+    c0 = restoring_matrix(ds, additional=False)
+    c1 = restoring_matrix(out, additional=False)
+    changed = [
+        f"C{i + 1}{j + 1} {c1[i, j] - c0[i, j]:+.4g}"
+        for i, j in zip(*np.nonzero(np.abs(c1 - c0) > 1e-9 * np.abs(c0).max()), strict=True)
+    ]
+    weights = "; ".join(
+        _weight_text(BodyWeight(m, w.center)) for m, w in zip(masses, recorded, strict=True)
+    )
+    return HydrostaticRestoring(
+        out,
+        f"restoring: the weight's terms ({weights}) taken out, buoyancy and waterplane "
+        f"alone as HydroDyn reads them ({', '.join(changed[:4])})",
+        True,
+    )
+
+
 # --------------------------------------------------------------------------- stability
 
 
@@ -420,9 +601,13 @@ __all__ = [
     "INCLUDES",
     "INSTABILITY_HINT",
     "BodyWeight",
+    "HydrostaticRestoring",
     "StaticInstability",
+    "body_volumes",
     "describe_restoring",
+    "hydrostatic_restoring",
     "instability_message",
+    "moved_restoring",
     "recorded_weight",
     "restoring_matrix",
     "static_instability",

@@ -169,7 +169,8 @@ def main() -> None:
     The pipeline, one command per stage:
       cummins info FILE        what is in a solver output file (or folder)
       cummins check FILE       is the data physically usable? (symmetry, B >= 0, A-inf, decay)
-      cummins convert IN OUT   write canonical NetCDF (.nc) or an MSS vessel struct (.mat)
+      cummins convert IN OUT   write NetCDF (.nc), BEMIO .h5 (WEC-Sim), WAMIT .1/.3/.hst
+                               or a QTF .12d/.12s (HydroDyn), an MSS vessel struct (.mat)
       cummins bem MESH         compute a database with Capytaine (pip install cummins[bem])
       cummins kernel FILE      retardation functions K(t), A-infinity, causality diagnostics
       cummins fit FILE         stable, passive state-space models of the fluid memory

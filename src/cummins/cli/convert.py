@@ -1,4 +1,5 @@
-"""`cummins convert`: canonical NetCDF, BEMIO .h5 or an MSS vessel struct."""
+"""`cummins convert`: canonical NetCDF, BEMIO .h5, WAMIT files for HydroDyn, an MSS vessel
+struct or a QTF as WAMIT writes it."""
 
 from __future__ import annotations
 
@@ -6,6 +7,7 @@ import warnings
 from pathlib import Path
 
 import click
+import numpy as np
 
 from cummins.cli.common import (
     console,
@@ -57,10 +59,30 @@ from cummins.errors import CumminsWarning
     help="Displaced volume of the body (once per body) when the files do not give it "
     "(WAMIT .1/.3 without the .out, HAMS): WEC-Sim's readBEMIOH5 needs it in the .h5.",
 )
+@click.option(
+    "--limit-rows/--no-limit-rows",
+    default=True,
+    show_default=True,
+    help="Of a WAMIT .1 (for HydroDyn, whose input file says the files must hold them): "
+    "write the w = inf (PER = 0) and w = 0 (PER = -1) rows the data lack, estimated "
+    "(A(inf) by Ogilvie's estimate from A(w), B(w); A(0) the added mass at the lowest "
+    "frequency), each said in one line. --no-limit-rows writes only the rows the data hold.",
+)
 @force_option("Overwrite DESTINATION if it exists.")
 @reports_errors
 def convert_command(
-    source, destination, format_, rho, g, ulen, axes, reference_point, body, volumes, force
+    source,
+    destination,
+    format_,
+    rho,
+    g,
+    ulen,
+    axes,
+    reference_point,
+    body,
+    volumes,
+    limit_rows,
+    force,
 ):
     """Convert SOURCE to canonical NetCDF (.nc), a BEMIO .h5 for WEC-Sim, WAMIT numeric
     files (.1, with .3 and .hst) for OpenFAST's HydroDyn, an MSS vessel struct (.mat), or
@@ -74,7 +96,12 @@ def convert_command(
     cummins' variables (added_mass_inf, ...), in SI units. The .h5 has the layout
     WEC-Sim's readBEMIOH5 reads (normalised coefficients, z-up axes, K(t), K_ex(t)).
     The .1/.3/.hst are nondimensional as WAMIT writes them (rho, g, ULEN: --ulen of a
-    WAMIT source, else 1 m).
+    WAMIT source, else 1 m) and hold what HydroDyn reads: the .hst the restoring of
+    buoyancy and waterplane alone (the weight's terms the data record taken out:
+    ElastoDyn adds the weight), the .1 its w = 0 and w = inf rows (estimated when the
+    data lack them, see --limit-rows). Moments are about the reference point written,
+    which HydroDyn's PtfmRefxt/yt/zt must give: --reference-point 0 0 0 for the usual
+    origin on the free surface. The QTFs go to their own files (x.12d, x.12s).
 
     \b
     Examples:
@@ -110,11 +137,59 @@ def convert_command(
         ds = change_axes(ds, axes)
     if reference_point is not None:
         ds = move_reference_point(ds, reference_point)
+    if Path(destination).suffix.lower() == ".1":
+        _write_for_hydrodyn(ds, destination, source, limit_rows, force)
+        return
     write(ds, destination, force=force)
     console.print(
         f"wrote {destination} ({ds.attrs.get('axis_convention')} axes, reference point "
         f"{[float(x) for x in ds.attrs['reference_point']]} m)"
     )
+
+
+def _write_for_hydrodyn(ds, destination, source, limit_rows, force) -> None:
+    """The WAMIT .1/.3/.hst for HydroDyn, with one line per change or estimate, the
+    HydroDyn inputs the files imply, and where the QTFs go."""
+    from cummins.errors import AssumptionWarning
+    from cummins.hydrodb import change_axes
+    from cummins.io.wamit.hydrodyn import hydrodyn_data
+    from cummins.io.wamit.numeric_writer import write_wamit
+
+    if ds.attrs.get("axis_convention", "z-up") != "z-up":
+        ds = change_axes(ds, "z-up")
+    prepared = hydrodyn_data(ds, limits=limit_rows)
+    for line in prepared.assumptions:
+        warnings.warn(AssumptionWarning(line), stacklevel=2)
+    files = write_wamit(
+        prepared.ds,
+        destination,
+        ulen=float(ds.attrs.get("ulen", 1.0)),
+        force=force,
+        hydrodyn=False,
+    )
+    point = np.asarray(ds.attrs.get("reference_point", (0.0, 0.0, 0.0)), dtype=float)
+    console.print(
+        f"wrote {', '.join(str(f) for f in files)} (WAMIT's z-up axes, moments about "
+        f"{np.round(point, 6).tolist()} m)"
+    )
+    for line in prepared.notes:
+        console.print(line)
+    console.print("HydroDyn: " + "; ".join(prepared.settings))
+    if np.any(point.reshape(-1, 3)[:, 2] != 0):
+        console.print(
+            "  PtfmRefzt must be the reference point's z (HydroDyn refuses it with "
+            "NBodyMod=2): for moments about the origin on the free surface, convert again "
+            "with --reference-point 0 0 0"
+        )
+    held = [name for name in ("qtf_difference", "qtf_sum") if name in ds]
+    if held:
+        stem = Path(destination).with_suffix("")
+        files = {"qtf_difference": f"{stem}.12d", "qtf_sum": f"{stem}.12s"}
+        console.print(
+            "the data's QTFs are not in the .1: write them with "
+            + " and ".join(f"cummins convert {source} {files[name]}" for name in held)
+            + " (HydroDyn's DiffQTF/SumQTF = 12)"
+        )
 
 
 def _with_volumes(ds, volumes):

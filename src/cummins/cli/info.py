@@ -3,6 +3,7 @@
 from __future__ import annotations
 
 import json
+from pathlib import Path
 
 import click
 from rich.table import Table
@@ -141,6 +142,8 @@ def model_description(path) -> dict | None:
     or None when ``path`` is not one."""
     from cummins.cli.common import cummins_model_format
 
+    if Path(path).suffix.lower() in (".ss", ".ssexctn"):
+        return openfast_description(path)
     kind = cummins_model_format(path)
     if kind is None:
         return None
@@ -183,4 +186,56 @@ def model_description(path) -> dict | None:
         return None
     out["fitted_to"] = str(model.attrs.get("source_file", "")) or "not recorded"
     out["failures"] = summary["failures"]
+    return out
+
+
+def openfast_description(path) -> dict:
+    """What an OpenFAST state-space file holds: a radiation model (``.ss``, SS_Fitting's,
+    HydroDyn's ``RdtnMod = 2``) or an excitation model (``.ssexctn``, or an ``.ss`` that
+    holds one): its DOFs, states per DOF and stability (the eigenvalues of A)."""
+    import numpy as np
+
+    from cummins.dofs import DOF_NAMES
+    from cummins.io._text import TextFile
+    from cummins.io.openfast import (
+        is_excitation_file,
+        read_openfast_ss,
+        read_openfast_ssexctn,
+    )
+
+    excitation = Path(path).suffix.lower() == ".ssexctn" or is_excitation_file(TextFile.read(path))
+    content = read_openfast_ssexctn(path) if excitation else read_openfast_ss(path)
+    a = np.asarray(content.A, dtype=float)
+    poles = np.linalg.eigvals(a) if a.size else np.zeros(0)
+    slowest = float(poles.real.max()) if poles.size else 0.0
+    counts = np.asarray(content.states_per_dof, dtype=int)
+    names = [
+        f"{DOF_NAMES[k % 6]}" + (f" (body {k // 6 + 1})" if counts.size > 6 else "")
+        for k in range(counts.size)
+    ]
+    modelled = [f"{name}: {n}" for name, n in zip(names, counts, strict=True) if n > 0]
+    out = {
+        "file": str(path),
+        "kind": (
+            "OpenFAST excitation state space (SS_Excitation_Fitting, HydroDyn ExctnMod = 2): "
+            "the wave force from the elevation"
+            if excitation
+            else "OpenFAST radiation state space (SS_Fitting, HydroDyn RdtnMod = 2): the "
+            "fluid memory K(t)"
+        ),
+        "title": content.title.strip(),
+        "states": int(a.shape[0]),
+        "states_per_dof": ", ".join(modelled) or "none",
+        "stable": bool(slowest < 0),
+        "slowest_pole": f"Re = {slowest:.4g} 1/s",
+    }
+    if excitation:
+        out["heading_deg"] = float(content.heading)
+        offset = content.time_offset
+        out["time_offset_s"] = (
+            "not recorded (SS_Fitting's time-domain layout, which HydroDyn cannot read)"
+            if offset is None
+            else float(offset)
+        )
+    out["failures"] = [] if slowest < 0 else ["A has eigenvalues with Re >= 0: not stable"]
     return out

@@ -150,7 +150,15 @@ def detect_format(path: str | os.PathLike[str]) -> tuple[str, Path]:
             raise HydroDataError(
                 "no solver output recognised in this folder",
                 path=p,
-                hint="supported: " + "; ".join(f.description for f in FORMATS.values()),
+                hint="supported: "
+                + "; ".join(f.description for f in FORMATS.values())
+                + (
+                    ". An OpenFAST state-space model (.ss, .ssexctn) is described by "
+                    "`cummins info` and read by cummins.io.openfast.read_openfast_ss / "
+                    "read_openfast_ssexctn"
+                    if p.suffix.lower() in (".ss", ".ssexctn")
+                    else ""
+                ),
             )
         if len(found) > 1:
             listing = ", ".join(f"{name}: {f.name}" for name, f in found)
@@ -171,7 +179,15 @@ def detect_format(path: str | os.PathLike[str]) -> tuple[str, Path]:
         raise HydroDataError(
             "unrecognised file format",
             path=p,
-            hint="supported: " + "; ".join(f.description for f in FORMATS.values()),
+            hint="supported: "
+            + "; ".join(f.description for f in FORMATS.values())
+            + (
+                ". An OpenFAST state-space model (.ss, .ssexctn) is described by "
+                "`cummins info` and read by cummins.io.openfast.read_openfast_ss / "
+                "read_openfast_ssexctn"
+                if p.suffix.lower() in (".ss", ".ssexctn")
+                else ""
+            ),
         )
     if len(names) > 1:
         raise HydroDataError(

@@ -11,7 +11,10 @@ nondimensional as WAMIT writes them (WAMIT User Manual v7 §4.1; the scales of
   (WAMIT leaves structural zeros out), the same in every block;
 * ``.3``   ``PER  β  I  |X̄|  arg X̄  Re X̄  Im X̄``, X̄ = X/(ρ g L^(2+k_i)), β and the phase
   in degrees, every DOF of every heading;
-* ``.hst`` ``I  J  C̄(I,J)``, C̄ = C/(ρ g L^(2+k_i+k_j)), every entry;
+* ``.hst`` ``I  J  C̄(I,J)``, C̄ = C/(ρ g L^(2+k_i+k_j)), every entry: by default the
+  restoring of buoyancy and waterplane alone, as HydroDyn reads it (the weight's terms
+  the data record taken out), and the ``.1`` with estimated limit rows when the data
+  lack them (:mod:`cummins.io.wamit.hydrodyn`);
 
 k = 1 for rotations, 0 for translations and generalized modes; PER the period 2π/ω, s.
 Numbers are written as WAMIT prints them, with 7 significant digits (``E14.6``), so a
@@ -120,6 +123,8 @@ def write_wamit(
     *,
     ulen: float = 1.0,
     force: bool = False,
+    hydrodyn: bool = True,
+    limits: bool = True,
 ) -> list[Path]:
     """Write ``ds`` as WAMIT numeric files: ``<stem>.1``, and ``<stem>.3`` and
     ``<stem>.hst`` when the data hold the excitation and the hydrostatics.
@@ -134,6 +139,14 @@ def write_wamit(
         WAMIT's length scale ULEN, m (HydroDyn's ``WAMITULEN``).
     force
         Overwrite existing files.
+    hydrodyn
+        Write what OpenFAST's HydroDyn reads (:func:`cummins.io.wamit.hydrodyn.hydrodyn_data`):
+        the restoring of buoyancy and waterplane alone (the weight's terms the files
+        record taken out; an :class:`~cummins.errors.AssumptionWarning` when they do not
+        say) and, with ``limits``, the ω = 0 and ω = ∞ rows the data lack, estimated.
+        False: the data's own restoring and rows.
+    limits
+        With ``hydrodyn``, add the missing limit rows.
 
     Returns
     -------
@@ -161,6 +174,16 @@ def write_wamit(
         )
     if ds.attrs.get("axis_convention", "z-up") != "z-up":
         ds = change_axes(ds, "z-up")
+    if hydrodyn:
+        import warnings
+
+        from cummins.errors import AssumptionWarning
+        from cummins.io.wamit.hydrodyn import hydrodyn_data
+
+        prepared = hydrodyn_data(ds, limits=limits)
+        for line in prepared.assumptions:
+            warnings.warn(AssumptionWarning(line), stacklevel=2)
+        ds = prepared.ds
     rho, g = float(ds.attrs["rho"]), float(ds.attrs["g"])
     texts = {path: format_dot1(ds, rho, ulen)}
     if "excitation_force" in ds:
