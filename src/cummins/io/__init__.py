@@ -128,6 +128,17 @@ FORMATS: dict[str, Format] = {
 }
 
 
+def _formats_hint(path: Path) -> str:
+    """The formats read, and for an OpenFAST state-space file where it is read."""
+    hint = "supported: " + "; ".join(f.description for f in FORMATS.values())
+    if path.suffix.lower() in (".ss", ".ssexctn"):
+        hint += (
+            ". An OpenFAST state-space model (.ss, .ssexctn) is described by `cummins info` "
+            "and read by cummins.io.openfast.read_openfast_ss / read_openfast_ssexctn"
+        )
+    return hint
+
+
 def detect_format(path: str | os.PathLike[str]) -> tuple[str, Path]:
     """Find the format of a file or folder by its content.
 
@@ -150,15 +161,7 @@ def detect_format(path: str | os.PathLike[str]) -> tuple[str, Path]:
             raise HydroDataError(
                 "no solver output recognised in this folder",
                 path=p,
-                hint="supported: "
-                + "; ".join(f.description for f in FORMATS.values())
-                + (
-                    ". An OpenFAST state-space model (.ss, .ssexctn) is described by "
-                    "`cummins info` and read by cummins.io.openfast.read_openfast_ss / "
-                    "read_openfast_ssexctn"
-                    if p.suffix.lower() in (".ss", ".ssexctn")
-                    else ""
-                ),
+                hint=_formats_hint(p),
             )
         if len(found) > 1:
             listing = ", ".join(f"{name}: {f.name}" for name, f in found)
@@ -179,15 +182,7 @@ def detect_format(path: str | os.PathLike[str]) -> tuple[str, Path]:
         raise HydroDataError(
             "unrecognised file format",
             path=p,
-            hint="supported: "
-            + "; ".join(f.description for f in FORMATS.values())
-            + (
-                ". An OpenFAST state-space model (.ss, .ssexctn) is described by "
-                "`cummins info` and read by cummins.io.openfast.read_openfast_ss / "
-                "read_openfast_ssexctn"
-                if p.suffix.lower() in (".ss", ".ssexctn")
-                else ""
-            ),
+            hint=_formats_hint(p),
         )
     if len(names) > 1:
         raise HydroDataError(
