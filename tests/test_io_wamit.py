@@ -399,3 +399,36 @@ def test_encodings_read_identically(tanker_dir, tmp_path):
         ds = cummins.read(folder / "tanker.1")
         np.testing.assert_array_equal(ds.added_mass.values, base.added_mass.values)
         np.testing.assert_array_equal(ds.inertia_matrix.values, base.inertia_matrix.values)
+
+
+def test_a_piston_mode_without_restoring_is_warned_of(corpus):
+    """The Triton OWC's piston mode (Mode7) has zero hydrostatics in WAMIT's output (its
+    DEFMOD gives none): its RAO grows as 1/ω² in long waves, which ``motion_rao`` and the
+    time-domain vessel now say, naming the stiffness to give; given one (ρ g S), it is
+    bounded and nothing is said. A rigid body's surge, sway and yaw (no restoring
+    either) are not named."""
+    import warnings
+
+    from cummins.errors import HydroDataWarning
+    from cummins.mass_properties import with_external_terms, with_inertia
+    from cummins.mechanics import MechanicalSystem
+    from cummins.vessel import vessel_from_hydrodb
+
+    ds = cummins.read(corpus / "WEC-Sim_Applications" / "wamit_OWC_Triton_GBM")
+    ds = with_inertia(ds, matrix=np.diag([588.8] * 3 + [147.2] * 3 + [1.0]))
+    system = MechanicalSystem(dofs=("Heave", "Mode7"))
+    w = np.array([0.71, 1.42])
+    with pytest.warns(HydroDataWarning, match="Mode7: no restoring") as caught:
+        free = motion_rao(ds, w, system=system)
+    (said,) = [str(c.message) for c in caught if "no restoring" in str(c.message)]
+    assert "--external-stiffness Mode7 Mode7" in said and "Surge" not in said
+    piston = np.abs(free.sel(dof="Mode7").values).ravel()
+    assert piston[0] > 2 * piston[1]  # growing in long waves
+    held = with_external_terms(ds, stiffness={("Mode7", "Mode7"): 3000.0})
+    with warnings.catch_warnings():
+        warnings.simplefilter("error", HydroDataWarning)
+        bounded = motion_rao(held, w, system=system)
+    assert np.abs(bounded.sel(dof="Mode7").values).max() < piston[0]
+    with pytest.warns(HydroDataWarning, match="Mode7: no restoring"):
+        vessel = vessel_from_hydrodb(ds, system=system, max_order=10)
+    assert "Mode7" in vessel.attrs["unrestrained_modes"]

@@ -575,6 +575,31 @@ def instability_message(unstable: Sequence[StaticInstability]) -> str:
     )
 
 
+def unrestrained_modes(stiffness: ArrayLike, dofs: Sequence[str]) -> list[str]:
+    """The generalized modes (``Mode7`` …: an OWC's piston, a flexible mode) whose own
+    restoring, moorings and PTO springs included, is zero. A rigid body's surge, sway
+    and yaw drift without one, as they should; a generalized mode with none is a missing
+    input (WAMIT writes zero hydrostatics for a generalized mode unless its DEFMOD gives
+    them), and its motion grows as 1/ω² in long waves."""
+    c = np.asarray(stiffness, dtype=float)
+    return [
+        str(d)
+        for k, d in enumerate(dofs)
+        if not is_rigid_body_dof(str(d)) and np.all(c[k, :] == 0) and np.all(c[:, k] == 0)
+    ]
+
+
+def unrestrained_message(modes: Sequence[str]) -> str:
+    """The warning of :func:`unrestrained_modes` (``rao`` and ``simulate`` alike)."""
+    first = modes[0]
+    return (
+        f"{', '.join(modes)}: no restoring (zero rows of the data's restoring, and no "
+        "mooring or PTO spring): the motion grows without bound in long waves; give its "
+        f"stiffness (--external-stiffness {first} {first} K; an oscillating water "
+        "column's piston mode: ρ g times the area of its free surface)"
+    )
+
+
 #: What to do about a statically unstable body.
 INSTABILITY_HINT = (
     "Check the centre of gravity and whether the restoring holds the weight's terms "
@@ -611,6 +636,8 @@ __all__ = [
     "recorded_weight",
     "restoring_matrix",
     "static_instability",
+    "unrestrained_message",
+    "unrestrained_modes",
     "weight_record",
     "weight_stiffness",
     "with_weight",

@@ -41,13 +41,19 @@ import numpy as np
 import xarray as xr
 from numpy.typing import ArrayLike, NDArray
 
-from cummins.errors import ArgumentError, HydroDataError, SimulationError
+from cummins.errors import ArgumentError, HydroDataError, HydroDataWarning, SimulationError
 from cummins.hydrodb import dof_matrix, single_speed
 from cummins.mechanics import MechanicalSystem, PTOLine, assemble, pto_matrices
 from cummins.mechanics.coupling import cross_body_mask
 from cummins.radiation.fingerprint import check_model_data
 from cummins.radiation.model import RadiationModel
-from cummins.restoring import INSTABILITY_HINT, instability_message, static_instability
+from cummins.restoring import (
+    INSTABILITY_HINT,
+    instability_message,
+    static_instability,
+    unrestrained_message,
+    unrestrained_modes,
+)
 
 
 @dataclass(frozen=True, eq=False)
@@ -363,6 +369,11 @@ def vessel_from_hydrodb(
         "axis_convention": str(ds.attrs.get("axis_convention", "z-up")),
         "viscous_damping_source": "; ".join(sources),
     }
+    springs = c if assembly is None else c + assembly.pto_matrices()[0]
+    loose = unrestrained_modes(springs, dofs)
+    if loose:
+        attrs["unrestrained_modes"] = unrestrained_message(loose)
+        warnings.warn(attrs["unrestrained_modes"], HydroDataWarning, stacklevel=2)
     if assembly is None:
         return Vessel(dofs, m_rb, c, b_v, model, attrs)
     if not assembly.system.body_coupling:

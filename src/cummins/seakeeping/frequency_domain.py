@@ -64,7 +64,12 @@ import numpy as np
 import xarray as xr
 from numpy.typing import ArrayLike, NDArray
 
-from cummins.errors import ArgumentError, HydroDataError, StaticInstabilityWarning
+from cummins.errors import (
+    ArgumentError,
+    HydroDataError,
+    HydroDataWarning,
+    StaticInstabilityWarning,
+)
 from cummins.hydrodb import dof_matrix, single_speed
 from cummins.mechanics import MechanicalSystem, assemble
 from cummins.restoring import (
@@ -72,6 +77,8 @@ from cummins.restoring import (
     instability_message,
     restoring_matrix,
     static_instability,
+    unrestrained_message,
+    unrestrained_modes,
 )
 from cummins.seakeeping.excitation import (
     INTERPOLATION_METHODS,
@@ -403,6 +410,10 @@ def motion_rao(
     c = restoring_matrix(ds, additional)
     if assembly is not None and assembly.ptos:
         c = c + assembly.pto_matrices()[0]
+    loose = unrestrained_modes(c, labels)
+    if loose:
+        attrs["unrestrained_modes"] = unrestrained_message(loose)
+        warnings.warn(attrs["unrestrained_modes"], HydroDataWarning, stacklevel=2)
     unstable = static_instability(c, labels, basis)
     if unstable:  # the same sentence the time domain refuses with (Vessel.stability)
         attrs["static_stability"] = instability_message(unstable)
