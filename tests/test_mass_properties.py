@@ -207,3 +207,23 @@ def test_external_stiffness_is_the_restoring_of_data_without_one(corpus, tmp_pat
     lowest = np.hypot(*parts)  # the file keeps the real and imaginary parts
     assert lowest.shape == (2,)
     np.testing.assert_allclose(lowest, 1.0, atol=0.02)
+
+
+def test_a_heave_only_run_needs_no_radii_of_gyration(corpus, tmp_path):
+    """WEC-Sim's WaveBot in heave alone: `--mass` without radii is enough (no rotation
+    moves), said so; the RAOs are those of any radii given (here 2 m), to the last bit."""
+    wavebot = corpus / "WEC-Sim_Applications" / "wamit_WaveBot" / "waveBotBuoy.out"
+    common = ["--dof", "Heave", "--mass", "858.4", "--headings", "0", "--rho", "1000"]
+    outs = [tmp_path / "a.nc", tmp_path / "b.nc"]
+    result = CliRunner().invoke(main, ["rao", str(wavebot), "-o", str(outs[0]), *common])
+    assert result.exit_code == 0, result.output
+    assert "radii of gyration not needed" in " ".join(result.output.split())
+    given = ["--radii-of-gyration", "2", "2", "2"]
+    result = CliRunner().invoke(main, ["rao", str(wavebot), "-o", str(outs[1]), *common, *given])
+    assert result.exit_code == 0, result.output
+    with xr.open_dataset(outs[0], engine="h5netcdf") as a, xr.open_dataset(outs[1], engine="h5netcdf") as b:
+        np.testing.assert_array_equal(a.rao.values, b.rao.values)
+    result = CliRunner().invoke(
+        main, ["rao", str(wavebot), "-o", str(tmp_path / "c.nc"), "--mass", "858.4"]
+    )
+    assert result.exit_code == 2 and "give the radii too" in result.output  # rotations move

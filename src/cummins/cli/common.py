@@ -517,7 +517,10 @@ def read_hydrodb(
         ds = read(path, format=format_, rho=rho, g=g, ulen=ulen, water_depth=depth)
     note_inputs(path, *used)
     options = context.meta.get(_EOM_KEY) if context is not None else None
-    return complete_equation_of_motion(ds, **options) if options else ds
+    if not options:
+        return ds
+    moving = tuple(context.params.get("dofs") or ()) if context is not None else ()
+    return complete_equation_of_motion(ds, **options, moving=moving)
 
 
 def complete_equation_of_motion(
@@ -530,9 +533,12 @@ def complete_equation_of_motion(
     external_stiffness=(),
     external_damping=(),
     restoring_includes_weight=None,
+    moving=(),
 ):
     """``ds`` with the inertia and external terms of the command-line options, its
-    restoring holding the weight of that inertia."""
+    restoring holding the weight of that inertia. With ``moving`` (``--dof``) naming
+    translations only, ``--mass`` needs no radii of gyration: no rotation moves, and
+    1 m stands in for them (said so)."""
     from cummins.mass_properties import (
         complete_restoring,
         read_matrix_file,
@@ -541,6 +547,16 @@ def complete_equation_of_motion(
     )
 
     restoring = {"yes": "total", "no": "hydrostatic", None: None}[restoring_includes_weight]
+    from cummins.dofs import is_rotation
+
+    translations = bool(moving) and not any(is_rotation(d) for d in moving)
+    if inertia_matrix is None and not radii_of_gyration and mass and translations:
+        radii_of_gyration = ((1.0, 1.0, 1.0),) * len(mass)  # any: no rotation moves
+        console.print(
+            "radii of gyration not needed: only translations move (--dof "
+            + " --dof ".join(moving)
+            + "); 1 m written in their place"
+        )
     if inertia_matrix is None and not radii_of_gyration and (mass or center_of_gravity):
         raise click.UsageError(
             "--mass and --center-of-gravity build the inertia matrix together with "
