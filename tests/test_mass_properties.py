@@ -221,7 +221,8 @@ def test_a_heave_only_run_needs_no_radii_of_gyration(corpus, tmp_path):
     given = ["--radii-of-gyration", "2", "2", "2"]
     result = CliRunner().invoke(main, ["rao", str(wavebot), "-o", str(outs[1]), *common, *given])
     assert result.exit_code == 0, result.output
-    with xr.open_dataset(outs[0], engine="h5netcdf") as a, xr.open_dataset(outs[1], engine="h5netcdf") as b:
+    a, b = (xr.open_dataset(out, engine="h5netcdf") for out in outs)
+    with a, b:
         np.testing.assert_array_equal(a.rao.values, b.rao.values)
     result = CliRunner().invoke(
         main, ["rao", str(wavebot), "-o", str(tmp_path / "c.nc"), "--mass", "858.4"]
