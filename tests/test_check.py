@@ -192,3 +192,37 @@ def test_a_sharp_resonance_is_told_from_an_irregular_frequency(corpus):
     found = _check_suspect_frequencies(pend)
     assert any(f.severity == "warning" for f in found)
     assert not [f for f in found if "sharp resonance" in f.message]
+
+
+@pytest.mark.parametrize(
+    "case, verdicts",
+    [
+        # AQWA's floating OWC: 0.75 and 0.59 of C33 (its RAOs in long waves the same)
+        (
+            "WEC-Sim_Applications/aqwa_floating_OWC_AH1only/floatingOWC.AH1",
+            {"body1__Heave": "warning", "body2__Heave": "warning"},
+        ),
+        # the RM3 (WAMIT): 1.000 and 0.985; the tanker (WAMIT, MSS) 0.993
+        ("WEC-Sim/wamit_RM3_2body/rm3.1", {"body1__Heave": "ok", "body2__Heave": "ok"}),
+    ],
+)
+def test_long_wave_heave_excitation_is_the_restoring(corpus, case, verdicts):
+    """|F₃| → C33 = ρ g A_wp as ω → 0 (Newman (1977) §6.17): the check compares them
+    where the lowest frequency is a long wave for the body, and names the DOF whose
+    excitation and restoring do not describe one body."""
+    import warnings
+
+    from cummins.check.waves import LONG_WAVE_TOL, long_wave_heave_ratios
+
+    with warnings.catch_warnings():
+        warnings.simplefilter("ignore")
+        ds = cummins.read(corpus / case)
+    found = {f.where: f for f in cummins.check(ds).by_check("long_wave_limit")}
+    assert {where: f.severity for where, f in found.items()} == verdicts
+    for label, (ratio, _) in long_wave_heave_ratios(ds).items():
+        assert (abs(ratio - 1) > LONG_WAVE_TOL) == (verdicts[label] == "warning")
+        if verdicts[label] == "warning":
+            assert abs(ratio - 1) > 2 * LONG_WAVE_TOL  # 0.75, 0.59: far from the bound
+            assert "C33" in found[label].message and found[label].advice
+        else:
+            assert abs(ratio - 1) < 0.5 * LONG_WAVE_TOL

@@ -40,6 +40,8 @@ changed in the data. Each finding says what was measured, where, and what to do.
   K(t_max)/max|K|, the tail's share of ∫B dω, the Ogilvie estimate of A∞ and its spread
   over frequency (and its distance from the solver's ω = ∞ row), and the
   Kramers–Kronig error (:func:`cummins.radiation.retardation.retardation_diagnostics`).
+* ``long_wave_limit`` — each body's heave excitation of long waves against its C33
+  (:func:`cummins.check.waves.long_wave_heave_ratios`).
 * ``qtf_symmetry``, ``qtf_mean_drift``, ``drift_methods``, ``qtf_grid`` — the second-order
   data (:mod:`~cummins.check.second_order`): the QTFs' symmetries, their diagonal against
   the run's mean drift, the mean-drift methods against each other, what the QTF's grid
@@ -86,7 +88,7 @@ from cummins.check.report import SEVERITIES, CheckReport, Finding
 from cummins.check.retardation import _check_retardation
 from cummins.check.rigid_body import _check_rigid_body
 from cummins.check.second_order import _check_second_order
-from cummins.check.waves import _check_wave_parity
+from cummins.check.waves import _check_long_wave_limit, _check_wave_parity
 from cummins.hydrodb import validate
 
 __all__ = [
@@ -155,6 +157,7 @@ def check(ds: xr.Dataset) -> CheckReport:
         _check_suspect_frequencies,
         _check_retardation,
         _check_wave_parity,
+        _check_long_wave_limit,
         _check_second_order,
     ):
         findings.extend(part(ds))

@@ -1,5 +1,6 @@
-"""The ``wave_parity`` check: wave forces of a port/starboard symmetric body mirror with
-the heading, F(ω, −β) = T F(ω, β), T = diag(1, −1, 1, −1, 1, −1).
+"""The checks of the wave forces: ``wave_parity`` — those of a port/starboard symmetric
+body mirror with the heading, F(ω, −β) = T F(ω, β), T = diag(1, −1, 1, −1, 1, −1);
+``long_wave_limit`` — the heave excitation of long waves is the restoring, C33.
 """
 
 from __future__ import annotations
@@ -9,7 +10,7 @@ import xarray as xr
 
 from cummins.check.common import PARITY_TOL, _speed_suffix, _speeds
 from cummins.check.report import Finding
-from cummins.hydrodb import DOF_NAMES, split_dof
+from cummins.hydrodb import DOF_NAMES, bodies, dof_matrix, split_dof
 
 
 def _mirror_pairs(beta: np.ndarray) -> list[tuple[int, int]]:
@@ -85,4 +86,97 @@ def _check_wave_parity(ds: xr.Dataset) -> list[Finding]:
                 "(or the body is not symmetric, or no mirrored headings)",
             )
         )
+    return out
+
+
+#: As ω → 0 the incident wave's pressure is hydrostatic, ρ g η at every depth, and the
+#: heave excitation per metre of wave amplitude tends to ρ g A_wp = C33 (Newman (1977)
+#: §6.17; the diffraction force vanishes with ω), departing from it by about k times the
+#: body's depth. Judged where the lowest frequency is a long wave for the body (k times
+#: the larger of √A_wp and ∇/A_wp at most LONG_WAVE): beyond LONG_WAVE_TOL apart, the
+#: excitation and the restoring do not describe one body (other meshes, a restoring
+#: that holds a mooring, a force about another point), and the heave RAO does not tend
+#: to 1. The corpus, where judged (23 cases): 0.935–1.002, but AQWA's floating OWC (0.75
+#: and 0.59) and the WAMIT plate (≈ 0: a thin plate whose heave excitation does not
+#: see the waterplane of its hydrostatics).
+LONG_WAVE = 0.06
+LONG_WAVE_TOL = 0.1
+
+
+def _body_depth(ds: xr.Dataset, label: str, waterplane: float) -> float:
+    """The length over which a long wave must not vary for the body of ``label``: its
+    waterplane's breadth √A_wp, or its mean draught ∇/A_wp when deeper (a spar's
+    bottom feels e^{−kT} of the surface's pressure); without ∇, the breadth."""
+    volume = ds.attrs.get("displaced_volume")
+    depth = np.sqrt(waterplane)
+    if volume is not None and waterplane > 0:
+        volumes = np.atleast_1d(np.asarray(volume, dtype=float)).ravel()
+        names = [b for b in bodies(ds)]
+        body = split_dof(label)[0]
+        if volumes.size == len(names) and body in names:
+            depth = max(depth, float(volumes[names.index(body)]) / waterplane)
+        elif volumes.size == 1:
+            depth = max(depth, float(volumes[0]) / waterplane)
+    return depth
+
+
+def long_wave_heave_ratios(ds: xr.Dataset) -> dict[str, tuple[float, float]]:
+    """|F₃(ω_min)| / C₃₃ of each body's heave where the lowest frequency is a long wave
+    for it (:data:`LONG_WAVE`), the force the mean over the headings: {heave label:
+    (ratio, ω_min)}. Empty without excitation or restoring."""
+    from cummins.seakeeping.waves import wavenumber
+
+    if "excitation_force" not in ds or "hydrostatic_stiffness" not in ds:
+        return {}
+    rho, g = float(ds.attrs.get("rho", 1025.0)), float(ds.attrs.get("g", 9.81))
+    depth = float(ds.attrs.get("water_depth", np.inf))
+    omega = ds.omega.values.astype(float)
+    lowest = int(np.argmin(omega))
+    k = float(wavenumber(omega[lowest], depth=depth if depth > 0 else np.inf, g=g))
+    force = ds.excitation_force.isel(omega=lowest)
+    c = dof_matrix(ds, "hydrostatic_stiffness")
+    labels = [str(d) for d in ds.influenced_dof.values]
+    out = {}
+    for i, label in enumerate(labels):
+        if split_dof(label)[1] != "Heave" or c[i, i] <= 0:
+            continue
+        if k * _body_depth(ds, label, c[i, i] / (rho * g)) > LONG_WAVE:
+            continue
+        f3 = float(np.abs(force.sel(influenced_dof=label).values).mean())
+        out[label] = (f3 / float(c[i, i]), float(omega[lowest]))
+    return out
+
+
+def _check_long_wave_limit(ds: xr.Dataset) -> list[Finding]:
+    """The heave excitation of long waves against the restoring (:data:`LONG_WAVE_TOL`)."""
+    out: list[Finding] = []
+    for sub in _speeds(ds):
+        if _speed_suffix(sub):
+            continue  # at speed the encounter frequency, not the wave's, is low
+        for label, (ratio, omega) in long_wave_heave_ratios(sub).items():
+            if abs(ratio - 1.0) <= LONG_WAVE_TOL:
+                out.append(
+                    Finding(
+                        "long_wave_limit",
+                        "ok",
+                        f"heave excitation at {omega:.3g} rad/s is {ratio:.3f} × C33",
+                        where=label,
+                        value=ratio,
+                    )
+                )
+                continue
+            out.append(
+                Finding(
+                    "long_wave_limit",
+                    "warning",
+                    f"the heave excitation of long waves ({omega:.3g} rad/s) is "
+                    f"{ratio:.3g} × C33, where it tends to C33 = ρ g A_wp: the excitation "
+                    "and the restoring do not describe the same body, and the heave RAO "
+                    f"tends to {ratio:.3g}, not 1, in long waves",
+                    where=label,
+                    value=ratio,
+                    advice="check that both come from the same run and mesh, and that the "
+                    "restoring holds no mooring or other body's terms",
+                )
+            )
     return out
