@@ -195,7 +195,7 @@ def test_a_sharp_resonance_is_told_from_an_irregular_frequency(corpus):
 
 
 @pytest.mark.parametrize(
-    "case, verdicts",
+    ("case", "verdicts"),
     [
         # AQWA's floating OWC: 0.75 and 0.59 of C33 (its RAOs in long waves the same)
         (

@@ -111,7 +111,7 @@ def _body_depth(ds: xr.Dataset, label: str, waterplane: float) -> float:
     depth = np.sqrt(waterplane)
     if volume is not None and waterplane > 0:
         volumes = np.atleast_1d(np.asarray(volume, dtype=float)).ravel()
-        names = [b for b in bodies(ds)]
+        names = list(bodies(ds))
         body = split_dof(label)[0]
         if volumes.size == len(names) and body in names:
             depth = max(depth, float(volumes[names.index(body)]) / waterplane)
