@@ -68,6 +68,16 @@ from cummins.errors import CumminsWarning
     "(A(inf) by Ogilvie's estimate from A(w), B(w); A(0) the added mass at the lowest "
     "frequency), each said in one line. --no-limit-rows writes only the rows the data hold.",
 )
+@click.option(
+    "--model",
+    "model_path",
+    type=click.Path(exists=True, dir_okay=False),
+    default=None,
+    metavar="MODEL.nc",
+    help="A radiation model of these data (cummins fit -o MODEL.nc): its state space goes "
+    "into the .h5's hydro_coeffs/radiation_damping/state_space (A, B, C, D, it, K), which "
+    "WEC-Sim reads. The model must be of these very data (its DOFs and data fingerprint).",
+)
 @force_option("Overwrite DESTINATION if it exists.")
 @reports_errors
 def convert_command(
@@ -82,6 +92,7 @@ def convert_command(
     body,
     volumes,
     limit_rows,
+    model_path,
     force,
 ):
     """Convert SOURCE to canonical NetCDF (.nc), a BEMIO .h5 for WEC-Sim, WAMIT numeric
@@ -108,6 +119,7 @@ def convert_command(
       cummins convert tanker.1 tanker.nc
       cummins convert tanker.1 tanker.h5
       cummins convert spar.1 spar.h5 --displaced-volume 8029
+      cummins convert spar.1 spar.h5 --model spar_model.nc   (with its state space)
       cummins convert semisub.nc semisub.1
       cummins convert input.re7 supply.mat --reference-point 0 0 0
       cummins convert results/ spar.12d       (a NEMOH QTF as WAMIT's, for OpenFAST)
@@ -123,7 +135,15 @@ def convert_command(
             "as WAMIT writes it, for HydroDyn)",
             param_hint="DESTINATION",
         )
+    if model_path is not None and Path(destination).suffix.lower() != ".h5":
+        raise click.BadParameter(
+            f"only a BEMIO .h5 stores a radiation state space, not {destination}: write "
+            ".h5, or leave --model out (cummins fit --openfast/--mss writes the model for "
+            "OpenFAST or MSS)",
+            param_hint="--model",
+        )
     prepare_outputs(destination, force=force)
+    model = _load_model(model_path) if model_path is not None else None
     ds = read_hydrodb(source, format_, rho, g, ulen)
     if body is not None:
         ds = select_body(ds, body)
@@ -140,11 +160,54 @@ def convert_command(
     if Path(destination).suffix.lower() == ".1":
         _write_for_hydrodyn(ds, destination, source, limit_rows, force)
         return
-    write(ds, destination, force=force)
+    if model is not None:
+        _check_model(model, ds, model_path)
+    write(ds, destination, force=force, model=model)
     console.print(
         f"wrote {destination} ({ds.attrs.get('axis_convention')} axes, reference point "
         f"{[float(x) for x in ds.attrs['reference_point']]} m)"
     )
+    if model is not None:
+        orders = [k.order for k in model.as_couplings().couplings if k.order]
+        console.print(
+            f"with the state space of {Path(model_path).name}: {len(orders)} couplings of "
+            f"order {min(orders, default=0)} to {max(orders, default=0)} (total "
+            f"{model.total_order} states) in hydro_coeffs/radiation_damping/state_space "
+            "(A, B, C/rho, D = 0, it, K/rho)"
+        )
+
+
+def _load_model(path):
+    """The radiation model of a ``cummins fit`` file (a one-line error for another file)."""
+    from cummins.cli.common import cummins_model_format
+    from cummins.radiation.model import RadiationModel
+    from cummins.radiation.model_file import FORMAT_NAME
+
+    if cummins_model_format(path) != FORMAT_NAME:
+        raise click.BadParameter(
+            f"{path} is not a radiation model file: give the output of cummins fit -o "
+            "MODEL.nc (or cummins reduce)",
+            param_hint="--model",
+        )
+    return RadiationModel.load(path)
+
+
+def _check_model(model, ds, path) -> None:
+    """Refuse a model of other DOFs or other data than those written (exit status 2)."""
+    from cummins.errors import ArgumentError, HydroDataError
+    from cummins.hydrodb import single_speed
+    from cummins.radiation.fingerprint import check_model_data
+
+    try:
+        check_model_data(model, single_speed(ds), model_name=f"--model {Path(path).name}")
+    except HydroDataError as exc:
+        raise ArgumentError(
+            f"{exc.message}: its state space is not that of the data written "
+            f"({Path(str(ds.attrs.get('source_file', '')) or '?').name}, after any "
+            "--body, --axes or --reference-point)",
+            hint="Give the model fitted to these data (cummins fit DATA -o MODEL.nc), "
+            "convert without the options that change the data, or leave --model out",
+        ) from None
 
 
 def _write_for_hydrodyn(ds, destination, source, limit_rows, force) -> None:

@@ -13,15 +13,17 @@ one HTML page of the pipeline's figures and tables for it:
     states, t_c and NRMSE per heading and DOF, and F(ω) and K_ex(t) of the model against
     its data (:mod:`cummins.cli.html_excitation`);
 ``rao`` (a RAO file from ``cummins rao``)
-    the RAOs and their largest values;
+    the RAOs and their largest values; with PTOs their power RAO, force and relative
+    motion (:mod:`cummins.cli.html_pto`);
 ``run`` (a simulation from ``cummins simulate``)
     the response statistics (the amplitude in regular waves), time series and response
-    spectra;
+    spectra; with PTOs their mean power, energy and time series;
 ``kernel`` (the output of ``cummins kernel``)
     the diagnostics of every significant coupling and K(t);
 ``batch`` (results of ``cummins batch``)
     the study, the operability per heading, the limiting H_s per heading and T_p, and
-    the statistics of the cases (all, or the worst when there are many).
+    the statistics of the cases (all, or the worst when there are many); with PTOs the
+    power matrix.
 
 The figures are the library's (:mod:`cummins.plots`), drawn as PNG and embedded as
 ``data:`` URIs; the style sheet is inline. The page makes no request of its own: it can
@@ -49,6 +51,7 @@ from cummins.cli.html_excitation import excitation_model_sections
 from cummins.cli.html_page import Section as Section
 from cummins.cli.html_page import _note, failures_html, figure_html, table_html
 from cummins.cli.html_page import render_html as render_html
+from cummins.cli.html_pto import pto_batch_sections, pto_rao_sections, pto_run_sections
 from cummins.errors import CumminsError, check_writable
 from cummins.files import files_read, refuse_overwriting_inputs, replacing
 from cummins.hydrodb import is_rotation
@@ -347,7 +350,8 @@ def rao_sections(path: Path) -> list[Section]:
             "Motion RAOs",
             figure_html(plot_rao(rao), "Coupled motion RAOs per metre of wave amplitude")
             + rao_table_html(rao),
-        )
+        ),
+        *pto_rao_sections(path),
     ]
 
 
@@ -401,6 +405,7 @@ def run_sections(path: Path) -> list[Section]:
             "Response spectra",
             figure_html(plot_response_spectra(run, {}), "Response spectra (Welch)"),
         ),
+        *pto_run_sections(run),
     ]
 
 
@@ -502,6 +507,7 @@ def batch_sections(results: xr.Dataset) -> list[Section]:
         op = operability(results)
         lim = limiting_hs(results)
         sections.append(Section("Operability", _operability_body(op) + _limiting_body(lim)))
+    sections += pto_batch_sections(results)
     sections.append(Section("Statistics per case", _cases_body(results)))
     return sections
 
@@ -545,9 +551,11 @@ def _limiting_body(lim: xr.DataArray) -> str:
 
 def _cases_body(results: xr.Dataset, most: int = 40) -> str:
     dims = list(results.operable.dims)
+    has_limits = results.sizes.get("criterion", 0) > 0
+    if not has_limits:  # a study without limits: its criterion variables are empty
+        results = results.drop_dims("criterion", errors="ignore")
     stacked = results.stack(_row=dims) if len(dims) > 1 else results.rename({dims[0]: "_row"})
     n = stacked.sizes["_row"]
-    has_limits = results.sizes.get("criterion", 0) > 0
     worst = stacked.limit_ratio.max("criterion").values if has_limits else np.zeros(n)
     order = np.argsort(-worst, kind="stable")[:most] if n > most else np.arange(n)
     keys = [k for k in ("heading", "hs", "tp", "gamma", "spreading", "seed") if k in stacked.coords]

@@ -40,12 +40,15 @@ def report_command(path, output, kind, format_, rho, g, ulen, force):
       model (cummins fit) per-coupling orders and R², K(t), data against the model
       excitation model   states, t_c and NRMSE per heading and DOF, |F| and K_ex(t)
       (fit-excitation)   against the data (read with the model's rho, g)
-      RAO file (rao)     RAOs and their largest values
-      run (simulate)     statistics, time series, response spectra
+      RAO file (rao)     RAOs and their largest values; with PTOs the power RAO,
+                         PTO force and relative-motion RAOs
+      run (simulate)     statistics, time series, response spectra; with PTOs the
+                         mean power, energy, force/velocity/power time series
       run (dp-demo)      checks (heel, watch circle), pose, every load, track
       LF model (lf-model) the constant coefficients and where each was taken
       K(t) (kernel)      the diagnostics of every significant coupling, K(t)
-      results (batch)    the study, operability per heading, limiting Hs, cases
+      results (batch)    the study, operability per heading, limiting Hs, cases;
+                         with PTOs the power matrix over Hs x Tp (table, heat map)
     The figures are embedded PNGs and the style is inline: the page opens offline.
 
     \b

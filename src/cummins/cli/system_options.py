@@ -332,17 +332,15 @@ def print_pto_run(run, vessel, regular_sea, ds, system, viscous_damping=None) ->
     from rich.table import Table
 
     from cummins.cli.common import console
-    from cummins.timedomain.harmonics import harmonic_amplitude
+    from cummins.timedomain.harmonics import harmonic_amplitude, last_periods
 
     t = run.time.values
     window = np.ones(t.size, bool)
     reference = None
     if regular_sea is not None:
         omega = float(regular_sea.omega[0])
-        period = 2 * np.pi / omega
-        count = int(min(10, np.floor((t[-1] - t[0]) / period + 1e-9)))
-        if count:
-            window = t > t[-1] - count * period + 0.5 * (t[1] - t[0])
+        count = int(min(10, np.floor((t[-1] - t[0]) * omega / (2 * np.pi) + 1e-9)))
+        window = last_periods(t, omega, 10)
         reference = _frequency_domain_power(regular_sea, ds, system, viscous_damping)
     table = Table(title="PTOs" + (" (steady state)" if regular_sea is not None else ""))
     columns = ["PTO", "mean power (kW)"]

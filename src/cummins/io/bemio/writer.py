@@ -115,7 +115,21 @@ def write_bemio(
         )
     modes = _modes_per_body(ds, path)
     copy = ds
-    data = bemio_data(_about_centre_of_gravity(ds, len(modes)), modes, model, path, excitation_irf)
+    about_cg = _about_centre_of_gravity(ds, len(modes))
+    if model is not None and about_cg is not ds:
+        warnings.warn(
+            CumminsWarning(
+                f"{path}: the coefficients are written about each body's centre of gravity "
+                "(as WEC-Sim takes them), the state space as the model was fitted, about "
+                f"the data's reference point {_point_text(ds)}: they agree in heave and yaw "
+                "when the centre of gravity is straight above or below that point, not in "
+                "general; fit the model to the data about the centre of gravity "
+                "(cummins.move_reference_point, cummins convert --reference-point) if "
+                "WEC-Sim is to use the state space of the other DOFs"
+            ),
+            stacklevel=2,
+        )
+    data = bemio_data(about_cg, modes, model, path, excitation_irf)
     for k, volume in enumerate(data.volume):
         if not np.isfinite(volume):
             warnings.warn(
@@ -239,6 +253,11 @@ def _about_centre_of_gravity(ds: xr.Dataset, n_bodies: int) -> xr.Dataset:
     if not np.all(np.isfinite(cg)) or (point.size == cg.size and np.allclose(point, cg)):
         return ds
     return move_reference_point(ds, cg.reshape(n_bodies, 3) if n_bodies > 1 else cg)
+
+
+def _point_text(ds: xr.Dataset) -> str:
+    point = np.asarray(ds.attrs.get("reference_point", np.zeros(3)), dtype=float).reshape(-1, 3)
+    return "; ".join("(" + ", ".join(f"{x:g}" for x in row) + ")" for row in point) + " m"
 
 
 def _modes_per_body(ds: xr.Dataset, path: Path) -> list[int]:
