@@ -384,3 +384,16 @@ def test_speed_terms_on_three_dimensional_data():
     assert float(error.max()) < 0.037, error  # relative to each coupling's largest |Z|
     _, flagged = sp.stf_causality(tanker.drop_vars("added_mass_inf", errors="ignore"), 5.0)
     assert "Pitch" in flagged
+
+
+def test_asymmetry_at_speed_is_said_to_be_physics(s175):
+    """At forward speed A_35 ≠ A_53 is the Timman–Newman relations, not a DOF order or
+    sign mixed up: the message says so; at zero speed the S-175's heave–pitch pair is
+    symmetric to its printed digits and nothing is said."""
+    from cummins.radiation.fit.reciprocity import asymmetric_pairs
+
+    vertical = select_dofs(s175, VERTICAL)
+    speed = float(vertical.forward_speed.values[-1])
+    said = asymmetric_pairs(vertical.sel(forward_speed=speed))
+    assert said and all("is physics" in m and "DOF order" not in m for m in said)
+    assert not asymmetric_pairs(vertical.sel(forward_speed=0.0))

@@ -150,14 +150,19 @@ def antisymmetric_added_mass(
 
 
 def asymmetric_pairs(data: xr.Dataset, as_given=frozenset()) -> list[str]:
-    """One message per DOF pair (i < j) whose A_ij ≠ A_ji or B_ij ≠ B_ji at zero speed
-    beyond :data:`ASYMMETRY_TOL`: the worst frequency and both values. The fit uses
-    ½(X_ij + X_ji) (the physics wants them equal), or each as given for the pairs
-    ``as_given`` (:func:`reciprocity_of`); so large a difference can mean a DOF order or
-    sign convention mixed up between the two halves of the matrix."""
+    """One message per DOF pair (i < j) whose A_ij ≠ A_ji or B_ij ≠ B_ji beyond
+    :data:`ASYMMETRY_TOL`: the worst frequency and both values. The fit uses
+    ½(X_ij + X_ji) (the physics wants them equal at zero speed), or each as given for the
+    pairs ``as_given`` (:func:`reciprocity_of`); at zero speed so large a difference can
+    mean a DOF order or sign convention mixed up between the two halves of the matrix, at
+    forward speed it is physics (the Timman–Newman relations), which the message says."""
     out = []
     labels = [str(d) for d in data.influenced_dof.values]
     w = data.omega.values
+    speed = float(data.coords["forward_speed"]) if "forward_speed" in data.coords else 0.0
+    advice = "; check the DOF order and signs of the data"
+    if speed:  # the Timman–Newman relations: X_ij(U) = X_ji(−U), not X_ji(U)
+        advice = f" (at {speed:g} m/s the difference is physics: X_ij(U) = X_ji(−U))"
     for name, symbol in (("added_mass", "A"), ("radiation_damping", "B")):
         x = dof_matrix(data, name)
         diag = np.abs(np.diagonal(x, axis1=1, axis2=2)).max(axis=0)
@@ -178,7 +183,7 @@ def asymmetric_pairs(data: xr.Dataset, as_given=frozenset()) -> list[str]:
                             if (i, j) in as_given
                             else "the fit uses their average"
                         )
-                        + "; check the DOF order and signs of the data"
+                        + advice
                     )
     return out
 

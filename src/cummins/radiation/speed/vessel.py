@@ -150,7 +150,8 @@ def vessel_at_speed(
         raise SimulationError(
             f"at {u:g} m/s: {message}",
             hint="a free ship at speed is directionally unstable in potential flow (yaw Munk "
-            "moment): pass soft_springs (a period, e.g. 200 s; CLI --soft-springs) or keep "
-            "the vertical plane (dofs=['Heave', 'Pitch']; CLI --dof Heave --dof Pitch)",
+            "moment): give soft springs (--soft-springs 200, a period in s; Python: "
+            "soft_springs=200) or keep the vertical plane (--dof Heave --dof Pitch; "
+            "Python: dofs=['Heave', 'Pitch'])",
         ) from None
     return out
