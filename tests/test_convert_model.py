@@ -131,3 +131,35 @@ def test_model_refused_for_formats_that_do_not_store_it(spar, tmp_path):
         assert result.exit_code == 2, result.output
         assert what in " ".join(result.output.split())
         assert not destination.exists()
+
+
+def test_the_state_space_goes_to_the_centre_of_gravity_with_the_coefficients(spar, tmp_path):
+    """The coefficients go into the .h5 about the centre of gravity (the OC3 spar's, 89.92 m
+    below the waterline, Jonkman 2010), and the state space with them: read back, each
+    coupling's K(t) is Hᵀ K(t) H of the model (H the screw transform, computed here
+    from :func:`cummins.kinematics.screw_transform`), within 1e-9 of its peak; the
+    pitch's K(t) about the centre of gravity is nothing like the model's about the
+    waterline (its peak 100 times larger: surge's memory times the 89.92 m lever²)."""
+    from cummins.kinematics import screw_transform
+
+    folder, model_path = spar
+    model = RadiationModel.load(model_path)
+    ds = cummins.read(folder / "spar.1")
+    ds.attrs["displaced_volume"] = 8029.0
+    cg = np.array([0.0, 0.0, -89.92])
+    ds.attrs["center_of_gravity"] = cg
+    out = tmp_path / "spar_cg.h5"
+    cummins.write(ds, out, model=model)
+    written = read_bemio_state_space(out)
+    t = np.linspace(0.0, 60.0, 241)
+    h = screw_transform(np.asarray(ds.attrs["reference_point"], dtype=float) - cg)
+    kernel = model.impulse_response(t).transpose("time", "influenced_dof", "radiating_dof")
+    expected = np.einsum("ki,tkl,lj->tij", h, kernel.values, h)
+    found = written.impulse_response(t).transpose("time", "influenced_dof", "radiating_dof")
+    peak = np.abs(expected).max(axis=0)
+    scale = np.sqrt(np.outer(np.diag(peak), np.diag(peak)))
+    error = np.abs(found.values - expected).max(axis=0)
+    assert np.all(error <= 1e-9 * scale + 1e-12 * peak.max())
+    pitch = 4
+    moved_by = np.abs(expected[:, pitch, pitch] - kernel.values[:, pitch, pitch]).max()
+    assert moved_by > 0.5 * peak[pitch, pitch]  # the point matters: measured 0.99

@@ -179,11 +179,18 @@ def test_fitted_model_is_written_as_bemio_state_space(shared_data, tmp_path):
     )
     out = cummins.write(ds, tmp_path / "m.h5", model=radiation)
     back = read_bemio_state_space(out)
-    assert len(back.couplings) == 1 and back.couplings[0].influenced == 2
+    # written about the centre of gravity (3.93 m forward of the reference point), as
+    # the coefficients: a heave force there is the heave force, and it pitches with the
+    # lever: K'_33 = K_33, K'_35 = K'_53 = x_G K_33, K'_55 = x_G² K_33
+    x_g = float(ds.attrs["center_of_gravity"][0])
+    found = {(k.influenced, k.radiating): k for k in back.couplings}
+    assert set(found) == {(2, 2), (2, 4), (4, 2), (4, 4)}
     w = np.linspace(0.1, 3.0, 30)
-    np.testing.assert_allclose(
-        back.couplings[0].frequency_response(w), heave.frequency_response(w), rtol=1e-12
-    )
+    k33 = heave.frequency_response(w)
+    for pair, factor in (((2, 2), 1.0), ((2, 4), x_g), ((4, 2), x_g), ((4, 4), x_g**2)):
+        np.testing.assert_allclose(
+            found[pair].frequency_response(w), factor * k33, rtol=1e-10, err_msg=str(pair)
+        )
     with h5py.File(out) as f:
         ss = f["body1/hydro_coeffs/radiation_damping/state_space"]
         assert ss["it"][2, 2] == 2 and ss["conv"][2, 2] == 1 and ss["conv"][0, 0] == 0

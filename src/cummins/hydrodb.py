@@ -573,7 +573,7 @@ def select_dofs(ds: xr.Dataset, dofs: Sequence[str]) -> xr.Dataset:
 # --------------------------------------------------------------------------- transforms
 
 
-def _per_body_transform(ds: xr.Dataset, block) -> NDArray[np.float64]:
+def per_body_transform(ds: xr.Dataset, block) -> NDArray[np.float64]:
     """Block-diagonal matrix with ``block(body_index)`` (6×6) on the six rigid-body modes of
     each body and the identity on its generalized modes (``Mode7`` …), which stay as they
     are: their amplitudes are defined by the solver's mode shapes, not by the axes."""
@@ -619,7 +619,7 @@ def _apply(ds: xr.Dataset, left: NDArray, right: NDArray, motion: NDArray) -> xr
     return out
 
 
-def _reference_points(ds: xr.Dataset) -> NDArray[np.float64]:
+def reference_points(ds: xr.Dataset) -> NDArray[np.float64]:
     points = np.asarray(ds.attrs.get("reference_point", (0.0, 0.0, 0.0)), dtype=float)
     return points.reshape(-1, 3)
 
@@ -654,11 +654,11 @@ def move_reference_point(ds: xr.Dataset, point: ArrayLike) -> xr.Dataset:
     >>> bool(abs(back.added_mass - ds.added_mass).max() < 1e-6 * abs(ds.added_mass).max())
     True
     """
-    old = _reference_points(ds)
+    old = reference_points(ds)
     new = np.broadcast_to(np.asarray(point, dtype=float).reshape(-1, 3), old.shape)
     r = old - new
-    h = _per_body_transform(ds, lambda k: screw_transform(r[k]))
-    h_inv = _per_body_transform(ds, lambda k: screw_transform(-r[k]))
+    h = per_body_transform(ds, lambda k: screw_transform(r[k]))
+    h_inv = per_body_transform(ds, lambda k: screw_transform(-r[k]))
     from cummins.restoring import moved_restoring  # restoring imports this module
 
     out, note = moved_restoring(_apply(ds, h.T, h, h_inv), old, new)
@@ -695,7 +695,7 @@ def change_axes(ds: xr.Dataset, to: str) -> xr.Dataset:
     current = ds.attrs.get("axis_convention", "z-up")
     if current == to:
         return ds
-    t = _per_body_transform(ds, lambda k: np.diag(Z_UP_TO_Z_DOWN))
+    t = per_body_transform(ds, lambda k: np.diag(Z_UP_TO_Z_DOWN))
     out = _apply(ds, t, t, t)
     flip = np.array([1.0, -1.0, -1.0])
     for key in (

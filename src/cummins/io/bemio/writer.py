@@ -61,8 +61,9 @@ def write_bemio(
     ``model`` its state space. Not written: QTFs, mean drift (its method — momentum or
     control surface — is not known here) and the generalized-mode matrices ``gbm``. The
     coefficients are written about each body's centre of gravity, as WEC-Sim takes them
-    (:func:`cummins.move_reference_point`, when the data know it). The whole dataset, as
-    given, also goes exactly into the ``cummins`` group.
+    (:func:`cummins.move_reference_point`, when the data know it), and so is the model's
+    state space (:func:`cummins.radiation.moved_model.moved_model`: K' = Hᵀ K H, exactly).
+    The whole dataset, as given, also goes exactly into the ``cummins`` group.
 
     Parameters
     ----------
@@ -117,18 +118,10 @@ def write_bemio(
     copy = ds
     about_cg = _about_centre_of_gravity(ds, len(modes))
     if model is not None and about_cg is not ds:
-        warnings.warn(
-            CumminsWarning(
-                f"{path}: the coefficients are written about each body's centre of gravity "
-                "(as WEC-Sim takes them), the state space as the model was fitted, about "
-                f"the data's reference point {_point_text(ds)}: they agree in heave and yaw "
-                "when the centre of gravity is straight above or below that point, not in "
-                "general; fit the model to the data about the centre of gravity "
-                "(cummins.move_reference_point, cummins convert --reference-point) if "
-                "WEC-Sim is to use the state space of the other DOFs"
-            ),
-            stacklevel=2,
-        )
+        # the state space about the same point as the coefficients, exactly
+        from cummins.radiation.moved_model import moved_model
+
+        model = moved_model(model, ds, about_cg.attrs["reference_point"])
     data = bemio_data(about_cg, modes, model, path, excitation_irf)
     for k, volume in enumerate(data.volume):
         if not np.isfinite(volume):
@@ -253,11 +246,6 @@ def _about_centre_of_gravity(ds: xr.Dataset, n_bodies: int) -> xr.Dataset:
     if not np.all(np.isfinite(cg)) or (point.size == cg.size and np.allclose(point, cg)):
         return ds
     return move_reference_point(ds, cg.reshape(n_bodies, 3) if n_bodies > 1 else cg)
-
-
-def _point_text(ds: xr.Dataset) -> str:
-    point = np.asarray(ds.attrs.get("reference_point", np.zeros(3)), dtype=float).reshape(-1, 3)
-    return "; ".join("(" + ", ".join(f"{x:g}" for x in row) + ")" for row in point) + " m"
 
 
 def _modes_per_body(ds: xr.Dataset, path: Path) -> list[int]:
