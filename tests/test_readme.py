@@ -81,8 +81,15 @@ def _commands() -> list[Command]:
 
 
 COMMANDS = _commands()
+
+
+def _key(args: tuple[str, ...]) -> tuple[str, ...]:
+    """A command without ``--force`` (the guide re-runs the tour's commands with it)."""
+    return tuple(a for a in args if a != "--force")
+
+
 #: each command once, where it first appears (the README's tour repeats the guide's)
-DISTINCT = list({c.args: c for c in reversed(COMMANDS)}.values())[::-1]
+DISTINCT = list({_key(c.args): c for c in reversed(COMMANDS)}.values())[::-1]
 
 
 def test_two_setup_commands_and_ci():
@@ -106,10 +113,33 @@ def test_the_pages_are_read():
     for page in ("README.md", "docs/guide/fit.md", "docs/guide/wec.md", "docs/openfast_wecsim.md"):
         assert page in pages, page
     assert len(DISTINCT) >= 40
-    guide = {c.args for c in COMMANDS if c.group == 1}
-    tour = [c.args for c in COMMANDS if c.group == 0]
+    guide = {_key(c.args) for c in COMMANDS if c.group == 1}
+    tour = [_key(c.args) for c in COMMANDS if c.group == 0]
     assert 10 <= len(tour) <= 16
-    assert [a for a in tour if a not in guide] == [("demo", "-o", "cummins-demo", "--force")]
+    assert [a for a in tour if a not in guide] == [("demo", "-o", "cummins-demo")]
+
+
+#: the options that name a file or folder a command writes (refused when it exists)
+WRITES = ("-o", "--output", "--plot", "--json", "--report", "--openfast", "--mss")
+
+
+def test_the_tour_runs_in_one_folder():
+    """A reader who follows the README and then the guide and the notes in one folder
+    never meets "exists; refusing to overwrite": a command that writes what an earlier
+    one wrote says --force (the guide re-runs the tour's commands on purpose)."""
+    written: dict[str, Command] = {}
+    clashes = []
+    for command in COMMANDS:
+        args = command.args
+        names = [args[k + 1] for k, a in enumerate(args[:-1]) if a in WRITES]
+        if args[0] == "convert":
+            names.append(args[2])
+        for name in names:
+            if name in written and "--force" not in args:
+                first = written[name]
+                clashes.append(f"{command.page}: {name} written before by {first.page}")
+            written.setdefault(name, command)
+    assert not clashes, "\n".join(clashes)
 
 
 @pytest.fixture
