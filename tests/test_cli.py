@@ -170,6 +170,31 @@ def test_kernel_command(runner, tanker_copy, tmp_path):
     assert again.exit_code == 2 and "refusing to overwrite" in again.output
 
 
+def test_kernel_leaves_out_suspect_frequencies_by_default(runner, tanker_copy, tmp_path):
+    """As the fit: the demo tanker's irregular frequencies (B_Heave −0.56 of its peak at
+    3.93 rad/s) are left out and named; kept, they ring in K(t) and the default length
+    of K(t) (from the lowest frequency where B still has content) more than triples."""
+    import xarray as xr
+
+    default = runner.invoke(main, ["kernel", str(tanker_copy), "-o", str(tmp_path / "K.nc")])
+    assert default.exit_code == 0, default.output
+    assert "suspect 3.927 rad/s: radiation_damping[Heave, Heave], negative damping" in (
+        default.output
+    )
+    assert "left out 9 suspect frequencies" in default.output
+    raw = runner.invoke(
+        main, ["kernel", str(tanker_copy), "-o", str(tmp_path / "raw.nc"), "--keep-suspect"]
+    )
+    assert raw.exit_code == 0, raw.output
+    assert "note: K(t) keeps 9 suspect frequencies (3.653–5.984 rad/s" in raw.output
+    assert "--remove-suspect, the default" in raw.output
+    clean = xr.load_dataset(tmp_path / "K.nc", engine="h5netcdf")
+    kept = xr.load_dataset(tmp_path / "raw.nc", engine="h5netcdf")
+    assert clean.attrs["t_max"] < 40 and kept.attrs["t_max"] > 3 * clean.attrs["t_max"]
+    assert clean.sizes["omega"] == kept.sizes["omega"] - 9
+    assert not np.isclose(clean.omega.values, 5 * np.pi / 4, rtol=1e-6).any()  # 3.927 rad/s
+
+
 def test_kernel_needs_a_speed(runner, shared_data, tmp_path):
     result = runner.invoke(
         main,

@@ -99,9 +99,7 @@ from cummins.files import replacing
 )
 @speed_option()
 @force_option()
-@option_rules(
-    needs={"above_first": ("remove_suspect", bool, "(the default, not --keep-suspect)")}
-)
+@option_rules(needs={"above_first": ("remove_suspect", bool, "(the default, not --keep-suspect)")})
 @reports_errors
 def kernel_command(
     path,

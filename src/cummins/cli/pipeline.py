@@ -126,9 +126,11 @@ def leave_out_suspects(
         return ds
     omega = sorted(worst)
     where = f"{omega[0]:.4g}–{omega[-1]:.4g} rad/s"
-    touched = ", ".join(str(d) for d in ds.influenced_dof.values if any(
-        str(d) in labels for labels in dofs.values()
-    ))
+    touched = ", ".join(
+        str(d)
+        for d in ds.influenced_dof.values
+        if any(str(d) in labels for labels in dofs.values())
+    )
     if not remove:
         say(
             f"note: K(t) keeps {len(omega)} suspect frequencies ({where}; {touched}: "
