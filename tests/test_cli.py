@@ -55,6 +55,35 @@ def test_info_table(runner, tanker_copy):
     assert "1000 kg/m³" in result.output and "given" in result.output
 
 
+def test_info_prints_points_and_directions_plainly(runner, shared_data):
+    """MSS's supply vessel: VERES's headings become the directions 180, 190 … 350 and
+    360 (stored as 0): read round the circle they are one uniform range; the centre of
+    gravity the .re7 gives as 1.3 m (stored 1.3000002000000004 after the axes' change) is
+    printed to 6 digits."""
+    result = runner.invoke(main, ["info", str(shared_data / "mss" / "supply" / "input.re7")])
+    assert result.exit_code == 0, result.output
+    assert "19: 180 to 360 every 10 deg (360 stored as 0; direction of propagation" in (
+        result.output
+    )
+    assert "[-5.38592, 0, 1.3] m" in result.output and "1.3000002" not in result.output
+
+
+@pytest.mark.parametrize(
+    ("degrees", "expected"),
+    [
+        ([0, 30, 60, 90, 120, 150, 180, 210, 240, 270, 300, 330], "12: 0 to 330 every 30 deg"),
+        ([-90, -45, 0, 45, 90], "5: -90 to 90 every 45 deg"),
+        ([0, 180, 190, 350], "4: 0, 180, 190, 350 deg"),
+        ([0, 180], "2: 0, 180 deg"),
+    ],
+)
+def test_describe_directions(degrees, expected):
+    from cummins.cli.info import describe_directions
+
+    text = describe_directions(degrees)
+    assert text.startswith(expected + " (direction of propagation") and "stored" not in text
+
+
 def test_check_exit_codes(runner, tanker_copy, tmp_path):
     report_path = tmp_path / "report.json"
     result = runner.invoke(main, ["check", str(tanker_copy), "--json", str(report_path)])
