@@ -27,4 +27,5 @@ phi = run.motion.sel(dof="Roll").values
 # %%
 decay = roll_decay(t, phi)
 print(f"p1 = {decay['p1']:.4f} 1/s, p2 = {decay['p2']:.4f} 1/rad, ω0 = {decay['omega0']:.4f} rad/s")
+print(decay["p2_note"])  # the damping here is linear: p2 is judged by its 95 % interval
 fig = plot_roll_decay(t, phi, decay)

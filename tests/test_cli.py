@@ -55,6 +55,35 @@ def test_info_table(runner, tanker_copy):
     assert "1000 kg/m³" in result.output and "given" in result.output
 
 
+def test_info_prints_points_and_directions_plainly(runner, shared_data):
+    """MSS's supply vessel: VERES's headings become the directions 180, 190 … 350 and
+    360 (stored as 0): read round the circle they are one uniform range; the centre of
+    gravity the .re7 gives as 1.3 m (stored 1.3000002000000004 after the axes' change) is
+    printed to 6 digits."""
+    result = runner.invoke(main, ["info", str(shared_data / "mss" / "supply" / "input.re7")])
+    assert result.exit_code == 0, result.output
+    assert "19: 180 to 360 every 10 deg (360 stored as 0; direction of propagation" in (
+        result.output
+    )
+    assert "[-5.38592, 0, 1.3] m" in result.output and "1.3000002" not in result.output
+
+
+@pytest.mark.parametrize(
+    ("degrees", "expected"),
+    [
+        ([0, 30, 60, 90, 120, 150, 180, 210, 240, 270, 300, 330], "12: 0 to 330 every 30 deg"),
+        ([-90, -45, 0, 45, 90], "5: -90 to 90 every 45 deg"),
+        ([0, 180, 190, 350], "4: 0, 180, 190, 350 deg"),
+        ([0, 180], "2: 0, 180 deg"),
+    ],
+)
+def test_describe_directions(degrees, expected):
+    from cummins.cli.info import describe_directions
+
+    text = describe_directions(degrees)
+    assert text.startswith(expected + " (direction of propagation") and "stored" not in text
+
+
 def test_check_exit_codes(runner, tanker_copy, tmp_path):
     report_path = tmp_path / "report.json"
     result = runner.invoke(main, ["check", str(tanker_copy), "--json", str(report_path)])
@@ -168,6 +197,31 @@ def test_kernel_command(runner, tanker_copy, tmp_path):
         assert (plots / name).stat().st_size > 10_000
     again = runner.invoke(main, ["kernel", str(tanker_copy), "-o", str(out)])
     assert again.exit_code == 2 and "refusing to overwrite" in again.output
+
+
+def test_kernel_leaves_out_suspect_frequencies_by_default(runner, tanker_copy, tmp_path):
+    """As the fit: the demo tanker's irregular frequencies (B_Heave −0.56 of its peak at
+    3.93 rad/s) are left out and named; kept, they ring in K(t) and the default length
+    of K(t) (from the lowest frequency where B still has content) more than triples."""
+    import xarray as xr
+
+    default = runner.invoke(main, ["kernel", str(tanker_copy), "-o", str(tmp_path / "K.nc")])
+    assert default.exit_code == 0, default.output
+    assert "suspect 3.927 rad/s: radiation_damping[Heave, Heave], negative damping" in (
+        default.output
+    )
+    assert "left out 9 suspect frequencies" in default.output
+    raw = runner.invoke(
+        main, ["kernel", str(tanker_copy), "-o", str(tmp_path / "raw.nc"), "--keep-suspect"]
+    )
+    assert raw.exit_code == 0, raw.output
+    assert "note: K(t) keeps 9 suspect frequencies (3.653–5.984 rad/s" in raw.output
+    assert "--remove-suspect, the default" in raw.output
+    clean = xr.load_dataset(tmp_path / "K.nc", engine="h5netcdf")
+    kept = xr.load_dataset(tmp_path / "raw.nc", engine="h5netcdf")
+    assert clean.attrs["t_max"] < 40 and kept.attrs["t_max"] > 3 * clean.attrs["t_max"]
+    assert clean.sizes["omega"] == kept.sizes["omega"] - 9
+    assert not np.isclose(clean.omega.values, 5 * np.pi / 4, rtol=1e-6).any()  # 3.927 rad/s
 
 
 def test_kernel_needs_a_speed(runner, shared_data, tmp_path):

@@ -433,7 +433,7 @@ CASES: dict[str, tuple[list[str], int, str]] = {
                     "Heave Pitch is given twice",
                 ),
                 (
-                    ["kernel", T, "-o", "k.nc", "--above-first"],
+                    ["kernel", T, "-o", "k.nc", "--keep-suspect", "--above-first"],
                     "--above-first applies only with --remove-suspect",
                 ),
                 (["rao", T, "-o", "r.nc", "--headings", "0", "360"], "one direction"),

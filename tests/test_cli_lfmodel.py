@@ -61,6 +61,11 @@ def test_cli_writes_the_model_of_the_python_api(tmp_path):
         assert float(line.split("difference ")[1].split(" %")[0]) < 3.0
     assert (tmp_path / "cmp" / "decay_Roll.png").stat().st_size > 10_000
     assert (tmp_path / "lf.png").stat().st_size > 10_000
+    # what each DOF is taken as is printed whole, whatever the terminal's width
+    printed = " ".join(result.output.split())
+    for sentence in same.provenance:
+        assert " ".join(sentence.split()) in printed, sentence
+    assert "ζ = 0.05 → " in printed and "(eqs. 20–21)" in printed
 
 
 def test_data_damping_takes_mss_bv(shared_data, tmp_path):

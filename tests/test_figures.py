@@ -70,17 +70,28 @@ def test_numerically_zero_dofs_and_degrees_in_time_series(head_seas_run):
     )
 
 
-def test_rao_phases_are_unwrapped_lines_and_rotations_in_degrees(tanker):
+def test_rao_phases_are_wrapped_masked_and_rotations_in_degrees(tanker):
+    """The phase as seakeeping tools show it: within ±180°, its line broken where it wraps
+    (no segment crosses the panel), and drawn only where |RAO| ≥ 1 % of the DOF's peak."""
     from cummins.seakeeping.frequency_domain import motion_rao
 
     rao = motion_rao(tanker, wave_direction=[np.radians(150.0)])
     fig = plots.plot_rao(rao)
     phase = _axis_by_ylabel(fig, "∠RAO Heave")
     (line,) = phase.get_lines()
-    assert line.get_linestyle() == "-" and line.get_marker() in ("None", None, "")
+    x = np.asarray(line.get_xdata(), dtype=float)
     y = np.asarray(line.get_ydata(), dtype=float)
-    steps = np.abs(np.diff(y[np.isfinite(y)]))
-    assert steps.max() < 180.0  # unwrapped: no jump of 360°
+    assert np.nanmax(np.abs(y)) <= 180.0
+    both = np.isfinite(y[:-1]) & np.isfinite(y[1:])
+    assert np.abs(np.diff(y))[both].max() < 180.0  # broken at the wraps
+    heave = rao.sel(dof="Heave").isel(wave_direction=0)
+    shown = np.isin(heave.omega.values, x[np.isfinite(y)])
+    amplitude = np.abs(heave.values)
+    assert amplitude[shown].min() >= 0.01 * amplitude.max()
+    assert (~shown).any() and amplitude[~shown].max() < 0.01 * amplitude.max()
+    np.testing.assert_allclose(
+        y[np.isfinite(y)], np.degrees(np.angle(heave.values[shown])), atol=1e-9
+    )
     roll = _axis_by_ylabel(fig, "|RAO| Roll")
     assert roll.get_ylabel() == "|RAO| Roll [deg/m]"
     np.testing.assert_allclose(

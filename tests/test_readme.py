@@ -81,8 +81,15 @@ def _commands() -> list[Command]:
 
 
 COMMANDS = _commands()
+
+
+def _key(args: tuple[str, ...]) -> tuple[str, ...]:
+    """A command without ``--force`` (the guide re-runs the tour's commands with it)."""
+    return tuple(a for a in args if a != "--force")
+
+
 #: each command once, where it first appears (the README's tour repeats the guide's)
-DISTINCT = list({c.args: c for c in reversed(COMMANDS)}.values())[::-1]
+DISTINCT = list({_key(c.args): c for c in reversed(COMMANDS)}.values())[::-1]
 
 
 def test_two_setup_commands_and_ci():
@@ -106,10 +113,33 @@ def test_the_pages_are_read():
     for page in ("README.md", "docs/guide/fit.md", "docs/guide/wec.md", "docs/openfast_wecsim.md"):
         assert page in pages, page
     assert len(DISTINCT) >= 40
-    guide = {c.args for c in COMMANDS if c.group == 1}
-    tour = [c.args for c in COMMANDS if c.group == 0]
+    guide = {_key(c.args) for c in COMMANDS if c.group == 1}
+    tour = [_key(c.args) for c in COMMANDS if c.group == 0]
     assert 10 <= len(tour) <= 16
-    assert [a for a in tour if a not in guide] == [("demo", "-o", "cummins-demo", "--force")]
+    assert [a for a in tour if a not in guide] == [("demo", "-o", "cummins-demo")]
+
+
+#: the options that name a file or folder a command writes (refused when it exists)
+WRITES = ("-o", "--output", "--plot", "--json", "--report", "--openfast", "--mss")
+
+
+def test_the_tour_runs_in_one_folder():
+    """A reader who follows the README and then the guide and the notes in one folder
+    never meets "exists; refusing to overwrite": a command that writes what an earlier
+    one wrote says --force (the guide re-runs the tour's commands on purpose)."""
+    written: dict[str, Command] = {}
+    clashes = []
+    for command in COMMANDS:
+        args = command.args
+        names = [args[k + 1] for k, a in enumerate(args[:-1]) if a in WRITES]
+        if args[0] == "convert":
+            names.append(args[2])
+        for name in names:
+            if name in written and "--force" not in args:
+                first = written[name]
+                clashes.append(f"{command.page}: {name} written before by {first.page}")
+            written.setdefault(name, command)
+    assert not clashes, "\n".join(clashes)
 
 
 @pytest.fixture
@@ -165,6 +195,43 @@ def _prerequisites(command: Command, done: set[tuple[str, ...]]) -> list[Command
     return chain
 
 
+#: Numbers the pages quote from what a command prints: per command (as the pages write
+#: it, without --force), (page, pattern of its output, the page's sentence built from the
+#: pattern's groups). A page that drifts from its command fails here.
+QUOTED = {
+    "fit tanker.1 -o tanker_model.nc --json fit.json --plot fit-plots": [
+        ("README.md", r"total order (\d+),", "two blocks of common poles, {0} states"),
+    ],
+    "reduce tanker_model.nc -o tanker_model_1pc.nc --motion-tol 0.01 --data tanker.1": [
+        (
+            "docs/guide/reduce.md",
+            r"(\d+) → (\d+) states.*?motion-RAO error ([\d.]+)%",
+            "the tanker {0} → {1} states at {2} %",
+        ),
+    ],
+    "reduce tanker_model.nc -o tanker_model_small.nc --tol 0.02 --data tanker.1": [
+        ("docs/guide/reduce.md", r"→ (\d+) states", "`--tol 0.02` gives {0} states"),
+    ],
+    "dp-demo -o dp --duration 300 --seed 1": [
+        ("docs/guide/dp.md", r"static heel [-\d.]+° \((-?[\d.]+) %\)", "prints {0} %"),
+    ],
+}
+
+
+def _check_quoted(command: Command, output: str) -> None:
+    for page, pattern, sentence in QUOTED.get(" ".join(_key(command.args)), []):
+        found = re.search(pattern, " ".join(output.split()), flags=re.S)
+        assert found, f"{pattern!r} not in the output of {command.args}"
+        text = " ".join((ROOT / page).read_text(encoding="utf-8").replace("−", "-").split())
+        quoted = sentence.format(*found.groups())
+        assert quoted in text, f"{page} should say {quoted!r} (what the command prints)"
+
+
+def test_quoted_commands_are_on_their_pages():
+    """The commands whose numbers the pages quote are commands of the pages."""
+    assert set(QUOTED) <= {" ".join(_key(c.args)) for c in COMMANDS}
+
+
 @pytest.mark.parametrize(
     "command", DISTINCT, ids=[f"{c.page}:{' '.join(c.args)[:60]}" for c in DISTINCT]
 )
@@ -177,6 +244,7 @@ def test_console_command(command, workdir):
     result = CliRunner().invoke(main, list(command.args), catch_exceptions=False)
     assert result.exit_code == 0, f"{command.page}: {command.args}\n{result.output}"
     _read_back(list(command.args), workdir)
+    _check_quoted(command, result.output)
 
 
 def _option(args: list[str], name: str) -> str | None:

@@ -252,6 +252,29 @@ def test_roll_decay_recovers_known_damping(p1, p2, method):
         assert r.offset == pytest.approx(np.radians(1.5), abs=1e-4)
 
 
+def test_roll_decay_judges_the_quadratic_term_by_its_interval():
+    """A purely linear decay (the guide's): p₂ of the size of the fit's error, reported
+    as not significant with the linear-only p₁; a record with p₂ < 0 (noisy) is
+    significantly negative and warned about; a positive one passes without a note."""
+    t = np.arange(0, 200, 0.1)
+    with warnings.catch_warnings():
+        warnings.simplefilter("error")
+        linear = roll_decay(t, np.radians(12) * np.exp(-0.02 * t) * np.cos(0.5 * t))
+        positive = roll_decay(t, _ode_decay(0.05, 0.3, 0.5, np.radians(15), t))
+    assert linear["p2_significance"] == "not significant"
+    assert abs(linear["p2"]) < 1e-3 * linear["p1"]  # 0.0024 of p1 before: a fit stopped early
+    assert linear["p1_linear"] == pytest.approx(0.04, rel=1e-4)
+    assert "not significant" in linear["p2_note"] and "p1 = 0.04 " in linear["p2_note"]
+    assert positive["p2_significance"] == "positive" and positive["p2_note"] == ""
+    assert positive["p2"] == pytest.approx(0.3, rel=1e-3)
+    noise = np.radians(0.2) * np.random.default_rng(0).standard_normal(t.size)
+    with pytest.warns(UserWarning, match="negative quadratic roll damping"):
+        negative = roll_decay(t, _ode_decay(0.05, -0.1, 0.5, np.radians(15), t) + noise)
+    low, high = negative["p2_interval"]
+    assert negative["p2_significance"] == "negative" and high < 0
+    assert low < -0.1 < high  # the interval holds the true value
+
+
 def test_roll_decay_of_the_simulator_with_dimensional_coefficients(roll_data, roll_vessel):
     """A decay simulated by cummins.timedomain.simulate (constant added mass at ω₀, linear +
     quadratic

@@ -138,3 +138,33 @@ def unwrapped_phase_deg(x: ArrayLike, tiny: float = 0.0) -> NDArray[np.float64]:
     for start, stop in zip(edges[::2], edges[1::2], strict=True):
         phase[start:stop] = np.degrees(np.unwrap(np.angle(x[start:stop])))
     return phase
+
+
+def wrapped_phase_deg(x: ArrayLike, tiny: float = 0.0) -> NDArray[np.float64]:
+    """The phase of the complex series ``x`` in degrees, in (−180°, 180°], NaN where
+    |x| ≤ ``tiny`` (the phase of a negligible amplitude says nothing); draw it with
+    :func:`phase_line`.
+
+    >>> wrapped_phase_deg(np.exp(1j * np.radians([170.0, 190.0, 0.0])), 0.5).round(6).tolist()
+    [170.0, -170.0, 0.0]
+    """
+    x = np.asarray(x).reshape(-1)
+    phase = np.degrees(np.angle(x))
+    phase[np.abs(x) <= tiny] = np.nan
+    return phase
+
+
+def phase_line(
+    w: ArrayLike, phase_deg: ArrayLike
+) -> tuple[NDArray[np.float64], NDArray[np.float64]]:
+    """``(w, phase)`` with a NaN inserted wherever the wrapped phase jumps by more than
+    180° between two neighbours, so that its line breaks there instead of crossing the
+    panel (as seakeeping tools draw a phase in ±180°).
+
+    >>> phase_line([1.0, 2.0, 3.0], [170.0, -170.0, -160.0])[1].tolist()
+    [170.0, nan, -170.0, -160.0]
+    """
+    w = np.asarray(w, dtype=float).reshape(-1)
+    phase = np.asarray(phase_deg, dtype=float).reshape(-1)
+    wraps = np.flatnonzero(np.abs(np.diff(phase)) > 180.0) + 1
+    return np.insert(w, wraps, np.nan), np.insert(phase, wraps, np.nan)

@@ -19,8 +19,9 @@ from cummins.display import (
     mark_negligible,
     negligible_series,
     note_kernel_window,
+    phase_line,
     rotation_scale,
-    unwrapped_phase_deg,
+    wrapped_phase_deg,
 )
 from cummins.errors import check_writable
 from cummins.files import replacing
@@ -143,6 +144,11 @@ def plot_rao(
     )
 
 
+#: The amplitude plots leave a phase out where the amplitude is below this fraction of the
+#: DOF's largest over the headings drawn: it is numerically meaningless there.
+PHASE_SHOWN_ABOVE = 0.01
+
+
 def _amplitude_phase_by_heading(
     values: xr.DataArray,
     dofs: Sequence[str],
@@ -154,10 +160,12 @@ def _amplitude_phase_by_heading(
     degrees: bool = False,
 ) -> Figure:
     """|values| and phase (deg) against ω, a row per DOF, a line per picked heading;
-    ``values`` complex with dims (omega, wave_direction, dof). The phase is a line,
-    unwrapped along ω, left out where the magnitude is below 10⁻⁶ of the DOF's largest
-    (it is noise there). A DOF numerically zero at every heading drawn (sway in head
-    seas) is drawn as "≈ 0" (:func:`cummins.display.negligible_series`); with
+    ``values`` complex with dims (omega, wave_direction, dof). The phase is drawn as
+    seakeeping tools draw it: wrapped to ±180° (the line breaks where it wraps), and
+    left out where the magnitude is below :data:`PHASE_SHOWN_ABOVE` of the DOF's largest
+    over the headings (the phase of a negligible response says nothing). A DOF
+    numerically zero at every heading drawn (sway in head seas) is drawn as "≈ 0"
+    (:func:`cummins.display.negligible_series`); with
     ``degrees`` rotations are shown in degrees."""
     beta = np.degrees(values.wave_direction.values)
     fig = Figure(figsize=(10, 2.2 * len(dofs) + 0.8), layout="constrained")
@@ -169,15 +177,23 @@ def _amplitude_phase_by_heading(
     for row, dof in enumerate(dofs):
         x = values.sel(dof=dof)
         scale, shown_unit = rotation_scale(unit(dof)) if degrees else (1.0, unit(dof))
-        tiny = 1e-6 * float(np.abs(x.values).max())
+        tiny = PHASE_SHOWN_ABOVE * float(np.abs(x.values).max())
         for k in picks:
             xk = x.isel(wave_direction=k).values
             label = f"β = {beta[k]:.0f}°"
             axes[row, 0].plot(w, scale * np.abs(xk), label=label)
             if not zero[row]:
-                axes[row, 1].plot(w, unwrapped_phase_deg(xk, tiny), lw=1.0, label=label)
+                axes[row, 1].plot(
+                    *phase_line(w, wrapped_phase_deg(xk, tiny)),
+                    lw=1.0,
+                    marker=".",
+                    ms=3,
+                    label=label,
+                )
         axes[row, 0].set_ylabel(f"|{symbol}| {dof} [{shown_unit}]")
         axes[row, 1].set_ylabel(f"∠{symbol} {dof} [deg]")
+        axes[row, 1].set_ylim(-190.0, 190.0)
+        axes[row, 1].set_yticks([-180, -90, 0, 90, 180])
         if zero[row]:
             mark_negligible(axes[row, 0], scale * peaks[row], shown_unit)
         for ax in axes[row]:
@@ -190,6 +206,11 @@ def _amplitude_phase_by_heading(
     )
     for ax in axes[-1]:
         ax.set_xlabel("ω [rad/s]")
+    axes[0, 1].set_title(
+        f"phase where |{symbol}| ≥ {PHASE_SHOWN_ABOVE:.0%} of the DOF's peak",
+        fontsize="small",
+        color="0.35",
+    )
     fig.suptitle(title)
     return fig
 

@@ -6,10 +6,44 @@ import json
 from pathlib import Path
 
 import click
+import numpy as np
 from rich.table import Table
 
 from cummins.cli.common import console, read_hydrodb, read_options, reports_errors
 from cummins.cli.option_rules import Command
+
+
+def describe_directions(degrees) -> str:
+    """Wave directions (deg), sorted, as a range with its step when they are uniform
+    ("19: 180 to 360 every 10 deg" for VERES's 180, 190 … 350 and 0 stored for 360: read
+    round the circle when only that makes them uniform), else listed; the convention
+    said once."""
+    raw = np.sort(np.asarray(degrees, dtype=float))
+
+    def uniform(x) -> bool:
+        steps = np.diff(x)
+        return x.size >= 3 and bool(np.allclose(steps, steps[0], rtol=1e-6, atol=1e-6))
+
+    order = raw
+    if raw.size >= 3 and not uniform(raw):
+        b = np.sort(np.mod(raw, 360.0))
+        gaps = np.diff(np.concatenate([b, [b[0] + 360.0]]))
+        turn = np.roll(b, -(int(np.argmax(gaps)) + 1))
+        turn = turn[0] + np.mod(turn - turn[0], 360.0)  # increasing, past 360 at the wrap
+        order = turn if uniform(turn) else raw
+    if uniform(order):
+        text = f"{order.size}: {order[0]:g} to {order[-1]:g} every {order[1] - order[0]:g} deg"
+    else:
+        text = f"{order.size}: " + ", ".join(f"{x:g}" for x in order) + " deg"
+    wrapped = "360 stored as 0; " if order[-1] >= 360.0 else ""
+    return text + f" ({wrapped}direction of propagation: 0 following, 180 head seas)"
+
+
+def _point(values) -> str:
+    """A point (or a list of points, one per body) with 6 significant digits."""
+    if isinstance(values, list | tuple) and values and isinstance(values[0], list | tuple):
+        return ", ".join(_point(v) for v in values)
+    return "[" + ", ".join(f"{float(v):.6g}" for v in values) + "]"
 
 
 def second_order_lines(summary: dict) -> list[str]:
@@ -97,9 +131,7 @@ def info_command(path, format_, rho, g, ulen, as_json):
     )
     if d["wave_directions_deg"]:
         betas = d["wave_directions_deg"]
-        table.add_row(
-            "wave directions", f"{len(betas)}: " + ", ".join(f"{b:g}" for b in betas) + " deg"
-        )
+        table.add_row("wave directions", describe_directions(betas))
     table.add_row("forward speeds", ", ".join(f"{u:g}" for u in d["forward_speeds_m_s"]) + " m/s")
     table.add_row("variables", ", ".join(d["variables"]))
     table.add_row("rho, g", f"{d['rho_kg_m3']:g} kg/m³, {d['g_m_s2']:g} m/s²")
@@ -113,13 +145,13 @@ def info_command(path, format_, rho, g, ulen, as_json):
         ),
     )
     table.add_row("axes", str(d["axis_convention"]))
-    table.add_row("reference point", f"{d['reference_point_m']} m")
+    table.add_row("reference point", f"{_point(d['reference_point_m'])} m")
     for key, label in (
         ("center_of_gravity_m", "centre of gravity"),
         ("center_of_buoyancy_m", "centre of buoyancy"),
     ):
         if key in d:
-            table.add_row(label, f"{d[key]} m")
+            table.add_row(label, f"{_point(d[key])} m")
     for key, label, unit in (
         ("displaced_volume_m3", "displaced volume", "m³"),
         ("mass_kg", "mass", "kg"),

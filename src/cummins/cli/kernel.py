@@ -77,15 +77,19 @@ from cummins.files import replacing
     help="Ignore the data above this frequency (e.g. the first irregular frequency).",
 )
 @click.option(
-    "--remove-suspect",
-    is_flag=True,
-    help="Remove frequencies with spikes or clearly negative damping (reported).",
+    "--remove-suspect/--keep-suspect",
+    default=True,
+    show_default=True,
+    help="Leave out the frequencies where a DOF's own curves have spikes or clearly "
+    "negative damping (irregular frequencies), as the fit does, each reported; sharp "
+    "resonances the motions depend on stay. --keep-suspect integrates them as they are "
+    "(a note lists them).",
 )
 @click.option(
     "--above-first",
     is_flag=True,
-    help="With --remove-suspect: also remove everything above the first suspect "
-    "frequency past the damping peak (irregular frequencies).",
+    help="Also remove everything above the first suspect frequency past the damping "
+    "peak (irregular frequencies get denser upwards).",
 )
 @click.option(
     "--truncate",
@@ -95,7 +99,7 @@ from cummins.files import replacing
 )
 @speed_option()
 @force_option()
-@option_rules(needs={"above_first": "remove_suspect"})
+@option_rules(needs={"above_first": ("remove_suspect", bool, "(the default, not --keep-suspect)")})
 @reports_errors
 def kernel_command(
     path,
@@ -124,12 +128,14 @@ def kernel_command(
     fitted high-frequency tail. A-infinity is the solver's row when there is one,
     else Ogilvie's estimate combined over frequency. Per significant coupling the
     table gives K(0), K(t_max), the tail's share of the damping area, the A-infinity
-    estimate and its spread, and the Kramers-Kronig error.
+    estimate and its spread, and the Kramers-Kronig error. Suspect frequencies
+    (irregular frequencies, spikes) are left out first, as the fit leaves them out.
 
     \b
     Examples:
       cummins kernel tanker.1 -o K.nc --plot kernel-plots
-      cummins kernel tanker.1 -o K.nc --remove-suspect --above-first --truncate subtract
+      cummins kernel tanker.1 -o K.nc --above-first --truncate subtract
+      cummins kernel tanker.1 -o K_raw.nc --keep-suspect
     """
     from cummins.cli.pipeline import kernel_stage, write_kernel_plots
 

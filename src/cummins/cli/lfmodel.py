@@ -131,6 +131,7 @@ def lf_model_command(
       cummins lf-model tanker.1 -o lf.nc --route kernel --roll-damping 0.05 --compare lf-cmp
       cummins lf-model supply.mat -o lf.nc --data-damping all
     """
+    from rich.markup import escape
     from rich.table import Table
 
     from cummins.timedomain.lfmodel import (
@@ -164,7 +165,7 @@ def lf_model_command(
         text = str(w.message).replace(DATA_DAMPING_ADVICE, "--data-damping DOF (or all)")
         warnings.warn_explicit(text, w.category, w.filename, w.lineno)
     table = Table(title=f"low-frequency model of {Path(path).name} ({route} route)")
-    for column in ("DOF", "frequency [rad/s]", "M_RB + M_A", "D", "G", "taken as"):
+    for column in ("DOF", "frequency [rad/s]", "M_RB + M_A", "D", "G"):
         table.add_column(column, justify="right")
     for k, dof in enumerate(model.dofs):
         table.add_row(
@@ -173,9 +174,11 @@ def lf_model_command(
             f"{model.mass[k, k]:.4g}",
             f"{model.damping[k, k]:.4g}",
             f"{model.stiffness[k, k]:.4g}",
-            model.provenance[k][:60],
         )
     console.print(table)
+    console.print("taken as (equations of Ross, Perez & Fossen (2006)):")
+    for line in model.provenance:  # whole sentences, wrapped at the terminal's width
+        console.print(f"  {escape(line)}", highlight=False)
     from cummins.io.netcdf import save_netcdf
 
     save_netcdf(model.to_dataset(), output)

@@ -25,16 +25,19 @@ def kernel_stage(
     tail: str = "auto",
     interpolation: str = "linear",
     omega_max: float | None = None,
-    remove_suspect: bool = False,
+    remove_suspect: bool = True,
     above_first: bool = False,
     truncate: str | None = None,
     say: Callable[[str], object] = lambda message: None,
 ) -> tuple[xr.Dataset, xr.Dataset]:
     """Repair options, K(t) and diagnostics: what ``cummins kernel`` and the demo run.
 
-    Steps: :func:`~cummins.repair.limit_frequency_range` (``omega_max``),
-    :func:`~cummins.repair.remove_suspect_frequencies` (``remove_suspect``, each one
-    reported through ``say``), a time grid of step ``dt`` to ``t_max`` (defaults from
+    Steps: :func:`~cummins.repair.limit_frequency_range` (``omega_max``), the suspect
+    frequencies left out as the fit leaves them out (``remove_suspect``, the default:
+    :func:`leave_out_suspects`; with ``above_first``
+    :func:`~cummins.repair.remove_suspect_frequencies` and everything above the first;
+    without ``remove_suspect`` they stay and a note says so), each reported through
+    ``say``, a time grid of step ``dt`` to ``t_max`` (defaults from
     :func:`~cummins.radiation.retardation.default_time_grid`),
     :func:`~cummins.radiation.retardation.retardation_dataset` and, with ``truncate``,
     :func:`~cummins.radiation.retardation.truncate_retardation` at t_max.
@@ -54,10 +57,12 @@ def kernel_stage(
 
     if omega_max is not None:
         ds = limit_frequency_range(ds, omega_max=omega_max)
-    if remove_suspect:
-        ds, suspects = remove_suspect_frequencies(ds, above_first=above_first)
+    if remove_suspect and above_first:
+        ds, suspects = remove_suspect_frequencies(ds, above_first=True)
         for s in suspects:
             say(f"  suspect {s.omega:.4g} rad/s: {s.quantity}, {s.reason}")
+    else:
+        ds = leave_out_suspects(ds, say=say, remove=remove_suspect)
     if t_max is not None:
         positive(t_max, "t_max", "s")
     if dt is not None:
@@ -78,6 +83,78 @@ def kernel_stage(
         result["retardation_function"] = k
         result.attrs["truncation"] = k.attrs["truncation"]
     return result, ds
+
+
+def leave_out_suspects(
+    ds: xr.Dataset, *, say: Callable[[str], object] = lambda message: None, remove: bool = True
+) -> xr.Dataset:
+    """The data without the suspect frequencies the fit leaves out of its couplings.
+
+    Each DOF's own curves are judged (:func:`cummins.repair.suspects_by_dof`); a
+    frequency suspect in one of them (irregular frequency, spike, negative damping) is
+    removed from the whole grid (B and A are then linear between its neighbours), except
+    the points of a sharp resonance the motions depend on (a piston or gap resonance is
+    physics, not an error: kept, and said). When fewer than
+    :data:`~cummins.radiation.fit.data.MIN_KEPT_FREQUENCIES` would be left, all stay.
+
+    Parameters
+    ----------
+    ds
+        A ``HydroDB`` at one forward speed.
+    say
+        Receives one line per suspect frequency and a summary.
+    remove
+        False: keep them all and only say which they are and the option that removes them.
+    """
+    from cummins.radiation.fit.data import MIN_KEPT_FREQUENCIES
+    from cummins.repair import remove_frequencies, suspects_by_dof
+
+    own = suspects_by_dof(ds)
+    worst: dict[float, object] = {}
+    dofs: dict[float, list[str]] = {}
+    for label, found in own.items():
+        for s in found.suspects:
+            if s.omega in found.kept:
+                continue
+            dofs.setdefault(s.omega, []).append(label)
+            if s.omega not in worst or s.score > worst[s.omega].score:
+                worst[s.omega] = s
+        for resonance in found.resonances:
+            if resonance.kept:
+                say(f"  kept: {resonance.description(label)}")
+    if not worst:
+        return ds
+    omega = sorted(worst)
+    where = f"{omega[0]:.4g}–{omega[-1]:.4g} rad/s"
+    touched = ", ".join(
+        str(d)
+        for d in ds.influenced_dof.values
+        if any(str(d) in labels for labels in dofs.values())
+    )
+    if not remove:
+        say(
+            f"note: K(t) keeps {len(omega)} suspect frequencies ({where}; {touched}: "
+            "irregular frequencies, spikes or negative damping) that the fit leaves out; "
+            "they ring in K(t) and lengthen it (--remove-suspect, the default, leaves "
+            "them out; cummins check lists them)"
+        )
+        return ds
+    if ds.sizes["omega"] - len(omega) < MIN_KEPT_FREQUENCIES:
+        say(
+            f"note: {len(omega)} of {ds.sizes['omega']} frequencies look suspect; all kept, "
+            "too few would be left (check the data: cummins check)"
+        )
+        return ds
+    for w in omega:
+        s = worst[w]
+        say(f"  suspect {w:.4g} rad/s: {s.quantity}, {s.reason} ({', '.join(dofs[w])})")
+    say(
+        f"left out {len(omega)} suspect frequencies ({where}) of {touched}, as the fit "
+        "does (--keep-suspect keeps them)"
+    )
+    return remove_frequencies(
+        ds, omega, reason="suspect in a DOF's own curves (irregular frequencies, spikes)"
+    )
 
 
 def write_kernel_plots(

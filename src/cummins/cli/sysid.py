@@ -417,6 +417,8 @@ def _decay_reports(
         if "B1_viscous" in values:
             line += f" (B1 over the radiation damping: {values['B1_viscous']:.4g})"
         console.print(line)
+        if values.get("p2_note"):
+            console.print(f"  {values['p2_note']}", highlight=False)
     (report / "decay.json").write_text(json.dumps(results, indent=2), encoding="utf-8")
     console.print(f"wrote {report}/decay.json and {len(records)} figure(s)")
 
