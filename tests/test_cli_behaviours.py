@@ -111,6 +111,10 @@ def test_simulation_from_rest_joins_the_stationary_one(fitted, tmp_path):
     assert np.abs(heave_a[:20] - heave_b[:20]).max() > 0.1 * amplitude  # it did start apart
 
 
+#: 6 steps per period of the shortest component (the Torsethaugen's reach 6 rad/s here)
+ELEVATION_DT = 0.15
+
+
 def _elevation(model, folder, name, *options):
     out = folder / f"{name}.nc"
     _run(
@@ -125,7 +129,7 @@ def _elevation(model, folder, name, *options):
             "--duration",
             "2000",
             "--dt",
-            "0.25",
+            f"{ELEVATION_DT:g}",
             "--seed",
             "3",
             *VISCOUS,
@@ -138,7 +142,7 @@ def _elevation(model, folder, name, *options):
 
 def _peak_share(eta: np.ndarray, tp: float = 10.0) -> float:
     """Share of the elevation's energy within ±10 % of the peak frequency (Welch)."""
-    f, s = scipy.signal.welch(eta, fs=4.0, nperseg=2048)
+    f, s = scipy.signal.welch(eta, fs=1.0 / ELEVATION_DT, nperseg=2048)
     w = 2 * np.pi * f
     near = (w > 0.9 * 2 * np.pi / tp) & (w < 1.1 * 2 * np.pi / tp)
     return float(s[near].sum() / s.sum())

@@ -144,7 +144,12 @@ def _require_dask() -> None:
 
 
 def _print_tables(results) -> None:
-    from cummins.studies.operability import limiting_hs, operability
+    from cummins.studies.operability import (
+        beyond_grid_note,
+        limiting_hs,
+        limiting_hs_text,
+        operability,
+    )
 
     if not results.sizes.get("criterion", 0):
         console.print("no limits in the study: no operability table")
@@ -168,6 +173,15 @@ def _print_tables(results) -> None:
         for tp in lim.tp.values:
             grid.add_column(f"{tp:g}", justify="right")
         for h in lim.heading.values:
-            values = lim.sel(heading=h).values
-            grid.add_row(f"{h:g}", *(f"{v:.3g}" if np.isfinite(v) else "-" for v in values))
+            row = lim.sel(heading=h)
+            grid.add_row(
+                f"{h:g}",
+                *(
+                    limiting_hs_text(v, b)
+                    for v, b in zip(row.values, row.beyond_grid.values, strict=True)
+                ),
+            )
         console.print(grid)
+        note = beyond_grid_note(lim)
+        if note:
+            console.print(escape(note), highlight=False)

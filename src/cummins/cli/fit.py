@@ -273,6 +273,14 @@ def fit_command(
         f"total order {summary['total_order']}, every model stable: {summary['mimo_stable']}, "
         f"MIMO passive: {summary['mimo_passive']}, {elapsed:.2f} s"
     )
+    error = model.attrs.get("motion_error")
+    if error is not None:  # the data hold the inertia and the restoring
+        target = model.attrs.get("motion_target")
+        console.print(
+            f"motion-RAO error {float(error):.2%} of the peak"
+            + (f" (target {float(target):.2%})" if target is not None else "")
+            + (f", on {model.attrs['motions_of']}" if model.attrs.get("motions_of") else "")
+        )
     for note in model.attrs.get("data_notes", []):
         console.print(f"[yellow]data:[/yellow] {escape(note)}")
     negligible = [c for c in model.attrs.get("negligible_couplings", []) if "-" in c]

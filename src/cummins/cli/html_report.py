@@ -361,22 +361,10 @@ def run_sections(path: Path) -> list[Section]:
 
     with xr.open_dataset(path, engine="h5netcdf") as f:
         run = f.load()
-    units = run.motion.attrs.get("units", "").split(" | ")
-    regular = str(run.attrs.get("spectrum", "")) == "regular"
-    t = run.time.values
-    period = float(run.attrs.get("tp", np.nan))
-    last = t >= t[-1] - period if regular and 0 < period < t[-1] else np.ones(t.size, bool)
-    rows = []
-    for k, dof in enumerate(run.dof.values):
-        xi = run.motion.values[:, k]
-        rows.append(
-            [
-                str(dof),
-                float(0.5 * np.ptp(xi[last]) if regular else 2 * xi.std()),
-                float(np.abs(xi).max()),
-                units[k] if k < len(units) else "",
-            ]
-        )
+    from cummins.timedomain.statistics import is_regular, motion_statistics
+
+    regular = is_regular(run)
+    rows = [[r.dof, r.amplitude, r.maximum, r.unit] for r in motion_statistics(run)]
     duration = float(run.time.values[-1] - run.time.values[0])
     notes = _note(
         f"{run.attrs.get('sea', 'simulation')}; {duration:g} s at dt "
@@ -529,22 +517,39 @@ def _operability_body(op: xr.DataArray) -> str:
 
 
 def _limiting_body(lim: xr.DataArray) -> str:
+    from cummins.studies.operability import beyond_grid_note, limiting_hs_text
+
+    def cell(value, beyond):
+        return limiting_hs_text(float(value), bool(beyond)) if beyond else float(value)
+
     if set(lim.dims) == {"heading", "tp"}:
         grid = lim.transpose("heading", "tp")
         header = ["heading [deg] \\ Tp [s]"] + [f"{t:g}" for t in grid.tp.values]
         rows = [
-            [float(h), *(float(v) for v in grid.sel(heading=h).values)] for h in grid.heading.values
+            [
+                float(h),
+                *map(cell, grid.sel(heading=h).values, grid.beyond_grid.sel(heading=h).values),
+            ]
+            for h in grid.heading.values
         ]
     else:
         frame = lim.to_dataframe().reset_index()
-        header = list(frame.columns)
-        rows = [[float(v) for v in r] for _, r in frame.iterrows()]
+        header = [c for c in frame.columns if c != "beyond_grid"]
+        rows = [
+            [*(float(r[c]) for c in header[:-1]), cell(r[header[-1]], r["beyond_grid"])]
+            for _, r in frame.iterrows()
+        ]
     return (
-        _note("Limiting Hs [m]: the largest Hs meeting every criterion (responses scale with Hs).")
+        _note(
+            "Limiting Hs [m]: the largest Hs meeting every criterion (responses scale with "
+            "Hs), within the Hs computed: never a number scaled beyond the study."
+        )
         + table_html(header, rows)
+        + (_note(beyond_grid_note(lim) + ".") if bool(lim.beyond_grid.any()) else "")
         + figure_html(
             _plot_limiting_hs(lim),
-            "Limiting Hs per peak period and heading (drawn up to twice the largest Hs computed)",
+            "Limiting Hs per peak period and heading (open triangles: beyond the grid, "
+            "drawn at the largest Hs computed)",
         )
     )
 
@@ -606,17 +611,20 @@ def _plot_limiting_hs(lim: xr.DataArray):
     reduced = lim.min([d for d in lim.dims if d not in ("heading", "tp")]) if lim.ndim > 2 else lim
     for k, h in enumerate(reduced.heading.values):
         values = reduced.sel(heading=h).values
+        beyond = reduced.beyond_grid.sel(heading=h).values.astype(bool)
+        color = f"C{k % 10}"
         ax.plot(
             reduced.tp.values,
             np.where(np.isfinite(values), values, np.nan),
-            "o-",
-            color=f"C{k % 10}",
+            "-",
+            color=color,
             label=f"{h:g}°",
         )
+        ax.plot(reduced.tp.values[~beyond], values[~beyond], "o", color=color)
+        ax.plot(reduced.tp.values[beyond], values[beyond], "^", color=color, mfc="none")
     finite = reduced.values[np.isfinite(reduced.values)]
     if finite.size:
-        top = 2.0 * float(lim.attrs.get("hs_max", finite.max()))
-        ax.set_ylim(0.0, min(float(finite.max()) * 1.05, top))
+        ax.set_ylim(0.0, float(finite.max()) * 1.1)
     ax.set_xlabel("Tp [s]")
     ax.set_ylabel("limiting Hs [m]")
     ax.grid(alpha=0.3)

@@ -139,3 +139,10 @@ def refuse_repeated(values, option: str, key=lambda v: v, what: str = "DOF") -> 
                 f"{shown} is given twice: give one value per {what}", param_hint=option
             )
         seen.add(k)
+
+
+def unique_values(ctx: click.Context, param: click.Parameter, values):
+    """A click ``callback`` of a repeatable option naming DOFs (``--dof``): the same one
+    twice is refused in one line (:func:`refuse_repeated`)."""
+    refuse_repeated(values, param.opts[0] if param.opts else str(param.name))
+    return values

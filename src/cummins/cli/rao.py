@@ -24,7 +24,7 @@ from cummins.cli.common import (
     viscous_damping_option,
     viscous_damping_values,
 )
-from cummins.cli.option_rules import Command
+from cummins.cli.option_rules import Command, unique_values
 from cummins.cli.system_options import (
     prepare_system_args,
     system_from_options,
@@ -128,6 +128,7 @@ def parse_headings(values: tuple[str, ...]) -> list[float]:
     "--dof",
     "dofs",
     multiple=True,
+    callback=unique_values,
     metavar="NAME",
     help="Only these DOFs move (repeatable), e.g. --dof body1__Heave --dof body2__Heave; "
     "the others are held at zero.",

@@ -2,10 +2,13 @@
 
 from __future__ import annotations
 
+import sys
+import warnings
 from pathlib import Path
 
 import click
 import numpy as np
+from rich.markup import escape
 
 from cummins.cli.common import (
     Number,
@@ -26,13 +29,14 @@ from cummins.cli.common import (
     viscous_damping_option,
     viscous_damping_values,
 )
-from cummins.cli.option_rules import option_rules
+from cummins.cli.option_rules import option_rules, unique_values
 from cummins.cli.second_order import (
     build_second_order,
     second_order_option,
     sum_frequency_option,
 )
 from cummins.cli.system_options import SystemCommand, system_from_options, system_options
+from cummins.timedomain.time_step import ENERGY_TOLERANCE, STEPS_PER_SHORTEST_PERIOD
 from cummins.validation import check_simulation_size
 
 #: The time step of a run, s, unless the waves ask for a shorter one.
@@ -100,14 +104,25 @@ def default_time_step(period: float | None) -> float:
     show_default=True,
     help="Wave components.",
 )
-@click.option("--duration", type=positive("s"), default=3 * 3600.0, show_default=True, metavar="S")
+@click.option(
+    "--duration",
+    type=positive("s"),
+    default=3 * 3600.0,
+    show_default=True,
+    metavar="S",
+    help="Length of the run, s (3 hours: the usual sea-state duration; a regular wave "
+    "starts steady, a few periods show it).",
+)
 @click.option(
     "--dt",
     type=positive("s"),
     default=None,
     metavar="S",
     help=f"Time step (default: {DEFAULT_DT:g} s, or the wave period (--wave-period, --tp) "
-    f"/ {STEPS_PER_PERIOD} when shorter: tank-scale waves).",
+    f"/ {STEPS_PER_PERIOD} when shorter: tank-scale waves). A step with fewer than "
+    f"{STEPS_PER_SHORTEST_PERIOD} steps per period of the shortest wave component is "
+    "refused; a run whose energy balance misses by more than "
+    f"{ENERGY_TOLERANCE:.0%} fails (exit status 3).",
 )
 @click.option(
     "--seed",
@@ -129,9 +144,20 @@ def default_time_step(period: float | None) -> float:
     "units in the header ('time [s], wave elevation [m]') or a run.nc, travelling towards "
     "--heading; the force is the causal excitation model's (fit-excitation), from rest.",
 )
-@click.option("--wave-period", type=positive("s"), default=None, metavar="S")
 @click.option(
-    "--wave-amplitude", type=non_negative("m"), default=1.0, show_default=True, metavar="M"
+    "--wave-period",
+    type=positive("s"),
+    default=None,
+    metavar="S",
+    help="With --regular: the wave's period, s (the encounter period differs at --speed).",
+)
+@click.option(
+    "--wave-amplitude",
+    type=non_negative("m"),
+    default=1.0,
+    show_default=True,
+    metavar="M",
+    help="With --regular: the wave's amplitude (half its height), m.",
 )
 @viscous_damping_option
 @click.option(
@@ -167,6 +193,7 @@ def default_time_step(period: float | None) -> float:
     "--dof",
     "dofs",
     multiple=True,
+    callback=unique_values,
     metavar="NAME",
     help="Simulate only these DOFs (repeatable), e.g. --dof Heave --dof Pitch: the vertical "
     "plane of a ship in head or following seas; the others are held at zero.",
@@ -382,6 +409,8 @@ def simulate_command(
         title = f"{spectrum}, Hs {hs:g} m, Tp {tp:g} s, {len(sea)} components"
         if seed is None:
             console.print(f"seed {sea.seed} drawn (repeat this sea with --seed {sea.seed})")
+    if sea is not None:  # before the radiation model is fitted
+        _check_time_step(dt, ds, sea)
     from cummins.radiation.fit import MOTION_ACCURACY
 
     fit_options = MOTION_ACCURACY if accurate and model is None else {}
@@ -407,6 +436,8 @@ def simulate_command(
         vessel.radiation.attrs, path, "fitted" if model is None else "model"
     )
     nonlinear = quadratic_damping_force(vessel.dofs, b_q) if b_q else None
+    if sea is not None and nonlinear is not None:  # the Runge-Kutta path's stability
+        _check_time_step(dt, ds, sea, vessel.state_space()[0])
     if wave_record:
         from cummins.cli.wave_record import run_wave_record
 
@@ -420,18 +451,20 @@ def simulate_command(
             task = bar.add_task(
                 f"simulating {duration:g} s, {title}, heading {heading:g}°", total=1.0
             )
-            run = simulate_waves(
-                vessel,
-                ds,
-                sea,
-                duration=duration,
-                dt=dt,
-                initial=start,
-                nonlinear_force=nonlinear,
-                progress=lambda fraction: bar.update(task, completed=fraction),
-                second_order=second,
-                first_order=first_order,
-            )
+            with warnings.catch_warnings():  # a failed balance is printed as a failure
+                warnings.filterwarnings("ignore", "the energy balance misses")
+                run = simulate_waves(
+                    vessel,
+                    ds,
+                    sea,
+                    duration=duration,
+                    dt=dt,
+                    initial=start,
+                    nonlinear_force=nonlinear,
+                    progress=lambda fraction: bar.update(task, completed=fraction),
+                    second_order=second,
+                    first_order=first_order,
+                )
     if sea is not None and sea.seed is not None:
         run.attrs["seed"] = int(sea.seed)  # an int64: HDF5 stores it; --seed repeats the run
     run.attrs.update(
@@ -459,13 +492,32 @@ def simulate_command(
         waves = sea if sea is not None else wv.regular_wave(0.0, 10.0, direction)  # no spectra
         for file in write_simulation_plots(run, vessel, ds, waves, Path(plot_dir), force=force):
             console.print(f"wrote {file}")
+    failure = run.attrs.get("failure")
+    if failure:
+        console.print(f"[bold red]failure:[/bold red] {escape(failure)}", highlight=False)
+        sys.exit(SIMULATION_FAILED)
+
+
+#: The exit status of a run whose energy balance fails (as a failed fit's).
+SIMULATION_FAILED = 3
+
+
+def _check_time_step(dt, ds, sea, state_matrix=None) -> None:
+    """Refuse a --dt too long for the sea's components as the vessel meets them
+    (:func:`cummins.timedomain.time_step.check_time_step`)."""
+    from cummins.seakeeping.excitation import encounter_frequencies
+    from cummins.timedomain.time_step import check_time_step
+
+    omega_e = encounter_frequencies(ds, sea.omega, sea.direction)
+    check_time_step(dt, omega_e, state_matrix, option="--dt")
 
 
 def _summary(run, regular: bool = False) -> None:
-    """Per DOF: the significant amplitude 2σ of an irregular sea, or the amplitude of the
-    steady oscillation in a regular wave (half the range over the last wave period, or
-    over the whole run when it is shorter), the largest |ξ| and the unit."""
+    """The run's motion statistics (:func:`cummins.timedomain.statistics.motion_statistics`,
+    rotations in degrees) and its energy balance."""
     from rich.table import Table
+
+    from cummins.timedomain.statistics import motion_statistics
 
     table = Table(title=f"{run.attrs.get('sea', '')}: {run.time.values[-1]:g} s")
     first = "amplitude" if regular else "significant amplitude (2σ)"
@@ -473,24 +525,20 @@ def _summary(run, regular: bool = False) -> None:
     columns = ("DOF", *(("mean",) if mean else ()), first, "max |ξ|", "unit")
     for column in columns:
         table.add_column(column, justify="right")
-    units = run.motion.attrs.get("units", "").split(" | ")
-    t = run.time.values
-    period = float(run.attrs.get("tp", np.nan)) if regular else np.nan
-    last = t >= t[-1] - period if np.isfinite(period) and period < t[-1] else np.ones(t.size, bool)
-    for k, dof in enumerate(run.dof.values):
-        xi = run.motion.values[:, k]
-        size = 0.5 * np.ptp(xi[last]) if regular else 2 * xi.std()
+    for row in motion_statistics(run, regular):
         table.add_row(
-            str(dof),
-            *((f"{xi.mean():.4g}",) if mean else ()),
-            f"{size:.4g}",
-            f"{np.abs(xi).max():.4g}",
-            units[k] if k < len(units) else "",
+            row.dof,
+            *((f"{row.mean:.4g}",) if mean else ()),
+            f"{row.amplitude:.4g}",
+            f"{row.maximum:.4g}",
+            row.unit,
         )
     console.print(table)
     pto = f", PTOs {run.attrs['energy_pto']:.4g} J" if run.attrs.get("energy_pto") else ""
+    work = run.attrs.get("energy_nonlinear")
+    nonlinear = f", nonlinear forces {work:.4g} J" if work else ""
     console.print(
-        f"energy: in {run.attrs['energy_input']:.4g} J, radiated "
+        f"energy: in {run.attrs['energy_input']:.4g} J{nonlinear}, radiated "
         f"{run.attrs['energy_radiated']:.4g} J, viscous {run.attrs['energy_viscous']:.4g} J"
         f"{pto}, balance error "
         f"{run.attrs['energy_relative_residual']:.2g}"

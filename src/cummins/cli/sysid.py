@@ -28,7 +28,7 @@ from cummins.cli.common import (
     viscous_damping_option,
     viscous_damping_values,
 )
-from cummins.cli.option_rules import Command, option_rules
+from cummins.cli.option_rules import Command, option_rules, unique_values
 
 
 @click.command(name="identify-damping", cls=Command)
@@ -47,6 +47,7 @@ from cummins.cli.option_rules import Command, option_rules
     "--dof",
     "dofs",
     multiple=True,
+    callback=unique_values,
     default=("Roll",),
     show_default=True,
     help="DOF whose damping is identified (repeatable).",

@@ -650,7 +650,15 @@ def gather_results(
         "spectrum": str(study.spectrum).lower(),
         "cummins_version": __version__,
     }
-    return exceedance(ds, study.limits)
+    out = exceedance(ds, study.limits)
+    if study.limits and {"heading", "tp"} <= set(out.dims):
+        from cummins.studies.operability import limiting_hs
+
+        lim = limiting_hs(out).reindex(heading=out.heading, tp=out.tp)
+        out["limiting_hs"] = lim.drop_vars("beyond_grid")
+        out["limiting_hs_beyond_grid"] = lim.beyond_grid.fillna(False).astype(bool)
+        out.limiting_hs_beyond_grid.attrs = dict(lim.beyond_grid.attrs)
+    return out
 
 
 def write_results(results: xr.Dataset, path: str | os.PathLike[str], *, force: bool = False):

@@ -37,7 +37,14 @@ import numpy as np
 import pandas as pd
 import xarray as xr
 
-__all__ = ["exceedance", "limiting_hs", "operability", "sea_states"]
+__all__ = [
+    "beyond_grid_note",
+    "exceedance",
+    "limiting_hs",
+    "limiting_hs_text",
+    "operability",
+    "sea_states",
+]
 
 #: Case axes that describe a sea state (the rest, ``seed``, are realisations of it).
 SEA_KEYS = ("heading", "gamma", "spreading", "hs", "tp")
@@ -139,21 +146,53 @@ def operability(results: xr.Dataset) -> xr.DataArray:
 
 
 def limiting_hs(results: xr.Dataset) -> xr.DataArray:
-    """Largest H_s meeting every criterion per heading and T_p, m.
+    """Largest H_s meeting every criterion per heading and T_p, m, within the H_s computed.
 
     The responses are linear in the wave height: a case with worst ratio r at H_s gives
-    H_s / r; the smallest over the H_s values, γ, spreading and seeds is returned (inf
-    without limits).
+    H_s / r; the smallest over the H_s values, γ, spreading and seeds is the limit. A
+    limit above the largest H_s computed at that heading and T_p is not extrapolated: the
+    value is that H_s (a lower bound: every sea state computed meets the criteria) and the
+    coordinate ``beyond_grid`` is True — "> 4 m (beyond the grid)", never 132 m from a
+    linear scaling far outside the study (without limits: every entry).
     """
     states = sea_states(results).reset_index()
     with np.errstate(divide="ignore"):
         scaled = pd.Series(states.hs.to_numpy() / states.ratio.to_numpy())
-    out = scaled.groupby([states.heading, states.tp]).min().to_xarray().rename("limiting_hs")
+    groups = [states.heading, states.tp]
+    limit = scaled.groupby(groups).min().to_xarray()
+    top = states.hs.groupby(groups).max().to_xarray()
+    beyond = limit > top
+    out = limit.where(~beyond, top).rename("limiting_hs")
+    out = out.assign_coords(beyond_grid=beyond)
     out.heading.attrs["units"] = "deg"
     out.tp.attrs["units"] = "s"
+    out.beyond_grid.attrs["long_name"] = (
+        "the limit is above the largest Hs computed (limiting_hs holds that Hs, a lower bound)"
+    )
     out.attrs = {
         "units": "m",
-        "long_name": "limiting significant wave height (linear scaling of the responses)",
+        "long_name": "limiting significant wave height (linear scaling of the responses, "
+        "within the Hs computed)",
         "hs_max": float(states.hs.max()),
     }
     return out
+
+
+def limiting_hs_text(value: float, beyond: bool) -> str:
+    """A limiting H_s as a table prints it: "2.31", or "> 4" beyond the grid (with
+    :func:`beyond_grid_note` under the table)."""
+    if not np.isfinite(value):
+        return "-"
+    return f"> {value:.3g}" if beyond else f"{value:.3g}"
+
+
+def beyond_grid_note(lim: xr.DataArray) -> str:
+    """The note under a table of :func:`limiting_hs` with entries beyond the grid, or ""."""
+    beyond = lim.beyond_grid.values.astype(bool)
+    if not beyond.any():
+        return ""
+    top = float(np.nanmax(lim.values[beyond]))
+    return (
+        f"> {top:.3g} m: beyond the grid — every sea state computed, up to Hs {top:.3g} m, "
+        "meets the criteria; the limit is not extrapolated beyond it"
+    )

@@ -39,6 +39,7 @@ the state-space model the history is a state and can be set exactly).
 
 from __future__ import annotations
 
+import warnings
 from collections.abc import Callable
 from dataclasses import dataclass
 
@@ -48,9 +49,10 @@ import xarray as xr
 from numpy.typing import ArrayLike, NDArray
 from scipy.signal import lfilter
 
-from cummins.errors import ArgumentError, SimulationError
+from cummins.errors import ArgumentError, CumminsWarning, SimulationError
 from cummins.hydrodb import is_rotation
 from cummins.mechanics import pto_time_series
+from cummins.timedomain.time_step import check_time_step, energy_balance_failure
 from cummins.validation import check_simulation_size, positive
 from cummins.vessel import Vessel
 
@@ -178,7 +180,12 @@ def simulate(
         y = _runge_kutta(vessel, t, tau, x0, nonlinear_force, report, h) @ h.T
         method = "state space, Runge-Kutta 4 (nonlinear forces)"
     _check_divergence(vessel, t, y[:, :n], tau)
-    return _result(vessel, t, y[:, :n], y[:, n : 2 * n], y[:, 2 * n :], tau, method, dt)
+    result = _result(vessel, t, y[:, :n], y[:, n : 2 * n], y[:, 2 * n :], tau, method, dt)
+    if nonlinear_force is not None:  # its work enters the energy balance
+        extra = [nonlinear_force(tk, yk[:n], yk[n : 2 * n]) for tk, yk in zip(t, y, strict=True)]
+        result["nonlinear_force"] = (("time", "dof"), np.asarray(extra, dtype=float))
+        result.nonlinear_force.attrs["units"] = "N | N m"
+    return result
 
 
 def simulate_waves(
@@ -208,7 +215,10 @@ def simulate_waves(
         :class:`cummins.seakeeping.waves.WaveComponents` (phases at the origin).
     duration, dt
         Length of the run and time step, s (finite, > 0; a run whose arrays would not
-        fit in :func:`cummins.validation.memory_limit` is refused before it starts).
+        fit in :func:`cummins.validation.memory_limit` is refused before it starts, and
+        so is a step longer than :func:`cummins.timedomain.time_step.largest_time_step`:
+        fewer than 6 steps per period of the shortest wave component met, or beyond the
+        Runge–Kutta path's stability with ``nonlinear_force``).
     initial
         ``"steady"`` (default): start on the stationary solution of the same linear model
         (no start-up transient, no drift of the unrestrained DOFs); ``"rest"``.
@@ -235,9 +245,20 @@ def simulate_waves(
         forward speed: the origin moving with the ship, and the force and motions at the
         encounter frequencies, :func:`cummins.seakeeping.excitation.encounter_coefficients`);
         attributes describing the sea (``n_components``, ``seed`` …) and the energy
-        balance (``energy_*``, J).
+        balance (``energy_*``, J). A balance that misses by more than
+        :data:`cummins.timedomain.time_step.ENERGY_TOLERANCE` of the work done is a failed
+        run: attribute ``failure`` and a :class:`~cummins.errors.CumminsWarning`.
+
+    Raises
+    ------
+    ArgumentError
+        A time step too long for the waves (naming ``dt`` and the largest that does).
     """
-    from cummins.seakeeping.excitation import encounter_coefficients, forward_speed
+    from cummins.seakeeping.excitation import (
+        encounter_coefficients,
+        encounter_frequencies,
+        forward_speed,
+    )
     from cummins.seakeeping.waves import harmonic_sum
 
     if initial not in ("steady", "rest"):
@@ -245,6 +266,11 @@ def simulate_waves(
     check_simulation_size(duration, dt, vessel.n_states, len(vessel.dofs))
     duration, dt = float(duration), float(dt)
     ds = _on_vessel_dofs(ds, vessel)
+    check_time_step(
+        dt,
+        encounter_frequencies(ds, waves.omega, waves.direction),
+        vessel.state_space()[0] if nonlinear_force is not None else None,
+    )
     t = np.arange(0.0, duration + 0.5 * dt, dt)
     report = progress or _no_progress
     if first_order:
@@ -297,6 +323,10 @@ def simulate_waves(
         attrs["second_order_mean_force"] = np.asarray(second_order.mean, dtype=float)
         attrs["second_order_notes"] = "\n".join(notes)
     result.attrs.update(attrs)
+    failure = energy_balance_failure(result.attrs)
+    if failure:
+        result.attrs["failure"] = failure
+        warnings.warn(failure, CumminsWarning, stacklevel=2)
     return result
 
 
@@ -463,10 +493,12 @@ def simulate_convolution(
 def energy_balance(vessel: Vessel, result: xr.Dataset) -> dict[str, float]:
     """Work done on and by the vessel over the run, J (trapezoid in time).
 
-    ``input`` ∫ξ̇ᵀτ, ``viscous`` ∫ξ̇ᵀB_vξ̇, ``pto`` ∫ξ̇ᵀB_ptoξ̇ (absorbed by the PTOs'
-    dampers), ``radiated`` ∫ξ̇ᵀμ (≥ 0 from rest for a passive model), ``mechanical_change``
-    ΔE of E = ½ξ̇ᵀMξ̇ + ½ξᵀ(C + C_pto)ξ, ``residual`` input − viscous − pto − radiated −
-    mechanical change (a numerical error, relative to the input in
+    ``input`` ∫ξ̇ᵀτ, ``nonlinear`` ∫ξ̇ᵀτ_nl (the work of the run's ``nonlinear_force``,
+    negative when it dissipates), ``viscous`` ∫ξ̇ᵀB_vξ̇, ``pto`` ∫ξ̇ᵀB_ptoξ̇ (absorbed by
+    the PTOs' dampers), ``radiated`` ∫ξ̇ᵀμ (≥ 0 from rest for a passive model),
+    ``mechanical_change`` ΔE of E = ½ξ̇ᵀMξ̇ + ½ξᵀ(C + C_pto)ξ, ``residual`` input +
+    nonlinear − viscous − pto − radiated − mechanical change (a numerical error, relative
+    to the input in
     ``relative_residual``), ``radiated_min`` the smallest running radiated work (negative:
     energy came out of the fluid memory). With joints the constraint forces do no work
     on the allowed motions ξ̇ = T q̇, so the same sums hold in the body DOFs.
@@ -481,6 +513,11 @@ def energy_balance(vessel: Vessel, result: xr.Dataset) -> dict[str, float]:
     p_v = np.einsum("ti,ij,tj->t", v, vessel.viscous_damping, v)
     p_pto = np.einsum("ti,ij,tj->t", v, vessel.pto_damping, v)
     p_r = np.einsum("ti,ti->t", v, mu)
+    p_nl = (
+        np.einsum("ti,ti->t", v, result.nonlinear_force.values)
+        if "nonlinear_force" in result
+        else np.zeros(t.size)
+    )
     energy = 0.5 * np.einsum("ti,ij,tj->t", v, mass, v) + 0.5 * np.einsum(
         "ti,ij,tj->t", xi, vessel.restoring, xi
     )
@@ -489,11 +526,19 @@ def energy_balance(vessel: Vessel, result: xr.Dataset) -> dict[str, float]:
         return np.concatenate([[0.0], np.cumsum(0.5 * (p[1:] + p[:-1]) * np.diff(t))])
 
     work_in, work_v, work_r = integral(p_in), integral(p_v), integral(p_r)
-    work_pto = integral(p_pto)
-    residual = work_in[-1] - work_v[-1] - work_pto[-1] - work_r[-1] - (energy[-1] - energy[0])
+    work_pto, work_nl = integral(p_pto), integral(p_nl)
+    residual = (
+        work_in[-1]
+        + work_nl[-1]
+        - work_v[-1]
+        - work_pto[-1]
+        - work_r[-1]
+        - (energy[-1] - energy[0])
+    )
     scale = max(abs(work_in[-1]), float(np.abs(energy).max()), 1e-300)
     return {
         "input": float(work_in[-1]),
+        "nonlinear": float(work_nl[-1]),
         "viscous": float(work_v[-1]),
         "pto": float(work_pto[-1]),
         "radiated": float(work_r[-1]),

@@ -33,7 +33,12 @@ from cummins.errors import CumminsWarning, FitError, HydroDataError
 from cummins.hydrodb import dof_matrix, single_speed
 from cummins.radiation.fingerprint import data_fingerprint
 from cummins.radiation.fit.frequency import r_squared
-from cummins.radiation.fit.motion import JoinedMotion, MotionSensitivity, motion_sensitivity
+from cummins.radiation.fit.motion import (
+    JoinedMotion,
+    MotionSensitivity,
+    fitted_frequencies,
+    motion_sensitivity,
+)
 from cummins.radiation.fit.options import FitOptions
 from cummins.radiation.fit.order_search import block_groups
 from cummins.radiation.fit.reciprocity import (
@@ -546,13 +551,7 @@ def model_fit_data(model: RadiationModel, ds: xr.Dataset) -> FitData:
         ds = ds.sel(influenced_dof=dofs, radiating_dof=dofs)
     except KeyError as exc:
         raise FitError(f"the data do not hold the model's DOFs {dofs}") from exc
-    w = ds.omega.values
-    keep = np.ones(w.size, dtype=bool)
-    lo, hi = model.attrs.get("omega_fit_min"), model.attrs.get("omega_fit_max")
-    if lo is not None and hi is not None:
-        keep &= (w >= float(lo) * (1 - 1e-12)) & (w <= float(hi) * (1 + 1e-12))
-    for excluded in model.attrs.get("excluded_frequencies", []) or []:
-        keep &= ~np.isclose(w, float(excluded), rtol=1e-12, atol=0.0)
+    keep = fitted_frequencies(model, ds.omega.values)
     if not keep.any():
         raise FitError("the data have no frequency in the model's fitted range")
     named = {str(x) for x in np.atleast_1d(model.attrs.get("couplings_as_given", []) or [])}

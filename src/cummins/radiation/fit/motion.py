@@ -284,3 +284,50 @@ def _load_cases(data: xr.Dataset, n: int) -> tuple[NDArray[np.complex128], str]:
             ), f"wave excitation at {f.sizes['wave_direction']} headings"
     eye = np.broadcast_to(np.eye(n, dtype=complex), (data.sizes["omega"], n, n))
     return np.array(eye), "unit forces"
+
+
+def fitted_frequencies(model, omega) -> NDArray[np.bool_]:
+    """Which of ``omega`` (rad/s) a fitted model was fitted to: those within its
+    ``omega_fit_min`` … ``omega_fit_max`` less its ``excluded_frequencies`` (the suspect
+    points the fit left out; model attributes). A model without them: every frequency."""
+    w = np.asarray(omega, dtype=float)
+    keep = np.ones(w.size, dtype=bool)
+    lo, hi = model.attrs.get("omega_fit_min"), model.attrs.get("omega_fit_max")
+    if lo is not None and hi is not None:
+        keep &= (w >= float(lo) * (1 - 1e-12)) & (w <= float(hi) * (1 + 1e-12))
+    for excluded in model.attrs.get("excluded_frequencies", []) or []:
+        keep &= ~np.isclose(w, float(excluded), rtol=1e-12, atol=0.0)
+    return keep
+
+
+def fit_motion_error(data: xr.Dataset, model) -> tuple[float, NDArray[np.float64]]:
+    """The motion error of ``model`` as its fit measured it (``attrs["motion_error"]``):
+    :meth:`MotionSensitivity.model_error` on the data's frequencies the fit kept
+    (:func:`fitted_frequencies`), the excitation at up to four headings, 2 % of critical
+    damping — so that a reduced model is judged by the measure its full model was. Returns
+    the error and its value per DOF.
+
+    Raises
+    ------
+    HydroDataError
+        Data without the inertia or the restoring, or none of the fitted frequencies.
+    """
+    from cummins.errors import HydroDataError
+    from cummins.hydrodb import single_speed
+
+    dofs = list(model.dofs)
+    ds = single_speed(data).sel(influenced_dof=dofs, radiating_dof=dofs)
+    keep = fitted_frequencies(model, ds.omega.values)
+    sensitivity = None
+    if keep.any():
+        sensitivity = motion_sensitivity(
+            ds.isel(omega=np.flatnonzero(keep)), added_mass_inf=model.added_mass_inf
+        )
+    if sensitivity is None:
+        raise HydroDataError(
+            "the motion error needs inertia_matrix and hydrostatic_stiffness in the data, "
+            "at the frequencies the model was fitted to",
+            path=ds.attrs.get("source_file"),
+            hint="give the data the model was fitted to (with the mass properties)",
+        )
+    return sensitivity.model_error(model)
