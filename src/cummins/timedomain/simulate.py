@@ -177,13 +177,13 @@ def simulate(
         y = propagate(discretize(vessel, dt), tau, x0, h, report)
         method = "state space, exact (first-order hold)"
     else:
-        y = _runge_kutta(vessel, t, tau, x0, nonlinear_force, report, h) @ h.T
+        x, extra = _runge_kutta(vessel, t, tau, x0, nonlinear_force, report, h)
+        y = x @ h.T
         method = "state space, Runge-Kutta 4 (nonlinear forces)"
     _check_divergence(vessel, t, y[:, :n], tau)
     result = _result(vessel, t, y[:, :n], y[:, n : 2 * n], y[:, 2 * n :], tau, method, dt)
     if nonlinear_force is not None:  # its work enters the energy balance
-        extra = [nonlinear_force(tk, yk[:n], yk[n : 2 * n]) for tk, yk in zip(t, y, strict=True)]
-        result["nonlinear_force"] = (("time", "dof"), np.asarray(extra, dtype=float))
+        result["nonlinear_force"] = (("time", "dof"), extra)
         result.nonlinear_force.attrs["units"] = "N | N m"
     return result
 
@@ -604,23 +604,31 @@ def propagate(
     return x @ h.T
 
 
-def _runge_kutta(vessel, t, tau, x0, nonlinear_force, report=_no_progress, h=None) -> NDArray:
+def _runge_kutta(
+    vessel, t, tau, x0, nonlinear_force, report=_no_progress, h=None
+) -> tuple[NDArray, NDArray]:
+    """The states at the times ``t`` (RK4), and the nonlinear force at them (its value at
+    each step's first stage, the last one evaluated once more)."""
     f, g = vessel.state_space()
     n = len(vessel.dofs)
     motion = (vessel.output_matrix() if h is None else h)[: 2 * n]  # (ξ, ξ̇) = H x
     dt = t[1] - t[0]
     x = np.empty((t.size, x0.size))
     x[0] = x0
+    forces = np.empty((t.size, n))
+
+    def nonlinear(tk, xk):
+        y = motion @ xk
+        return np.asarray(nonlinear_force(tk, y[:n], y[n:]), dtype=float)
 
     def rate(tk, xk, force):
-        y = motion @ xk
-        extra = np.asarray(nonlinear_force(tk, y[:n], y[n:]), dtype=float)
-        return f @ xk + g @ (force + extra)
+        return f @ xk + g @ (force + nonlinear(tk, xk))
 
     for k in range(t.size - 1):
         mid = 0.5 * (tau[k] + tau[k + 1])
         xk = x[k]
-        k1 = rate(t[k], xk, tau[k])
+        forces[k] = nonlinear(t[k], xk)
+        k1 = f @ xk + g @ (tau[k] + forces[k])
         k2 = rate(t[k] + dt / 2, xk + dt / 2 * k1, mid)
         k3 = rate(t[k] + dt / 2, xk + dt / 2 * k2, mid)
         k4 = rate(t[k + 1], xk + dt * k3, tau[k + 1])
@@ -629,8 +637,9 @@ def _runge_kutta(vessel, t, tau, x0, nonlinear_force, report=_no_progress, h=Non
             _check_divergence(vessel, t[: k + 2], x[: k + 2] @ motion[:n].T, tau[: k + 2])
         if (k + 1) % _STEPS_PER_REPORT == 0:
             report((k + 1) / (t.size - 1))
+    forces[-1] = nonlinear(t[-1], x[-1])
     report(1.0)
-    return x
+    return x, forces
 
 
 def _check_divergence(vessel: Vessel, t: NDArray, xi: NDArray, tau: NDArray) -> None:
