@@ -42,6 +42,18 @@ def rotation_scale(unit: str) -> tuple[float, str]:
     return 1.0, unit
 
 
+def motion_units(motion, dofs: Sequence[str]) -> list[str]:
+    """The unit of each DOF's motion in a run: its ``units`` attribute (``"m | rad …"``),
+    else m or rad."""
+    from cummins.dofs import is_rotation
+
+    given = str(motion.attrs.get("units", "")).split(" | ")
+    return [
+        given[k] if k < len(given) and given[k] else ("rad" if is_rotation(str(d)) else "m")
+        for k, d in enumerate(dofs)
+    ]
+
+
 def negligible_series(peaks: ArrayLike, rotations: Sequence[bool]) -> NDArray[np.bool_]:
     """Which series are numerically zero: a peak below :data:`NEGLIGIBLE` of the largest
     peak of the series of the same kind (rotation or translation), or exactly zero.

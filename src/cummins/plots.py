@@ -17,6 +17,7 @@ from matplotlib.figure import Figure
 from cummins.display import (
     kernel_window,
     mark_negligible,
+    motion_units,
     negligible_series,
     note_kernel_window,
     phase_line,
@@ -366,7 +367,7 @@ def plot_time_series(run: xr.Dataset, window: float | None = 600.0) -> Figure:
     t = run.time.values
     keep = t >= t[-1] - window if window else np.ones(t.size, dtype=bool)
     dofs = [str(d) for d in run.dof.values]
-    units = _motion_units(run, dofs)
+    units = motion_units(run.motion, dofs)
     motion = run.motion.values[keep]
     zero = negligible_series(np.abs(motion).max(axis=0), [is_rotation(d) for d in dofs])
     fig = Figure(figsize=(11, 1.6 * (len(dofs) + 1)), layout="constrained")
@@ -384,15 +385,6 @@ def plot_time_series(run: xr.Dataset, window: float | None = 600.0) -> Figure:
     axes[-1].set_xlabel("t [s]")
     fig.suptitle(str(run.attrs.get("sea", "simulation")))
     return fig
-
-
-def _motion_units(run: xr.Dataset, dofs: Sequence[str]) -> list[str]:
-    """The unit of each DOF's motion: the run's ``units`` attribute, else m or rad."""
-    given = str(run.motion.attrs.get("units", "")).split(" | ")
-    return [
-        given[k] if k < len(given) and given[k] else ("rad" if is_rotation(d) else "m")
-        for k, d in enumerate(dofs)
-    ]
 
 
 def plot_response_spectra(
@@ -415,7 +407,7 @@ def plot_response_spectra(
     nrows = (len(dofs) + ncols - 1) // ncols
     fig = Figure(figsize=(11, 2.6 * nrows + 1.2), layout="constrained")
     axes = np.atleast_1d(fig.subplots(nrows, ncols, squeeze=False).ravel())
-    units = _motion_units(run, dofs)
+    units = motion_units(run.motion, dofs)
     zero = negligible_series(np.abs(run.motion.values).max(axis=0), [is_rotation(d) for d in dofs])
     # up to where the responses hold 99.9 % of their variance, with a margin
     share = np.cumsum(s_td / np.maximum(s_td.sum(axis=0), 1e-300), axis=0)[:, ~zero].min(

@@ -13,12 +13,12 @@ from dataclasses import dataclass
 import numpy as np
 import xarray as xr
 
-from cummins.hydrodb import is_rotation
+from cummins.display import motion_units, rotation_scale
 
 
 @dataclass(frozen=True)
 class MotionStatistic:
-    """One DOF's statistics in ``unit`` (m, or deg for a rotation)."""
+    """One DOF's statistics in ``unit`` (the run's, deg for a rotation in rad)."""
 
     dof: str
     mean: float
@@ -40,17 +40,12 @@ def motion_statistics(run: xr.Dataset, regular: bool | None = None) -> list[Moti
     period = float(run.attrs.get("tp", np.nan)) if regular else np.nan
     last = t >= t[-1] - period if np.isfinite(period) and period < t[-1] else np.ones(t.size, bool)
     out = []
-    for k, dof in enumerate(run.dof.values):
-        rotation = is_rotation(str(dof))
-        xi = run.motion.values[:, k] * (np.degrees(1.0) if rotation else 1.0)
+    dofs = [str(d) for d in run.dof.values]
+    for k, (dof, unit) in enumerate(zip(dofs, motion_units(run.motion, dofs), strict=True)):
+        scale, shown = rotation_scale(unit)
+        xi = run.motion.values[:, k] * scale
         size = 0.5 * np.ptp(xi[last]) if regular else 2 * xi.std()
         out.append(
-            MotionStatistic(
-                str(dof),
-                float(xi.mean()),
-                float(size),
-                float(np.abs(xi).max()),
-                "deg" if rotation else "m",
-            )
+            MotionStatistic(dof, float(xi.mean()), float(size), float(np.abs(xi).max()), shown)
         )
     return out
