@@ -558,7 +558,7 @@ def test_tank_scale_waves_get_a_time_step_of_their_period(corpus, tmp_path):
     from click.testing import CliRunner
 
     from cummins.cli import main
-    from cummins.cli.simulate import STEPS_PER_PERIOD
+    from cummins.timedomain.time_step import STEPS_PER_PERIOD
 
     data = corpus / "WEC-Sim_Applications/wamit_wavestar_NMPC_with_h5/wavestar.h5"
     common = [

@@ -45,7 +45,7 @@ from numpy.typing import ArrayLike, NDArray
 
 from cummins.dofs import DOF_NAMES, bodies, is_rigid_body_dof, is_rotation
 from cummins.errors import ArgumentError, AssumptionWarning, HydroDataError
-from cummins.hydrodb import add_history
+from cummins.hydrodb import add_history, reference_points
 
 #: The attributes of a dataset that say what its restoring holds (module docstring).
 WEIGHT_MASS = "restoring_weight_mass"
@@ -443,7 +443,7 @@ def hydrostatic_restoring(ds: xr.Dataset) -> HydrostaticRestoring:
             "terms: written as read, taken as the hydrostatics alone (OpenFAST's convention)",
             False,
         )
-    refs = np.asarray(ds.attrs.get("reference_point", (0.0, 0.0, 0.0)), dtype=float).reshape(-1, 3)
+    refs = reference_points(ds)
     volumes = body_volumes(ds, len(groups))
     rho = float(ds.attrs["rho"])
     masses = []

@@ -107,16 +107,13 @@ def _body_depth(ds: xr.Dataset, label: str, waterplane: float) -> float:
     """The length over which a long wave must not vary for the body of ``label``: its
     waterplane's breadth √A_wp, or its mean draught ∇/A_wp when deeper (a spar's
     bottom feels e^{−kT} of the surface's pressure); without ∇, the breadth."""
-    volume = ds.attrs.get("displaced_volume")
+    from cummins.restoring import body_volumes
+
+    names = bodies(ds)
+    volume = body_volumes(ds, len(names))[names.index(split_dof(label)[0])]
     depth = np.sqrt(waterplane)
-    if volume is not None and waterplane > 0:
-        volumes = np.atleast_1d(np.asarray(volume, dtype=float)).ravel()
-        names = list(bodies(ds))
-        body = split_dof(label)[0]
-        if volumes.size == len(names) and body in names:
-            depth = max(depth, float(volumes[names.index(body)]) / waterplane)
-        elif volumes.size == 1:
-            depth = max(depth, float(volumes[0]) / waterplane)
+    if np.isfinite(volume) and waterplane > 0:
+        depth = max(depth, float(volume) / waterplane)
     return depth
 
 

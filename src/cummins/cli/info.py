@@ -225,8 +225,6 @@ def openfast_description(path) -> dict:
     """What an OpenFAST state-space file holds: a radiation model (``.ss``, SS_Fitting's,
     HydroDyn's ``RdtnMod = 2``) or an excitation model (``.ssexctn``, or an ``.ss`` that
     holds one): its DOFs, states per DOF and stability (the eigenvalues of A)."""
-    import numpy as np
-
     from cummins.dofs import DOF_NAMES
     from cummins.io._text import TextFile
     from cummins.io.openfast import (

@@ -36,23 +36,14 @@ from cummins.cli.second_order import (
     sum_frequency_option,
 )
 from cummins.cli.system_options import SystemCommand, system_from_options, system_options
-from cummins.timedomain.time_step import ENERGY_TOLERANCE, STEPS_PER_SHORTEST_PERIOD
+from cummins.timedomain.time_step import (
+    DEFAULT_DT,
+    ENERGY_TOLERANCE,
+    STEPS_PER_PERIOD,
+    STEPS_PER_SHORTEST_PERIOD,
+    default_time_step,
+)
 from cummins.validation import check_simulation_size
-
-#: The time step of a run, s, unless the waves ask for a shorter one.
-DEFAULT_DT = 0.05
-#: Time steps per wave period at least (regular: the period; irregular: the peak
-#: period): the steady power of a linear run is then within 0.2 % of the frequency
-#: domain's (a tank-scale Wavestar at T = 1 s: −1.7 % at 20 steps per period, −0.1 % at
-#: 100; the error falls as the square of the step).
-STEPS_PER_PERIOD = 60
-
-
-def default_time_step(period: float | None) -> float:
-    """:data:`DEFAULT_DT`, or ``period`` / :data:`STEPS_PER_PERIOD` when shorter, s."""
-    if period is None:
-        return DEFAULT_DT
-    return min(DEFAULT_DT, float(period) / STEPS_PER_PERIOD)
 
 
 @click.command(name="simulate", cls=SystemCommand)

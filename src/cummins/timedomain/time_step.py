@@ -39,10 +39,25 @@ from cummins.errors import ArgumentError
 STEPS_PER_SHORTEST_PERIOD = 6
 #: |λ| Δt of the Runge–Kutta path at most (the fastest eigenvalue λ of the state matrix).
 RUNGE_KUTTA_REACH = 2.5
+#: The time step of a run, s, unless the waves ask for a shorter one
+#: (:func:`default_time_step`).
+DEFAULT_DT = 0.05
+#: Time steps per wave period at least by default (regular: the period; irregular: the
+#: peak period): the steady power of a linear run is then within 0.2 % of the frequency
+#: domain's (a tank-scale Wavestar at T = 1 s: −1.7 % at 20 steps per period, −0.1 % at
+#: 100; the error falls as the square of the step).
+STEPS_PER_PERIOD = 60
 #: A run whose energy balance misses by more than this share of the work done on the
 #: vessel (``energy_relative_residual``) is a failed run: 0.0001 at the default step in
 #: the tanker's irregular sea, 0.001 at 60 steps per period of a regular wave, 0.008 at 20.
 ENERGY_TOLERANCE = 0.01
+
+
+def default_time_step(period: float | None) -> float:
+    """:data:`DEFAULT_DT`, or ``period`` / :data:`STEPS_PER_PERIOD` when shorter, s."""
+    if period is None:
+        return DEFAULT_DT
+    return min(DEFAULT_DT, float(period) / STEPS_PER_PERIOD)
 
 
 def largest_time_step(omega: ArrayLike, state_matrix: ArrayLike | None = None) -> tuple[float, str]:

@@ -229,11 +229,10 @@ def bemio_data(
 
 def _volumes(ds: xr.Dataset, n_bodies: int) -> np.ndarray:
     """The displaced volume of each body, m³, NaN where the data do not know it."""
-    volume = np.asarray(ds.attrs.get("displaced_volume", np.full(n_bodies, np.nan)), dtype=float)
-    volume = volume.reshape(-1)
-    if volume.size == n_bodies:
-        return np.where(volume > 0, volume, np.nan)
-    return np.full(n_bodies, np.nan)
+    from cummins.restoring import body_volumes
+
+    volume = body_volumes(ds, n_bodies)
+    return np.where(volume > 0, volume, np.nan)
 
 
 def _about_centre_of_gravity(ds: xr.Dataset, n_bodies: int) -> xr.Dataset:
