@@ -20,7 +20,7 @@ import numpy as np
 from numpy.typing import NDArray
 
 from cummins.errors import FitError
-from cummins.radiation.fit.tail import kernel_zero_equation, kernel_zero_form
+from cummins.radiation.fit.tail import kernel_zero_form
 from cummins.radiation.fit.vector import (
     BlockData,
     PoleResidueBlock,
@@ -273,7 +273,7 @@ def enforce_passivity(
             continue  # an antisymmetric part with no free coefficient
         phi = basis_s @ null
         jac = _stacked(phi, wr, wi)
-        zero = kernel_zero_equation(data, e)
+        zero = data.kernel_zero_equations[e]
         if zero is not None:  # K(0), as the residues were fitted
             jac = np.vstack([jac, zero[0] * kernel_zero_form(block.poles) @ null])
         ridge = RIDGE * np.linalg.norm(jac, 2)

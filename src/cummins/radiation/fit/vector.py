@@ -231,6 +231,32 @@ class BlockData:
             return np.ones(len(self.elements), dtype=bool)
         return np.isnan(self.fixed_inf)
 
+    # What every fit of the block shares, computed once (the order search fits one block
+    # at tens of orders, each in about a dozen relocations).
+
+    @functools.cached_property
+    def kernel_zero_equations(self) -> tuple[tuple[float, float] | None, ...]:
+        """:func:`~cummins.radiation.fit.tail.kernel_zero_equation` of each element."""
+        return tuple(kernel_zero_equation(self, e) for e in range(len(self.elements)))
+
+    @functools.cached_property
+    def relocation_data(self) -> BlockData:
+        """The equations of the pole relocation (:func:`_thinned`)."""
+        return _thinned(self)
+
+    @functools.cached_property
+    def relocation_rows(self) -> tuple[float, tuple[tuple[NDArray, ...], ...]]:
+        """(scale, groups) of :func:`relocate`: the norm of the weighted data over the
+        number of frequencies, and for the elements with A∞ given, then estimated:
+        (indices, −values, real weights, imaginary weights), the last three (rows, 1, ω)."""
+        f, wr, wi = self.values, self.weight_real, self.weight_imag
+        scale = np.sqrt(float(np.sum((wr * f.real) ** 2 + (wi * f.imag) ** 2))) / self.omega.size
+        groups = []
+        for estimated in (False, True):
+            rows = np.flatnonzero(self.free_inf == estimated)
+            groups.append((rows, -f[rows][:, None, :], wr[rows][:, None, :], wi[rows][:, None, :]))
+        return scale, tuple(groups)
+
 
 def is_antisymmetric(element: tuple[int, int]) -> bool:
     """Whether an element (p, q) of a block is the antisymmetric part ½(X_pq − X_qp) of a
@@ -391,20 +417,17 @@ def relocate(data: BlockData, poles: Poles) -> Poles:
     n = phi.shape[1]
     ones = np.ones((s.size, 1))
     sigma = np.hstack([phi, ones])
-    f, wr, wi = data.values, data.weight_real, data.weight_imag
-    free = data.free_inf
-    blocks: list = [None] * f.shape[0]
+    scale, groups = data.relocation_rows
+    blocks: list = [None] * len(data.elements)
     # one QR per element, stacked: [own, −f σ] weighted, real rows over imaginary rows
     # (own: the element's basis, with a constant when its A∞ is estimated)
     n_w = s.size
-    for estimated in (False, True):
-        rows = np.flatnonzero(free == estimated)
+    for estimated, (rows, minus_f, wre, wie) in zip((False, True), groups, strict=True):
         if not rows.size:
             continue
-        own = np.hstack([phi, ones]) if estimated else phi
+        own = sigma if estimated else phi
         k = own.shape[1]
-        fs = -f[rows][:, None, :] * sigma.T[None]
-        wre, wie = wr[rows][:, None, :], wi[rows][:, None, :]
+        fs = minus_f * sigma.T[None]
         # each element's matrix in column-major order (LAPACK's, factored in place)
         stack = np.empty((rows.size, k + n + 1, 2 * n_w))
         stack[:, :k, :n_w] = wre * own.real.T[None]
@@ -412,8 +435,7 @@ def relocate(data: BlockData, poles: Poles) -> Poles:
         stack[:, k:, :n_w] = wre * fs.real
         stack[:, k:, n_w:] = wie * fs.imag
         for e, matrix in zip(rows, stack, strict=True):
-            blocks[e] = _r_factor(matrix.T)[k : k + n + 1, k:]
-    scale = np.sqrt(float(np.sum((wr * f.real) ** 2 + (wi * f.imag) ** 2))) / s.size
+            blocks[e] = _r_factor(matrix.T, k)
     norm = scale * np.real(sigma.sum(axis=0))
     lhs = np.vstack([*blocks, norm[None, :]])
     rhs = np.zeros(lhs.shape[0])
@@ -429,17 +451,18 @@ def relocate(data: BlockData, poles: Poles) -> Poles:
     return _poles_from(np.linalg.eigvals(lam - np.outer(b, c) / d), limit, data.min_damping)
 
 
-def _r_factor(matrix: NDArray) -> NDArray:
-    """The triangular factor R of the Householder QR of a Fortran-ordered ``matrix``
-    (rows ≥ columns), factored in place: LAPACK's dgeqrf with its optimal workspace, as
-    ``numpy.linalg.qr(mode="r")`` calls it (the same R, bit for bit), without the copies."""
+def _r_factor(matrix: NDArray, start: int = 0) -> NDArray:
+    """The trailing block R[start:, start:] of the triangular factor R of the Householder
+    QR of a Fortran-ordered ``matrix`` (rows ≥ columns), factored in place: LAPACK's dgeqrf
+    with its optimal workspace, as ``numpy.linalg.qr(mode="r")`` calls it (the same R, bit
+    for bit), without the copies."""
     rows, columns = matrix.shape
     qr, _, _, info = scipy.linalg.lapack.dgeqrf(
         matrix, lwork=_qr_workspace(rows, columns), overwrite_a=1
     )
     if info:
         raise np.linalg.LinAlgError(f"QR factorisation failed (LAPACK info {info})")
-    return np.triu(qr[:columns])
+    return np.triu(qr[start:columns, start:])
 
 
 @functools.lru_cache(maxsize=256)
@@ -476,9 +499,9 @@ def _same_poles(one: Poles, two: Poles) -> bool:
     """The relocation has converged: the same poles to CONVERGED (relative)."""
     if one.real.size != two.real.size or one.pairs.size != two.pairs.size:
         return False
-    x = np.r_[one.real, one.pairs]
-    y = np.r_[two.real, two.pairs]
-    return bool(np.all(np.abs(x - y) <= CONVERGED * np.abs(y)))
+    real = np.abs(one.real - two.real) <= CONVERGED * np.abs(two.real)
+    pairs = np.abs(one.pairs - two.pairs) <= CONVERGED * np.abs(two.pairs)
+    return bool(real.all() and pairs.all())
 
 
 def residue_null_space(poles: Poles) -> NDArray[np.float64]:
@@ -550,7 +573,7 @@ def fit_residues(data: BlockData, poles: Poles) -> tuple[NDArray, NDArray]:
             prior_row[-1] = weight
             rows = np.vstack([rows, prior_row])
             rhs = np.r_[rhs, weight * data.inf_guess[e]]
-        zero = kernel_zero_equation(data, e)
+        zero = data.kernel_zero_equations[e]
         if zero is not None:  # K(0): the damping beyond the data is data too
             form = np.zeros(m.shape[1])
             form[: null.shape[1]] = kernel_zero_form(poles) @ null
@@ -699,7 +722,7 @@ class PoleResidueBlock:
 def vector_fit(data: BlockData, count: int) -> PoleResidueBlock:
     """Common poles (``count`` real parameters), residues and A∞ of a block."""
     poles = starting_poles(data.omega[: data.n_data], count)
-    thinned = _thinned(data)
+    thinned = data.relocation_data
     for _ in range(ITERATIONS):
         moved = relocate(thinned, poles)
         converged = _same_poles(moved, poles)
