@@ -226,3 +226,16 @@ def test_long_wave_heave_excitation_is_the_restoring(corpus, case, verdicts):
             assert "C33" in found[label].message and found[label].advice
         else:
             assert abs(ratio - 1) < 0.5 * LONG_WAVE_TOL
+
+
+def test_wave_parity_at_a_heading_that_is_its_own_mirror(shared_data):
+    """The S-175's yaw drift made large in following seas (0°, its own mirror heading):
+    the finding says it should be 0 there, not that 0° and 0° differ."""
+    ds = cummins.read(shared_data / "mss" / "s175" / "s175.mat").isel(forward_speed=0)
+    ds = ds.copy(deep=True)
+    f = ds.drift_force
+    yaw = {"wave_direction": 0.0, "influenced_dof": "Yaw"}
+    f.loc[yaw] = f.loc[yaw] + 10.0 * float(np.abs(f.sel(influenced_dof="Yaw")).max())
+    flagged = [x for x in cummins.check(ds).by_check("wave_parity") if x.severity == "warning"]
+    assert [x.where for x in flagged] == ["Yaw"]
+    assert "at 0°, its own mirror heading, it should be 0" in flagged[0].message

@@ -67,6 +67,17 @@ def test_info_prints_points_and_directions_plainly(runner, shared_data):
     assert "[-5.38592, 0, 1.3] m" in text and "1.3000002" not in text
 
 
+def test_info_of_data_at_several_speeds(runner, shared_data):
+    """The S-175 (VERES via MSS, five speeds): its inertia and restoring carry the speed
+    dimension; ``info`` gives the mass (ρ∇ of the struct, 1025 × 24009.4 m³) and lists the
+    speeds instead of a traceback."""
+    result = runner.invoke(main, ["info", str(shared_data / "mss" / "s175" / "s175.mat"), "--json"])
+    assert result.exit_code == 0, result.output
+    info = json.loads(result.output)
+    assert info["forward_speeds_m_s"] == pytest.approx([0, 2.57222, 5.14444, 7.71667, 10.2889])
+    assert info["mass_kg"] == pytest.approx(1025 * info["displaced_volume_m3"], rel=1e-3)
+
+
 @pytest.mark.parametrize(
     ("degrees", "expected"),
     [

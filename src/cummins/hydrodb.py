@@ -783,6 +783,8 @@ def describe(ds: xr.Dataset) -> dict[str, Any]:
     if "displaced_volume" in ds.attrs:
         volumes = [float(x) for x in np.ravel(ds.attrs["displaced_volume"])]
         info["displaced_volume_m3"] = volumes[0] if len(volumes) == 1 else volumes  # per body
+    if "forward_speed" in ds.dims:  # mass and restoring: at the speed nearest zero
+        ds = ds.isel(forward_speed=int(np.argmin(np.abs(ds.forward_speed.values))))
     if "inertia_matrix" in ds:
         m = np.diag(dof_matrix(ds, "inertia_matrix"))
         labels = [str(d) for d in ds.influenced_dof.values]

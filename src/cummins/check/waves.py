@@ -61,14 +61,19 @@ def _check_wave_parity(ds: xr.Dataset) -> list[Finding]:
                 if worst > PARITY_TOL and where is not None:
                     k, m = where
                     bk, bm = np.degrees(sub.wave_direction.values[[k, m]])
+                    if k == m:  # a heading its own mirror (0°, 180°): there it must vanish
+                        where_text = f"at {bk:g}°, its own mirror heading, it should be 0 but is"
+                    else:
+                        where_text = (
+                            f"at {bk:g}° and {bm:g}° it differs from "
+                            f"{'the same' if sign > 0 else 'the opposite'} value by"
+                        )
                     out.append(
                         Finding(
                             "wave_parity",
                             "warning",
                             f"{name} of {label}{suffix} does not mirror with the heading "
-                            f"although the body is port/starboard symmetric: at {bk:g}° and "
-                            f"{bm:g}° it differs from "
-                            f"{'the same' if sign > 0 else 'the opposite'} value by "
+                            f"although the body is port/starboard symmetric: {where_text} "
                             f"{worst:.0%} of its largest value",
                             where=label,
                             value=worst,

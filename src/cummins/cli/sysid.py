@@ -86,7 +86,9 @@ from cummins.cli.option_rules import Command, option_rules, unique_values
     type=non_negative("s"),
     default=None,
     metavar="S",
-    help="Seconds cut at the start of each record (default: the memory's start-up).",
+    help="Seconds cut at the start of each record (default: the memory's start-up; "
+    "with --decay none: cut the release and the fluid memory's transient after it, a few "
+    "roll periods).",
 )
 @click.option(
     "--segment",
@@ -161,7 +163,6 @@ from cummins.cli.option_rules import Command, option_rules, unique_values
             "offset",
             "method",
             "cutoff",
-            "burn_in",
             "segment",
             "heading",
             "align_dof",
@@ -219,7 +220,18 @@ def identify_damping_command(
     report = Path(report_dir)
     if decay:
         _decay_reports(
-            records, report, model_path, format_, rho, g, ulen, speed, inertia, stiffness, force
+            records,
+            report,
+            model_path,
+            format_,
+            rho,
+            g,
+            ulen,
+            speed,
+            inertia,
+            stiffness,
+            force,
+            burn_in=burn_in,
         )
         return
     from cummins.plots import plot_reprediction, plot_residual_force, save_figure
@@ -381,7 +393,19 @@ def _segment_report(record, vessel, dofs, length, report, force, options, summar
 
 
 def _decay_reports(
-    records, report, model_path, format_, rho, g, ulen, speed, inertia, stiffness, force
+    records,
+    report,
+    model_path,
+    format_,
+    rho,
+    g,
+    ulen,
+    speed,
+    inertia,
+    stiffness,
+    force,
+    *,
+    burn_in: float | None = None,
 ) -> None:
     from cummins.plots import plot_roll_decay, save_figure
     from cummins.sysid import read_record, roll_decay
@@ -400,6 +424,9 @@ def _decay_reports(
             raise click.UsageError(f"{path} has no Roll column")
         t = rec.time.values
         phi = rec.motion.sel(dof="Roll").values
+        if burn_in:  # the release and the memory's transient after it left out
+            kept = t >= t[0] + burn_in
+            t, phi = t[kept], phi[kept]
         result = roll_decay(t, phi, inertia=inertia, stiffness=stiffness)
         values = dict(result.values)
         if ds is not None and inertia is None and stiffness is None:
@@ -418,7 +445,8 @@ def _decay_reports(
         if "B1_viscous" in values:
             line += f" (B1 over the radiation damping: {values['B1_viscous']:.4g})"
         console.print(line)
-        if values.get("p2_note"):
+        if values.get("p2_note") and values.get("p2_significance") != "negative":
+            # (a negative p2 is a warning of roll_decay's, printed once already)
             console.print(f"  {values['p2_note']}", highlight=False)
     (report / "decay.json").write_text(json.dumps(results, indent=2), encoding="utf-8")
     console.print(f"wrote {report}/decay.json and {len(records)} figure(s)")

@@ -425,7 +425,19 @@ def motion_rao(
     if speed != 0.0:
         data_w = ds.omega.values
         held = _outside_data(ds, we)
-        attrs = {
+        slow = np.abs(we) < data_w[0]
+        free = [label for k, label in enumerate(labels) if c[k, k] <= 0.0]
+        if slow.any() and free:
+            warnings.warn(
+                f"at {int(slow.sum())} (omega, wave_direction) pairs the encounter frequency "
+                f"is below the data's lowest, {data_w[0]:.4g} rad/s (following seas, "
+                f"omega_e near 0): {', '.join(free)} have no restoring, so their linear "
+                "response grows without limit as omega_e -> 0; their RAOs there are not "
+                "meaningful (A and B are held at the lowest data frequency)",
+                HydroDataWarning,
+                stacklevel=2,
+            )
+        attrs |= {
             "forward_speed": speed,
             "encounter_outside_data": int(held.sum()),
             "encounter_note": "x(t) = Re{X exp(i omega_e t)}, omega_e the encounter frequency; "

@@ -229,7 +229,9 @@ def _quadratic_judgement(values: dict, amplitude: float) -> dict:
         note = (
             f"negative quadratic roll damping p2 = {p2:.3g} 1/rad ({interval}, {at}): "
             "physically wrong (damping that weakens as the amplitude grows); is the record "
-            "a free decay, the restoring linear, the release clean?"
+            "a free decay, the restoring linear, the release clean? (The fluid memory's "
+            "transient after the release shows so too, by a few % of p1: identify again "
+            "with the first cycles cut, --burn-in, to tell)"
         )
     else:
         verdict, note = "positive", ""
