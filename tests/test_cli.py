@@ -550,3 +550,13 @@ def test_simulate_accurate_reproduces_the_data_raos_more_closely(runner, shared_
     assert worst[False] < 0.01 and worst[True] < 0.003, worst
     assert worst[True] < worst[False]
     assert orders[True] > orders[False], orders
+
+
+def test_kernel_offers_no_option_that_cannot_change_it(runner, tanker_copy):
+    """K(t) comes from A(ω) and B(ω) alone: kernel does not take the inertia and external
+    terms (they were accepted and changed nothing, bit for bit), which fit does."""
+    result = runner.invoke(main, ["kernel", str(tanker_copy), "-o", "K.nc", "--mass", "1e8"])
+    assert result.exit_code == 2 and "No such option" in result.output
+    for name in ("--mass", "--radii-of-gyration", "--external-stiffness"):
+        assert name not in runner.invoke(main, ["kernel", "--help"]).output
+        assert name in runner.invoke(main, ["fit", "--help"]).output

@@ -41,7 +41,7 @@ def files(tmp_path_factory):
     failed = fit_excitation(ds, HEADINGS, max_order=6)
     assert failed.attrs["failures"]
     lost = dataclasses.replace(
-        good, attrs={**good.attrs, "source_file": str(folder / "gone" / "tanker.1")}
+        good, attrs={**good.attrs, "source_file": str(folder / "gone" / "tanker_gone.1")}
     )
     out = {"data": folder / "tanker.1"}
     for name, model in (("good", good), ("failed", failed), ("lost", lost)):

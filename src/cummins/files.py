@@ -10,6 +10,7 @@ an earlier one.
   folder (a unique name, so two runs writing the same path at once do not share it) and
   renames it over the target at the end (:func:`os.replace`, atomic on one file system):
   a failure leaves the earlier file as it was and no half-written one.
+* :func:`fitted_data_file` finds the data file a saved model was fitted to.
 * :func:`is_hdf5` tells an HDF5 file (NetCDF-4, a cummins model or result, BEMIO's
   ``.h5``) by its content, whatever its name.
 """
@@ -195,3 +196,19 @@ def is_hdf5(path: str | os.PathLike[str]) -> bool:
     except OSError:
         return False
     return False
+
+
+def fitted_data_file(attrs, model_path: str | os.PathLike[str]) -> tuple[Path | None, str | None]:
+    """(the data file a saved model was fitted to, or None; the name recorded). The file
+    ``cummins fit`` was given (``data_file``), else the solver file the data name
+    (``source_file``: a NetCDF written by ``convert`` keeps its solver's, so a model fitted
+    to it before ``data_file`` existed names the solver file); as recorded (a relative
+    path from the current folder), else by its name beside the model file (a folder moved
+    or copied whole)."""
+    named = attrs.get("data_file") or attrs.get("source_file")
+    if not named:
+        return None, None
+    for candidate in (Path(str(named)), Path(model_path).parent / Path(str(named)).name):
+        if candidate.is_file():
+            return candidate, str(named)
+    return None, str(named)

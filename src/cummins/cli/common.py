@@ -35,7 +35,7 @@ from cummins.errors import (
     CumminsWarning,
     OutputExistsError,
 )
-from cummins.files import files_read
+from cummins.files import files_read, fitted_data_file
 
 #: The width of the output when it is not a terminal (a pipe, a log, CI), unless COLUMNS
 #: says otherwise: wide enough for every table, where rich would otherwise take 80.
@@ -381,11 +381,15 @@ def format_names() -> str:
     return "; ".join(f"{name} ({f.description})" for name, f in FORMATS.items())
 
 
-def read_options(func):
+def read_options(func=None, *, equation_of_motion: bool = True):
     """--format, --rho, --g, --ulen, --water-depth: how to read solver files; --mass,
     --center-of-gravity, --radii-of-gyration, --inertia-matrix, --external-stiffness,
     --external-damping: what to complete them with (the terms of the equation of motion
-    that the files lack), applied by :func:`read_hydrodb`."""
+    that the files lack), applied by :func:`read_hydrodb`. ``equation_of_motion=False``
+    (``@read_options(equation_of_motion=False)``): the reading options alone, for a
+    command whose result the inertia and external terms do not change (``kernel``)."""
+    if func is None:
+        return functools.partial(read_options, equation_of_motion=equation_of_motion)
     decorators = [
         click.option(
             "--format",
@@ -429,6 +433,8 @@ def read_options(func):
             "wave numbers, the travel phase of the wave force and the wave loads. Default: "
             "deep water, with a warning where a result depends on it.",
         ),
+    ]
+    equation_of_motion_options = [
         click.option(
             "--mass",
             type=positive("kg"),
@@ -492,10 +498,13 @@ def read_options(func):
         ),
     ]
 
+    if equation_of_motion:
+        decorators += equation_of_motion_options
+
     @functools.wraps(func)
     def wrapper(*args, **kwargs):
         context = click.get_current_context()
-        context.meta[_EOM_KEY] = {name: kwargs.pop(name) for name in _EOM_OPTIONS}
+        context.meta[_EOM_KEY] = {name: kwargs.pop(name) for name in _EOM_OPTIONS if name in kwargs}
         context.meta[_DEPTH_KEY] = kwargs.pop("water_depth")
         return func(*args, **kwargs)
 
@@ -659,13 +668,14 @@ def model_and_data(path):
     if cummins_model_format(p) != FORMAT_NAME:
         return None, path
     model = RadiationModel.load(p)
-    source = model.attrs.get("source_file")
-    if not source or not Path(source).exists():
+    found, named = fitted_data_file(model.attrs, p)
+    if found is None:
         raise click.UsageError(
-            f"{p} does not name an existing data file ({source!r}): give the data "
-            "file instead (the model is then fitted again)"
+            f"{p} does not name an existing data file ({named!r}, looked for as recorded "
+            f"and beside the model): give the data file instead (the model is then fitted "
+            "again)"
         )
-    return model, source
+    return model, str(found)
 
 
 def select_body(ds, body: str, option: str = "--body"):

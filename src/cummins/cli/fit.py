@@ -5,6 +5,7 @@ from __future__ import annotations
 import json
 import sys
 import time
+from dataclasses import replace
 from pathlib import Path
 
 import click
@@ -293,6 +294,9 @@ def fit_command(
             f"{len(negligible)} negligible couplings (< {threshold:g} of the diagonal terms): "
             + listed
         )
+    # the file given, not the solver file its attrs name (a converted NetCDF with moorings
+    # or inertia keeps the solver's source_file): what simulate/rao read for this model
+    model = replace(model, attrs={**model.attrs, "data_file": str(Path(path).resolve())})
     model.save(output, force=force)
     console.print(f"wrote {output}")
     if json_path:

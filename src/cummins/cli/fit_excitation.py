@@ -5,6 +5,7 @@ from __future__ import annotations
 import json
 import sys
 import time
+from dataclasses import replace
 from pathlib import Path
 
 import click
@@ -188,6 +189,7 @@ def fit_excitation_command(
         f"{model.total_order} states over {len(model.headings)} heading(s), every model "
         f"stable: {model.is_stable()}, {elapsed:.2f} s"
     )
+    model = replace(model, attrs={**model.attrs, "data_file": str(Path(path).resolve())})
     model.save(output, force=force)
     console.print(f"wrote {output}")
     if json_path:

@@ -23,6 +23,7 @@ import xarray as xr
 
 from cummins.cli.html_page import Section, _note, failures_html, figure_html, table_html
 from cummins.errors import CumminsError
+from cummins.files import fitted_data_file
 
 __all__ = ["MOST", "drawn_headings", "excitation_model_sections", "fitted_data"]
 
@@ -84,13 +85,10 @@ def fitted_data(
     with the model's ``rho`` and ``g`` unless ``read_options`` give others."""
     from cummins.io import read
 
-    source = model.attrs.get("source_file")
-    if not source:
+    found, source = fitted_data_file(model.attrs, path)
+    if source is None:
         return None, "The model does not record the data it was fitted to."
-    found = Path(str(source))
-    if not found.exists() and not found.is_absolute() and (path.parent / found).exists():
-        found = path.parent / found
-    if not found.exists():
+    if found is None:
         return None, (
             f"The data the model was fitted to ({source}) were not found: the NRMSE shown "
             "are those the model file records, and the figure draws the model alone."

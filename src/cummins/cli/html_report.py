@@ -53,7 +53,7 @@ from cummins.cli.html_page import _note, failures_html, figure_html, table_html
 from cummins.cli.html_page import render_html as render_html
 from cummins.cli.html_pto import pto_batch_sections, pto_rao_sections, pto_run_sections
 from cummins.errors import CumminsError, check_writable
-from cummins.files import files_read, refuse_overwriting_inputs, replacing
+from cummins.files import files_read, fitted_data_file, refuse_overwriting_inputs, replacing
 from cummins.hydrodb import is_rotation
 
 __all__ = ["KINDS", "Section", "detect_kind", "render_html", "report_sections", "write_report"]
@@ -320,10 +320,10 @@ def model_sections(path: Path) -> list[Section]:
             figure_html(plot_retardation(model.impulse_response(t)), "K(t) = C e^{At} B"),
         )
     )
-    source = model.attrs.get("source_file")
-    if not source or not Path(str(source)).exists():
+    source, named = fitted_data_file(model.attrs, path)
+    if source is None:
         sections.append(
-            Section("Fits", _note(f"the data the model was fitted to ({source}) are not at hand"))
+            Section("Fits", _note(f"the data the model was fitted to ({named}) are not at hand"))
         )
         return sections
     from cummins.io import read

@@ -26,7 +26,7 @@ from cummins.files import replacing
 
 @click.command(name="kernel", cls=Command)
 @click.argument("path", type=click.Path(exists=True))
-@read_options
+@read_options(equation_of_motion=False)
 @click.option(
     "-o",
     "--output",
