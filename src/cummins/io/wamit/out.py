@@ -1,9 +1,9 @@
 """The WAMIT ``.out`` log read on its own (:func:`read_wamit_out`): its 'Wave period'
 blocks of added mass and damping (with the A(0) and A(∞) blocks), diffraction (else
-Haskind) excitation, motion RAOs and mean drift forces (every method the log prints, ``drift_force`` the one
-the numeric files' reader prefers: control surface, else pressure integration, else
-momentum conservation; :data:`~cummins.io.wamit.second_order.DRIFT_PREFERENCE`), nondimensional as in the numeric files but to fewer digits
-(phases in whole degrees).
+Haskind) excitation, motion RAOs and mean drift forces (every method the log prints,
+``drift_force`` the one the numeric files' reader prefers: control surface, else
+pressure integration, else momentum conservation), nondimensional as in the numeric
+files but to fewer digits (phases in whole degrees).
 """
 
 from __future__ import annotations
@@ -18,7 +18,6 @@ import xarray as xr
 
 from cummins.errors import HydroDataError
 from cummins.hydrodb import dof_labels, make_hydrodb
-from cummins.qtf.data import with_second_order
 from cummins.io._common import (
     DEPTH_ASSUMED,
     force_exponents,
@@ -42,6 +41,7 @@ from cummins.io.wamit.out_header import _FLOAT, _hydrostatics_matrix, _out_heade
 from cummins.io.wamit.second_order import DRIFT_PREFERENCE, drift_variables
 from cummins.io.wamit.settings import RunSettings
 from cummins.io.wamit.text import MAX_ABS_VALUE, _read_text
+from cummins.qtf.data import with_second_order
 
 _PERIOD_LINE = re.compile(r"Wave period\s*(?:\(sec\))?\s*=\s*(infinite|zero|" + _FLOAT[1:-1] + ")")
 
@@ -87,13 +87,17 @@ def _rows_after(text: TextFile, i: int, stop: int) -> tuple[list[np.ndarray], li
             values = parse_numbers(line)
             if values is None:
                 break
-            if not np.all(np.isfinite(values)):
-                raise text.error("non-finite value (NaN or Inf) in the data", k)
-            if np.any(np.abs(values) >= MAX_ABS_VALUE):
-                raise text.error("implausible value (a missing-value marker?)", k)
             rows.append(values)
             where.append(k)
         k += 1
+    if rows:  # checked once per table (NaN compares False: not below the limit)
+        sizes = np.abs(np.concatenate(rows))
+        if not np.all(sizes < MAX_ABS_VALUE):
+            for values, w in zip(rows, where, strict=True):
+                if not np.all(np.isfinite(values)):
+                    raise text.error("non-finite value (NaN or Inf) in the data", w)
+                if np.any(np.abs(values) >= MAX_ABS_VALUE):
+                    raise text.error("implausible value (a missing-value marker?)", w)
     return rows, where, k
 
 
