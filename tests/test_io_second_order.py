@@ -263,3 +263,28 @@ def test_the_report_draws_the_qtf(shared_data):
     section = _second_order_section(cummins.read(shared_data / OC4))
     assert section is not None and section.body.count("<img") == 2
     assert "qtf_sum: 56x56 frequencies" in section.body
+
+
+def test_a_dot1_takes_the_drift_of_its_out_when_the_run_wrote_no_dot7():
+    """The demo tanker has no .7/.8/.9 but its .out prints pressure-integration drift
+    tables: tanker.1 reads them (was: no drift_force, '--second-order newman' refused)."""
+    ds = cummins.read(cummins.demo_files() / "tanker.1")
+    out = cummins.read(cummins.demo_files() / "tanker.out")
+    assert np.array_equal(ds.drift_force.values, out.drift_force.values)
+    assert "mean drift from tanker.out" in ds.attrs["history"]
+
+
+def test_convert_says_where_the_mean_drift_goes(shared_data, tmp_path):
+    """convert sphere.1 x.1 named the QTFs only; x.12d pointed to Newman's approximation,
+    which convert does not do."""
+    from click.testing import CliRunner
+
+    from cummins.cli import main
+
+    source = str(shared_data / SPHERE)
+    result = CliRunner().invoke(main, ["convert", source, str(tmp_path / "x.1")])
+    assert result.exit_code == 0, result.output
+    assert "mean drift is not in the .1" in " ".join(result.output.split())
+    result = CliRunner().invoke(main, ["convert", source, str(tmp_path / "x.12d")])
+    assert result.exit_code == 1
+    assert ".7/.8/.9" in result.output and "use the mean drift" not in result.output

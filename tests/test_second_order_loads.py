@@ -241,3 +241,41 @@ def test_the_mean_drift_leaves_out_the_suspect_frequencies():
     assert kept.drift_left_out == ()
     assert load.mean[heave] > 0 > kept.mean[heave]
     assert abs(kept.mean[heave]) > 5 * abs(load.mean[heave])
+
+
+def test_the_drift_of_a_symmetric_hull_is_mirrored_as_the_first_order():
+    """tanker.1 (headings 0–180°, its drift from tanker.out beside it): waves from 270°
+    stopped with 'no wave direction near 270 deg'; now the mean force is that of 90° with
+    sway, roll and yaw of the other sign (T = diag(1, −1, 1, −1, 1, −1)), exactly."""
+    ds = cummins.read(cummins.demo_files() / "tanker.1")
+    assert ds.drift_force.attrs["method"] == "pressure integration, tanker.out"
+
+    def mean(direction):
+        sea = irregular_waves(
+            wave_spectrum("jonswap", 4.0, 10.0), duration=300, n_components=100,
+            direction=np.radians(direction), seed=2,
+        )  # fmt: skip
+        with pytest.warns(cummins.CumminsWarning, match="suspect"):
+            return second_order_force(ds, sea, model="mean").mean
+
+    starboard, port = mean(90.0), mean(270.0)
+    assert np.abs(starboard[[1, 3, 5]]).min() > 1e3  # sway, roll, yaw driven
+    np.testing.assert_allclose(port, starboard * [1, -1, 1, -1, 1, -1], rtol=1e-12)
+
+
+def test_the_no_qtf_errors_say_the_same():
+    """simulate --second-order full and qtf_table name the same files (AQWA .QTF was
+    missing from the first)."""
+    from cummins.qtf import qtf_table
+
+    ds = cummins.read(cummins.demo_files() / "tanker.1")
+    sea = irregular_waves(wave_spectrum("jonswap", 4.0, 10.0), duration=60, seed=1)
+    with pytest.raises(cummins.HydroDataError) as full:
+        second_order_force(ds, sea, model="full")
+    with pytest.raises(cummins.HydroDataError) as table:
+        qtf_table(ds, "difference")
+    from cummins.qtf.data import NO_QTF_HINT
+
+    for error in (full, table):
+        assert NO_QTF_HINT in " ".join(str(error.value).split()) and "AQWA .QTF" in NO_QTF_HINT
+    assert "--second-order newman" in str(full.value)

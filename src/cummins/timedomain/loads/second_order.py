@@ -48,7 +48,7 @@ from numpy.typing import NDArray
 
 from cummins.errors import ArgumentError, AssumptionWarning, HydroDataError
 from cummins.hydrodb import bodies, change_axes, dof_index, single_speed
-from cummins.qtf.data import has_qtf, qtf_table
+from cummins.qtf.data import NO_QTF_HINT, has_qtf, qtf_table
 from cummins.qtf.interpolation import (
     at_directions,
     coverage,
@@ -302,10 +302,11 @@ def _build(ds, waves: WaveComponents, model, sum_frequency, tol, max_gap, keep_s
     have_qtf = has_qtf(ds, "difference")
     if model == "full" and not have_qtf:
         raise HydroDataError(
-            "the data have no difference-frequency QTF for the full second-order force",
+            "the data have no difference-frequency QTF (qtf_difference) for the full "
+            "second-order force",
             path=ds.attrs.get("source_file"),
-            hint="read the solver's QTF output with the run (WAMIT .12d, NEMOH "
-            "results/QTF) or use Newman's approximation (it needs the mean drift)",
+            hint=f"{NO_QTF_HINT}, or use Newman's approximation (model='newman', "
+            "--second-order newman), which needs only the mean drift",
         )
     if have_qtf:
         table = qtf_table(ds, "difference")
@@ -396,10 +397,17 @@ def _drift_diagonal(
         raise HydroDataError(
             "the data have neither a QTF nor a mean drift (drift_force)",
             path=ds.attrs.get("source_file"),
-            hint="read a run that holds one (WAMIT .7/.8/.9 or .12d, NEMOH QTF, AQWA .LIS, "
-            "MSS .mat with driftfrc)",
+            hint="read a run that holds one (WAMIT .7/.8/.9, .out drift tables or .12d, "
+            "NEMOH QTF, AQWA .LIS or .QTF, MSS .mat with driftfrc)",
         )
-    drift = ds.drift_force.transpose("omega", "wave_direction", "influenced_dof").values
+    from cummins.seakeeping.headings import mirror_headings
+
+    # a port/starboard symmetric hull's drift on the other half-plane, as the first order
+    parts = [v for v in ("added_mass", "radiation_damping", "excitation_force") if v in ds]
+    mirrored, coverage = mirror_headings(ds[[*parts, "drift_force"]])
+    if coverage.mirror_used:
+        notes.append(f"mean drift of the mirrored headings: {coverage.reason}")
+    drift = mirrored.drift_force.transpose("omega", "wave_direction", "influenced_dof").values
     w = ds.omega.values
     left_out = _leave_out_suspects(ds, keep_suspect, notes)
     if left_out:
@@ -408,7 +416,7 @@ def _drift_diagonal(
     i, t, inside = frequency_weights(w, waves.omega)
     hi = np.minimum(i + 1, w.size - 1)
     a0, a1, ta = direction_weights(
-        ds.wave_direction.values, waves.direction, max_gap=max_gap, what="mean drift"
+        mirrored.wave_direction.values, waves.direction, max_gap=max_gap, what="mean drift"
     )
     value = (1 - t)[:, None] * ((1 - ta)[:, None] * drift[i, a0] + ta[:, None] * drift[i, a1])
     value += t[:, None] * ((1 - ta)[:, None] * drift[hi, a0] + ta[:, None] * drift[hi, a1])
