@@ -96,15 +96,24 @@ def test_sphere_mean_drift_of_three_methods(shared_data):
     assert np.abs(cs - mc).max() < 0.05 * np.abs(cs).max()
 
 
-def test_sphere_pressure_drift_matches_the_out_printout(shared_data):
-    """The .9 file against the .out's 'DRIFT FORCES (Pressure Integration)' tables of the
-    same run (6 significant digits)."""
+def test_sphere_out_takes_the_drift_method_the_numeric_files_do(shared_data):
+    """One WAMIT run, one mean drift: the .out prints the three methods' tables and is
+    read as the .7/.9/.8 are — drift_force the control surface (was the pressure
+    integration, 6.4 % lower at 2.95 rad/s, 'method not recorded'), the others as
+    drift_force_pressure and drift_force_momentum, each equal to its numeric file within
+    the .out's 6 significant digits (measured 2e-6 of the peak)."""
     ds = cummins.read(shared_data / SPHERE)
     out = read_wamit_out(shared_data / SPHERE.replace(".1", ".out"))
     assert np.allclose(out.omega.values, ds.omega.values)
-    a = ds.drift_force_pressure.values
-    b = out.drift_force.values
-    assert np.abs(a - b).max() < 1e-5 * np.abs(a).max()
+    assert out.drift_force.attrs["method"] == "control surface, sphere.out"
+    assert out.drift_force_momentum.attrs["dofs_computed"] == "Surge Sway Yaw"
+    for name in ("drift_force", "drift_force_pressure", "drift_force_momentum"):
+        a, b = ds[name].values, out[name].values
+        assert np.abs(a - b).max() < 2e-5 * np.abs(a).max(), name
+    # sphere.7 at PER 2.0944 s (3 rad/s), surge: 0.2224456 rho g; the .out prints it
+    surge = out.drift_force.sel(influenced_dof="Surge").sel(omega=3.0, method="nearest")
+    rho_g = out.attrs["rho"] * out.attrs["g"]
+    assert float(surge.isel(wave_direction=0)) == pytest.approx(0.2224456 * rho_g, rel=1e-5)
 
 
 def test_nemoh_spar_qtf_is_conjugated_and_dimensional(spar):
@@ -254,3 +263,28 @@ def test_the_report_draws_the_qtf(shared_data):
     section = _second_order_section(cummins.read(shared_data / OC4))
     assert section is not None and section.body.count("<img") == 2
     assert "qtf_sum: 56x56 frequencies" in section.body
+
+
+def test_a_dot1_takes_the_drift_of_its_out_when_the_run_wrote_no_dot7():
+    """The demo tanker has no .7/.8/.9 but its .out prints pressure-integration drift
+    tables: tanker.1 reads them (was: no drift_force, '--second-order newman' refused)."""
+    ds = cummins.read(cummins.demo_files() / "tanker.1")
+    out = cummins.read(cummins.demo_files() / "tanker.out")
+    assert np.array_equal(ds.drift_force.values, out.drift_force.values)
+    assert "mean drift from tanker.out" in ds.attrs["history"]
+
+
+def test_convert_says_where_the_mean_drift_goes(shared_data, tmp_path):
+    """convert sphere.1 x.1 named the QTFs only; x.12d pointed to Newman's approximation,
+    which convert does not do."""
+    from click.testing import CliRunner
+
+    from cummins.cli import main
+
+    source = str(shared_data / SPHERE)
+    result = CliRunner().invoke(main, ["convert", source, str(tmp_path / "x.1")])
+    assert result.exit_code == 0, result.output
+    assert "mean drift is not in the .1" in " ".join(result.output.split())
+    result = CliRunner().invoke(main, ["convert", source, str(tmp_path / "x.12d")])
+    assert result.exit_code == 1
+    assert ".7/.8/.9" in result.output and "use the mean drift" not in result.output

@@ -88,13 +88,14 @@ def test_newman_matches_the_dp_models_wave_drift(shared_data):
     WaveDriftLoad's (the DP model's, Smogeli et al. eqs. 47–48) in surge."""
     ds = cummins.read(shared_data / SPHERE)
     sea = irregular_waves(wave_spectrum("jonswap", 0.5, 2.5), duration=300, seed=4)
-    ours = second_order_force(ds, sea, model="newman")
+    # the same data for both (the DP model's load keeps the sphere's 15 suspect points)
+    ours = second_order_force(ds, sea, model="newman", keep_suspect=True)
     theirs = WaveDriftLoad.from_hydrodb(ds, sea, extrapolate="zero", max_heading_gap=7.0)
     for t in (0.0, 17.3, 211.0):
         assert ours.difference.at(t)[0] == pytest.approx(
             theirs.force(t, np.zeros(6), np.zeros(6))[0], rel=1e-9
         )
-    mean = second_order_force(ds, sea, model="mean")
+    mean = second_order_force(ds, sea, model="mean", keep_suspect=True)
     assert np.allclose(mean.time_series([0.0, 1.0]), ours.mean)
 
 
@@ -214,3 +215,67 @@ def test_moored_surge_in_3_hour_seas_against_the_frequency_domain(oc4):
         assert x.mean() == pytest.approx(load.mean[0] / k, rel=0.03)
     assert np.all(np.abs(np.array(stds) / expected - 1) < 0.12)
     assert np.mean(stds) == pytest.approx(expected, rel=0.05)
+
+
+def test_the_mean_drift_leaves_out_the_suspect_frequencies():
+    """The demo tanker's .out, JONSWAP Hs 4 Tp 10 in head seas: WAMIT's drift at the 9
+    irregular frequencies (3.65–5.98 rad/s, heave ~1e7–1e8 N/m² against ~1e5 below) made
+    the mean heave force −8e4 N; by default they are left out, with a warning and in
+    the load, and the mean equals that of the data cut below 3.5 rad/s (to round-off).
+    keep_suspect=True gives the old force (measured, seed 1: heave −9.0e4 N against
+    +2.9e3 N, surge +14 %, pitch +38 %)."""
+    ds = cummins.read(cummins.demo_files() / "tanker.out")
+    w = ds.omega.values
+    waves = irregular_waves(
+        wave_spectrum("jonswap", 4.0, 10.0), duration=600, n_components=200,
+        direction=np.pi, seed=1, omega_min=w[0], omega_max=w[-1],
+    )  # fmt: skip
+    with pytest.warns(cummins.CumminsWarning, match="left out at the 9 suspect frequencies"):
+        load = second_order_force(ds, waves, model="mean")
+    assert len(load.drift_left_out) == 9 and min(load.drift_left_out) == pytest.approx(3.653, 1e-3)
+    cut = ds.isel(omega=np.flatnonzero(w < 3.5))
+    reference = second_order_force(cut, waves, model="mean", keep_suspect=True)
+    assert np.allclose(load.mean, reference.mean, rtol=1e-12, atol=1e-9 * np.abs(load.mean).max())
+    kept = second_order_force(ds, waves, model="mean", keep_suspect=True)
+    heave = list(load.dofs).index("Heave")
+    assert kept.drift_left_out == ()
+    assert load.mean[heave] > 0 > kept.mean[heave]
+    assert abs(kept.mean[heave]) > 5 * abs(load.mean[heave])
+
+
+def test_the_drift_of_a_symmetric_hull_is_mirrored_as_the_first_order():
+    """tanker.1 (headings 0–180°, its drift from tanker.out beside it): waves from 270°
+    stopped with 'no wave direction near 270 deg'; now the mean force is that of 90° with
+    sway, roll and yaw of the other sign (T = diag(1, −1, 1, −1, 1, −1)), exactly."""
+    ds = cummins.read(cummins.demo_files() / "tanker.1")
+    assert ds.drift_force.attrs["method"] == "pressure integration, tanker.out"
+
+    def mean(direction):
+        sea = irregular_waves(
+            wave_spectrum("jonswap", 4.0, 10.0), duration=300, n_components=100,
+            direction=np.radians(direction), seed=2,
+        )  # fmt: skip
+        with pytest.warns(cummins.CumminsWarning, match="suspect"):
+            return second_order_force(ds, sea, model="mean").mean
+
+    starboard, port = mean(90.0), mean(270.0)
+    assert np.abs(starboard[[1, 3, 5]]).min() > 1e3  # sway, roll, yaw driven
+    np.testing.assert_allclose(port, starboard * [1, -1, 1, -1, 1, -1], rtol=1e-12)
+
+
+def test_the_no_qtf_errors_say_the_same():
+    """simulate --second-order full and qtf_table name the same files (AQWA .QTF was
+    missing from the first)."""
+    from cummins.qtf import qtf_table
+
+    ds = cummins.read(cummins.demo_files() / "tanker.1")
+    sea = irregular_waves(wave_spectrum("jonswap", 4.0, 10.0), duration=60, seed=1)
+    with pytest.raises(cummins.HydroDataError) as full:
+        second_order_force(ds, sea, model="full")
+    with pytest.raises(cummins.HydroDataError) as table:
+        qtf_table(ds, "difference")
+    from cummins.qtf.data import NO_QTF_HINT
+
+    for error in (full, table):
+        assert NO_QTF_HINT in " ".join(str(error.value).split()) and "AQWA .QTF" in NO_QTF_HINT
+    assert "--second-order newman" in str(full.value)

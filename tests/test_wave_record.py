@@ -93,3 +93,14 @@ def test_read_wave_elevation(tmp_path):
     gap.write_text("time [s], wave elevation [m]\n0, 1\n1, 2\n3, 3\n")
     with pytest.raises(HydroDataError, match="time step changes"):
         read_wave_elevation(gap)
+
+
+def test_a_record_with_second_order_is_refused_naming_both_options(tmp_path):
+    """--second-order needs the sea's components; with a record it was silently ignored."""
+    record = tmp_path / "eta.csv"
+    record.write_text("time [s], wave elevation [m]\n0, 0\n1, 0.1\n2, 0.2\n")
+    args = ["simulate", str(SEMISUB), "--wave-elevation", str(record), "--second-order"]
+    result = CliRunner().invoke(main, [*args, "newman", "-o", str(tmp_path / "r.nc")])
+    assert result.exit_code == 2
+    assert "--second-order" in result.output and "--hs/--tp" in result.output
+    assert not (tmp_path / "r.nc").exists()

@@ -10,6 +10,9 @@ other, and what the QTF's frequency grid covers and resolves.
 * ``drift_methods`` — the run's mean-drift estimates against each other (pressure
   integration converges slowest with the panels: the corpus sphere's parts from the
   control surface above ~5 rad/s);
+* ``drift_suspect`` — the mean drift at the suspect frequencies of the radiation data
+  (:func:`cummins.qtf.suspect_drift.drift_at_suspects`): irregular frequencies spoil it
+  too (the WAMIT tanker's heave, 3000 times its largest elsewhere);
 * ``qtf_grid`` — the seas the QTF's frequencies cover and the slow-drift natural periods
   its spacing resolves (:func:`cummins.seakeeping.slow_drift.qtf_grid_advice`), and a
   mean drift that changes by more than half its peak between two grid frequencies (a
@@ -21,7 +24,7 @@ from __future__ import annotations
 import numpy as np
 import xarray as xr
 
-from cummins.check.common import _speeds
+from cummins.check.common import _speed_suffix, _speeds
 from cummins.check.report import Finding
 from cummins.qtf.data import DRIFT_ALTERNATIVES, QTF_VARIABLES, qtf_table, significant_dofs
 
@@ -31,6 +34,9 @@ QTF_SYMMETRY_TOL = 0.01
 QTF_DRIFT_TOL = 0.1
 #: Two mean-drift estimates of a run: difference over the peak.
 DRIFT_METHODS_TOL = 0.1
+#: The mean drift at the suspect frequencies beyond this multiple of its largest value
+#: elsewhere (a DOF's) is named a warning.
+DRIFT_SUSPECT_RATIO = 1.5
 #: A mean drift that changes by more than this share of its peak between grid points.
 QTF_STEP_TOL = 0.5
 #: A DOF whose largest value is below this share of the largest of its kind (forces or
@@ -51,6 +57,7 @@ def _check_second_order(ds: xr.Dataset) -> list[Finding]:
         if QTF_VARIABLES["difference"] in sub:
             out.extend(_against_drift(sub))
         out.extend(_drift_methods(sub))
+        out.extend(_drift_at_suspects(sub))
     if QTF_VARIABLES["difference"] in ds:
         out.extend(_grid(ds))
     return out
@@ -252,6 +259,39 @@ def _drift_methods(ds: xr.Dataset) -> list[Finding]:
                 )
             )
     return out
+
+
+def _drift_at_suspects(ds: xr.Dataset) -> list[Finding]:
+    from cummins.qtf.suspect_drift import drift_at_suspects
+
+    if "drift_force" not in ds:
+        return []
+    found = drift_at_suspects(ds)
+    if found is None:
+        return []
+    listed = ", ".join(f"{x:.4g}" for x in found.omega)
+    message = (
+        f"the mean drift at the {len(found.omega)} suspect frequencies{_speed_suffix(ds)} "
+        f"({listed} rad/s): {found.dof} up to {found.ratio:.3g} times its largest elsewhere "
+        f"({found.value:.3g} at {found.at[0]:.4g} rad/s, {found.at[1]:g} deg)"
+    )
+    advice = (
+        "irregular frequencies spoil the drift with the damping; simulate leaves these "
+        "frequencies out of the mean drift (--keep-suspect keeps them); rerun the solver "
+        "with irregular-frequency removal (WAMIT IRR >= 1) for the drift there"
+    )
+    severity = "warning" if found.ratio > DRIFT_SUSPECT_RATIO else "info"
+    return [
+        Finding(
+            "drift_suspect",
+            severity,
+            message,
+            where=f"{found.dof}, {found.at[0]:.4g} rad/s",
+            value=found.ratio,
+            advice=advice,
+            details={"omega": list(found.omega)},
+        )
+    ]
 
 
 def _grid(ds: xr.Dataset) -> list[Finding]:

@@ -253,6 +253,14 @@ def _write_for_hydrodyn(ds, destination, source, limit_rows, force) -> None:
             + " and ".join(f"cummins convert {source} {files[name]}" for name in held)
             + " (HydroDyn's DiffQTF/SumQTF = 12)"
         )
+    if "drift_force" in ds:
+        console.print(
+            "the data's mean drift is not in the .1: HydroDyn reads it from the WAMIT "
+            ".7, .8 or .9 beside the .1 (MnDrift or NewmanApp = 7, 8 or 9): copy those of "
+            f"the run ({ds.drift_force.attrs.get('method', 'method not recorded')}); for "
+            "WEC-Sim a BEMIO .h5 holds it (cummins convert "
+            f"{source} {Path(destination).with_suffix('.h5')})"
+        )
 
 
 def _with_volumes(ds, volumes):

@@ -3,6 +3,8 @@ both say about it."""
 
 from __future__ import annotations
 
+import warnings
+
 import click
 
 from cummins.cli.common import console
@@ -31,6 +33,20 @@ def second_order_option(default: str = "none", help: str = HELP):
     )
 
 
+def keep_suspect_option(func):
+    """``--keep-suspect`` (the mean drift at the suspect frequencies)."""
+    return click.option(
+        "--keep-suspect",
+        "keep_suspect",
+        is_flag=True,
+        default=False,
+        help="With --second-order mean|newman: keep the mean drift at the suspect "
+        "frequencies of the data (irregular frequencies, which cummins check lists). "
+        "By default they are left out of it: bridged linearly between sound "
+        "neighbours, no drift above the last sound frequency.",
+    )(func)
+
+
 def sum_frequency_option(func):
     """``--sum-frequency/--no-sum-frequency`` (with ``--second-order full``)."""
     return click.option(
@@ -53,10 +69,12 @@ def what_the_data_hold(ds) -> str | None:
     return None
 
 
-def build_second_order(ds, sea, model: str, *, sum_frequency: bool | None = None):
+def build_second_order(
+    ds, sea, model: str, *, sum_frequency: bool | None = None, keep_suspect: bool = False
+):
     """The :func:`~cummins.timedomain.loads.second_order.second_order_force` of ``sea``,
     or None for ``model == "none"`` (with a note when the data hold second-order data);
-    its notes are printed."""
+    its warnings and notes are printed."""
     from cummins.timedomain.loads.second_order import second_order_force
 
     if model == "none":
@@ -69,7 +87,15 @@ def build_second_order(ds, sea, model: str, *, sum_frequency: bool | None = None
         return None
     if sum_frequency and model != "full":
         raise click.UsageError("--sum-frequency needs --second-order full")
-    force = second_order_force(ds, sea, model=model, sum_frequency=sum_frequency)
+    with warnings.catch_warnings(record=True) as caught:
+        warnings.simplefilter("always")
+        force = second_order_force(
+            ds, sea, model=model, sum_frequency=sum_frequency, keep_suspect=keep_suspect
+        )
+    for w in caught:  # printed once, as a warning, not again as a note
+        warnings.showwarning(w.message, w.category, w.filename, w.lineno)
+    said = {str(w.message) for w in caught}
     for line in force.notes:
-        console.print(f"note: {line}")
+        if line not in said:
+            console.print(f"note: {line}")
     return force

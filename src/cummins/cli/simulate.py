@@ -32,6 +32,7 @@ from cummins.cli.common import (
 from cummins.cli.option_rules import option_rules, unique_values
 from cummins.cli.second_order import (
     build_second_order,
+    keep_suspect_option,
     second_order_option,
     sum_frequency_option,
 )
@@ -208,6 +209,7 @@ from cummins.validation import check_simulation_size
 )
 @second_order_option()
 @sum_frequency_option
+@keep_suspect_option
 @allow_other_data_option
 @force_option()
 @option_rules(
@@ -257,6 +259,7 @@ def simulate_command(
     plot_dir,
     second_order,
     sum_frequency,
+    keep_suspect,
     allow_other_data,
     force,
 ):
@@ -305,6 +308,12 @@ def simulate_command(
     if wave_record:
         if regular or hs is not None or tp is not None or speed:
             raise click.UsageError("--wave-elevation replaces --hs/--tp/--regular (zero speed)")
+        if second_order != "none":
+            raise click.UsageError(
+                "--second-order needs the sea as wave components (--hs/--tp or --regular); "
+                "a --wave-elevation record drives the first-order force only: leave "
+                "--second-order out, or give the sea by --hs/--tp"
+            )
     elif regular:
         if wave_period is None:
             raise click.UsageError("--regular needs --wave-period")
@@ -434,7 +443,9 @@ def simulate_command(
 
         run, title = run_wave_record(vessel, ds, wave_record, heading, nonlinear)
     else:
-        second = build_second_order(ds, sea, second_order, sum_frequency=sum_frequency)
+        second = build_second_order(
+            ds, sea, second_order, sum_frequency=sum_frequency, keep_suspect=keep_suspect
+        )
         first_order = "excitation_force" in ds or second is None
         if not first_order:
             console.print("note: the data have no first-order excitation: second-order force only")

@@ -74,6 +74,12 @@ DRIFT_METHODS: dict[str, str] = {
 }
 DRIFT_ALTERNATIVES: tuple[str, ...] = tuple(f"drift_force_{m}" for m in DRIFT_METHODS)
 
+#: What to do when the data hold no QTF (every "no QTF" error says it).
+NO_QTF_HINT = (
+    "read the solver's QTF output with the run (WAMIT .12d/.12s, NEMOH "
+    "results/QTF/OUT_QTFM_N.dat, AQWA .QTF beside the .LIS)"
+)
+
 _UNITS = "N/m^2 | N m/m^2 (per product of wave amplitudes)"
 _LONG_NAMES = {
     "difference": "difference-frequency quadratic transfer function Q-(w1, w2, b1, b2)",
@@ -191,13 +197,7 @@ def qtf_table(ds: xr.Dataset, kind: str = "difference") -> QTFTable:
         raise HydroDataError(
             f"the dataset has no {kind}-frequency QTF ({name})",
             path=ds.attrs.get("source_file"),
-            hint=(
-                f"it holds a {have[0]}-frequency QTF"
-                if have
-                else "read the solver's QTF output with the run (WAMIT .12d/.12s, NEMOH "
-                "results/QTF/OUT_QTFM_N.dat, AQWA .QTF) or use the mean drift (Newman's "
-                "approximation)"
-            ),
+            hint=f"it holds a {have[0]}-frequency QTF" if have else NO_QTF_HINT,
         )
     var = ds[name]
     bidirectional = DIRECTION2 in var.dims

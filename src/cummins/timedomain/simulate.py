@@ -322,6 +322,8 @@ def simulate_waves(
         attrs["second_order"] = second_order.model
         attrs["second_order_mean_force"] = np.asarray(second_order.mean, dtype=float)
         attrs["second_order_notes"] = "\n".join(notes)
+        if second_order.drift_left_out:
+            attrs["second_order_drift_left_out"] = np.asarray(second_order.drift_left_out)
     result.attrs.update(attrs)
     failure = energy_balance_failure(result.attrs)
     if failure:

@@ -1,8 +1,9 @@
 """The WAMIT ``.out`` log read on its own (:func:`read_wamit_out`): its 'Wave period'
 blocks of added mass and damping (with the A(0) and A(∞) blocks), diffraction (else
-Haskind) excitation, motion RAOs and mean drift forces (pressure integration, else
-momentum conservation), nondimensional as in the numeric files but to fewer digits
-(phases in whole degrees).
+Haskind) excitation, motion RAOs and mean drift forces (every method the log prints,
+``drift_force`` the one the numeric files' reader prefers: control surface, else
+pressure integration, else momentum conservation), nondimensional as in the numeric
+files but to fewer digits (phases in whole degrees).
 """
 
 from __future__ import annotations
@@ -37,8 +38,10 @@ from cummins.io.wamit.input_files import _Config, _Mmx, _read_cfg
 from cummins.io.wamit.mass import _body_attrs, _mass_matrices, _restoring_weight
 from cummins.io.wamit.modes import _check_memory, _mode_layout
 from cummins.io.wamit.out_header import _FLOAT, _hydrostatics_matrix, _out_header
+from cummins.io.wamit.second_order import DRIFT_PREFERENCE, drift_variables
 from cummins.io.wamit.settings import RunSettings
 from cummins.io.wamit.text import MAX_ABS_VALUE, _read_text
+from cummins.qtf.data import with_second_order
 
 _PERIOD_LINE = re.compile(r"Wave period\s*(?:\(sec\))?\s*=\s*(infinite|zero|" + _FLOAT[1:-1] + ")")
 
@@ -55,6 +58,14 @@ _SECTION_TITLES = {
     "DRIFT FORCES (Pressure Integration)": "drift_pressure",
     "DRIFT FORCES (Momentum Conservation)": "drift_momentum",
     "DRIFT FORCES (Control Surface)": "drift_control_surface",
+}
+
+
+#: The ``.out`` table of each mean-drift method.
+_DRIFT_TABLES = {
+    "control_surface": "drift_control_surface",
+    "pressure": "drift_pressure",
+    "momentum": "drift_momentum",
 }
 
 
@@ -76,13 +87,17 @@ def _rows_after(text: TextFile, i: int, stop: int) -> tuple[list[np.ndarray], li
             values = parse_numbers(line)
             if values is None:
                 break
-            if not np.all(np.isfinite(values)):
-                raise text.error("non-finite value (NaN or Inf) in the data", k)
-            if np.any(np.abs(values) >= MAX_ABS_VALUE):
-                raise text.error("implausible value (a missing-value marker?)", k)
             rows.append(values)
             where.append(k)
         k += 1
+    if rows:  # checked once per table (NaN compares False: not below the limit)
+        sizes = np.abs(np.concatenate(rows))
+        if not np.all(sizes < MAX_ABS_VALUE):
+            for values, w in zip(rows, where, strict=True):
+                if not np.all(np.isfinite(values)):
+                    raise text.error("non-finite value (NaN or Inf) in the data", w)
+                if np.any(np.abs(values) >= MAX_ABS_VALUE):
+                    raise text.error("implausible value (a missing-value marker?)", w)
     return rows, where, k
 
 
@@ -187,8 +202,10 @@ def read_wamit_out(
     The log prints the same nondimensional quantities as the numeric files, to
     fewer digits (phases in whole degrees), plus motion RAOs and mean drift forces:
     added mass and damping, A(0) and A(∞), diffraction (else Haskind) excitation,
-    hydrostatics and mass properties (header), RAOs and mean drift forces (pressure
-    integration, else momentum conservation), about the body origin. A ``.cfg``
+    hydrostatics and mass properties (header), RAOs and mean drift forces (``drift_force``
+    the control surface's, else pressure integration's, else momentum conservation's, as
+    the ``.7/.9/.8`` are read; the others as ``drift_force_<method>``), about the body
+    origin. A ``.cfg``
     (NEWMDS) and ``.frc`` with the same stem are read too.
 
     Parameters
@@ -332,7 +349,7 @@ def read_wamit_out(
         """Stack one section over periods and headings; every period must be complete."""
         headings = sorted(finite[0][1].get(kind, {}))
         if not headings:
-            return None, None
+            return None, None, []
         first_dofs = None
         out = np.zeros((len(order), len(headings), n), dtype=float if real else complex)
         for kk, k in enumerate(order):
@@ -363,31 +380,37 @@ def read_wamit_out(
                         f"holds DOFs {sorted(dofs)}, not {first_dofs} (a line deleted?)",
                         where[-1] if where else finite[k][4],
                     )
-        return out * scale, np.radians(headings)
+        return out * scale, np.radians(headings), first_dofs or []
 
     force_scale = rho_v * g_v * L ** force_exponents(n, 2, layout)
-    x, beta = by_heading("diffraction", force_scale)
+    x, beta, _ = by_heading("diffraction", force_scale)
     if x is None:
-        x, beta = by_heading("haskind", force_scale)
+        x, beta, _ = by_heading("haskind", force_scale)
         if x is not None:
             history.append("excitation from the Haskind relations (no diffraction output)")
     if x is not None:
         extra["excitation_force"] = x
         extra["wave_direction"] = beta
-    rao, beta_r = by_heading("rao", 1.0 / L ** rotation_flags(n, layout))
+    rao, beta_r, _ = by_heading("rao", 1.0 / L ** rotation_flags(n, layout))
     if rao is not None:
         if beta is not None and (beta.shape != beta_r.shape or not np.allclose(beta, beta_r)):
             raise text.error("the RAO headings differ from the excitation headings")
         extra["rao"], extra["wave_direction"] = rao, beta_r
     drift_scale = rho_v * g_v * L ** force_exponents(n, 1, layout)
-    drift, beta_d = by_heading("drift_pressure", drift_scale, real=True)
-    if drift is None:
-        drift, beta_d = by_heading("drift_momentum", drift_scale, real=True)
-    if drift is not None and "wave_direction" in extra:
-        same = beta_d.shape == extra["wave_direction"].shape
-        if not same or not np.allclose(beta_d, extra["wave_direction"]):
+    drift: dict = {"drift": {}, "attrs": {}, "history": []}
+    found, beta_d = [], None
+    for method in DRIFT_PREFERENCE:
+        values, beta_m, present = by_heading(_DRIFT_TABLES[method], drift_scale, real=True)
+        if values is None:
+            continue
+        reference = extra.get("wave_direction", beta_d)
+        if reference is not None and (
+            beta_m.shape != reference.shape or not np.allclose(beta_m, reference)
+        ):
             raise text.error("the drift-force headings differ from the excitation headings")
-        extra["drift_force"] = drift
+        beta_d = beta_m
+        on = np.isin(np.arange(1, n + 1), present)
+        found.append((method, values, on, path.name))
     if header.bodies and all(bd.hydrostatics for bd in header.bodies):
         extra["hydrostatic_stiffness"] = _hydrostatics_matrix(header, layout) * (
             rho_v * g_v * L ** length_exponents(n, 2, layout)
@@ -426,7 +449,7 @@ def read_wamit_out(
     if "hydrostatic_stiffness" in extra:
         extra.update(_restoring_weight(path.name, header, layout, frc, rho_v, RunSettings(), path))
     names = header.body_names
-    return make_hydrodb(
+    ds = make_hydrodb(
         omega[order],
         a,
         b,
@@ -445,4 +468,14 @@ def read_wamit_out(
         body_names="\n".join(names) if len(names) == len(layout) else None,
         **extra,
         **_body_attrs(header, layout, RunSettings()),
+    )
+    if not found:
+        return ds
+    drift_variables(found, list(ds.influenced_dof.values.astype(str)), drift)
+    return with_second_order(
+        ds,
+        drift=drift["drift"],
+        wave_direction=beta_d,
+        history=drift["history"],
+        attrs=drift["attrs"],
     )

@@ -52,6 +52,15 @@ def write_wamit_qtf(
             path=p,
             hint="name it .12d (difference frequencies) or .12s (sum frequencies)",
         )
+    if QTF_VARIABLES[kind] not in ds and "drift_force" in ds:
+        raise HydroDataError(
+            f"the data have no {kind}-frequency QTF ({QTF_VARIABLES[kind]}) to write, only "
+            "a mean drift",
+            path=p,
+            hint="HydroDyn's mean drift and Newman's approximation (MnDrift, NewmanApp = 7, "
+            "8 or 9) read the run's WAMIT .7/.8/.9: give it those; a BEMIO .h5 holds the "
+            "drift for WEC-Sim (cummins convert … x.h5)",
+        )
     table = qtf_table(ds, kind)
     name = QTF_VARIABLES[kind]
     computed = ds[name].attrs.get("dofs_computed")

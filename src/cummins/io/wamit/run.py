@@ -8,6 +8,7 @@ project is read by :func:`cummins.io.hams.read_hams`.
 from __future__ import annotations
 
 import os
+import warnings
 from collections.abc import Sequence
 from pathlib import Path
 
@@ -42,6 +43,7 @@ from cummins.io.wamit.out_header import _hydrostatics_matrix, _out_header, _OutH
 from cummins.io.wamit.second_order import attach_wamit_second_order, wamit_second_order
 from cummins.io.wamit.settings import RunSettings
 from cummins.io.wamit.text import _read_text
+from cummins.qtf.data import DRIFT_ALTERNATIVES
 
 
 def _hams_project(dot1: Path) -> Path | None:
@@ -418,12 +420,58 @@ def read_wamit_run(
         **extra,
         **_body_attrs(header, layout, settings),
     )
+    if second is not None and have_out and not second["drift"]:
+        _drift_from_out(
+            out_path, second, omega, extra.get("wave_direction"), (rho_v, g_v, L), layout, notes
+        )
     return ds if second is None else attach_wamit_second_order(ds, second)
 
 
 def _same_depth(a: float, b: float) -> bool:
     """Two water depths (m, ``inf`` for deep water) that are the same."""
     return (np.isinf(a) and np.isinf(b)) or bool(np.isclose(a, b, rtol=1e-6))
+
+
+def _drift_from_out(out_path, second: dict, omega, directions, constants, layout, notes) -> None:
+    """The mean drift printed in the ``.out`` into ``second`` (of
+    :func:`~cummins.io.wamit.second_order.wamit_second_order`) when the run has no
+    ``.7``/``.8``/``.9``: every method the log prints, ``drift_force`` the preferred one
+    (:data:`~cummins.io.wamit.second_order.DRIFT_PREFERENCE`). ``second["attrs"]`` and
+    ``["history"]`` say where it came from; a log of other frequencies or headings is
+    left out with a line in ``history``, a damaged one with a warning."""
+    if b"DRIFT FORCES" not in out_path.read_bytes():
+        return
+    history = second["history"]
+    try:
+        with warnings.catch_warnings():  # the header's warnings were given with the .1
+            warnings.simplefilter("ignore")
+            rho, g, ulen = constants
+            out = read_wamit_out(out_path, rho=rho, g=g, ulen=ulen, modes=layout)
+    except HydroDataError as exc:
+        warn_damage(f"mean drift not read: {exc}", path=out_path, notes=notes)
+        return
+    names = [name for name in ("drift_force", *DRIFT_ALTERNATIVES) if name in out]
+    if not names:
+        return
+    if out.sizes["omega"] != omega.size or not np.allclose(out.omega.values, omega, rtol=1e-5):
+        history.append(f"no mean drift from {out_path.name}: it has other frequencies")
+        return
+    beta = out.wave_direction.values
+    if directions is not None and (
+        beta.shape != directions.shape or not np.allclose(beta, directions)
+    ):
+        history.append(f"no mean drift from {out_path.name}: it has other wave directions")
+        return
+    for name in names:
+        var = out[name].transpose("omega", "wave_direction", "influenced_dof")
+        second["drift"][name] = (var.values, var.attrs["method"])
+        second["attrs"][name] = {k: var.attrs[k] for k in ("source", "dofs_computed")}
+    if directions is None:
+        second["directions"] = beta
+    history.append(
+        f"mean drift from {out_path.name} (no .7, .8 or .9 file; the log prints 6-7 "
+        f"digits): drift_force by {out.drift_force.attrs['method']}"
+    )
 
 
 def _excitation_from_out(out_path, omega, layout, rho_v, g_v, L, extra, history) -> None:

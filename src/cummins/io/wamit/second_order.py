@@ -45,6 +45,11 @@ from cummins.io.wamit.numeric import _limit_markers, _omega_from_first_column
 from cummins.io.wamit.text import _numeric_rows, _read_text, _title_lines
 from cummins.qtf.data import DRIFT_METHODS, QTFTable, complete_square
 
+#: The mean-drift methods in order of preference for ``drift_force`` (the numeric files
+#: and the ``.out``'s tables alike): the control surface converges fastest with the
+#: panels; pressure integration, slowest, still computes heave, roll and pitch, which
+#: momentum conservation (the far field) does not.
+DRIFT_PREFERENCE: tuple[str, ...] = ("control_surface", "pressure", "momentum")
 #: Mean-drift files by method, in order of preference for ``drift_force``.
 DRIFT_FILES: dict[str, str] = {".7": "control_surface", ".9": "pressure", ".8": "momentum"}
 #: QTF files of each kind, in order of preference.
@@ -252,6 +257,33 @@ def read_qtf(
     return omega, directions, values, bidirectional, present, list(rows.notes)
 
 
+def drift_variables(found, dofs: list[str], out: dict) -> None:
+    """Put mean-drift estimates into ``out`` (``drift``, ``attrs``, ``history`` of
+    :func:`wamit_second_order`): ``drift_force`` the first of ``found`` in the order of
+    :data:`DRIFT_PREFERENCE`, ``drift_force_<method>`` the others, each with the method,
+    its source and the DOFs it computes.
+
+    Parameters
+    ----------
+    found
+        (method, values (nω, nβ, n), DOFs present (n,), source name) per estimate.
+    dofs
+        The DOF labels.
+    """
+    rank = {m: k for k, m in enumerate(DRIFT_PREFERENCE)}
+    found = sorted(found, key=lambda item: rank[item[0]])
+    for k, (method, values, present, source) in enumerate(found):
+        name = "drift_force" if k == 0 else f"drift_force_{method}"
+        out["drift"][name] = (values, f"{DRIFT_METHODS[method]}, {source}")
+        computed = [d for d, p in zip(dofs, present, strict=True) if p]
+        out["attrs"][name] = {"source": source, "dofs_computed": " ".join(computed)}
+        missing = [d for d, p in zip(dofs, present, strict=True) if not p]
+        out["history"].append(
+            f"{name}: mean drift by {DRIFT_METHODS[method]} from {source}"
+            + (f" ({', '.join(missing)} not computed by it: 0)" if missing else "")
+        )
+
+
 def second_order_files(dot1: Path) -> dict[str, Path]:
     """The second-order files of the run of ``dot1`` (same stem), by suffix."""
     found = {}
@@ -317,20 +349,10 @@ def wamit_second_order(
                     notes=notes,
                 )
                 continue
-            kept.append((method, values, present, path))
+            kept.append((method, values, present, path.name))
         if directions is None and kept:
             out["directions"] = reference
-        for rank, (method, values, present, path) in enumerate(kept):
-            name = "drift_force" if rank == 0 else f"drift_force_{method}"
-            description = f"{DRIFT_METHODS[method]}, {path.name}"
-            out["drift"][name] = (values, description)
-            computed = [d for d, p in zip(dofs, present, strict=True) if p]
-            out["attrs"][name] = {"source": path.name, "dofs_computed": " ".join(computed)}
-            missing = [d for d, p in zip(dofs, present, strict=True) if not p]
-            history.append(
-                f"{name}: mean drift by {DRIFT_METHODS[method]} from {path.name}"
-                + (f" ({', '.join(missing)} not computed by it: 0)" if missing else "")
-            )
+        drift_variables(kept, dofs, out)
     for kind, suffixes in QTF_FILES.items():
         available = [s for s in suffixes if s in files]
         for suffix in available:

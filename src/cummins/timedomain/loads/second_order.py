@@ -39,15 +39,16 @@ simulation in the dataset's own axes, without position phase.
 
 from __future__ import annotations
 
+import warnings
 from dataclasses import dataclass, field
 
 import numpy as np
 import xarray as xr
 from numpy.typing import NDArray
 
-from cummins.errors import ArgumentError, HydroDataError
+from cummins.errors import ArgumentError, AssumptionWarning, HydroDataError
 from cummins.hydrodb import bodies, change_axes, dof_index, single_speed
-from cummins.qtf.data import has_qtf, qtf_table
+from cummins.qtf.data import NO_QTF_HINT, has_qtf, qtf_table
 from cummins.qtf.interpolation import (
     at_directions,
     coverage,
@@ -105,6 +106,9 @@ class SecondOrderWaveLoad:
         What the load assumes or leaves out (one line each).
     name
         Name of the load.
+    drift_left_out
+        The frequencies (rad/s) left out of the mean drift (``drift_force``) as suspect
+        (irregular frequencies: :mod:`cummins.qtf.suspect_drift`).
     """
 
     waves: WaveComponents
@@ -118,6 +122,7 @@ class SecondOrderWaveLoad:
     position_phase: bool = False
     notes: tuple[str, ...] = ()
     name: str = "second-order wave force"
+    drift_left_out: tuple[float, ...] = ()
     _k: NDArray | None = field(default=None, init=False, repr=False)
 
     def __post_init__(self) -> None:
@@ -138,6 +143,7 @@ class SecondOrderWaveLoad:
         tol: float = TOLERANCE,
         max_gap: float = np.pi / 2,
         name: str = "second-order wave force",
+        keep_suspect: bool = False,
     ) -> SecondOrderWaveLoad:
         """The load of the nonlinear DP model (z-down axes, b-frame about O).
 
@@ -163,6 +169,9 @@ class SecondOrderWaveLoad:
             Widest gap between data directions to interpolate across, rad.
         name
             Name of the load.
+        keep_suspect
+            Keep the mean drift (``drift_force``) at the suspect frequencies of the
+            radiation data (default: left out, :mod:`cummins.qtf.suspect_drift`).
         """
         ds = single_speed(ds)
         if len(bodies(ds)) != 1:
@@ -175,7 +184,7 @@ class SecondOrderWaveLoad:
         relative = WaveComponents(
             waves.omega, waves.amplitude, waves.phase, waves.direction - float(heading)
         )
-        parts = _build(ds, relative, model, sum_frequency, tol, max_gap)
+        parts = _build(ds, relative, model, sum_frequency, tol, max_gap, keep_suspect)
         index = np.array([dof_index(str(d)) for d in ds.influenced_dof.values], dtype=np.intp)
         k = wavenumber(
             waves.omega, float(ds.attrs.get("water_depth", np.inf)), float(ds.attrs.get("g", 9.81))
@@ -195,6 +204,7 @@ class SecondOrderWaveLoad:
             position_phase,
             tuple(notes),
             name,
+            parts["left_out"],
         )
 
     def time_series(self, t) -> NDArray[np.float64]:
@@ -261,11 +271,13 @@ def second_order_force(
     sum_frequency: bool | None = None,
     tol: float = TOLERANCE,
     max_gap: float = np.pi / 2,
+    keep_suspect: bool = False,
 ) -> SecondOrderWaveLoad:
     """The second-order force of a linear simulation (:func:`cummins.simulate_waves`), in
-    the dataset's axes and DOFs, without position phase (module docstring)."""
+    the dataset's axes and DOFs, without position phase (module docstring; ``keep_suspect``
+    as in :meth:`SecondOrderWaveLoad.from_hydrodb`)."""
     ds = single_speed(ds)
-    parts = _build(ds, waves, model, sum_frequency, tol, max_gap)
+    parts = _build(ds, waves, model, sum_frequency, tol, max_gap, keep_suspect)
     return SecondOrderWaveLoad(
         waves,
         parts["dofs"],
@@ -274,10 +286,11 @@ def second_order_force(
         parts["sum"],
         parts["mean"],
         notes=tuple(parts["notes"]),
+        drift_left_out=parts["left_out"],
     )
 
 
-def _build(ds, waves: WaveComponents, model, sum_frequency, tol, max_gap) -> dict:
+def _build(ds, waves: WaveComponents, model, sum_frequency, tol, max_gap, keep_suspect) -> dict:
     if model not in MODELS:
         raise ArgumentError(f"second-order model must be one of {', '.join(MODELS)}, not {model!r}")
     if not 0 < tol < 1:
@@ -285,13 +298,15 @@ def _build(ds, waves: WaveComponents, model, sum_frequency, tol, max_gap) -> dic
     dofs = tuple(str(d) for d in ds.influenced_dof.values)
     notes: list[str] = []
     a = waves.amplitude
+    left_out: tuple[float, ...] = ()
     have_qtf = has_qtf(ds, "difference")
     if model == "full" and not have_qtf:
         raise HydroDataError(
-            "the data have no difference-frequency QTF for the full second-order force",
+            "the data have no difference-frequency QTF (qtf_difference) for the full "
+            "second-order force",
             path=ds.attrs.get("source_file"),
-            hint="read the solver's QTF output with the run (WAMIT .12d, NEMOH "
-            "results/QTF) or use Newman's approximation (it needs the mean drift)",
+            hint=f"{NO_QTF_HINT}, or use Newman's approximation (model='newman', "
+            "--second-order newman), which needs only the mean drift",
         )
     if have_qtf:
         table = qtf_table(ds, "difference")
@@ -309,7 +324,7 @@ def _build(ds, waves: WaveComponents, model, sum_frequency, tol, max_gap) -> dic
                 "directions takes the QTF at their mean direction"
             )
     else:
-        diag, inside, source = _drift_diagonal(ds, waves, max_gap, notes)
+        diag, inside, source, left_out = _drift_diagonal(ds, waves, max_gap, notes, keep_suspect)
     diag = np.where(inside[:, None], diag, 0.0)
     mean = (a**2) @ diag
     if model == "full":
@@ -333,7 +348,14 @@ def _build(ds, waves: WaveComponents, model, sum_frequency, tol, max_gap) -> dic
             )
         total_sum = _full(qtf_table(ds, "sum"), waves, tol, max_gap)
         notes.append("sum-frequency QTF: " + _describe(total_sum, tol))
-    return {"dofs": dofs, "difference": difference, "sum": total_sum, "mean": mean, "notes": notes}
+    return {
+        "dofs": dofs,
+        "difference": difference,
+        "sum": total_sum,
+        "mean": mean,
+        "notes": notes,
+        "left_out": left_out,
+    }
 
 
 def _full(table, waves: WaveComponents, tol: float, max_gap: float) -> QuadraticForm:
@@ -364,22 +386,37 @@ def _describe(form: QuadraticForm, tol: float) -> str:
     return f"{sum(sizes)} terms over the DOFs (truncated at {tol:g} of each DOF's weight)"
 
 
-def _drift_diagonal(ds, waves: WaveComponents, max_gap, notes) -> tuple[NDArray, NDArray, str]:
+def _drift_diagonal(
+    ds, waves: WaveComponents, max_gap, notes, keep_suspect=False
+) -> tuple[NDArray, NDArray, str, tuple[float, ...]]:
     """T_i of every component from ``drift_force``: linear in ω (zero outside the data's
-    frequencies) and in direction."""
+    frequencies) and in direction; without the suspect frequencies
+    (:func:`~cummins.qtf.suspect_drift.drift_suspect_frequencies`) unless
+    ``keep_suspect``, which are returned."""
     if "drift_force" not in ds:
         raise HydroDataError(
             "the data have neither a QTF nor a mean drift (drift_force)",
             path=ds.attrs.get("source_file"),
-            hint="read a run that holds one (WAMIT .7/.8/.9 or .12d, NEMOH QTF, AQWA .LIS, "
-            "MSS .mat with driftfrc)",
+            hint="read a run that holds one (WAMIT .7/.8/.9, .out drift tables or .12d, "
+            "NEMOH QTF, AQWA .LIS or .QTF, MSS .mat with driftfrc)",
         )
-    drift = ds.drift_force.transpose("omega", "wave_direction", "influenced_dof").values
+    from cummins.seakeeping.headings import mirror_headings
+
+    # a port/starboard symmetric hull's drift on the other half-plane, as the first order
+    parts = [v for v in ("added_mass", "radiation_damping", "excitation_force") if v in ds]
+    mirrored, coverage = mirror_headings(ds[[*parts, "drift_force"]])
+    if coverage.mirror_used:
+        notes.append(f"mean drift of the mirrored headings: {coverage.reason}")
+    drift = mirrored.drift_force.transpose("omega", "wave_direction", "influenced_dof").values
     w = ds.omega.values
+    left_out = _leave_out_suspects(ds, keep_suspect, notes)
+    if left_out:
+        sound = ~np.isin(w, left_out)
+        w, drift = w[sound], drift[sound]
     i, t, inside = frequency_weights(w, waves.omega)
     hi = np.minimum(i + 1, w.size - 1)
     a0, a1, ta = direction_weights(
-        ds.wave_direction.values, waves.direction, max_gap=max_gap, what="mean drift"
+        mirrored.wave_direction.values, waves.direction, max_gap=max_gap, what="mean drift"
     )
     value = (1 - t)[:, None] * ((1 - ta)[:, None] * drift[i, a0] + ta[:, None] * drift[i, a1])
     value += t[:, None] * ((1 - ta)[:, None] * drift[hi, a0] + ta[:, None] * drift[hi, a1])
@@ -391,4 +428,41 @@ def _drift_diagonal(ds, waves: WaveComponents, max_gap, notes) -> tuple[NDArray,
             f"outside the mean drift's frequencies {w[0]:.4g}–{w[-1]:.4g} rad/s: no drift "
             "from them"
         )
-    return value, inside, f"drift_force ({ds.drift_force.attrs.get('method', 'mean drift')})"
+    method = ds.drift_force.attrs.get("method", "mean drift")
+    return value, inside, f"drift_force ({method})", left_out
+
+
+def _leave_out_suspects(ds, keep: bool, notes: list[str]) -> tuple[float, ...]:
+    """The suspect frequencies to leave out of the mean drift (none when ``keep``, or
+    when fewer than two would stay), with a warning and a note saying so."""
+    from cummins.qtf.suspect_drift import drift_suspect_frequencies
+
+    if "added_mass" not in ds or "radiation_damping" not in ds:
+        return ()
+    suspects = drift_suspect_frequencies(ds)
+    listed = ", ".join(f"{x:.4g}" for x in suspects)
+    if suspects.size == 0:
+        return ()
+    if keep:
+        notes.append(
+            f"mean drift kept at the {suspects.size} suspect frequencies ({listed} rad/s) "
+            "as asked (irregular frequencies may spoil it: cummins check)"
+        )
+        return ()
+    w = ds.omega.values
+    sound = w[~np.isin(w, suspects)]
+    if sound.size < 2:
+        return ()
+    how = []
+    if (suspects < sound[-1]).any():
+        how.append("bridged linearly between sound neighbours")
+    if (suspects > sound[-1]).any():
+        how.append(f"no drift above {sound[-1]:.4g} rad/s")
+    line = (
+        f"mean drift left out at the {suspects.size} suspect frequencies of the data "
+        f"({listed} rad/s; irregular frequencies spoil it: {', '.join(how)}); "
+        "keep_suspect=True (--keep-suspect) keeps them"
+    )
+    warnings.warn(line, AssumptionWarning, stacklevel=4)
+    notes.append(line)
+    return tuple(float(x) for x in suspects)

@@ -1,0 +1,106 @@
+"""The mean drift at the suspect frequencies of the radiation data.
+
+A panel method without irregular-frequency removal spoils the whole solution at its
+irregular frequencies, the diffraction potential too: the mean drift, quadratic in the
+potential, is worse than the A(ω), B(ω) that reveal them. The WAMIT tanker's ``.out``
+prints a heave drift of −1.7·10⁸ N/m² in head seas at 4.49 rad/s, where the drift is
+−1.3·10⁵ N/m² at 3.4 rad/s; the damping flags 3.65–5.98 rad/s.
+
+:func:`drift_suspect_frequencies` takes the suspect frequencies the fit and ``cummins
+kernel`` leave out (:func:`cummins.repair.suspects_by_dof`: each DOF's own curves; the
+points of a sharp resonance of the data, physics, are not suspect), over all DOFs: one
+irregular frequency spoils the drift of every DOF. :func:`drift_at_suspects` measures
+the drift there against its values elsewhere (``cummins check``), and the second-order
+load (:mod:`cummins.timedomain.loads.second_order`) leaves those frequencies out of the
+mean drift by default (interior ones bridged linearly between their sound neighbours;
+beyond the last sound frequency the drift is zero, as outside the data).
+"""
+
+from __future__ import annotations
+
+from dataclasses import dataclass
+
+import numpy as np
+import xarray as xr
+from numpy.typing import NDArray
+
+
+def drift_suspect_frequencies(ds: xr.Dataset) -> NDArray[np.float64]:
+    """The frequencies (rad/s, sorted) of ``ds`` at which its mean drift is not trusted:
+    those suspect in any DOF's own A(ω), B(ω) (:func:`cummins.repair.suspects_by_dof`),
+    sharp resonances of the data excepted.
+
+    Parameters
+    ----------
+    ds
+        A ``HydroDB`` at one forward speed, with ``added_mass`` and ``radiation_damping``.
+    """
+    from cummins.repair import suspects_by_dof
+
+    found: set[float] = set()
+    for own in suspects_by_dof(ds).values():
+        found |= {s.omega for s in own.suspects if s.omega not in own.features}
+    return np.array(sorted(found), dtype=float)
+
+
+@dataclass(frozen=True)
+class SuspectDrift:
+    """The mean drift at the suspect frequencies (:func:`drift_at_suspects`).
+
+    Attributes
+    ----------
+    omega
+        The suspect frequencies, rad/s.
+    dof
+        The DOF whose drift there departs most.
+    ratio
+        Its largest |drift| at the suspect frequencies over its largest |drift| at the
+        others (all directions).
+    at
+        The frequency (rad/s) and direction (deg) of that value.
+    value
+        That value, N/m² or N·m/m².
+    """
+
+    omega: tuple[float, ...]
+    dof: str
+    ratio: float
+    at: tuple[float, float]
+    value: float
+
+
+def drift_at_suspects(
+    ds: xr.Dataset, suspects: NDArray[np.float64] | None = None, name: str = "drift_force"
+) -> SuspectDrift | None:
+    """How far the mean drift ``name`` at the suspect frequencies departs from its values
+    at the sound ones: per DOF, the largest |F̄| there over the largest elsewhere; the
+    worst DOF. None when there are no suspect frequencies or no sound one.
+
+    Parameters
+    ----------
+    ds
+        A ``HydroDB`` at one forward speed with ``name``.
+    suspects
+        The suspect frequencies (default :func:`drift_suspect_frequencies`).
+    """
+    suspects = drift_suspect_frequencies(ds) if suspects is None else suspects
+    w = ds.omega.values
+    bad = np.isin(w, suspects)
+    if not bad.any() or bad.all():
+        return None
+    drift = np.abs(ds[name].transpose("omega", "wave_direction", "influenced_dof").values)
+    inside = drift[bad].max(axis=(0, 1))
+    outside = drift[~bad].max(axis=(0, 1))
+    with np.errstate(divide="ignore", invalid="ignore"):
+        ratio = np.where(outside > 0, inside / outside, np.where(inside > 0, np.inf, 0.0))
+    k = int(np.argmax(ratio))
+    sub = drift[bad][:, :, k]
+    i, j = np.unravel_index(int(np.argmax(sub)), sub.shape)
+    value = ds[name].transpose("omega", "wave_direction", "influenced_dof").values[bad][i, j, k]
+    return SuspectDrift(
+        tuple(float(x) for x in w[bad]),
+        str(ds.influenced_dof.values[k]),
+        float(ratio[k]),
+        (float(w[bad][i]), float(np.degrees(ds.wave_direction.values[j]))),
+        float(value),
+    )
