@@ -10,7 +10,7 @@ from __future__ import annotations
 
 import os
 import re
-from collections.abc import Sequence
+from collections.abc import Collection, Sequence
 from pathlib import Path
 
 import numpy as np
@@ -67,14 +67,17 @@ _DRIFT_TABLES = {
     "pressure": "drift_pressure",
     "momentum": "drift_momentum",
 }
+#: The ``sections`` of :func:`read_wamit_out` that hold the mean drift.
+DRIFT_SECTIONS = tuple(_DRIFT_TABLES.values())
+
+
+#: A line that ends with a section title (and blanks).
+_SECTION_LINE = re.compile("(" + "|".join(map(re.escape, _SECTION_TITLES)) + r")\s*$")
 
 
 def _section_kind(line: str) -> str | None:
-    stripped = line.strip()
-    for title, kind in _SECTION_TITLES.items():
-        if stripped.endswith(title):
-            return kind
-    return None
+    m = _SECTION_LINE.search(line)
+    return _SECTION_TITLES[m.group(1)] if m else None
 
 
 def _rows_after(text: TextFile, i: int, stop: int) -> tuple[list[np.ndarray], list[int], int]:
@@ -110,8 +113,23 @@ def _skip_column_titles(text: TextFile, i: int, stop: int) -> int:
     return 0
 
 
-def _out_blocks(text: TextFile, starts: list[int]) -> list[tuple[str, dict, int]]:
-    """Per 'Wave period' block: its label, {section: rows} and its first line."""
+def _next_section(text: TextFile, k: int, stop: int) -> int:
+    """The first line from ``k`` that starts a section (a numeric row never does)."""
+    lines = text.lines
+    while k < stop:
+        head = lines[k].lstrip()[:1]
+        if head.isalpha() and _section_kind(lines[k]) is not None:
+            return k
+        k += 1
+    return stop
+
+
+def _out_blocks(
+    text: TextFile, starts: list[int], kinds: Collection[str] | None = None
+) -> list[tuple[str, dict, int]]:
+    """Per 'Wave period' block: its label, {section: rows} and its first line; with
+    ``kinds``, the added mass and damping and those sections only (the others skipped
+    unread)."""
     blocks = []
     bounds = [*starts, len(text)]
     for b in range(len(starts)):
@@ -123,6 +141,9 @@ def _out_blocks(text: TextFile, starts: list[int]) -> list[tuple[str, dict, int]
             kind = _section_kind(text.lines[k])
             if kind is None:
                 k += 1
+                continue
+            if kinds is not None and kind != "radiation" and kind not in kinds:
+                k = _next_section(text, k + 1, i1)
                 continue
             if kind in content:
                 raise text.error(
@@ -195,9 +216,12 @@ def read_wamit_out(
     ulen: float | None = None,
     modes: int | Sequence[int] | None = None,
     water_depth: float | None = None,
+    sections: Collection[str] | None = None,
 ) -> xr.Dataset:
     """Read a WAMIT ``.out`` log on its own (``water_depth``, m, only for a log that does
-    not print it: see :func:`cummins.io.wamit.read_wamit`).
+    not print it: see :func:`cummins.io.wamit.read_wamit`; ``sections``: the tables to
+    read besides the added mass and damping, e.g. ``("drift_pressure", …)``, default
+    all).
 
     The log prints the same nondimensional quantities as the numeric files, to
     fewer digits (phases in whole degrees), plus motion RAOs and mean drift forces:
@@ -244,7 +268,7 @@ def read_wamit_out(
         raise text.error(
             "no 'Wave period' blocks: the run did not reach the FORCE output (truncated log?)"
         )
-    blocks = _out_blocks(text, starts)
+    blocks = _out_blocks(text, starts, sections)
     _check_out_tables(text, blocks)
     if header.announced_blocks is not None and header.announced_blocks != len(blocks):
         warn_damage(

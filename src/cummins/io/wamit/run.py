@@ -38,7 +38,7 @@ from cummins.io.wamit.numeric import (
     _read_hst,
     _read_wave_file,
 )
-from cummins.io.wamit.out import read_wamit_out
+from cummins.io.wamit.out import DRIFT_SECTIONS, read_wamit_out
 from cummins.io.wamit.out_header import _hydrostatics_matrix, _out_header, _OutHeader
 from cummins.io.wamit.second_order import attach_wamit_second_order, wamit_second_order
 from cummins.io.wamit.settings import RunSettings
@@ -446,7 +446,9 @@ def _drift_from_out(out_path, second: dict, omega, directions, constants, layout
         with warnings.catch_warnings():  # the header's warnings were given with the .1
             warnings.simplefilter("ignore")
             rho, g, ulen = constants
-            out = read_wamit_out(out_path, rho=rho, g=g, ulen=ulen, modes=layout)
+            out = read_wamit_out(
+                out_path, rho=rho, g=g, ulen=ulen, modes=layout, sections=DRIFT_SECTIONS
+            )
     except HydroDataError as exc:
         warn_damage(f"mean drift not read: {exc}", path=out_path, notes=notes)
         return
