@@ -397,3 +397,62 @@ def test_asymmetry_at_speed_is_said_to_be_physics(s175):
     said = asymmetric_pairs(vertical.sel(forward_speed=speed))
     assert said and all("is physics" in m and "DOF order" not in m for m in said)
     assert not asymmetric_pairs(vertical.sel(forward_speed=0.0))
+
+
+@pytest.mark.xfail(
+    strict=True,
+    reason="open (audit item 1): the default at-speed memory fit misses; heave 2σ −25 %",
+)
+def test_vessel_at_speed_default_reproduces_frequency_domain(s175):
+    """The default at-speed vessel (no tuning) against cummins' frequency domain of the same
+    data at 20 kn, head seas, JONSWAP Hs 4 m Tp 10 s. Measured: heave 2σ −25.3 %, pitch
+    +0.6 % (the time domain, 3600 s: 0.897 m against 1.195 m). The aim: within a few %
+    (checked at 6 % and 11 %); with G² from the data's A₃₃ at 0.1 rad/s instead of the K⁰
+    model's A₃₃(0) −2.9 % and −5.2 %, but the tuned fits of test_encounter then lose."""
+    from cummins.seakeeping.excitation import (
+        encounter_excitation,
+        encounter_frequencies,
+        excitation_transfer,
+    )
+    from cummins.seakeeping.frequency_domain import (
+        motion_rao,
+        response_spectrum,
+        significant_amplitude,
+    )
+    from cummins.seakeeping.waves import wave_spectrum
+
+    u, beta = 10.28889, np.pi
+    vessel = sp.vessel_at_speed(s175, u, dofs=VERTICAL)
+    data = select_dofs(s175, VERTICAL).sel(forward_speed=u, method="nearest")
+    w = np.linspace(0.41, 3.14, 400)
+    sea = wave_spectrum("jonswap", 4.0, 10.0)
+    reference = significant_amplitude(response_spectrum(motion_rao(data, w, [beta]), sea))
+    force = excitation_transfer(data, w, np.full_like(w, beta))
+    we = encounter_frequencies(data, w[:, None], np.full((w.size, 1), beta))
+    force = encounter_excitation(force.reshape(w.size, 1, -1), we)[:, 0]
+    x = vessel.response(we[:, 0], force)[:, None, :]
+    model = xr.DataArray(
+        x,
+        dims=("omega", "wave_direction", "dof"),
+        coords={"omega": w, "wave_direction": [beta], "dof": list(vessel.dofs)},
+    )
+    got = significant_amplitude(response_spectrum(model, sea))
+    rel = got.values.ravel() / reference.values.ravel() - 1
+    assert abs(rel[0]) < 0.06, rel  # heave: −25.3 % before
+    assert abs(rel[1]) < 0.11, rel
+    assert vessel.attrs["speed_motion_error"] < 0.2
+
+
+def test_vessel_at_speed_records_its_rao_error(s175):
+    """vessel_at_speed judges itself against the data's frequency domain at speed
+    (checks.speed_motion_error): the tuned fit of test_encounter (VERES within 1.5 % heave)
+    records a heave error under 3 %, the default fit (heave 2σ −25 %) above 10 %."""
+    tuned = sp.vessel_at_speed(s175, 10.28889, dofs=VERTICAL, omega_max=2.0, r2=0.999, max_order=6)
+    default = sp.vessel_at_speed(s175, 10.28889, dofs=VERTICAL)
+    error = {}
+    for name, vessel in (("tuned", tuned), ("default", default)):
+        _, per_dof = sp.checks.speed_motion_error(vessel, s175.sel(forward_speed=10.28889))
+        error[name] = per_dof
+        assert vessel.attrs["speed_motion_error"] == pytest.approx(max(per_dof.values()))
+    assert error["tuned"]["Heave"] < 0.03, error
+    assert error["default"]["Heave"] > 0.10, error

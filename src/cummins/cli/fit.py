@@ -321,6 +321,18 @@ def fit_command(
     failures = model.attrs.get("failures", [])
     for failure in failures:
         console.print(f"[bold red]failure:[/bold red] {escape(failure)}", highlight=False)
+    speed_value = float(ds.coords["forward_speed"]) if "forward_speed" in ds.coords else 0.0
+    if failures and speed_value:
+        console.print(
+            f"note: at {speed_value:g} m/s the data hold the speed terms (U·A∞ damping, the "
+            "U²/ω² radiation restoring of pitch and yaw, the antisymmetric U K¹), which no "
+            "causal memory follows; this plain fit of the data at speed fits them as memory "
+            "and averages the antisymmetric part away. With zero speed in the same file, "
+            "the memory is fitted with the speed terms removed and they are kept apart: "
+            "cummins simulate DATA --speed U (Python: "
+            "cummins.radiation.speed.vessel_at_speed, fit_per_speed)",
+            highlight=False,
+        )
     if failures:
         sys.exit(FIT_FAILED)
 

@@ -147,6 +147,19 @@ def lf_model_command(
         outputs += [Path(compare_dir) / f"{kind}_{d}.png" for kind, d in _COMPARISONS]
     prepare_outputs(*outputs, force=force, folders=[compare_dir])
     ds = select_speed(read_hydrodb(path, format_, rho, g, ulen), speed)
+    at_speed = float(ds.coords["forward_speed"]) if "forward_speed" in ds.coords else 0.0
+    if at_speed:
+        from cummins.cli.common import err_console
+
+        err_console.print(
+            f"[yellow]warning:[/] at {at_speed:g} m/s this model is the zero-speed theory "
+            "applied to data at speed: the speed terms (U·A∞ damping such as B26 = −U·A22, "
+            "B62 = +U·A22, the derivatives Y_r, N_v of a manoeuvring model, and the "
+            "antisymmetric A35/A53) are averaged or set to zero, not modelled; build the "
+            "low-frequency model from the zero-speed data (--speed 0) and add the speed "
+            "terms of your manoeuvring model (the U·A∞ terms of Hjulstad (2004) §6)",
+            highlight=False,
+        )
     viscous = {}
     for dof, spec in (("Surge", surge_damping), ("Sway", sway_damping), ("Yaw", yaw_damping)):
         if spec is not None:

@@ -362,6 +362,12 @@ def simulate_command(
     check_simulation_size(
         duration, dt, 2 * ds.sizes["influenced_dof"], ds.sizes["influenced_dof"], "--duration"
     )
+    if accurate and at_speed:
+        raise click.UsageError(
+            "--accurate tightens the motion target of the zero-speed fit; at --speed the "
+            "memory is fitted with the speed terms removed (vessel_at_speed) and judged by "
+            "its RAOs at speed, printed after the fit: leave --accurate out"
+        )
     if soft_springs is not None and not at_speed:
         raise click.UsageError(
             "--soft-springs applies to a ship at --speed U > 0 whose data hold zero speed too"
@@ -435,6 +441,8 @@ def simulate_command(
     inherited = warn_failed_model(
         vessel.radiation.attrs, path, "fitted" if model is None else "model"
     )
+    if at_speed:
+        _print_speed_check(vessel.attrs)
     nonlinear = quadratic_damping_force(vessel.dofs, b_q) if b_q else None
     if sea is not None and nonlinear is not None:  # the Runge-Kutta path's stability
         _check_time_step(dt, ds, sea, vessel.state_space()[0])
@@ -469,6 +477,9 @@ def simulate_command(
                 )
     if sea is not None and sea.seed is not None:
         run.attrs["seed"] = int(sea.seed)  # an int64: HDF5 stores it; --seed repeats the run
+    if speed:
+        title += f", {speed:g} m/s"
+    title += f", heading {heading:g}°"
     run.attrs.update(
         {
             "heading_deg": heading,
@@ -498,6 +509,25 @@ def simulate_command(
     if failure:
         console.print(f"[bold red]failure:[/bold red] {escape(failure)}", highlight=False)
         sys.exit(SIMULATION_FAILED)
+
+
+def _print_speed_check(attrs) -> None:
+    """The RAO error of the vessel at speed against the data's own frequency domain
+    (:func:`cummins.radiation.speed.checks.speed_motion_error`), one line."""
+    from cummins.radiation.speed.checks import SPEED_MOTION_TOL
+
+    error = attrs.get("speed_motion_error")
+    if error is None:
+        return
+    line = (
+        f"RAOs at speed of the time-domain vessel against the data's frequency domain: "
+        f"{attrs.get('speed_motion_error_by_dof', '')} of each peak"
+    )
+    if error > SPEED_MOTION_TOL:
+        line += f" (above {100 * SPEED_MOTION_TOL:g} %: statistics may differ by a few %)"
+        console.print(f"[yellow]note:[/] {escape(line)}", highlight=False)
+    else:
+        console.print(escape(line), highlight=False)
 
 
 #: The exit status of a run whose energy balance fails (as a failed fit's).

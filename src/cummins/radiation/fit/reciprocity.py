@@ -161,8 +161,18 @@ def asymmetric_pairs(data: xr.Dataset, as_given=frozenset()) -> list[str]:
     w = data.omega.values
     speed = float(data.coords["forward_speed"]) if "forward_speed" in data.coords else 0.0
     advice = "; check the DOF order and signs of the data"
-    if speed:  # the Timman–Newman relations: X_ij(U) = X_ji(−U), not X_ji(U)
-        advice = f" (at {speed:g} m/s the difference is physics: X_ij(U) = X_ji(−U))"
+    if speed and data.attrs.get("speed_terms_removed"):  # memory_part: vessel_at_speed
+        advice = (
+            f" (at {speed:g} m/s the difference is physics, X_ij(U) = X_ji(−U): the "
+            "memory is fitted to the average and the antisymmetric part is kept apart, "
+            "U·A∞ damping and U K¹ of the zero-speed model)"
+        )
+    elif speed:  # the Timman–Newman relations: X_ij(U) = X_ji(−U), not X_ji(U)
+        advice = (
+            f" (at {speed:g} m/s the difference is physics, X_ij(U) = X_ji(−U): the "
+            "antisymmetric part, the speed terms U·A∞ and U K¹, is lost by this plain fit; "
+            "vessel_at_speed and fit_per_speed keep it apart)"
+        )
     for name, symbol in (("added_mass", "A"), ("radiation_damping", "B")):
         x = dof_matrix(data, name)
         diag = np.abs(np.diagonal(x, axis1=1, axis2=2)).max(axis=0)

@@ -43,6 +43,7 @@ def memory_part(
     out = ds.copy()
     out["radiation_damping"] = ds.radiation_damping - speed * d1
     out["added_mass"] = ds.added_mass + (speed * g[0] + speed**2 * g[1]) / w[:, None, None] ** 2
+    out.attrs["speed_terms_removed"] = 1
     out.attrs["history"] = (
         str(ds.attrs.get("history", ""))
         + f"\nspeed terms U D1, (U G1 + U^2 G2)/s removed at {speed:g} m/s"

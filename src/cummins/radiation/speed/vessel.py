@@ -131,6 +131,8 @@ def vessel_at_speed(
                 stiffness[k, k] = max(stiffness[k, k], 0.0) + mass[k, k] * omega_s**2
                 damping[k, k] += 2 * SPRING_DAMPING_RATIO * mass[k, k] * omega_s
                 springs.append(label)
+    from cummins.radiation.speed.checks import speed_motion_error
+
     attrs = {
         **dict(vessel.attrs),
         "forward_speed": u,
@@ -154,4 +156,14 @@ def vessel_at_speed(
             "soft_springs=200) or keep the vertical plane (--dof Heave --dof Pitch; "
             "Python: dofs=['Heave', 'Pitch'])",
         ) from None
-    return out
+    error, per_dof = speed_motion_error(out, data, leave_out=springs)
+    return replace(
+        out,
+        attrs={
+            **out.attrs,
+            "speed_motion_error": error,
+            "speed_motion_error_by_dof": ", ".join(
+                f"{k} {100 * e:.2g} %" for k, e in per_dof.items()
+            ),
+        },
+    )
