@@ -638,6 +638,12 @@ grid:                     # outer product of the axes; or `cases:` a list of map
   # seed: [1, 2, 3]       # simulate: realisations (default: one per case)
 viscous_damping:
   Roll: 5.0e+8            # kg m^2/s
+# what the files lack, as simulate's options (--mass ...), one value or list per body:
+# rho: 1025              # kg/m^3, g: 9.81 (nondimensional formats)
+# mass: 1.2e8            # kg; with center_of_gravity and radii_of_gyration
+# center_of_gravity: [0, 0, -2]
+# radii_of_gyration: [14, 60, 60]
+# external_stiffness: [[Surge, Surge, 8.0e+4]]   # moorings (N/m); external_damping too
 # system:                # several bodies: joints, PTOs (docs/wec.md); adds pto_mean_power
 #   body_coupling: false
 #   joints: [{{kind: translational, body: body1, base: body2, pto: {{damping: 1.2e6}}}}]
