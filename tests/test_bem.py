@@ -358,3 +358,35 @@ def test_cli_usage_errors(tmp_path):
     )
     assert result.exit_code == 2 and "north" in result.output
     assert not (tmp_path / "x.nc").exists()
+
+
+@needs_capytaine
+def test_cli_warns_when_its_own_data_are_not_symmetric_or_too_few(tmp_path):
+    """The audit's barge (8 frequencies: its fit missed its targets, motion error 4.2 %)
+    in miniature: after the run, `bem` says what `cummins check` finds that the run's
+    settings mend — B[Sway, Roll] not symmetric on coarse panels (the check's own
+    finding, with --resolution to raise) and too few frequencies (--n-omega)."""
+    from cummins.cli.bem import bem_command
+
+    out = tmp_path / "barge.nc"
+    box = ["--hull", "box", "--length", "20", "--beam", "8", "--draft", "2"]
+    args = [*box, "--resolution", "8", "--omega-min", "1", "--omega-max", "2", "--n-omega", "2"]
+    result = CliRunner().invoke(bem_command, [*args, "-o", str(out)])
+    assert result.exit_code == 0, result.output
+    warned = [line for line in result.output.splitlines() if line.startswith("warning:")]
+    symmetry = [line for line in warned if "not symmetric" in line]
+    findings = [
+        f for f in cummins.check(cummins.read(out)).by_check("symmetry") if f.severity == "warning"
+    ]
+    assert findings and len(symmetry) == len(findings)  # one line per finding of the check
+    for line, finding in zip(symmetry, findings, strict=True):
+        assert line.startswith(f"warning: {finding.where}: {finding.message}")
+        assert "raise --resolution (now 8 panels along the length)" in line
+    assert any("only 2 frequencies" in line and "--n-omega" in line for line in warned)
+    # one frequency: --omega-min = --omega-max; two different ones are refused
+    one = [*box, "--resolution", "6", "--n-omega", "1", "--no-limits", "-o", str(out), "--force"]
+    result = CliRunner().invoke(bem_command, [*one, "--omega-min", "0.8", "--omega-max", "0.8"])
+    assert result.exit_code == 0, result.output
+    np.testing.assert_array_equal(cummins.read(out).omega.values, [0.8])
+    result = CliRunner().invoke(bem_command, [*one, "--omega-min", "0.8", "--omega-max", "0.9"])
+    assert result.exit_code == 2 and "--omega-min = --omega-max" in result.output

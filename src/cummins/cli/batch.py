@@ -59,7 +59,9 @@ def batch_command(study_file, output, scheduler, workers, example, force):
 
     \b
     STUDY is a YAML file (`cummins batch --example study.yaml` writes a commented
-    one): the vessel data (and a model file), the analysis — `rao`, frequency domain:
+    one): the vessel data (and a model file; what the files lack as keys named as
+    simulate's options: rho, g, mass, center_of_gravity, radii_of_gyration,
+    inertia_matrix, external_stiffness, external_damping), the analysis — `rao`, frequency domain:
     significant amplitude 2 sqrt(m0) and most probable maximum per DOF, or `simulate`,
     time domain: the same from a run in a realisation of the sea —, the cases as a
     grid (heading, hs, tp, gamma, spreading, seed) or a list, and limits such as
@@ -119,6 +121,7 @@ def batch_command(study_file, output, scheduler, workers, example, force):
             force=force,
             progress=lambda done, total: bar.update(task, completed=done),
             say=lambda message: console.print(message),
+            on_prepared=_say_failed_model,
         )
     where = f"{run.workers} workers" if run.workers else "nothing to compute"
     console.print(
@@ -134,6 +137,22 @@ def batch_command(study_file, output, scheduler, workers, example, force):
             )
     _print_tables(run.results)
     console.print(f"wrote {output}")
+
+
+def _say_failed_model(context) -> None:
+    """The one line of :mod:`cummins.cli.failed_model` when the radiation model of a
+    time-domain study (its model file, or the one fitted to its data) missed its fit
+    targets; the results record it (``model_failures``). The exit status stays that of
+    ``cummins simulate`` on such a model: 0, the cases are computed."""
+    if context.vessel is None:
+        return
+    from cummins.cli.failed_model import warn_failed_model
+
+    study = context.study
+    source = study.model if study.model is not None else study.data
+    warn_failed_model(
+        context.vessel.radiation.attrs, source, "model" if study.model is not None else "fitted"
+    )
 
 
 def _require_dask() -> None:

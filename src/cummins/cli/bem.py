@@ -8,9 +8,11 @@ from pathlib import Path
 
 import click
 import numpy as np
+from rich.markup import escape
 
 from cummins.cli.common import (
     Number,
+    err_console,
     finite,
     force_option,
     headings_list,
@@ -43,7 +45,9 @@ def _headings(values: tuple[str, ...]) -> list[float]:
     type=click.IntRange(2, 400),
     default=20,
     show_default=True,
-    help="Panels along the length of a parametric hull.",
+    help="Panels along the length of a parametric hull (across the beam and draft as wide). "
+    "Too coarse for the shortest wave and A, B come out non-symmetric: a warning says so "
+    "after the run.",
 )
 @click.option(
     "--omega-min", type=positive("rad/s"), required=True, help="Lowest wave frequency, rad/s."
@@ -56,7 +60,9 @@ def _headings(values: tuple[str, ...]) -> list[float]:
     type=click.IntRange(1, 10_000),
     default=40,
     show_default=True,
-    help="Number of frequencies.",
+    help="Number of frequencies, evenly spaced from --omega-min to --omega-max (1: one "
+    "frequency, --omega-min = --omega-max). Radiation fits and K(t) need the resonances "
+    "resolved: 30 or more over the range (a warning below 20).",
 )
 @click.option(
     "--headings",
@@ -147,7 +153,13 @@ def bem_command(
             raise click.UsageError(f"--hull {hull} needs {', '.join(missing)}")
     # every argument is checked before Capytaine is looked for (exit status 2 first)
     directions = np.radians(_headings(headings))
-    if not omega_min < omega_max:
+    if n_omega == 1 and omega_min != omega_max:
+        raise click.BadParameter(
+            f"one frequency is --omega-min = --omega-max (got {omega_min:g} and "
+            f"{omega_max:g} rad/s)",
+            param_hint="--n-omega 1",
+        )
+    if n_omega > 1 and not omega_min < omega_max:
         raise click.BadParameter(
             f"{omega_min:g} rad/s is not below --omega-max {omega_max:g} rad/s",
             param_hint="--omega-min",
@@ -174,3 +186,5 @@ def bem_command(
     for line in bem.describe(ds):
         click.echo(line)
     click.echo(f"saved {output} ({time.perf_counter() - started:.1f} s)")
+    for line in bem.data_warnings(ds, resolution if hull is not None else None):
+        err_console.print(f"[yellow]warning:[/] {escape(line)}", highlight=False)

@@ -113,6 +113,8 @@ def _frequency_matrix(
 ) -> NDArray[np.float64]:
     """``ds[name]`` (omega, i, j) at the frequencies ``omega`` (within the data's range)."""
     values = dof_matrix(ds, name)
+    if "omega" not in ds[name].dims:  # one matrix at every frequency (external damping)
+        return np.broadcast_to(values, (omega.size, *values.shape))
     w = ds.omega.values.astype(float)
     same = omega.size == w.size and np.array_equal(omega, w)
     if same:

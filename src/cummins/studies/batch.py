@@ -45,6 +45,7 @@ The study itself is defined in :mod:`cummins.studies.study`.
 
 from __future__ import annotations
 
+import contextlib
 import hashlib
 import json
 import math
@@ -119,18 +120,47 @@ class StudyContext:
     ptos: tuple[str, ...] = ()
 
     @property
+    def radiation_model(self) -> dict[str, Any]:
+        """What the results record of the radiation model of a time-domain study (empty
+        for ``rao``): the model file (or that it was fitted to the data), its order, its
+        motion error and, when it missed its fit targets (``cummins fit`` exit status
+        3), its ``failures`` as ``model_failures`` (one per line, as ``cummins
+        simulate``'s run file records them)."""
+        if self.vessel is None:
+            return {}
+        attrs = self.vessel.radiation.attrs
+        study = self.study
+        out: dict[str, Any] = {
+            "radiation_model": str(study.model) if study.model else "fitted to the data",
+            "radiation_model_order": int(self.vessel.radiation.total_order),
+        }
+        if attrs.get("motion_error") is not None:
+            out["radiation_model_motion_error"] = float(attrs["motion_error"])
+        failures = [str(f) for f in attrs.get("failures") or [] if str(f).strip()]
+        if failures:
+            out["model_failures"] = "\n".join(failures)
+        return out
+
+    @property
     def labels(self) -> list[str]:
         """The DOFs of the results (those the system lets move)."""
         return list(self.dofs) or [str(d) for d in self.ds.influenced_dof.values]
 
 
 def prepare_study(study: Study) -> tuple[StudyContext, str]:
-    """Read the data (and model), fit once if needed; (context, digest of the inputs)."""
+    """Read the data (and model), complete them with the study's inertia and external
+    terms (:mod:`cummins.studies.equation_of_motion`), check that they hold what the
+    analysis needs, fit once if needed; (context, digest of the inputs). Everything a
+    study can fail on in its definition or its data is found here, before any Dask
+    work."""
     from cummins.hydrodb import single_speed
     from cummins.io import read
+    from cummins.studies.equation_of_motion import check_study_data, complete_study_data
 
-    ds = read(study.data)
+    ds = read(study.data, rho=study.rho, g=study.g)
     ds = _select_speed(ds, study)
+    ds = complete_study_data(ds, study)
+    check_study_data(ds, study)
     labels = [str(d) for d in ds.influenced_dof.values]
     system = {}
     if study.system is not None:
@@ -409,6 +439,7 @@ def _save_part(folder: Path, case_id: str, case: Case, values: dict[str, Any]) -
         "values": values,
         "cummins_version": __version__,
     }
+    folder.mkdir(parents=True, exist_ok=True)  # with the first part: never an empty one
     with replacing(folder / f"{case_id}.json") as tmp:
         tmp.write_text(json.dumps(record), encoding="utf-8")
 
@@ -452,6 +483,7 @@ def run_study(
     progress: Callable[[int, int], object] | None = None,
     on_case_saved: Callable[[str, Case], object] | None = None,
     say: Callable[[str], object] = lambda message: None,
+    on_prepared: Callable[[StudyContext], object] | None = None,
 ) -> BatchRun:
     """Run every case of ``study`` on Dask and write the gathered results to ``output``.
 
@@ -476,23 +508,33 @@ def run_study(
         Called with (case id, case) after each newly computed case is saved.
     say
         Called with short messages (cases resumed, parts ignored).
+    on_prepared
+        Called with the :class:`StudyContext` once the data are read, checked and the
+        radiation model fitted or loaded, before any Dask work (``cummins batch`` says
+        there, in one line, that the model missed its fit targets).
 
     Returns
     -------
     BatchRun
         The results (:func:`load_results` layout) and counts of computed and resumed cases.
+        A time-domain study's results record its radiation model
+        (:attr:`StudyContext.radiation_model`: ``radiation_model_order``,
+        ``radiation_model_motion_error``, and ``model_failures`` when it missed its fit
+        targets).
 
     Raises
     ------
     StudyError
         A bad study, or a case that failed (named); the cases saved before it are kept.
     """
-    distributed = _dask()
+    _dask()  # Dask installed, before anything is read
     output = Path(output)
     check_writable(output, force)
     output.parent.mkdir(parents=True, exist_ok=True)
     start = time.perf_counter()
     context, digest = prepare_study(study)
+    if on_prepared is not None:
+        on_prepared(context)
     cases = study.all_cases
     ids = case_ids(study, digest)
     folder = parts_folder(output)
@@ -502,10 +544,58 @@ def run_study(
         say(f"resuming: {skipped} of {len(cases)} cases already saved in {folder}")
     if ignored:
         say(f"{ignored} saved cases in {folder} belong to another study definition: ignored")
-    folder.mkdir(parents=True, exist_ok=True)
     todo = [(i, c) for i, c in zip(ids, cases, strict=True) if i not in done]
     report = progress or (lambda done, total: None)
     report(len(done), len(cases))
+    try:
+        n_workers = _compute(
+            context,
+            todo,
+            folder,
+            done,
+            len(cases),
+            scheduler=scheduler,
+            workers=workers,
+            report=report,
+            on_case_saved=on_case_saved,
+        )
+    finally:
+        _remove_if_empty(folder)  # a study refused or failed before its first case
+    results = gather_results(study, [done[i] for i in ids], ids, context.labels, ptos=context.ptos)
+    results.attrs.update(context.radiation_model)
+    write_results(results, output, force=force)
+    shutil.rmtree(folder, ignore_errors=True)
+    return BatchRun(
+        results,
+        output,
+        computed=len(todo),
+        skipped=skipped,
+        ignored=ignored,
+        workers=n_workers,
+        elapsed=time.perf_counter() - start,
+    )
+
+
+def _remove_if_empty(folder: Path) -> None:
+    with contextlib.suppress(OSError):
+        folder.rmdir()  # only when empty
+
+
+def _compute(
+    context: StudyContext,
+    todo: list[tuple[str, Case]],
+    folder: Path,
+    done: dict[str, dict],
+    total: int,
+    *,
+    scheduler: str | None,
+    workers: int | None,
+    report: Callable[[int, int], object],
+    on_case_saved: Callable[[str, Case], object] | None,
+) -> int:
+    """Run the ``todo`` cases on Dask, each saved in ``folder`` and put in ``done`` as it
+    comes; the number of workers used."""
+    distributed = _dask()
     n_workers = 0
     if todo:
         cluster = None
@@ -535,7 +625,7 @@ def run_study(
                         values = future.result()
                         _save_part(folder, case_id, case, values)
                         done[case_id] = values
-                        report(len(done), len(cases))
+                        report(len(done), total)
                         if on_case_saved is not None:
                             on_case_saved(case_id, case)
                 finally:
@@ -543,18 +633,7 @@ def run_study(
         finally:
             if cluster is not None:
                 cluster.close()
-    results = gather_results(study, [done[i] for i in ids], ids, context.labels, ptos=context.ptos)
-    write_results(results, output, force=force)
-    shutil.rmtree(folder, ignore_errors=True)
-    return BatchRun(
-        results,
-        output,
-        computed=len(todo),
-        skipped=skipped,
-        ignored=ignored,
-        workers=n_workers,
-        elapsed=time.perf_counter() - start,
-    )
+    return n_workers
 
 
 # --------------------------------------------------------------------------- results

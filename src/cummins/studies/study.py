@@ -34,6 +34,8 @@ import numpy as np
 from cummins.errors import ArgumentError
 from cummins.hydrodb import DOF_NAMES, is_rotation, split_dof
 from cummins.mechanics import MechanicalSystem, system_from_mapping
+from cummins.studies.equation_of_motion import KEYS as EQUATION_OF_MOTION_KEYS
+from cummins.studies.equation_of_motion import normalised_keys
 
 #: The analyses a study can run on each case.
 ANALYSES: dict[str, str] = {
@@ -81,11 +83,19 @@ STUDY_KEYS: dict[str, str] = {
     "n_omega": "number of RAO frequencies (rao)",
     "viscous_damping": "{DOF: value}, linear damping added (kg/s, kg m^2/s)",
     "speed": "m/s: the forward speed to take from data holding several",
+    **EQUATION_OF_MOTION_KEYS,
     "system": "joints, PTOs, dofs, body_coupling (cummins.mechanics.system_from_mapping); "
     "the results then hold each PTO's mean absorbed power",
     "limits": "{DOF: '3 deg'} or {DOF: {significant: .., max: ..}}",
     "scatter": "{hs: [..], tp: [..], probability: [[..] per hs]} weights of the sea states",
 }
+#: The keys that apply to one analysis only (the others are refused with it).
+ANALYSIS_KEYS: dict[str, tuple[str, ...]] = {
+    "rao": ("omega_min", "omega_max", "n_omega"),
+    "simulate": ("model", "dt", "components"),
+}
+#: Their defaults, where the analysis they apply to is run.
+ANALYSIS_DEFAULTS: dict[str, Any] = {"dt": 0.1, "components": 200, "n_omega": 400}
 _CASE_KEYS = ("heading", "hs", "tp", "gamma", "spreading", "seed", "probability")
 _BLAS_ENV = {
     "OMP_NUM_THREADS": "1",
@@ -382,12 +392,12 @@ class Study:
     cases: Any = ()
     spectrum: str = "jonswap"
     duration: float = 10800.0
-    dt: float = 0.1
-    components: int = 200
+    dt: float | None = None
+    components: int | None = None
     directions: int = 9
     omega_min: float | None = None
     omega_max: float | None = None
-    n_omega: int = 400
+    n_omega: int | None = None
     viscous_damping: Any = None
     speed: float | None = None
     limits: Any = ()
@@ -395,6 +405,15 @@ class Study:
     name: str = ""
     source: Path | None = None
     system: Any = None
+    rho: float | None = None
+    g: float | None = None
+    mass: Any = ()
+    center_of_gravity: Any = ()
+    radii_of_gyration: Any = ()
+    inertia_matrix: Any = None
+    restoring_includes_weight: str | None = None
+    external_stiffness: Any = ()
+    external_damping: Any = ()
 
     def __post_init__(self) -> None:
         src = self.source
@@ -407,6 +426,21 @@ class Study:
                 f"{at_key(src, 'analysis')}: unknown analysis {self.analysis!r}; use "
                 f"{' or '.join(ANALYSES)}"
             )
+        for analysis, keys in ANALYSIS_KEYS.items():
+            for key in keys:
+                if analysis != self.analysis and getattr(self, key) is not None:
+                    raise StudyError(
+                        f"{at_key(src, key)}: applies to analysis: {analysis}, not to this "
+                        f"study's analysis: {self.analysis}: remove it"
+                    )
+                if analysis == self.analysis and getattr(self, key) is None:
+                    set_(self, key, ANALYSIS_DEFAULTS.get(key))
+        try:
+            terms = normalised_keys({k: getattr(self, k) for k in EQUATION_OF_MOTION_KEYS}, src)
+        except ArgumentError as exc:
+            raise StudyError(str(exc)) from None
+        for key, value in terms.items():
+            set_(self, key, value)
         from cummins.seakeeping.waves import SPECTRA
 
         if str(self.spectrum).lower() not in SPECTRA:
@@ -426,10 +460,14 @@ class Study:
                 tuple(_case_from_mapping(c, k, src) for k, c in enumerate(self.cases)),
             )
         for key in ("duration", "dt"):
+            if getattr(self, key) is None:
+                continue
             if not _number(getattr(self, key), key, src) > 0:
                 raise StudyError(f"{at_key(src, key)}: must be positive")
             set_(self, key, float(getattr(self, key)))
         for key, least in (("components", 1), ("directions", 2), ("n_omega", 2)):
+            if getattr(self, key) is None:
+                continue
             value = _number(getattr(self, key), key, src)
             if value != int(value) or value < least:
                 raise StudyError(f"{at_key(src, key)}: must be an integer >= {least}")
@@ -509,7 +547,20 @@ class Study:
                 for lim in self.limits
             ],
             "scatter": [list(s) for s in self.scatter],
+            **{
+                k: _json_ready(getattr(self, k))
+                for k in EQUATION_OF_MOTION_KEYS
+                if getattr(self, k) not in (None, ())
+            },
         }
+
+
+def _json_ready(value: Any) -> Any:
+    if isinstance(value, Path):
+        return str(value)
+    if isinstance(value, tuple):
+        return [_json_ready(v) for v in value]
+    return value
 
 
 def load_study(path: str | os.PathLike[str]) -> Study:
@@ -553,7 +604,9 @@ def load_study(path: str | os.PathLike[str]) -> Study:
     if "data" not in raw:
         raise StudyError(f"{path}: missing key 'data' (the hydrodynamic database)")
     values = dict(raw)
-    for key in ("data", "model"):
+    for key in ("data", "model", "inertia_matrix"):
+        if key == "inertia_matrix" and not isinstance(values.get(key), str):
+            continue  # a matrix written in the study
         if values.get(key) is not None:
             file = path.parent / str(values[key])
             if not file.exists():
@@ -585,6 +638,12 @@ grid:                     # outer product of the axes; or `cases:` a list of map
   # seed: [1, 2, 3]       # simulate: realisations (default: one per case)
 viscous_damping:
   Roll: 5.0e+8            # kg m^2/s
+# what the files lack, as simulate's options (--mass ...), one value or list per body:
+# rho: 1025              # kg/m^3, g: 9.81 (nondimensional formats)
+# mass: 1.2e8            # kg; with center_of_gravity and radii_of_gyration
+# center_of_gravity: [0, 0, -2]
+# radii_of_gyration: [14, 60, 60]
+# external_stiffness: [[Surge, Surge, 8.0e+4]]   # moorings (N/m); external_damping too
 # system:                # several bodies: joints, PTOs (docs/wec.md); adds pto_mean_power
 #   body_coupling: false
 #   joints: [{{kind: translational, body: body1, base: body2, pto: {{damping: 1.2e6}}}}]
