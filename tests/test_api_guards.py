@@ -81,3 +81,11 @@ def test_the_rao_file_says_its_time_convention(tmp_path):
     # the stored imaginary part is the conjugate's
     value = rao.transpose("omega", "wave_direction", "dof").values
     np.testing.assert_allclose(stored[..., 1] if stored.shape[-1] == 2 else stored[1], -value.imag)
+
+
+def test_dir_offers_the_interface_not_the_package_own_imports():
+    """Tab completion in a notebook (``dir(cummins)``): every public name, none of the
+    modules the package imports for itself (``sys``, ``Path`` … were listed)."""
+    names = dir(cummins)
+    assert set(cummins.__all__) <= set(names) and "__version__" in names
+    assert not {"sys", "importlib", "Path", "TYPE_CHECKING", "annotations"} & set(names)

@@ -119,8 +119,17 @@ def __getattr__(name: str):
     return value
 
 
+#: What the package imports for itself, not part of its interface (hidden from ``dir``).
+_OWN_IMPORTS = frozenset(
+    {"annotations", "importlib", "sys", "resources", "Path", "ModuleType", "TYPE_CHECKING"}
+)
+
+
 def __dir__() -> list[str]:
-    return sorted({*globals(), *__all__})
+    """The public names (``__all__``), the subpackages imported so far and the module's
+    dunders: what tab completion in a notebook should offer."""
+    shown = {n for n in globals() if not n.startswith("_") and n not in _OWN_IMPORTS}
+    return sorted({*shown, *__all__, "__version__"})
 
 
 class _Package(ModuleType):
