@@ -787,9 +787,8 @@ def describe(ds: xr.Dataset) -> dict[str, Any]:
         ds = ds.isel(forward_speed=int(np.argmin(np.abs(ds.forward_speed.values))))
     if "inertia_matrix" in ds:
         m = np.diag(dof_matrix(ds, "inertia_matrix"))
-        labels = [str(d) for d in ds.influenced_dof.values]
-        masses = [float(m[labels.index(d)]) for d in labels if split_dof(d)[1] == "Surge"]
-        masses = masses or [float(m[0])]
+        surge = [k for k, d in enumerate(ds.influenced_dof.values) if split_dof(d)[1] == "Surge"]
+        masses = [float(m[k]) for k in surge] or [float(m[0])]
         info["mass_kg"] = masses[0] if len(masses) == 1 else masses
     if "hydrostatic_stiffness" in ds:
         from cummins.restoring import describe_restoring
