@@ -335,6 +335,111 @@ def with_external_terms(
 # --------------------------------------------------------------------------- pieces
 
 
+def check_inertia_terms(
+    *,
+    mass: Sequence[float] = (),
+    center_of_gravity: Sequence[Sequence[float]] = (),
+    radii_of_gyration: Sequence[Sequence[float]] = (),
+    matrix_given: bool = False,
+    name=str,
+) -> None:
+    """The inertia a user gives, checked as a whole (the command line's ``--mass`` & co.,
+    a study's keys): the mass and centre of gravity build the inertia matrix together with
+    the radii of gyration; an inertia matrix excludes the three. ``name(key)``: how the
+    user wrote the input (``"--mass"``, ``"mass"``), for the messages.
+
+    Raises
+    ------
+    ArgumentError
+        A combination :func:`with_given_terms` cannot build.
+    """
+    if matrix_given and (mass or center_of_gravity or radii_of_gyration):
+        raise ArgumentError(
+            f"give either {name('inertia_matrix')} or {name('mass')}/"
+            f"{name('center_of_gravity')}/{name('radii_of_gyration')}, not both"
+        )
+    if not matrix_given and not radii_of_gyration and (mass or center_of_gravity):
+        raise ArgumentError(
+            f"{name('mass')} and {name('center_of_gravity')} build the inertia matrix "
+            f"together with {name('radii_of_gyration')}: give the radii too (rxx, ryy, rzz "
+            "in m about the centre of gravity, one per body)"
+        )
+
+
+def with_given_terms(
+    ds: xr.Dataset,
+    *,
+    mass: Sequence[float] = (),
+    center_of_gravity: Sequence[Sequence[float]] = (),
+    radii_of_gyration: Sequence[Sequence[float]] = (),
+    matrix: ArrayLike | None = None,
+    restoring: str | None = None,
+    external_stiffness: Sequence[tuple[str, str, float]] = (),
+    external_damping: Sequence[tuple[str, str, float]] = (),
+    name=str,
+) -> xr.Dataset:
+    """``ds`` completed with the inertia and external terms a user gives — the command
+    line's options (``--mass`` … ``--external-damping``) and a study's keys of the same
+    meaning: the inertia from ``matrix`` or from the mass properties
+    (:func:`with_inertia`, its restoring made to hold that inertia's weight per
+    ``restoring``), else the restoring completed with the data's own inertia
+    (:func:`complete_restoring`); then the external terms, ``[(DOF, DOF, value), …]``
+    (:func:`with_external_terms`). ``name(key)`` names the input in the messages as the
+    user wrote it (``"--radii-of-gyration"``, ``"radii_of_gyration"``).
+
+    Raises
+    ------
+    ArgumentError
+        Naming the input: a combination :func:`check_inertia_terms` refuses, properties
+        :func:`with_inertia` refuses, ``restoring`` without an inertia, an external term
+        on a DOF the data lack.
+    """
+    check_inertia_terms(
+        mass=mass,
+        center_of_gravity=center_of_gravity,
+        radii_of_gyration=radii_of_gyration,
+        matrix_given=matrix is not None,
+        name=name,
+    )
+    key = "inertia_matrix"
+    try:
+        if matrix is not None:
+            ds = with_inertia(ds, matrix=np.asarray(matrix, dtype=float), restoring=restoring)
+        elif radii_of_gyration:
+            key = "radii_of_gyration"
+            ds = with_inertia(
+                ds,
+                mass=list(mass) or None,
+                center_of_gravity=[list(c) for c in center_of_gravity] or None,
+                radii_of_gyration=[list(r) for r in radii_of_gyration],
+                restoring=restoring,
+            )
+        elif restoring is not None:
+            key = "restoring_includes_weight"
+            if "inertia_matrix" not in ds:
+                raise ArgumentError(
+                    "completes the restoring with the weight of the body's inertia, and the "
+                    f"data hold none: give {name('mass')}, {name('center_of_gravity')} and "
+                    f"{name('radii_of_gyration')} (or {name('inertia_matrix')})"
+                )
+            ds = complete_restoring(ds, restoring=restoring, why="the files' inertia")
+    except ArgumentError as exc:
+        raise ArgumentError(f"{name(key)}: {exc}") from None
+    labels = [str(d) for d in ds.influenced_dof.values]
+    terms = {}
+    for kind, given in (("stiffness", external_stiffness), ("damping", external_damping)):
+        for i, j, _ in given:
+            for dof in (i, j):
+                if dof not in labels:
+                    raise ArgumentError(
+                        f"{name(f'external_{kind}')}: unknown DOF {dof!r}; the data have "
+                        f"{', '.join(labels)}"
+                    )
+        if given:
+            terms[kind] = {(i, j): value for i, j, value in given}
+    return with_external_terms(ds, **terms) if terms else ds
+
+
 def _vector(value: ArrayLike, name: str) -> NDArray[np.float64]:
     v = np.asarray(value, dtype=float).reshape(-1)
     if v.shape != (3,) or not np.all(np.isfinite(v)):

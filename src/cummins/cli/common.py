@@ -548,12 +548,7 @@ def complete_equation_of_motion(
     restoring holding the weight of that inertia. With ``moving`` (``--dof``) naming
     translations only, ``--mass`` needs no radii of gyration: no rotation moves, and
     1 m stands in for them (said so)."""
-    from cummins.mass_properties import (
-        complete_restoring,
-        read_matrix_file,
-        with_external_terms,
-        with_inertia,
-    )
+    from cummins.mass_properties import read_matrix_file, with_given_terms
 
     restoring = {"yes": "total", "no": "hydrostatic", None: None}[restoring_includes_weight]
     from cummins.dofs import is_rotation
@@ -566,51 +561,23 @@ def complete_equation_of_motion(
             + " --dof ".join(moving)
             + "); 1 m written in their place"
         )
-    if inertia_matrix is None and not radii_of_gyration and (mass or center_of_gravity):
-        raise click.UsageError(
-            "--mass and --center-of-gravity build the inertia matrix together with "
-            "--radii-of-gyration RXX RYY RZZ: give the radii too"
-        )
-    if inertia_matrix is not None:
-        if mass or radii_of_gyration or center_of_gravity:
-            raise click.UsageError(
-                "give either --inertia-matrix or --mass/--center-of-gravity/"
-                "--radii-of-gyration, not both"
-            )
-        note_inputs(inertia_matrix)
-        ds = with_inertia(ds, matrix=read_matrix_file(inertia_matrix), restoring=restoring)
-    elif radii_of_gyration:
-        ds = with_inertia(
-            ds,
-            mass=list(mass) if mass else None,
-            center_of_gravity=[list(c) for c in center_of_gravity] or None,
-            radii_of_gyration=[list(r) for r in radii_of_gyration],
-            restoring=restoring,
-        )
-    elif restoring is not None:
-        if "inertia_matrix" not in ds:
-            raise click.UsageError(
-                "--restoring-includes-weight completes the restoring with the weight of the "
-                "body's inertia, and the data hold none: give --mass, --center-of-gravity "
-                "and --radii-of-gyration (or --inertia-matrix)"
-            )
-        ds = complete_restoring(ds, restoring=restoring, why="the files' inertia")
-    labels = [str(d) for d in ds.influenced_dof.values]
-    terms = {}
     for name, given in (("stiffness", external_stiffness), ("damping", external_damping)):
-        if given:
-            refuse_repeated(given, f"--external-{name}", key=lambda t: (t[0], t[1]), what="pair")
-            values: dict[tuple[str, str], float] = {}
-            for i, j, value in given:
-                for dof in (i, j):
-                    if dof not in labels:
-                        raise click.BadParameter(
-                            f"unknown DOF {dof!r}; the data have {', '.join(labels)}",
-                            param_hint=f"--external-{name}",
-                        )
-                values[(i, j)] = value
-            terms[name] = values
-    return with_external_terms(ds, **terms) if terms else ds
+        refuse_repeated(given, f"--external-{name}", key=lambda t: (t[0], t[1]), what="pair")
+    matrix = None
+    if inertia_matrix is not None:
+        note_inputs(inertia_matrix)
+        matrix = read_matrix_file(inertia_matrix)
+    return with_given_terms(
+        ds,
+        mass=mass,
+        center_of_gravity=center_of_gravity,
+        radii_of_gyration=radii_of_gyration,
+        matrix=matrix,
+        restoring=restoring,
+        external_stiffness=external_stiffness,
+        external_damping=external_damping,
+        name=lambda key: "--" + key.replace("_", "-"),
+    )
 
 
 def select_speed(ds, speed: float | None):

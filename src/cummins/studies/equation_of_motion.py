@@ -31,6 +31,7 @@ import numpy as np
 import xarray as xr
 
 from cummins.errors import ArgumentError, HydroDataError
+from cummins.mass_properties import check_inertia_terms
 
 #: The study keys of the equation of motion: key → its meaning (the CLI option of the
 #: same name says the same).
@@ -157,75 +158,42 @@ def normalised_keys(values: Mapping[str, Any], source: Path | None) -> dict[str,
     out["restoring_includes_weight"] = weight
     for key in ("external_stiffness", "external_damping"):
         out[key] = _triples(values.get(key), key, source)
-    if matrix is not None and (out["mass"] or out["center_of_gravity"] or out["radii_of_gyration"]):
-        raise ArgumentError(
-            f"{_where(source, 'inertia_matrix')}: give either inertia_matrix or mass/"
-            "center_of_gravity/radii_of_gyration, not both"
+    try:
+        check_inertia_terms(
+            mass=out["mass"],
+            center_of_gravity=out["center_of_gravity"],
+            radii_of_gyration=out["radii_of_gyration"],
+            matrix_given=matrix is not None,
         )
-    if matrix is None and not out["radii_of_gyration"]:
-        for key in ("mass", "center_of_gravity"):
-            if out[key]:
-                raise ArgumentError(
-                    f"{_where(source, key)}: mass and center_of_gravity build the inertia "
-                    "matrix together with radii_of_gyration: add radii_of_gyration "
-                    "[rxx, ryy, rzz] (m, one per body)"
-                )
+    except ArgumentError as exc:
+        raise ArgumentError(f"{source}: {exc}" if source else str(exc)) from None
     return out
 
 
 def complete_study_data(ds: xr.Dataset, study) -> xr.Dataset:
-    """``ds`` completed with the study's inertia and external terms (the functions behind
-    the CLI's options); errors name the study key."""
-    from cummins.mass_properties import (
-        complete_restoring,
-        read_matrix_file,
-        with_external_terms,
-        with_inertia,
-    )
+    """``ds`` completed with the study's inertia and external terms (the function behind
+    the CLI's options, :func:`cummins.mass_properties.with_given_terms`); errors name the
+    study file and key."""
+    from cummins.mass_properties import read_matrix_file, with_given_terms
 
-    source = study.source
-    restoring = {"yes": "total", "no": "hydrostatic", None: None}[study.restoring_includes_weight]
-    key = "inertia_matrix"
+    matrix = study.inertia_matrix
+    if isinstance(matrix, str | Path):
+        matrix = read_matrix_file(str(matrix))
     try:
-        if study.inertia_matrix is not None:
-            matrix = study.inertia_matrix
-            if isinstance(matrix, str | Path):
-                matrix = read_matrix_file(str(matrix))
-            ds = with_inertia(ds, matrix=np.asarray(matrix, dtype=float), restoring=restoring)
-        elif study.radii_of_gyration:
-            key = "radii_of_gyration"
-            ds = with_inertia(
-                ds,
-                mass=list(study.mass) or None,
-                center_of_gravity=[list(c) for c in study.center_of_gravity] or None,
-                radii_of_gyration=[list(r) for r in study.radii_of_gyration],
-                restoring=restoring,
-            )
-        elif restoring is not None:
-            key = "restoring_includes_weight"
-            if "inertia_matrix" not in ds:
-                raise ArgumentError(
-                    "completes the restoring with the weight of the body's inertia, and the "
-                    "data hold none: add mass, center_of_gravity and radii_of_gyration (or "
-                    "inertia_matrix)"
-                )
-            ds = complete_restoring(ds, restoring=restoring, why="the files' inertia")
+        return with_given_terms(
+            ds,
+            mass=study.mass,
+            center_of_gravity=study.center_of_gravity,
+            radii_of_gyration=study.radii_of_gyration,
+            matrix=matrix,
+            restoring={"yes": "total", "no": "hydrostatic", None: None}[
+                study.restoring_includes_weight
+            ],
+            external_stiffness=study.external_stiffness,
+            external_damping=study.external_damping,
+        )
     except ArgumentError as exc:
-        raise ArgumentError(f"{_where(source, key)}: {exc}") from None
-    labels = [str(d) for d in ds.influenced_dof.values]
-    terms = {}
-    for name in ("stiffness", "damping"):
-        given = getattr(study, f"external_{name}")
-        for i, j, _ in given:
-            for dof in (i, j):
-                if dof not in labels:
-                    raise ArgumentError(
-                        f"{_where(source, f'external_{name}')}: unknown DOF {dof!r}",
-                        hint=f"the data have {', '.join(labels)}",
-                    )
-        if given:
-            terms[name] = {(i, j): value for i, j, value in given}
-    return with_external_terms(ds, **terms) if terms else ds
+        raise ArgumentError(f"{study.source}: {exc}" if study.source else str(exc)) from None
 
 
 def check_study_data(ds: xr.Dataset, study) -> None:
