@@ -88,7 +88,8 @@ def drift_at_suspects(
     bad = np.isin(w, suspects)
     if not bad.any() or bad.all():
         return None
-    drift = np.abs(ds[name].transpose("omega", "wave_direction", "influenced_dof").values)
+    signed = ds[name].transpose("omega", "wave_direction", "influenced_dof").values
+    drift = np.abs(signed)
     inside = drift[bad].max(axis=(0, 1))
     outside = drift[~bad].max(axis=(0, 1))
     with np.errstate(divide="ignore", invalid="ignore"):
@@ -96,7 +97,7 @@ def drift_at_suspects(
     k = int(np.argmax(ratio))
     sub = drift[bad][:, :, k]
     i, j = np.unravel_index(int(np.argmax(sub)), sub.shape)
-    value = ds[name].transpose("omega", "wave_direction", "influenced_dof").values[bad][i, j, k]
+    value = signed[bad][i, j, k]
     return SuspectDrift(
         tuple(float(x) for x in w[bad]),
         str(ds.influenced_dof.values[k]),
