@@ -19,20 +19,8 @@ from pathlib import Path
 from rich.markup import escape
 
 from cummins.cli.common import err_console
-
-#: The run-file attribute that records the failures of the model a result came from (one
-#: failure per line).
-ATTRIBUTE = "model_failures"
-
-
-def model_failures(attrs: Mapping) -> list[str]:
-    """The failures of a model (its ``failures``) or those a result file records
-    (:data:`ATTRIBUTE`), as a list of sentences."""
-    found = attrs.get("failures") or attrs.get(ATTRIBUTE) or []
-    if isinstance(found, str):
-        found = found.splitlines()
-    return [str(f) for f in found if str(f).strip()]
-
+from cummins.radiation.model import MODEL_FAILURES as ATTRIBUTE
+from cummins.radiation.model import model_failures as model_failures
 
 #: The line names this many failures (the motion error first), then how many more.
 SHOWN = 2

@@ -760,3 +760,17 @@ def symmetric_couplings(models: Sequence[CouplingModel]) -> tuple[CouplingModel,
         if k.influenced != k.radiating and (k.radiating, k.influenced) not in present:
             out.append(k.transposed())
     return tuple(sorted(out, key=lambda k: (k.influenced, k.radiating)))
+
+
+#: The attribute of a result (a run, a batch study's results) that records the failures
+#: of the radiation model it was made with, one per line.
+MODEL_FAILURES = "model_failures"
+
+
+def model_failures(attrs: Mapping) -> list[str]:
+    """The failures of a model (its ``failures``: the targets its fit missed) or those a
+    result records (:data:`MODEL_FAILURES`), as a list of sentences."""
+    found = attrs.get("failures") or attrs.get(MODEL_FAILURES) or []
+    if isinstance(found, str):
+        found = found.splitlines()
+    return [str(f) for f in found if str(f).strip()]

@@ -64,6 +64,7 @@ import xarray as xr
 
 from cummins.errors import CumminsError, check_writable
 from cummins.files import replacing
+from cummins.radiation.model import MODEL_FAILURES, model_failures
 from cummins.studies.study import (
     _BLAS_ENV,
     _RESULT_KIND,
@@ -136,9 +137,9 @@ class StudyContext:
         }
         if attrs.get("motion_error") is not None:
             out["radiation_model_motion_error"] = float(attrs["motion_error"])
-        failures = [str(f) for f in attrs.get("failures") or [] if str(f).strip()]
+        failures = model_failures(attrs)
         if failures:
-            out["model_failures"] = "\n".join(failures)
+            out[MODEL_FAILURES] = "\n".join(failures)
         return out
 
     @property
