@@ -170,8 +170,10 @@ def test_vessel_at_speed_refuses_what_it_cannot_build(s175):
 
 def test_cli_simulate_at_speed(tmp_path):
     """``cummins simulate s175.mat --speed 10.28889 --dof Heave --dof Pitch``: the run
-    oscillates at ω_e; 6 DOFs without --soft-springs: a clear error; --soft-springs at
-    zero speed: a usage error."""
+    oscillates at ω_e and records which memory at speed the vessel holds and its RAO error
+    against the data's frequency domain (default options: the memory derived from K⁰,
+    measured heave 2.5 %, pitch 4.9 %); 6 DOFs without --soft-springs: a clear error;
+    --soft-springs at zero speed: a usage error."""
     runner = CliRunner()
     out = tmp_path / "run.nc"
     common = ["--regular", "--wave-period", "12", "--duration", "200", "--heading", "180"]
@@ -196,6 +198,8 @@ def test_cli_simulate_at_speed(tmp_path):
         assert list(run.dof.values) == VERTICAL
         t, x = run.time.values, run.motion.sel(dof="Heave").values
         assert run.attrs["forward_speed"] == pytest.approx(10.28889)
+        assert run.attrs["speed_memory"].startswith("K0 + U K1 + U^2 K2")
+        assert run.attrs["speed_motion_error"] < 0.08  # the fit at speed alone: 0.69
     w = 2 * np.pi / 12
     we = w + w**2 * 10.28889 / 9.81
     spectrum = np.abs(np.fft.rfft(x - x.mean(), 8 * x.size))

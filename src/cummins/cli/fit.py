@@ -328,7 +328,7 @@ def fit_command(
             "U²/ω² radiation restoring of pitch and yaw, the antisymmetric U K¹), which no "
             "causal memory follows; this plain fit of the data at speed fits them as memory "
             "and averages the antisymmetric part away. With zero speed in the same file, "
-            "the memory is fitted with the speed terms removed and they are kept apart: "
+            "the memory is built with the speed terms kept apart: "
             "cummins simulate DATA --speed U (Python: "
             "cummins.radiation.speed.vessel_at_speed, fit_per_speed)",
             highlight=False,

@@ -178,8 +178,10 @@ from cummins.validation import check_simulation_size
 )
 @speed_option(
     "Forward speed of DATA. The waves are met at the encounter frequencies; when DATA "
-    "hold zero speed too, the speed terms (U D1, U G1 + U^2 G2, U K1, Hjulstad) are kept "
-    "apart from the fitted memory (cummins.radiation.speed.vessel_at_speed)."
+    "hold zero speed too, the speed terms (U D1, U G1 + U^2 G2, Hjulstad) are kept "
+    "apart from the memory, which is K0 + U K1 + U^2 K2 derived from the zero-speed fit "
+    "or a fit at speed, whichever meets the data's RAOs at speed better (printed; "
+    "cummins.radiation.speed.vessel_at_speed)."
 )
 @click.option(
     "--dof",
@@ -365,8 +367,8 @@ def simulate_command(
     if accurate and at_speed:
         raise click.UsageError(
             "--accurate tightens the motion target of the zero-speed fit; at --speed the "
-            "memory is fitted with the speed terms removed (vessel_at_speed) and judged by "
-            "its RAOs at speed, printed after the fit: leave --accurate out"
+            "memory is built with the speed terms kept apart (vessel_at_speed) and judged "
+            "by its RAOs at speed, printed after the fit: leave --accurate out"
         )
     if soft_springs is not None and not at_speed:
         raise click.UsageError(
@@ -487,6 +489,7 @@ def simulate_command(
             "source_file": str(ds.attrs.get("source_file", "")),
             "radiation_model_order": vessel.radiation.total_order,
             **inherited,
+            **{k: vessel.attrs[k] for k in SPEED_CHECK_ATTRS if k in vessel.attrs},
             **{f"quadratic_damping_{d}": b for d, b in (b_q or {}).items()},
         }
     )
@@ -511,6 +514,10 @@ def simulate_command(
         sys.exit(SIMULATION_FAILED)
 
 
+#: What the run file records of a vessel at speed (:func:`_print_speed_check`).
+SPEED_CHECK_ATTRS = ("speed_memory", "speed_motion_error", "speed_motion_error_by_dof")
+
+
 def _print_speed_check(attrs) -> None:
     """The RAO error of the vessel at speed against the data's own frequency domain
     (:func:`cummins.radiation.speed.checks.speed_motion_error`), one line."""
@@ -519,8 +526,11 @@ def _print_speed_check(attrs) -> None:
     error = attrs.get("speed_motion_error")
     if error is None:
         return
+    memory = attrs.get("speed_memory")
     line = (
-        f"RAOs at speed of the time-domain vessel against the data's frequency domain: "
+        "RAOs at speed of the time-domain vessel"
+        + (f" (memory {memory})" if memory else "")
+        + f" against the data's frequency domain: "
         f"{attrs.get('speed_motion_error_by_dof', '')} of each peak"
     )
     if error > SPEED_MOTION_TOL:
