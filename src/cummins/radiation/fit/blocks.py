@@ -57,6 +57,7 @@ def fit_blocks(
         )
     motion_aim = MOTION_AIM * motion_tol if sensitivity is not None else None
     blocks, notes, tail_failures = [], [], []
+    done: list = []  # (name, dofs, elements, poles, score, pole floor) of each block fitted
     # K(t) of the data at the step of the default grid: the R² of K(t) the fit is judged by
     fine_time = fine_time_grid(measured.time, float(w.max()))
     diagonal = sorted({i for i, j in pairs if i == j})  # the diagonal terms alone
@@ -104,9 +105,10 @@ def fit_blocks(
             fixed_count=fixed_count,
             name=name,
             min_damping=vector.MIN_DAMPING,
+            poles=None,
         ):
             """The block's data weighted for motion target ``tol`` and its fit, its poles
-            damped at least ``min_damping`` of critical."""
+            damped at least ``min_damping`` of critical (or at ``poles``)."""
             data = vector.block_data(
                 dofs,
                 elements,
@@ -136,55 +138,72 @@ def fit_blocks(
                     r2_kernel=options.r2_kernel,
                     labels=labels,
                     unjudged=inp.attrs.get("motions_unjudged"),
+                    poles=poles,
                 )
             except FitError as exc:
                 raise FitError(f"{name}: {exc}") from None
             return data, *found
 
-        data, fitted, score, block_notes = identify(motion_tol, motion_aim)
-        floor = vector.MIN_DAMPING
-        if set(dofs) & set(inp.resonant_dofs) and not score.meets(motion_aim):
-            # a sharp resonance the motions depend on (a piston or gap mode) and the
-            # targets missed: poles as lightly damped as the resonance, when that brings
-            # the block closer to its targets
-            sharp = identify(motion_tol, motion_aim, min_damping=vector.RESONANCE_MIN_DAMPING)
-            if order_search.closeness(sharp[2], r2, motion_aim) < order_search.closeness(
-                score, r2, motion_aim
-            ):
-                data, fitted, score, block_notes = sharp
-                floor = vector.RESONANCE_MIN_DAMPING
-                block_notes.append(
-                    f"a sharp resonance kept: poles damped down to {floor:.0%} of critical "
-                    f"(else {vector.MIN_DAMPING:.0%})"
-                )
-        if motion_aim is not None and motion_tol < MOTION_TOL and not score.meets(motion_aim):
-            # a tighter motion target weighs the motions more, and passivity can then cost
-            # them more than it costs the default's fit (the supply vessel's heave-pitch
-            # block: 0.55 % at 10 common poles against the default's 0.29 % at 9): the
-            # tighter target never keeps a block further from it than the default's
-            default = identify(MOTION_TOL, MOTION_AIM * MOTION_TOL, min_damping=floor)
-            if order_search.closeness(default[2], r2, motion_aim) < order_search.closeness(
-                score, r2, motion_aim
-            ):
-                # its own notes (a miss of the default's targets among them), not those
-                # of the fits set aside
-                data, fitted, score, block_notes = default
-                block_notes.append(
-                    f"the default's fit ({fitted.poles.count} common poles) is closer to the "
-                    "tighter motion target than the fits made for it: kept"
-                )
-                if score.meets(MOTION_AIM * MOTION_TOL) and not score.meets(motion_aim):
+        shared = None
+        twin = None if fixed_count else mirror_block(done, dofs, elements, a_data, b_data)
+        if twin is not None:  # the twin's poles, this block's residues
+            twin_name, twin_poles, twin_score, twin_floor, difference = twin
+            shared = identify(motion_tol, motion_aim, min_damping=twin_floor, poles=twin_poles)
+            if not shares_well(shared[2], twin_score, r2, motion_aim):
+                shared = None
+        if shared is not None:
+            data, fitted, score, block_notes = shared
+            floor = twin_floor
+            block_notes.append(
+                f"the {fitted.poles.count} common poles of the {twin_name} block, whose "
+                f"diagonal A and B differ from these by {difference:.2%} at most (as an "
+                "axisymmetric body's two horizontal blocks): residues fitted to these data"
+            )
+        else:
+            data, fitted, score, block_notes = identify(motion_tol, motion_aim)
+            floor = vector.MIN_DAMPING
+            if set(dofs) & set(inp.resonant_dofs) and not score.meets(motion_aim):
+                # a sharp resonance the motions depend on (a piston or gap mode) and the
+                # targets missed: poles as lightly damped as the resonance, when that brings
+                # the block closer to its targets
+                sharp = identify(motion_tol, motion_aim, min_damping=vector.RESONANCE_MIN_DAMPING)
+                if order_search.closeness(sharp[2], r2, motion_aim) < order_search.closeness(
+                    score, r2, motion_aim
+                ):
+                    data, fitted, score, block_notes = sharp
+                    floor = vector.RESONANCE_MIN_DAMPING
                     block_notes.append(
-                        order_search.targets_not_met(
-                            fitted.poles.count,
-                            score,
-                            r2=r2,
-                            r2_coupling=r2_coupling,
-                            r2_kernel=options.r2_kernel,
-                            motion_aim=motion_aim,
-                            labels=labels,
-                        )
+                        f"a sharp resonance kept: poles damped down to {floor:.0%} of critical "
+                        f"(else {vector.MIN_DAMPING:.0%})"
                     )
+            if motion_aim is not None and motion_tol < MOTION_TOL and not score.meets(motion_aim):
+                # a tighter motion target weighs the motions more, and passivity can then cost
+                # them more than it costs the default's fit (the supply vessel's heave-pitch
+                # block: 0.55 % at 10 common poles against the default's 0.29 % at 9): the
+                # tighter target never keeps a block further from it than the default's
+                default = identify(MOTION_TOL, MOTION_AIM * MOTION_TOL, min_damping=floor)
+                if order_search.closeness(default[2], r2, motion_aim) < order_search.closeness(
+                    score, r2, motion_aim
+                ):
+                    # its own notes (a miss of the default's targets among them), not those
+                    # of the fits set aside
+                    data, fitted, score, block_notes = default
+                    block_notes.append(
+                        f"the default's fit ({fitted.poles.count} common poles) is closer to the "
+                        "tighter motion target than the fits made for it: kept"
+                    )
+                    if score.meets(MOTION_AIM * MOTION_TOL) and not score.meets(motion_aim):
+                        block_notes.append(
+                            order_search.targets_not_met(
+                                fitted.poles.count,
+                                score,
+                                r2=r2,
+                                r2_coupling=r2_coupling,
+                                r2_kernel=options.r2_kernel,
+                                motion_aim=motion_aim,
+                                labels=labels,
+                            )
+                        )
         plain_block = vector.fit_residues_at(data, fitted.poles) if passive else None
         a, b, c = fitted.realization()
         for (i, j), value in fitted.pair_values(fitted.added_mass_inf).items():
@@ -228,6 +247,7 @@ def fit_blocks(
         for m in metrics.values():
             m["elapsed_s"] = elapsed
         blocks.append(replace(block, metrics=metrics))
+        done.append((name, dofs, elements, fitted.poles, score, floor))
         notes += [f"{name}: {x}" for x in block_notes]
         tail_failures += [
             found.describe(labels[i], float(omega[-1]))
@@ -261,6 +281,59 @@ def fit_blocks(
     failures += range_cut_failures(model, inp, options.r2)
     failures += tail_failures  # the model's damping beyond the data (fit/tail.py)
     return replace(model, attrs={**model.attrs, "failures": failures})
+
+
+#: A block whose DOFs' diagonal A and B are within SHARED_POLES (the largest difference
+#: over the frequencies, relative to the larger of the two's largest value) of those of a
+#: block fitted before it, with as many DOFs and pairs, takes that block's common poles and
+#: fits only its residues — an axisymmetric body's sway–roll block and its surge–pitch
+#: block, whose data differ by the panels' asymmetry (HAMS cylinders 0.6 %, the WAMIT
+#: drift sphere 3.4 %, the monopile 0.04 %) — when that leaves it as near its targets
+#: as the twin (:func:`shares_well`); else its own order search.
+SHARED_POLES = 0.05
+
+
+def mirror_block(done, dofs, elements, a_data, b_data):
+    """(name, poles, score, pole floor, difference) of the block of ``done`` whose
+    diagonal data match those of ``dofs`` DOF for DOF within :data:`SHARED_POLES` (the
+    largest relative difference), or None."""
+    for name, their_dofs, their_elements, poles, score, floor in done:
+        if len(their_dofs) != len(dofs) or len(their_elements) != len(elements):
+            continue
+        left, worst = list(their_dofs), 0.0
+        for d in dofs:
+            found = [(diagonal_difference(a_data, b_data, d, t), t) for t in left]
+            difference, match = min(found)
+            if not difference <= SHARED_POLES:
+                break
+            left.remove(match)
+            worst = max(worst, difference)
+        else:
+            return name, poles, score, floor, worst
+    return None
+
+
+def diagonal_difference(a_data, b_data, d: int, t: int) -> float:
+    """The largest difference between A (and B) of DOF ``d`` and of DOF ``t`` over the
+    frequencies, relative to the larger of their largest values (NaN when not finite)."""
+    out = 0.0
+    for values in (a_data, b_data):
+        one, two = values[:, d, d], values[:, t, t]
+        scale = max(np.abs(one).max(), np.abs(two).max())
+        out = max(out, float(np.abs(one - two).max() / scale) if scale > 0 else 0.0)
+    return out
+
+
+def shares_well(score, twin_score, r2: float, motion_aim) -> bool:
+    """A block at its twin's poles is kept when it is as near its targets as the twin is
+    to its own (within :data:`~cummins.radiation.fit.order_search.NEAR`), and passive when
+    the twin is."""
+    if twin_score.passive and not score.passive:
+        return False
+    if score.meets(motion_aim):
+        return True
+    near = order_search.distance(score, r2, motion_aim)
+    return near <= order_search.distance(twin_score, r2, motion_aim) + order_search.NEAR
 
 
 #: A DOF whose A(ω) is further than this from the Kramers–Kronig transform of its B(ω)

@@ -29,7 +29,13 @@ from cummins.radiation.fit.tail import (
     block_beyond_data,
     impulse_r2,
 )
-from cummins.radiation.fit.vector import BlockData, PoleResidueBlock, vector_fit
+from cummins.radiation.fit.vector import (
+    BlockData,
+    PoleResidueBlock,
+    Poles,
+    fit_residues_at,
+    vector_fit,
+)
 
 
 def block_groups(n: int, pairs) -> list[tuple[tuple[int, ...], tuple[tuple[int, int], ...]]]:
@@ -167,11 +173,15 @@ def identify_block(
     r2_kernel: float | None = None,
     labels=None,
     unjudged: str | None = None,
+    poles: Poles | None = None,
 ) -> tuple[PoleResidueBlock, BlockScore, list[str]]:
     """The block at the smallest number of common poles that meets the targets and is
     passive (module docstring, step 4); the best passive one when none does (``labels``:
     the DOF labels, by model index, that its notes name; ``unjudged``: why no motions
-    judge it, when none do)."""
+    judge it, when none do). With ``poles``, the block's residues at those poles only
+    (another block's, :func:`cummins.radiation.fit.blocks.fit_blocks`), made passive."""
+    if poles is not None:
+        fixed_count = poles.count
     counts = [fixed_count] if fixed_count else list(range(2, max_count + 1))
     fewest = int(data.used.sum(axis=0).min())
     counts = [c for c in counts if c + 2 <= fewest]
@@ -229,7 +239,7 @@ def identify_block(
     done = False
     for count in counts:
         try:
-            fitted = vector_fit(data, count)
+            fitted = vector_fit(data, count) if poles is None else fit_residues_at(data, poles)
         except np.linalg.LinAlgError:
             continue
         plain = score_block(
