@@ -96,6 +96,17 @@ from cummins.cli.option_rules import Command
     help="PNG of A(w) and B(w) with the chosen values marked (seed Figs. 1-2).",
 )
 @speed_option("Forward speed of DATA.")
+@click.option(
+    "--manoeuvring-speed",
+    "manoeuvring_speed",
+    type=Number(unit="m/s"),
+    default=None,
+    metavar="U",
+    help="The ship moving ahead at U m/s: add to the model of the zero-speed data the "
+    "linearised Coriolis and centripetal forces of the rigid body and the added mass "
+    "about u = U (Fossen 2011: sway (m + A11) U r, the Munk moments (A22 - A11) U v in "
+    "yaw and (A11 - A33) U w in pitch ...), written as speed_terms.",
+)
 @force_option()
 @reports_errors
 def lf_model_command(
@@ -114,6 +125,7 @@ def lf_model_command(
     compare_dir,
     plot_file,
     speed,
+    manoeuvring_speed,
     force,
 ):
     """Derive the constant-coefficient low-frequency model (M_RB + M_A) v' + D v + G eta = tau.
@@ -130,6 +142,7 @@ def lf_model_command(
       cummins lf-model tanker.1 -o lf.nc --plot lf.png
       cummins lf-model tanker.1 -o lf.nc --route kernel --roll-damping 0.05 --compare lf-cmp
       cummins lf-model supply.mat -o lf.nc --data-damping all
+      cummins lf-model s175.mat --speed 0 --manoeuvring-speed 10.29 -o lf20kn.nc
     """
     from rich.markup import escape
     from rich.table import Table
@@ -148,6 +161,16 @@ def lf_model_command(
     prepare_outputs(*outputs, force=force, folders=[compare_dir])
     ds = select_speed(read_hydrodb(path, format_, rho, g, ulen), speed)
     at_speed = float(ds.coords["forward_speed"]) if "forward_speed" in ds.coords else 0.0
+    if at_speed and manoeuvring_speed is not None:
+        raise click.UsageError(
+            f"--manoeuvring-speed adds the speed terms to the model of zero-speed data; these "
+            f"are the data at {at_speed:g} m/s: give --speed 0 (or data at zero speed)"
+        )
+    if manoeuvring_speed is not None and compare_dir:
+        raise click.UsageError(
+            "--compare runs the Cummins model at zero speed; leave it out with "
+            "--manoeuvring-speed (or compare the zero-speed model)"
+        )
     if at_speed:
         from cummins.cli.common import err_console
 
@@ -156,8 +179,8 @@ def lf_model_command(
             "applied to data at speed: the speed terms (U·A∞ damping such as B26 = −U·A22, "
             "B62 = +U·A22, the derivatives Y_r, N_v of a manoeuvring model, and the "
             "antisymmetric A35/A53) are averaged or set to zero, not modelled; build the "
-            "low-frequency model from the zero-speed data (--speed 0) and add the speed "
-            "terms of your manoeuvring model (the U·A∞ terms of Hjulstad (2004) §6)",
+            "model of the zero-speed data with the linearised speed terms instead: "
+            f"--speed 0 --manoeuvring-speed {at_speed:g}",
             highlight=False,
         )
     viscous = {}
@@ -174,6 +197,10 @@ def lf_model_command(
     ):
         warnings.simplefilter("always")
         model = build(ds, viscous=viscous or None)
+    if manoeuvring_speed is not None:
+        from cummins.timedomain.lfmodel.speed import at_forward_speed
+
+        model = at_forward_speed(model, manoeuvring_speed)
     for w in caught:  # the library's advice names its keyword; here: the option
         text = str(w.message).replace(DATA_DAMPING_ADVICE, "--data-damping DOF (or all)")
         warnings.warn_explicit(text, w.category, w.filename, w.lineno)
@@ -192,6 +219,8 @@ def lf_model_command(
     console.print("taken as (equations of Ross, Perez & Fossen (2006)):")
     for line in model.provenance:  # whole sentences, wrapped at the terminal's width
         console.print(f"  {escape(line)}", highlight=False)
+    if manoeuvring_speed is not None:
+        _print_speed_terms(model, manoeuvring_speed)
     from cummins.io.netcdf import save_netcdf
 
     save_netcdf(model.to_dataset(), output)
@@ -202,6 +231,22 @@ def lf_model_command(
         console.print(f"wrote {save_figure(plot_lf_model(ds, model), plot_file, force=force)}")
     if compare_dir:
         _compare(ds, model, Path(compare_dir), force)
+
+
+def _print_speed_terms(model, speed: float) -> None:
+    """The largest speed terms N(U) of :func:`cummins.timedomain.lfmodel.speed.at_forward_speed`,
+    one line each (the entries above 1e-9 of the largest of their row's kind)."""
+    n = np.asarray(model.speed_terms)
+    console.print(
+        f"speed terms at {speed:g} m/s (linearised Coriolis and centripetal forces of the "
+        "rigid body and the added mass, Fossen (2011); in D + N(U)):",
+        highlight=False,
+    )
+    scale = np.abs(n).max()
+    for i, row in enumerate(model.dofs):
+        for j, column in enumerate(model.dofs):
+            if scale > 0 and abs(n[i, j]) > 1e-9 * scale:
+                console.print(f"  N[{row}, {column}] = {n[i, j]:.4g}", highlight=False)
 
 
 def _data_damping(ds, names, given) -> dict[str, str]:

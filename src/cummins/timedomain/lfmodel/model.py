@@ -52,6 +52,12 @@ class LowFrequencyModel:
         :attr:`potential_damping` is set by ``potential_b0`` of the builders.
     attrs
         Route, options, source file; ``eq24_residual`` per DOF.
+    speed_terms
+        N(U) (n, n), kg/s …: the linearised Coriolis and centripetal forces of a ship
+        moving ahead at ``attrs["forward_speed"]``
+        (:func:`~cummins.timedomain.lfmodel.speed.at_forward_speed`), zero at zero speed;
+        not symmetric (the Munk moments). It acts like a damping:
+        (M_RB + M_A) ν̇ + (D + N(U)) ν + G η = τ.
     """
 
     dofs: tuple[str, ...]
@@ -64,6 +70,11 @@ class LowFrequencyModel:
     provenance: tuple[str, ...]
     zero_frequency_damping: NDArray[np.float64]
     attrs: Mapping[str, Any] = field(default_factory=dict)
+    speed_terms: NDArray[np.float64] | None = None
+
+    def __post_init__(self) -> None:
+        if self.speed_terms is None:
+            object.__setattr__(self, "speed_terms", np.zeros_like(self.added_mass))
 
     @property
     def damping(self) -> NDArray[np.float64]:
@@ -97,8 +108,8 @@ class LowFrequencyModel:
         """The model as a :class:`cummins.vessel.Vessel` with no fluid memory.
 
         Its inertia is M_RB + M_A (the radiation model has no couplings and M_A in place
-        of A∞), its damping D and its stiffness G, so :func:`cummins.timedomain.simulate.simulate`
-        runs it (state (ξ, ξ̇), 2n states).
+        of A∞), its damping D + N(U) and its stiffness G, so
+        :func:`cummins.timedomain.simulate.simulate` runs it (state (ξ, ξ̇), 2n states).
         """
         radiation = RadiationModel(
             self.dofs, (), np.array(self.added_mass), {"kind": "low-frequency model"}
@@ -108,7 +119,7 @@ class LowFrequencyModel:
             self.dofs,
             np.array(self.rigid_body_mass),
             np.array(self.stiffness),
-            np.array(self.damping),
+            np.array(self.damping + self.speed_terms),
             radiation,
             attrs,
         )
@@ -125,6 +136,7 @@ class LowFrequencyModel:
                 "viscous_damping": (dims, self.viscous_damping),
                 "damping": (dims, self.damping),
                 "stiffness": (dims, self.stiffness),
+                "speed_terms": (dims, self.speed_terms),
                 "zero_frequency_damping": (dims, self.zero_frequency_damping),
                 "frequency": ("dof", self.frequencies, {"units": "rad/s"}),
                 "provenance": ("dof", np.array(self.provenance, dtype=str)),
