@@ -11,6 +11,8 @@ H(μ)F of a moored body.
 
 from __future__ import annotations
 
+import warnings
+
 import numpy as np
 import pytest
 from scipy import signal, stats
@@ -85,18 +87,57 @@ def test_short_crested_force_within_its_truncation(oc4):
 
 def test_newman_matches_the_dp_models_wave_drift(shared_data):
     """The sphere's mean drift (WAMIT .7): Newman's force of the linear model equals
-    WaveDriftLoad's (the DP model's, Smogeli et al. eqs. 47–48) in surge."""
+    WaveDriftLoad's (the DP model's, Smogeli et al. eqs. 47–48) in surge. Its drift at its
+    15 suspect frequencies is no larger than elsewhere (0.85 times, sway): both keep it
+    by default, with no warning (they left it out, with one each, before)."""
     ds = cummins.read(shared_data / SPHERE)
     sea = irregular_waves(wave_spectrum("jonswap", 0.5, 2.5), duration=300, seed=4)
-    # the same data for both (the DP model's load keeps the sphere's 15 suspect points)
-    ours = second_order_force(ds, sea, model="newman", keep_suspect=True)
-    theirs = WaveDriftLoad.from_hydrodb(ds, sea, extrapolate="zero", max_heading_gap=7.0)
+    with warnings.catch_warnings(record=True) as caught:
+        warnings.simplefilter("always")
+        ours = second_order_force(ds, sea, model="newman")
+        theirs = WaveDriftLoad.from_hydrodb(ds, sea, extrapolate="zero", max_heading_gap=7.0)
+    assert not [w for w in caught if "suspect" in str(w.message)]
+    assert ours.drift_left_out == ()
+    assert any("kept at the 15 suspect frequencies" in n for n in ours.notes)
+    kept = second_order_force(ds, sea, model="newman", keep_suspect=True)
     for t in (0.0, 17.3, 211.0):
         assert ours.difference.at(t)[0] == pytest.approx(
             theirs.force(t, np.zeros(6), np.zeros(6))[0], rel=1e-9
         )
-    mean = second_order_force(ds, sea, model="mean", keep_suspect=True)
+        assert ours.difference.at(t)[0] == kept.difference.at(t)[0]
+    mean = second_order_force(ds, sea, model="mean")
     assert np.allclose(mean.time_series([0.0, 1.0]), ours.mean)
+
+
+def test_the_dp_drift_leaves_out_the_suspect_frequencies():
+    """The demo tanker's .out in head seas (the irregular frequencies of
+    test_the_mean_drift_leaves_out_the_suspect_frequencies): the DP model's WaveDriftLoad
+    (z-down body axes) has the mean force of the linear model's second-order load, the
+    suspect frequencies left out by default as there, kept with keep_suspect=True;
+    before, it kept them always (heave mean −9.0e4 N, not +2.9e3 N)."""
+    ds = cummins.read(cummins.demo_files() / "tanker.out")
+    w = ds.omega.values
+    waves = irregular_waves(
+        wave_spectrum("jonswap", 4.0, 10.0), duration=600, n_components=200,
+        direction=np.pi, seed=1, omega_min=w[0], omega_max=w[-1],
+    )  # fmt: skip
+    sign = np.array([1, -1, -1, 1, -1, -1])  # z-up to z-down
+    heave = 2
+    means = {}
+    for keep in (False, True):
+        with warnings.catch_warnings():
+            warnings.simplefilter("ignore")
+            linear = second_order_force(ds, waves, model="mean", keep_suspect=keep).mean
+            dp = WaveDriftLoad.from_hydrodb(
+                ds, waves, slowly_varying=False, keep_suspect=keep
+            ).mean_force(0.0)
+        scale = np.abs(linear).max()
+        np.testing.assert_allclose(dp, sign * linear, rtol=1e-9, atol=1e-9 * scale)
+        means[keep] = dp[heave]
+    assert means[True] > 0 > means[False]  # z-down: −9.0e4 N up is +9.0e4 N down
+    assert abs(means[True]) > 5 * abs(means[False])
+    with pytest.warns(cummins.CumminsWarning, match="left out at the 9 suspect frequencies"):
+        WaveDriftLoad.from_hydrodb(ds, waves)
 
 
 def test_the_dp_load_is_the_force_in_body_axes(oc4):

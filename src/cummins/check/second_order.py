@@ -27,6 +27,7 @@ import xarray as xr
 from cummins.check.common import _speed_suffix, _speeds
 from cummins.check.report import Finding
 from cummins.qtf.data import DRIFT_ALTERNATIVES, QTF_VARIABLES, qtf_table, significant_dofs
+from cummins.qtf.suspect_drift import DRIFT_SUSPECT_RATIO
 
 #: |Q(ω₂, ω₁) − Q(ω₁, ω₂)*| (or the imaginary part of the mean drift) over max|Q| of a DOF.
 QTF_SYMMETRY_TOL = 0.01
@@ -34,9 +35,6 @@ QTF_SYMMETRY_TOL = 0.01
 QTF_DRIFT_TOL = 0.1
 #: Two mean-drift estimates of a run: difference over the peak.
 DRIFT_METHODS_TOL = 0.1
-#: The mean drift at the suspect frequencies beyond this multiple of its largest value
-#: elsewhere (a DOF's) is named a warning.
-DRIFT_SUSPECT_RATIO = 1.5
 #: A mean drift that changes by more than this share of its peak between grid points.
 QTF_STEP_TOL = 0.5
 #: A DOF whose largest value is below this share of the largest of its kind (forces or

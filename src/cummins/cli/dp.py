@@ -18,7 +18,7 @@ from cummins.cli.common import (
     reports_errors,
 )
 from cummins.cli.option_rules import Command, option_rules
-from cummins.cli.second_order import second_order_option
+from cummins.cli.second_order import keep_suspect_option, second_order_option
 from cummins.validation import check_simulation_size
 
 
@@ -84,6 +84,7 @@ from cummins.validation import check_simulation_size
     "the paper's), mean, full (a QTF of the data; the bundled S-175 has none: it then "
     "stops with an error) or none.",
 )
+@keep_suspect_option
 @force_option("Overwrite the files of an earlier run.")
 @option_rules(
     needs={
@@ -103,6 +104,7 @@ def dp_demo_command(
     wind_from,
     data_path,
     second_order,
+    keep_suspect,
     force,
 ):
     """A ship on DP in a seaway (the S-175 unless --data), a crane load at t = 100 s.
@@ -153,6 +155,7 @@ def dp_demo_command(
             wind_speed=wind_speed,
             wind_from_deg=wind_from,
             second_order=second_order,
+            keep_suspect=keep_suspect,
             viscous_damping=damping,
             progress=lambda fraction: bar.update(task, completed=fraction),
         )

@@ -186,6 +186,7 @@ def build_scenario(
     filter_cutoff: float = 0.3,
     second_order: str = "newman",
     viscous_damping: dict[str, float] | None = None,
+    keep_suspect: bool = False,
 ):
     """The unified model, loads and controller of the scenario (module docstring);
     ``bandwidth`` (rad/s) of the position loop and ``filter_cutoff`` (rad/s) of the
@@ -235,7 +236,7 @@ def build_scenario(
     )
     loads = [
         ld.FirstOrderWaveLoad.from_hydrodb(ds, sea),
-        *_drift_load(ds, sea, second_order),
+        *_drift_load(ds, sea, second_order, keep_suspect),
         ld.SurgeResistance.from_main_particulars(length, breadth, draught, block, current=current),
         ld.CrossFlowDrag.from_main_particulars(length, breadth, draught, current=current),
     ]
@@ -267,16 +268,25 @@ def build_scenario(
     return model, tuple(loads), controller, sea
 
 
-def _drift_load(ds, sea, second_order: str) -> list:
-    """The wave-drift load of ``--second-order`` (none: no load)."""
+def _drift_load(ds, sea, second_order: str, keep_suspect: bool = False) -> list:
+    """The wave-drift load of ``--second-order`` (none: no load); the mean drift at the
+    suspect frequencies of the data left out unless ``keep_suspect``."""
     from cummins.timedomain import loads as ld
 
     if second_order == "none":
         return []
     if second_order == "full":
-        return [ld.SecondOrderWaveLoad.from_hydrodb(ds, sea, model="full", name="wave drift")]
+        return [
+            ld.SecondOrderWaveLoad.from_hydrodb(
+                ds, sea, model="full", name="wave drift", keep_suspect=keep_suspect
+            )
+        ]
     slowly = second_order == "newman"
-    return [ld.WaveDriftLoad.from_hydrodb(ds, sea, extrapolate="zero", slowly_varying=slowly)]
+    return [
+        ld.WaveDriftLoad.from_hydrodb(
+            ds, sea, extrapolate="zero", slowly_varying=slowly, keep_suspect=keep_suspect
+        )
+    ]
 
 
 def run_scenario(

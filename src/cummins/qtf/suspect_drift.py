@@ -11,18 +11,30 @@ kernel`` leave out (:func:`cummins.repair.suspects_by_dof`: each DOF's own curve
 points of a sharp resonance of the data, physics, are not suspect), over all DOFs: one
 irregular frequency spoils the drift of every DOF. :func:`drift_at_suspects` measures
 the drift there against its values elsewhere (``cummins check``), and the second-order
-load (:mod:`cummins.timedomain.loads.second_order`) leaves those frequencies out of the
-mean drift by default (interior ones bridged linearly between their sound neighbours;
-beyond the last sound frequency the drift is zero, as outside the data).
+loads (:mod:`cummins.timedomain.loads.second_order`, the DP model's
+:class:`~cummins.timedomain.loads.WaveDriftLoad`) leave those frequencies out of the
+mean drift by default (:func:`suspects_left_out`; interior ones bridged linearly between
+their sound neighbours, beyond the last sound frequency the drift is zero, as outside the
+data).
 """
 
 from __future__ import annotations
 
+import warnings
 from dataclasses import dataclass
 
 import numpy as np
 import xarray as xr
 from numpy.typing import NDArray
+
+from cummins.errors import AssumptionWarning
+
+#: The mean drift at the suspect frequencies beyond this multiple of its largest value
+#: elsewhere (a DOF's) is spoilt: ``cummins check`` names it a warning and the
+#: second-order loads leave those frequencies out (:func:`suspects_left_out`). The WAMIT
+#: tanker: 9 497 (surge); the WAMIT drift sphere 0.85, the S-175 and supply vessel of MSS
+#: 0 (their one suspect frequency, the lowest, holds no drift).
+DRIFT_SUSPECT_RATIO = 1.5
 
 
 def drift_suspect_frequencies(ds: xr.Dataset) -> NDArray[np.float64]:
@@ -105,3 +117,57 @@ def drift_at_suspects(
         (float(w[bad][i]), float(np.degrees(ds.wave_direction.values[j]))),
         float(value),
     )
+
+
+def suspects_left_out(
+    ds: xr.Dataset, keep: bool, notes: list[str], stacklevel: int = 4
+) -> tuple[float, ...]:
+    """The suspect frequencies (:func:`drift_suspect_frequencies`) to leave out of the
+    mean drift of a second-order load, with an :class:`~cummins.errors.AssumptionWarning`
+    and a line in ``notes`` saying so. None when ``keep`` (a line says they were kept),
+    when the drift there is no larger than :data:`DRIFT_SUSPECT_RATIO` times its largest
+    elsewhere (:func:`drift_at_suspects`: not spoilt, kept, a line says so), or when
+    fewer than two frequencies would stay."""
+    if "added_mass" not in ds or "radiation_damping" not in ds:
+        return ()
+    suspects = drift_suspect_frequencies(ds)
+    listed = ", ".join(f"{x:.4g}" for x in suspects)
+    if suspects.size == 0:
+        return ()
+    if keep:
+        notes.append(
+            f"mean drift kept at the {suspects.size} suspect frequencies ({listed} rad/s) "
+            "as asked (irregular frequencies may spoil it: cummins check)"
+        )
+        return ()
+    w = ds.omega.values
+    sound = w[~np.isin(w, suspects)]
+    if sound.size < 2:
+        return ()
+    found = drift_at_suspects(ds, suspects) if "drift_force" in ds else None
+    if found is not None and found.ratio <= DRIFT_SUSPECT_RATIO:
+        notes.append(
+            f"mean drift kept at the {suspects.size} suspect frequencies ({listed} rad/s): "
+            f"no larger there than elsewhere ({found.dof}: {found.ratio:.3g} times)"
+        )
+        return ()
+    how = []
+    if ((suspects > sound[0]) & (suspects < sound[-1])).any():
+        how.append("bridged linearly between sound neighbours")
+    if (suspects < sound[0]).any():
+        how.append(f"no drift below {sound[0]:.4g} rad/s")
+    if (suspects > sound[-1]).any():
+        how.append(f"no drift above {sound[-1]:.4g} rad/s")
+    spoilt = (
+        ""
+        if found is None
+        else f"{found.dof} up to {found.ratio:.3g} times its largest elsewhere; "
+    )
+    line = (
+        f"mean drift left out at the {suspects.size} suspect frequencies of the data "
+        f"({listed} rad/s; {spoilt}irregular frequencies spoil it: {', '.join(how)}); "
+        "keep_suspect=True (--keep-suspect) keeps them"
+    )
+    warnings.warn(line, AssumptionWarning, stacklevel=stacklevel)
+    notes.append(line)
+    return tuple(float(x) for x in suspects)

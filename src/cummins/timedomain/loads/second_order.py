@@ -39,14 +39,13 @@ simulation in the dataset's own axes, without position phase.
 
 from __future__ import annotations
 
-import warnings
 from dataclasses import dataclass, field
 
 import numpy as np
 import xarray as xr
 from numpy.typing import NDArray
 
-from cummins.errors import ArgumentError, AssumptionWarning, HydroDataError
+from cummins.errors import ArgumentError, HydroDataError
 from cummins.hydrodb import bodies, change_axes, dof_index, single_speed
 from cummins.qtf.data import NO_QTF_HINT, has_qtf, qtf_table
 from cummins.qtf.interpolation import (
@@ -58,6 +57,7 @@ from cummins.qtf.interpolation import (
     pair_matrix,
     weight_matrix,
 )
+from cummins.qtf.suspect_drift import suspects_left_out
 from cummins.seakeeping.waves import WaveComponents, wavenumber
 from cummins.timedomain.loads.quadratic_form import (
     QuadraticForm,
@@ -409,7 +409,7 @@ def _drift_diagonal(
         notes.append(f"mean drift of the mirrored headings: {coverage.reason}")
     drift = mirrored.drift_force.transpose("omega", "wave_direction", "influenced_dof").values
     w = ds.omega.values
-    left_out = _leave_out_suspects(ds, keep_suspect, notes)
+    left_out = suspects_left_out(ds, keep_suspect, notes)
     if left_out:
         sound = ~np.isin(w, left_out)
         w, drift = w[sound], drift[sound]
@@ -430,39 +430,3 @@ def _drift_diagonal(
         )
     method = ds.drift_force.attrs.get("method", "mean drift")
     return value, inside, f"drift_force ({method})", left_out
-
-
-def _leave_out_suspects(ds, keep: bool, notes: list[str]) -> tuple[float, ...]:
-    """The suspect frequencies to leave out of the mean drift (none when ``keep``, or
-    when fewer than two would stay), with a warning and a note saying so."""
-    from cummins.qtf.suspect_drift import drift_suspect_frequencies
-
-    if "added_mass" not in ds or "radiation_damping" not in ds:
-        return ()
-    suspects = drift_suspect_frequencies(ds)
-    listed = ", ".join(f"{x:.4g}" for x in suspects)
-    if suspects.size == 0:
-        return ()
-    if keep:
-        notes.append(
-            f"mean drift kept at the {suspects.size} suspect frequencies ({listed} rad/s) "
-            "as asked (irregular frequencies may spoil it: cummins check)"
-        )
-        return ()
-    w = ds.omega.values
-    sound = w[~np.isin(w, suspects)]
-    if sound.size < 2:
-        return ()
-    how = []
-    if (suspects < sound[-1]).any():
-        how.append("bridged linearly between sound neighbours")
-    if (suspects > sound[-1]).any():
-        how.append(f"no drift above {sound[-1]:.4g} rad/s")
-    line = (
-        f"mean drift left out at the {suspects.size} suspect frequencies of the data "
-        f"({listed} rad/s; irregular frequencies spoil it: {', '.join(how)}); "
-        "keep_suspect=True (--keep-suspect) keeps them"
-    )
-    warnings.warn(line, AssumptionWarning, stacklevel=4)
-    notes.append(line)
-    return tuple(float(x) for x in suspects)

@@ -22,6 +22,7 @@ from numpy.typing import ArrayLike, NDArray
 from cummins.errors import CumminsError, HydroDataError
 from cummins.hydrodb import bodies, change_axes, dof_index, single_speed, water_depth
 from cummins.kinematics import point_load
+from cummins.qtf.suspect_drift import suspects_left_out
 from cummins.seakeeping.excitation import MIRROR_SIGNS, excitation_transfer, heading_coverage
 from cummins.seakeeping.waves import WaveComponents, wavenumber
 from cummins.timedomain.loads.base import (
@@ -399,6 +400,7 @@ class WaveDriftLoad:
         point: ArrayLike = (0.0, 0.0, 0.0),
         position_phase: bool = True,
         name: str = "wave drift",
+        keep_suspect: bool = False,
     ) -> WaveDriftLoad:
         """Tabulate the mean drift coefficients of every component of ``waves``.
 
@@ -424,6 +426,11 @@ class WaveDriftLoad:
             raises HydroDataError.
         point, position_phase, name
             As the attributes.
+        keep_suspect
+            Keep the drift at the suspect frequencies of the radiation data (irregular
+            frequencies: :func:`cummins.qtf.suspect_drift.suspects_left_out`, said in a
+            warning); by default they are left out, bridged linearly between their sound
+            neighbours, as by the second-order loads of ``cummins simulate``.
 
         Raises
         ------
@@ -453,6 +460,13 @@ class WaveDriftLoad:
             signs = MIRROR_SIGNS[index]
             data = np.where(coverage.mirrored[None, :, None], data * signs, data)
         w = ds.omega.values.astype(float)
+        left_out = suspects_left_out(ds, keep_suspect, [], stacklevel=3)
+        if left_out:  # the data's range still decides what is outside it
+            _frequency_weights(w, waves.omega, extrapolate, where)
+            sound = ~np.isin(w, left_out)
+            w, data = w[sound], data[sound]
+            if extrapolate == "raise":  # above the last sound frequency: no drift
+                extrapolate = "zero"
         i, weight, inside = _frequency_weights(w, waves.omega, extrapolate, where)
         hi = np.minimum(i + 1, w.size - 1)
         at = (1.0 - weight)[:, None, None] * data[i] + weight[:, None, None] * data[hi]
