@@ -85,6 +85,19 @@ def test_short_crested_force_within_its_truncation(oc4):
         assert abs(load.difference.at(tk)[0] - _direct(data, sea, tk, 0)) < 0.01 * std
 
 
+@pytest.fixture(scope="module")
+def tanker_head_seas():
+    """The demo tanker's .out and JONSWAP Hs 4 m, Tp 10 s in head seas over its
+    frequencies (200 components, seed 1)."""
+    ds = cummins.read(cummins.demo_files() / "tanker.out")
+    w = ds.omega.values
+    waves = irregular_waves(
+        wave_spectrum("jonswap", 4.0, 10.0), duration=600, n_components=200,
+        direction=np.pi, seed=1, omega_min=w[0], omega_max=w[-1],
+    )  # fmt: skip
+    return ds, waves
+
+
 def test_newman_matches_the_dp_models_wave_drift(shared_data):
     """The sphere's mean drift (WAMIT .7): Newman's force of the linear model equals
     WaveDriftLoad's (the DP model's, Smogeli et al. eqs. 47–48) in surge. Its drift at its
@@ -109,18 +122,13 @@ def test_newman_matches_the_dp_models_wave_drift(shared_data):
     assert np.allclose(mean.time_series([0.0, 1.0]), ours.mean)
 
 
-def test_the_dp_drift_leaves_out_the_suspect_frequencies():
+def test_the_dp_drift_leaves_out_the_suspect_frequencies(tanker_head_seas):
     """The demo tanker's .out in head seas (the irregular frequencies of
     test_the_mean_drift_leaves_out_the_suspect_frequencies): the DP model's WaveDriftLoad
     (z-down body axes) has the mean force of the linear model's second-order load, the
     suspect frequencies left out by default as there, kept with keep_suspect=True;
     before, it kept them always (heave mean −9.0e4 N, not +2.9e3 N)."""
-    ds = cummins.read(cummins.demo_files() / "tanker.out")
-    w = ds.omega.values
-    waves = irregular_waves(
-        wave_spectrum("jonswap", 4.0, 10.0), duration=600, n_components=200,
-        direction=np.pi, seed=1, omega_min=w[0], omega_max=w[-1],
-    )  # fmt: skip
+    ds, waves = tanker_head_seas
     sign = np.array([1, -1, -1, 1, -1, -1])  # z-up to z-down
     heave = 2
     means = {}
@@ -258,19 +266,15 @@ def test_moored_surge_in_3_hour_seas_against_the_frequency_domain(oc4):
     assert np.mean(stds) == pytest.approx(expected, rel=0.05)
 
 
-def test_the_mean_drift_leaves_out_the_suspect_frequencies():
+def test_the_mean_drift_leaves_out_the_suspect_frequencies(tanker_head_seas):
     """The demo tanker's .out, JONSWAP Hs 4 Tp 10 in head seas: WAMIT's drift at the 9
     irregular frequencies (3.65–5.98 rad/s, heave ~1e7–1e8 N/m² against ~1e5 below) made
     the mean heave force −8e4 N; by default they are left out, with a warning and in
     the load, and the mean equals that of the data cut below 3.5 rad/s (to round-off).
     keep_suspect=True gives the old force (measured, seed 1: heave −9.0e4 N against
     +2.9e3 N, surge +14 %, pitch +38 %)."""
-    ds = cummins.read(cummins.demo_files() / "tanker.out")
+    ds, waves = tanker_head_seas
     w = ds.omega.values
-    waves = irregular_waves(
-        wave_spectrum("jonswap", 4.0, 10.0), duration=600, n_components=200,
-        direction=np.pi, seed=1, omega_min=w[0], omega_max=w[-1],
-    )  # fmt: skip
     with pytest.warns(cummins.CumminsWarning, match="left out at the 9 suspect frequencies"):
         load = second_order_force(ds, waves, model="mean")
     assert len(load.drift_left_out) == 9 and min(load.drift_left_out) == pytest.approx(3.653, 1e-3)
