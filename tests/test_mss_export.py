@@ -115,6 +115,24 @@ def test_veres_struct_main_against_veres_hydrostatics(veres_at_co):
     assert str(raw["hydrodynamic_reference"]) == "CO"
 
 
+def test_veres_struct_radii_of_gyration_about_cg(veres_at_co, shared_data):
+    """main.k44 … are about CG, as MSS's rbody takes them: H(r_g)ᵀ diag(m k²) H(r_g)
+    rebuilds the struct's own MRB, and k55, k66 equal MSS's supply.mat (20.741, 20.700 m;
+    measured 0.2 % and 0.0003 %; about CO they were 21.43, 21.39 m, 3.3 % off)."""
+    path, _ = veres_at_co
+    vessel = scipy.io.loadmat(path, squeeze_me=True, struct_as_record=False)["vessel"]
+    main = vessel.main
+    m, r_g = float(main.m), np.asarray(main.CG, dtype=float)  # CG about CO = r_g here
+    radii = np.array([float(main.k44), float(main.k55), float(main.k66)])
+    inertia = m * np.diag(radii**2) + m * (r_g @ r_g * np.eye(3) - np.outer(r_g, r_g))
+    np.testing.assert_allclose(np.diag(inertia), np.diag(vessel.MRB)[3:], rtol=1e-6)
+    mss = scipy.io.loadmat(
+        shared_data / "mss" / "supply" / "supply.mat", squeeze_me=True, struct_as_record=False
+    )["vessel"].main
+    assert float(main.k55) == pytest.approx(float(mss.k55), rel=5e-3)
+    assert float(main.k66) == pytest.approx(float(mss.k66), rel=1e-3)
+
+
 def test_veres_struct_off_co_and_asymmetric_warn(shared_data, tmp_path):
     """About VERES's own point (not CO) the writer says MSS wants CO; a hull that is not
     known to be symmetric keeps its 0–180° and the warning names the arc without data."""

@@ -8,7 +8,8 @@ MSS (Fossen, cybergalactic/MSS on GitHub) stores a processed vessel as one struc
 ==================  ==================================================================
 ``main``            ``name``, ``rho`` (kg/m³), ``g`` (m/s²), ``m`` (kg), ``nabla`` (m³),
                     ``Lpp``, ``B``, ``T`` (m), ``CG``, ``CB`` (m, see below),
-                    ``k44`` … (m), ``GM_T``, ``GM_L`` (m)
+                    ``k44`` … (m, radii of gyration about CG),
+                    ``GM_T``, ``GM_L`` (m)
 ``MRB``             6×6 rigid-body mass matrix about the reference point (kg, kg·m, kg·m²)
 ``A``, ``B``, ``C`` 6×6×Nfreq (×Nspeed) added mass, potential damping, restoring
 ``Bv``              6×6×Nfreq (×Nspeed) viscous damping estimated by MSS

@@ -72,6 +72,17 @@ def _drift_struct(datasets: Sequence[xr.Dataset], omega: NDArray) -> dict:
     return {"w": omega[None, :], "amp": amp}
 
 
+def _radii_of_gyration(mrb: NDArray, r_g: NDArray) -> tuple[float, float, float]:
+    """k44, k55, k66 (m): radii of gyration about axes through CG, as MSS's ``rbody``
+    takes them (M_RB = H(r_g)ᵀ diag(m, m, m, m k44², m k55², m k66²) H(r_g), Fossen
+    (2011) §3.3); the parallel-axis theorem takes m(|r_g|² − r_g,i²) off MRB's diagonal."""
+    m = float(mrb[0, 0])
+    offset = float(r_g @ r_g) - r_g**2
+    return tuple(  # type: ignore[return-value]
+        float(np.sqrt(max(mrb[3 + i, 3 + i] / m - offset[i], 0.0))) for i in range(3)
+    )
+
+
 def _main_struct(ds: xr.Dataset, mrb: NDArray | None, point: NDArray, name: str) -> dict:
     """``vessel.main``; ``CG`` and ``CB`` as FSD vectors from CO (current MSS convention)."""
     main: dict[str, Any] = {"name": name, "rho": float(ds.attrs["rho"]), "g": float(ds.attrs["g"])}
@@ -80,9 +91,7 @@ def _main_struct(ds: xr.Dataset, mrb: NDArray | None, point: NDArray, name: str)
         m = float(mrb[0, 0])
         main["m"] = m
         main["nabla"] = float(ds.attrs.get("displaced_volume", m / ds.attrs["rho"]))
-        main["k44"], main["k55"], main["k66"] = (
-            float(np.sqrt(max(mrb[k, k], 0.0) / m)) for k in (3, 4, 5)
-        )
+        main["k44"], main["k55"], main["k66"] = _radii_of_gyration(mrb, r_g)
     if "center_of_gravity" in ds.attrs:
         main["CG"] = np.asarray(ds.attrs["center_of_gravity"], dtype=float).reshape(1, 3)
     elif r_g is not None:
@@ -169,7 +178,7 @@ def write_mss(ds: xr.Dataset, path: str | os.PathLike[str]) -> Path:
     data, not completed by symmetry), ``velocities``, ``forceRAO``, ``motionRAO`` and
     ``driftfrc`` (surge, sway and yaw only: heave, roll and pitch drift are lost) when
     present, ``main`` (``name``, ``rho``, ``g``, ``m``, ``nabla``, ``CG`` and ``CB`` as
-    FSD vectors from CO, ``k44`` …, ``Lpp``, ``B``, ``T``, ``GM_T``, ``GM_L``, ``C_B``,
+    FSD vectors from CO, ``k44`` … (about CG), ``Lpp``, ``B``, ``T``, ``GM_T``, ``GM_L``, ``C_B``,
     ``Lwl``, ``S`` when known: :func:`_stability_fields`; a warning names those the data
     do not give, and data about a point other than CO or CG) and
     ``hydrodynamic_axes = 'FSD'``, as current MSS does. ``vessel.cummins`` keeps the
