@@ -83,6 +83,9 @@ def test_cli_dp_demo(tmp_path):
     assert run.eta.dims == ("time", "dof")
     assert run.eta.attrs["units"].startswith("m")
     assert "nu" in run and "thrust" in run and "force_crane" in run
+    # 120 s end before the roll settles under the crane load: said, not silently dropped
+    assert "check_heel_error" not in run.attrs
+    assert "no heel check" in result.output and "--duration over 260 s" in result.output
     for name in ("pose", "wave_and_radiation_forces", "loads", "watch_circle"):
         assert (out / f"{name}.png").stat().st_size > 20_000
     again = CliRunner().invoke(main, args)
@@ -100,6 +103,7 @@ def test_cli_dp_demo_on_mss_supply_vessel(shared_data, tmp_path):
     assert result.exit_code == 0, result.output
     run = xr.open_dataset(out / "run.nc", engine="h5netcdf")
     assert abs(run.attrs["check_heel_error"]) < 0.05
+    assert "static heel" in result.output and "no heel check" not in result.output
     assert 3.0 < run.attrs["check_static_heel_deg"] < 10.0  # 6.4°: 6362 t, GM_T 2.1 m
     assert run.attrs["check_watch_circle_m"] < 20.0
 

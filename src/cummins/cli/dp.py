@@ -133,7 +133,14 @@ def dp_demo_command(
       cummins dp-demo -o dp --duration 600 --seed 1
       cummins dp-demo -o dp_supply --duration 200 --data supply.mat
     """
-    from cummins.cli.dp_scenario import run_scenario, scenario_data, write_scenario_plots
+    from cummins.cli.dp_scenario import (
+        CRANE_TIME,
+        HEEL_CHECK_DURATION,
+        HEEL_SETTLE,
+        run_scenario,
+        scenario_data,
+        write_scenario_plots,
+    )
     from cummins.io.netcdf import save_netcdf
 
     out = Path(folder)
@@ -171,4 +178,10 @@ def dp_demo_command(
             f"mean roll {a['check_mean_roll_before_deg']:.3f}° before the crane load, "
             f"{a['check_mean_roll_after_deg']:.3f}° after it; static heel "
             f"{a['check_static_heel_deg']:.3f}° ({100 * a['check_heel_error']:+.1f} %)"
+        )
+    else:
+        console.print(
+            f"note: no heel check: the crane load starts at {CRANE_TIME:g} s and the mean roll "
+            f"is taken from {HEEL_SETTLE:g} s after it; --duration over "
+            f"{HEEL_CHECK_DURATION:g} s compares it with the static heel"
         )

@@ -30,6 +30,10 @@ import xarray as xr
 HS, OMEGA_P, GAMMA = 4.0, 0.60, 3.3
 WAVES_FROM_DEG = 45.0  # off the bow, starboard side
 CRANE_LOAD, CRANE_POINT, CRANE_TIME = 1.0e6, (0.0, 15.0, 0.0), 100.0
+#: The heel check averages the roll from HEEL_SETTLE s after the crane load, over at
+#: least 60 s: runs not longer than HEEL_CHECK_DURATION have none.
+HEEL_SETTLE = 100.0
+HEEL_CHECK_DURATION = CRANE_TIME + HEEL_SETTLE + 60.0
 #: cos-2s spreading exponent of the short-crested sea (the paper does not give it).
 SPREADING = 5.0
 #: Linear viscous damping of surge, sway and yaw, N s/m and N m s/rad: the lowest
@@ -345,7 +349,7 @@ def static_heel(model, force: np.ndarray) -> np.ndarray:
     return np.linalg.solve(model.restoring[np.ix_(idx, idx)], np.asarray(force)[idx])
 
 
-def scenario_checks(run: xr.Dataset, model, *, settle: float = 100.0) -> dict[str, float]:
+def scenario_checks(run: xr.Dataset, model, *, settle: float = HEEL_SETTLE) -> dict[str, float]:
     """Mean roll before the crane load and after it has settled (``settle`` s later),
     the static heel it should give, and the watch circle (m)."""
     t = run.time.values
@@ -354,7 +358,7 @@ def scenario_checks(run: xr.Dataset, model, *, settle: float = 100.0) -> dict[st
         "watch_circle_m": float(np.hypot(run.eta.sel(dof="North"), run.eta.sel(dof="East")).max()),
         "max_yaw_deg": float(np.degrees(np.abs(run.eta.sel(dof="Yaw")).max())),
     }
-    if "force_crane" in run and t[-1] > CRANE_TIME + settle + 60:
+    if "force_crane" in run and t[-1] > CRANE_TIME + settle + 60.0:
         before = (t > 30) & (t < CRANE_TIME)
         after = t > CRANE_TIME + settle
         crane = run.force_crane.values[after].mean(axis=0)
