@@ -251,6 +251,17 @@ def rao_command(
             console.print(f"headings: {coverage.reason}")
     console.print(f"terms: {rao.attrs['terms']}")
     console.print(rao_table(rao))
+    if omega is None and system is None:
+        apart = rao_against_data(rao, ds)
+        if apart:
+            listed = ", ".join(f"{dof} {100 * v:.0f} %" for dof, v in apart.items())
+            console.print(
+                f"note: the data's own motion RAOs (the solver's) differ from these by more "
+                f"than {100 * RAO_DATA_TOLERANCE:.0f} % of their peak: {listed} (largest "
+                "difference of |RAO| over the headings): the solver used terms the data do "
+                "not hold (VERES' viscous roll damping, MSS's surge estimates …); "
+                "--viscous-damping DOF B adds damping"
+            )
     if pto is not None:
         console.print(pto_table(pto))
     save_rao(rao, output, force=force, pto=pto)
@@ -261,6 +272,39 @@ def rao_command(
         with stage_progress("drawing the RAOs"):
             save_figure(plot_rao(rao), plot_file, force=force)
         console.print(f"wrote {plot_file}")
+
+
+#: A DOF whose |RAO| differs from the data's own by more than this fraction of its peak
+#: is named by ``cummins rao``.
+RAO_DATA_TOLERANCE = 0.05
+
+
+def rao_against_data(rao, ds) -> dict[str, float]:
+    """The DOFs whose computed |RAO| differs from the data's own ``rao`` (the solver's
+    motion RAOs, same frequencies) by more than RAO_DATA_TOLERANCE of the data's peak,
+    with that largest difference over the headings both hold (fraction of the peak)."""
+    if "rao" not in ds or "wave_direction" not in ds["rao"].dims:
+        return {}
+    data = ds["rao"]
+    if data.sizes["omega"] != rao.sizes["omega"] or not np.allclose(
+        data.omega.values, rao.omega.values, rtol=1e-9
+    ):
+        return {}
+    data_beta = np.mod(data.wave_direction.values, 2 * np.pi)
+    out = {}
+    for j, beta in enumerate(np.mod(rao.wave_direction.values, 2 * np.pi)):
+        near = np.flatnonzero(np.isclose(data_beta, beta, atol=1e-6))
+        if near.size == 0:
+            continue
+        for dof in rao.dof.values:
+            if str(dof) not in data.radiating_dof.values:
+                continue
+            ref = np.abs(data.isel(wave_direction=near[0]).sel(radiating_dof=str(dof)).values)
+            ours = np.abs(rao.isel(wave_direction=j).sel(dof=dof).values)
+            peak = ref.max()
+            if peak > 0 and np.isfinite(ref).all():
+                out[str(dof)] = max(out.get(str(dof), 0.0), float(np.abs(ours - ref).max() / peak))
+    return {dof: v for dof, v in out.items() if v > RAO_DATA_TOLERANCE}
 
 
 def pto_table(pto) -> Table:
