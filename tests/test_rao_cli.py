@@ -114,3 +114,10 @@ def test_rao_names_the_dofs_apart_from_the_data_own_raos(runner, shared_data, tm
     }
     assert listed["Roll"] > 100.0
     assert "Heave" not in listed and "Pitch" not in listed
+    # HAMS' own .4 RAOs of its test cylinder are those of its .1/.3/.hst: no note
+    # (measured 0.0 % in every DOF), the comparison's units and conventions hold
+    cylinder = shared_data / "corpus" / "HAMS" / "Cylinder" / "Output_Benchmark"
+    args = [str(cylinder / "Wamit_format" / "Buoy.1"), "-o", str(tmp_path / "cyl.nc")]
+    result = runner.invoke(rao_command, args)
+    assert result.exit_code == 0, result.output
+    assert "Motion RAOs" in result.output and "note: the data's own" not in result.output
