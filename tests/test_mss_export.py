@@ -149,3 +149,15 @@ def test_veres_struct_off_co_and_asymmetric_warn(shared_data, tmp_path):
     texts = [str(w.message) for w in caught]
     assert any("no wave heading between 180° and 360°" in t for t in texts), texts
     assert cummins.read(tmp_path / "b.mat").sizes["wave_direction"] == 19
+
+
+def test_simulate_names_the_option_for_mss_bv_left_out(shared_data, tmp_path):
+    """MSS's Bv of surge, sway and yaw varies with frequency (supply: 6.2e3 to 1.3e5 N s/m
+    in surge) and is left out of the time-domain model: the note names the option that
+    gives the value, not only the Python argument (viscous_damping)."""
+    data = shared_data / "mss" / "supply" / "supply.mat"
+    args = ["simulate", data, "--dof", "Surge", "--dof", "Heave", "--dof", "Pitch"]
+    args += ["--hs", "2", "--tp", "9", "--duration", "60", "-o", tmp_path / "run.nc"]
+    output = " ".join(_run(args).output.split())
+    assert "Surge-Surge (6.23e+03 to 1.3e+05)" in output
+    assert "left out; pass the value you want as viscous_damping (--viscous-damping" in output

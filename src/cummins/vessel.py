@@ -485,7 +485,7 @@ def _constant_part(
         warnings.warn(
             f"{name} varies with frequency for {', '.join(varying)}: a linear time-domain "
             "model cannot hold it and these entries are left out; pass the value you want "
-            "as viscous_damping",
+            "as viscous_damping (--viscous-damping DOF VALUE)",
             UserWarning,
             stacklevel=3,
         )
