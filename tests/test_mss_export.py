@@ -161,3 +161,21 @@ def test_simulate_names_the_option_for_mss_bv_left_out(shared_data, tmp_path):
     output = " ".join(_run(args).output.split())
     assert "Surge-Surge (6.23e+03 to 1.3e+05)" in output
     assert "left out; pass the value you want as viscous_damping (--viscous-damping" in output
+
+
+def test_multi_speed_struct_keeps_one_bv_as_mss(shared_data, tmp_path):
+    """MSS's s175.mat (5 speeds) holds one Bv, 6×6×36, for every speed; convert wrote it
+    6×6×36×5. Now the round trip gives MSS's layout and values, and k44 … (about CG) equal
+    MSS's (k55 42.000 m; about the reference point 42.077)."""
+    source = shared_data / "mss" / "s175" / "s175.mat"
+    _run(["convert", source, tmp_path / "s175.mat"])
+
+    def load(path):
+        return scipy.io.loadmat(path, squeeze_me=True, struct_as_record=False)["vessel"]
+
+    ours, mss = load(tmp_path / "s175.mat"), load(source)
+    assert np.shape(ours.Bv) == np.shape(mss.Bv) == (6, 6, 36)
+    np.testing.assert_allclose(ours.Bv, mss.Bv, rtol=1e-12)
+    assert np.shape(ours.A) == (6, 6, 36, 5)
+    for k in ("k44", "k55", "k66"):
+        assert float(getattr(ours.main, k)) == pytest.approx(float(getattr(mss.main, k)), rel=1e-6)

@@ -274,6 +274,9 @@ def write_mss(ds: xr.Dataset, path: str | os.PathLike[str]) -> Path:
     if speeds.size == 1:
         for key in ("A", "B", "C", "Bv"):
             vessel[key] = vessel[key][:, :, :, 0]
+    elif np.array_equal(vessel["Bv"], np.repeat(vessel["Bv"][..., :1], speeds.size, axis=3)):
+        # one viscous estimate for every speed: 6×6×Nfreq, as MSS's own s175.mat
+        vessel["Bv"] = vessel["Bv"][:, :, :, 0]
     if "wave_direction" in out.dims:
         vessel["headings"] = np.asarray(out.wave_direction.values, dtype=float)[None, :]
         if "excitation_force" in out:
