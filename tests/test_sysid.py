@@ -664,3 +664,25 @@ def test_cli_decay_of_a_linear_model_with_memory(tmp_path, roll_data):
     _, values = decay("--burn-in", "52")
     assert values["p2_significance"] != "negative"
     assert values["p1"] == pytest.approx(0.0825, rel=0.05)
+
+
+def test_cli_says_the_model_holds_the_data_damping(shared_data, tmp_path):
+    """MSS's supply.mat holds Bv44 = 3e7 N m s/rad, which the potential-flow model takes
+    in: a record simulated with it identifies ~0 on top (9.9e3 N m s/rad), and the
+    command says so instead of labelling the model 'potential flow only' silently; the
+    negative-damping warning names the option (--method bounded)."""
+    data = shared_data / "mss" / "supply" / "supply.mat"
+    run = tmp_path / "run.nc"
+    args = ["simulate", str(data), "--hs", "4", "--tp", "10", "--heading", "100"]
+    args += ["--duration", "600", "--seed", "2", "-o", str(run)]
+    assert CliRunner().invoke(main, args).exit_code == 0
+    args = ["identify-damping", str(run), "--model", str(data), "--dof", "Roll"]
+    args += ["--terms", "linear", "--report", str(tmp_path / "rep")]
+    result = CliRunner().invoke(main, args)
+    assert result.exit_code == 0, result.output
+    output = " ".join(result.output.split())
+    assert "note: the model holds the data's additional_damping" in output
+    assert "Roll 3e+07" in output
+    found = json.loads((tmp_path / "rep" / "damping.json").read_text())
+    (term,) = found["estimates"][0]["terms"]
+    assert abs(term["value"]) < 0.01 * 3e7  # measured 9.9e3: 0.03 % of the data's Bv44

@@ -31,6 +31,19 @@ from cummins.cli.common import (
 from cummins.cli.option_rules import Command, option_rules, unique_values
 
 
+def data_damping_held(vessel, given, dofs) -> dict[str, float]:
+    """The linear damping of ``dofs`` the vessel took from the data's
+    ``additional_damping`` (its B_v less the ``given`` --viscous-damping values)."""
+    from cummins.vessel import viscous_damping_matrix
+
+    extra = np.diag(vessel.viscous_damping - viscous_damping_matrix(vessel.dofs, given))
+    out = {}
+    for dof in dofs:
+        if dof in vessel.dofs and extra[vessel.dofs.index(dof)] > 0:
+            out[dof] = float(extra[vessel.dofs.index(dof)])
+    return out
+
+
 @click.command(name="identify-damping", cls=Command)
 @click.argument("records", nargs=-1, required=True, type=click.Path(exists=True, dir_okay=False))
 @click.option(
@@ -262,6 +275,14 @@ def identify_damping_command(
     with console.status("preparing the potential-flow model"):
         vessel = vessel_from_hydrodb(
             ds, model, viscous_damping=b_v, allow_other_data=allow_other_data
+        )
+    held = data_damping_held(vessel, b_v, dofs)
+    if held:
+        listed = ", ".join(f"{dof} {value:.4g}" for dof, value in held.items())
+        console.print(
+            f"note: the model holds the data's additional_damping (MSS's Bv, WAMIT's "
+            f"external damping …): {listed} (N s/m, N m s/rad); the identified terms are "
+            "the damping on top of it, and 'potential flow only' below includes it"
         )
     recs = []
     for path in records:

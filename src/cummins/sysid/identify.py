@@ -263,7 +263,7 @@ class DampingEstimate:
             out.append(
                 f"{self.dof}: negative damping estimated for {', '.join(self.negative)} — "
                 "physically wrong and a model that can gain energy; use method='bounded' "
-                "or fewer terms"
+                "(--method bounded) or fewer terms"
             )
         if self.narrow_banded:
             out.append(
