@@ -10,6 +10,7 @@ from pathlib import Path
 
 import numpy as np
 import pytest
+import xarray as xr
 from click.testing import CliRunner
 
 import cummins
@@ -257,3 +258,16 @@ def test_reports_of_dp_runs_and_lf_models(tmp_path):
         result = runner.invoke(main, ["report", str(source), "-o", str(out)])
         assert result.exit_code == 0, result.output
         _assert_self_contained(out.read_text(encoding="utf-8"), texts, n_figures)
+    # at a manoeuvring speed the page gives the speed and its terms N(U) (it showed only D,
+    # as if at rest: N[Yaw, Yaw] = (m x_g + A26) U is on the diagonal)
+    moving = tmp_path / "lf_moving.nc"
+    args = ["lf-model", str(TANKER), "--manoeuvring-speed", "5", "-o", str(moving)]
+    assert runner.invoke(main, args).exit_code == 0
+    out = tmp_path / "lf_moving.html"
+    assert runner.invoke(main, ["report", str(moving), "-o", str(out)]).exit_code == 0
+    speed_terms = xr.open_dataset(moving, engine="h5netcdf").speed_terms
+    yaw = float(speed_terms.sel(influenced_dof="Yaw", radiating_dof="Yaw"))
+    _assert_self_contained(
+        out.read_text(encoding="utf-8"), ("Speed terms at 5 m/s", "N[Yaw, Yaw]"), 0
+    )
+    assert yaw != 0 and f"{yaw:.4g}" in out.read_text(encoding="utf-8")

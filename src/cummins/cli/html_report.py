@@ -463,12 +463,20 @@ def lf_sections(path: Path) -> list[Section]:
                 str(lf.provenance.sel(dof=dof).values),
             ]
         )
-    return [
+    sections = [
         Section(
             "Coefficients (diagonal)",
             table_html(["DOF", "taken at ω [rad/s]", "M_RB + M_A", "D", "G", "provenance"], rows),
         )
     ]
+    if "speed_terms" in lf:  # lf-model --manoeuvring-speed: N(U), added to D
+        n = lf.speed_terms.transpose("influenced_dof", "radiating_dof")
+        speed = [[f"N[{n.influenced_dof.values[i]}, {n.radiating_dof.values[j]}]", n.values[i, j]]
+                 for i, j in zip(*np.nonzero(n.values), strict=True)]  # fmt: skip
+        title = f"Speed terms at {float(lf.attrs.get('forward_speed', np.nan)):g} m/s"
+        text = _note(str(lf.attrs.get("speed_terms", ""))) + table_html(["", "N(U)"], speed)
+        sections.append(Section(title, text))
+    return sections
 
 
 def batch_sections(results: xr.Dataset) -> list[Section]:
