@@ -130,3 +130,21 @@ def test_cli_dp_demo_names_what_the_data_lack(shared_data, tmp_path):
     cummins.write(fast, path)
     with pytest.raises(HydroDataError, match="zero forward speed"):
         scenario_data(path)
+
+
+def test_cli_dp_demo_water_depth_of_veres_files(shared_data, tmp_path):
+    """VERES files do not record the depth: dp-demo's warning told the user to give
+    --water-depth, which dp-demo did not have. It has it now (for --data files), and
+    with it the warning is gone; without --data it is refused, not ignored."""
+    data = shared_data / "mss" / "supply" / "input.re7"
+    base = ["dp-demo", "--duration", "20", "--data", str(data)]
+    result = CliRunner().invoke(main, [*base, "-o", str(tmp_path / "a")])
+    assert result.exit_code == 0, result.output
+    assert "give --water-depth M" in result.output
+    result = CliRunner().invoke(main, [*base, "-o", str(tmp_path / "b"), "--water-depth", "300"])
+    assert result.exit_code == 0, result.output
+    assert "water depth is not recorded" not in result.output
+    refused = CliRunner().invoke(
+        main, ["dp-demo", "-o", str(tmp_path / "c"), "--water-depth", "300"]
+    )
+    assert refused.exit_code == 2 and "--water-depth" in refused.output

@@ -7,6 +7,7 @@ from pathlib import Path
 import click
 
 from cummins.cli.common import (
+    Number,
     console,
     force_option,
     heading_degrees,
@@ -78,6 +79,15 @@ from cummins.validation import check_simulation_size
     ".mat such as supply.mat or tanker.mat, or VERES/WAMIT files with mean drift and main "
     "dimensions), at zero speed; default: MSS's S-175, bundled with cummins.",
 )
+@click.option(
+    "--water-depth",
+    type=Number(0.0, min_open=True, unit="m", infinite=True),
+    default=None,
+    metavar="M",
+    help="Water depth of the --data files in m (inf for deep water) when they do not "
+    "record it (VERES, MSS structs): the wave numbers of the wave loads. Default: deep "
+    "water, with a warning.",
+)
 @second_order_option(
     "newman",
     "Wave drift: newman (Newman's approximation at the instantaneous relative heading, "
@@ -90,6 +100,7 @@ from cummins.validation import check_simulation_size
     needs={
         "current_from": ("current_speed", lambda v: v > 0, "above 0"),
         "wind_from": ("wind_speed", lambda v: v > 0, "above 0"),
+        "water_depth": "data_path",
     }
 )
 @reports_errors
@@ -103,6 +114,7 @@ def dp_demo_command(
     wind_speed,
     wind_from,
     data_path,
+    water_depth,
     second_order,
     keep_suspect,
     force,
@@ -149,7 +161,7 @@ def dp_demo_command(
     prepare_outputs(*(out / n for n in names), force=force)
     # before the model is built: the run's size (the S-175 model has about 60 states)
     check_simulation_size(duration, dt, 60, 54, option="--duration")
-    ds, damping = scenario_data(data_path, second_order)
+    ds, damping = scenario_data(data_path, second_order, water_depth=water_depth)
     with progress_bar() as bar:
         task = bar.add_task(f"simulating {duration:g} s of DP", total=1.0)
         scenario = run_scenario(

@@ -74,7 +74,10 @@ def s175_data(path: str | Path | None = None) -> xr.Dataset:
 
 
 def scenario_data(
-    path: str | Path | None = None, second_order: str = "newman"
+    path: str | Path | None = None,
+    second_order: str = "newman",
+    *,
+    water_depth: float | None = None,
 ) -> tuple[xr.Dataset, dict[str, float]]:
     """The vessel of the scenario at zero speed and the linear viscous damping of its
     horizontal plane (N s/m, N m s/rad).
@@ -82,14 +85,15 @@ def scenario_data(
     ``path`` None, or a folder holding ``mss/s175/s175.mat``: the S-175
     (:func:`s175_data`) with :data:`LOW_FREQUENCY_DAMPING`. Any other file cummins reads
     (MSS, WAMIT, VERES …): its zero-speed data, checked by :func:`check_dp_data`, and the
-    damping of :func:`data_viscous_damping`.
+    damping of :func:`data_viscous_damping`; ``water_depth`` (m) for files that do not
+    record it (:func:`cummins.read`).
     """
     import cummins
     from cummins.errors import HydroDataError
 
     if path is None or (Path(path).is_dir() and (Path(path) / "mss" / "s175").is_dir()):
         return s175_data(path), dict(LOW_FREQUENCY_DAMPING)
-    ds = cummins.read(path)
+    ds = cummins.read(path, water_depth=water_depth)
     if "forward_speed" in ds.dims:
         speeds = np.asarray(ds.forward_speed.values, dtype=float)
         if not np.any(np.abs(speeds) < 1e-3):
