@@ -179,3 +179,7 @@ def test_multi_speed_struct_keeps_one_bv_as_mss(shared_data, tmp_path):
     assert np.shape(ours.A) == (6, 6, 36, 5)
     for k in ("k44", "k55", "k66"):
         assert float(getattr(ours.main, k)) == pytest.approx(float(getattr(mss.main, k)), rel=1e-6)
+    # and --viscous-damping says it adds to the data's constant Bv (roll: 3e7 N m s/rad)
+    for command in ("simulate", "rao", "identify-damping"):
+        text = " ".join(_run([command, "--help"]).output.split())
+        assert "added to the data's own constant additional_damping (MSS's Bv" in text

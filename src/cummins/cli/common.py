@@ -323,8 +323,9 @@ def viscous_damping_option(func):
         multiple=True,
         metavar="DOF VALUE",
         help="Linear viscous damping B_v on a DOF, e.g. --viscous-damping Roll 5e8 (kg/s, "
-        "kg m^2/s; repeatable, once per DOF). Surge, sway and yaw have no "
-        "restoring: without it they drift in a simulation.",
+        "kg m^2/s; repeatable, once per DOF), added to the data's own constant "
+        "additional_damping (MSS's Bv, WAMIT's external damping). Surge, sway and yaw "
+        "have no restoring: without it they drift in a simulation.",
     )(func)
 
 
