@@ -497,7 +497,7 @@ def simulate_command(
     if vessel.ptos:
         from cummins.cli.system_options import print_pto_run
 
-        print_pto_run(run, vessel, sea if regular else None, ds, system, b_v)
+        print_pto_run(run, vessel, sea, ds, system, b_v, regular=regular)
     from cummins.io.netcdf import save_netcdf
 
     save_netcdf(run, output)
