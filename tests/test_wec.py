@@ -641,3 +641,22 @@ def test_irregular_run_prints_the_frequency_domain_power(corpus, tmp_path):
         power = rao.pto_power.isel(pto=0, wave_direction=0).values
     spectral = 2 * np.trapezoid(power * jonswap(omega, 0.2, 2.0), omega)
     assert abs(printed_fd / spectral - 1) < 0.01  # measured 0.04 %
+
+
+def test_a_pto_on_a_misspelt_dof_names_the_dofs(corpus, tmp_path):
+    """``--pto heave ground`` on the WaveBot: a name that is not a DOF is taken for a body,
+    and the error said only "no body 'heave'; the bodies are body, or 'ground'" — now it
+    names the DOFs too and the one meant (exit status 2, one line)."""
+    from click.testing import CliRunner
+
+    from cummins.cli import main
+
+    data = corpus / "WEC-Sim_Applications/wamit_WaveBot/waveBotBuoy.out"
+    base = ["rao", str(data), "--rho", "1000", "--mass", "858.415", "--dof", "Heave"]
+    base += ["--n-omega", "3", "-o", str(tmp_path / "rao.nc")]
+    for name, meant in (("heave", "did you mean the DOF 'Heave'"), ("Heavy", "the DOFs are")):
+        result = CliRunner().invoke(main, [*base, "--pto", name, "ground", "--pto-damping", "1"])
+        assert result.exit_code == 2, result.output
+        assert f"--pto {name} ground" in result.output and meant in result.output
+        assert "Surge, Sway, Heave" in result.output and "Traceback" not in result.output
+    assert not (tmp_path / "rao.nc").exists()
