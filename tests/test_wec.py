@@ -660,3 +660,31 @@ def test_a_pto_on_a_misspelt_dof_names_the_dofs(corpus, tmp_path):
         assert f"--pto {name} ground" in result.output and meant in result.output
         assert "Surge, Sway, Heave" in result.output and "Traceback" not in result.output
     assert not (tmp_path / "rao.nc").exists()
+
+
+def test_a_spread_sea_beyond_the_headings_names_spreading(corpus, tmp_path):
+    """Capytaine's OSWEC (headings 0–90°, mirrored once the fixed base is dropped) on its
+    hinge, a short-crested sea about --heading 0: with s = 4 the cos-2s bins reach ±103°,
+    across the data's gap from 90° to 270°, and the error told the user to choose another
+    --heading (the one given). It names --spreading and the directions now (exit 2); with
+    s = 10 (±71°) the run goes through."""
+    from click.testing import CliRunner
+
+    from cummins.cli import main
+
+    data = corpus / "WEC-Sim/capytaine_OSWEC_flap/outputs/oswec_hydrodynamics.nc"
+    args = ["simulate", str(data), "--mass", "127000", "--mass", "999"]
+    args += ["--center-of-gravity", "0", "0", "-3.9", "--center-of-gravity", "0", "0", "-10.9"]
+    args += ["--radii-of-gyration", "3.817", "3.817", "3.817", "--radii-of-gyration", "1", "1"]
+    args += ["1", "--joint", "fixed", "body2", "ground", "--joint", "revolute", "body1"]
+    args += ["body2", "--axis", "0", "1", "0", "--point", "0", "0", "-8.9", "--pto-damping"]
+    args += ["1.2e7", "--no-body-coupling", "--heading", "0", "--hs", "2.5", "--tp", "8"]
+    args += ["--duration", "30", "--seed", "2", "-o", str(tmp_path / "run.nc")]
+    result = CliRunner().invoke(main, [*args, "--spreading", "4"])
+    assert result.exit_code == 2, result.output
+    assert "--spreading 4" in result.output and "-102.9° to 102.9°" in result.output
+    assert "choose one" not in result.output and "Traceback" not in result.output
+    assert not (tmp_path / "run.nc").exists()
+    result = CliRunner().invoke(main, [*args, "--spreading", "10"])
+    assert result.exit_code == 0, result.output
+    assert (tmp_path / "run.nc").exists()
