@@ -688,3 +688,26 @@ def test_a_spread_sea_beyond_the_headings_names_spreading(corpus, tmp_path):
     result = CliRunner().invoke(main, [*args, "--spreading", "10"])
     assert result.exit_code == 0, result.output
     assert (tmp_path / "run.nc").exists()
+
+
+def test_no_body_coupling_on_one_body_says_it_does_nothing(corpus, tmp_path):
+    """``--no-body-coupling`` on the WaveBot (one body) did nothing and said nothing; a
+    note says so now, and the RAOs are those of the run without it."""
+    from click.testing import CliRunner
+
+    from cummins.cli import main
+
+    data = corpus / "WEC-Sim_Applications/wamit_WaveBot/waveBotBuoy.out"
+    base = ["rao", str(data), "--rho", "1000", "--mass", "858.415", "--dof", "Heave"]
+    base += ["--n-omega", "5"]
+    results = []
+    for extra in ([], ["--no-body-coupling"]):
+        out = tmp_path / f"rao{len(extra)}.nc"
+        result = CliRunner().invoke(main, [*base, *extra, "-o", str(out)])
+        assert result.exit_code == 0, result.output
+        results.append(result.output)
+        with xr.open_dataset(out, engine="h5netcdf") as rao:
+            results.append(rao.rao.values.copy())
+    assert "--no-body-coupling changes nothing" not in results[0]
+    assert "--no-body-coupling changes nothing: the data hold one body" in results[2]
+    np.testing.assert_array_equal(results[1], results[3])

@@ -297,6 +297,13 @@ def print_system(assembly) -> None:
 
     system = assembly.system
     several = len(bodies(assembly.ds)) > 1  # the body coupling means nothing for one
+    if not several and not system.body_coupling:
+        console.print(
+            "note: --no-body-coupling changes nothing: the data hold one body, no coupling "
+            "between bodies to leave out"
+        )
+        if not system.joints and not system.ptos and not assembly.held:
+            return
     if system.is_plain and not assembly.held:
         if several:
             console.print(system.coupling_note())
