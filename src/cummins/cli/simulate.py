@@ -499,7 +499,15 @@ def simulate_command(
     if vessel.ptos:
         from cummins.cli.system_options import print_pto_run
 
-        print_pto_run(run, vessel, sea, ds, system, b_v, regular=regular)
+        left_out = [
+            option
+            for option, given in (
+                ("--quadratic-damping", bool(b_q)),
+                ("--second-order", second_order != "none" and not wave_record),
+            )
+            if given
+        ]
+        print_pto_run(run, vessel, sea, ds, system, b_v, regular=regular, left_out=left_out)
     from cummins.io.netcdf import save_netcdf
 
     save_netcdf(run, output)

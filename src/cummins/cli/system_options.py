@@ -329,12 +329,16 @@ def print_system(assembly) -> None:
         console.print(system.coupling_note())
 
 
-def print_pto_run(run, vessel, sea, ds, system, viscous_damping=None, *, regular=False) -> None:
+def print_pto_run(
+    run, vessel, sea, ds, system, viscous_damping=None, *, regular=False, left_out=()
+) -> None:
     """The PTOs of a run: the mean absorbed power (over the last whole wave periods of a
     regular-wave run, up to 10; over the run otherwise) beside that of the frequency-domain
     solution of the same equations with the data's A(ω), B(ω), F(ω) for the same wave
     components (``sea``; none for a wave record); in regular waves also the steady
-    amplitudes of the relative displacement and of the force (fitted over those periods)."""
+    amplitudes of the relative displacement and of the force (fitted over those periods).
+    ``left_out``: the options of the run that the linear frequency domain leaves out
+    (``--quadratic-damping``, ``--second-order``), said in the column and a note."""
     import numpy as np
     from rich.table import Table
 
@@ -353,7 +357,7 @@ def print_pto_run(run, vessel, sea, ds, system, viscous_damping=None, *, regular
     table = Table(title="PTOs" + (" (steady state)" if regular else ""))
     columns = ["PTO", "mean power (kW)"]
     if reference is not None:
-        columns += ["frequency domain (kW)"]
+        columns += ["linear frequency domain (kW)" if left_out else "frequency domain (kW)"]
     if regular:
         columns += ["amplitude", "force amplitude"]
     for column in columns:
@@ -373,6 +377,12 @@ def print_pto_run(run, vessel, sea, ds, system, viscous_damping=None, *, regular
             ]
         table.add_row(*row)
     console.print(table)
+    if reference is not None and left_out:
+        console.print(
+            f"note: the frequency domain leaves out {' and '.join(left_out)}: the run's "
+            f"power differs from it by {'their' if len(left_out) > 1 else 'its'} effect, "
+            "not by an error"
+        )
 
 
 def _frequency_domain_power(sea, ds, system, viscous_damping=None):
