@@ -742,3 +742,45 @@ def test_the_linear_frequency_domain_says_what_it_leaves_out(corpus, tmp_path):
     (run, fd), (run_q, fd_q) = powers
     assert abs(run / fd - 1) < 0.01 and fd_q == fd  # the same linear reference
     assert run_q < 0.95 * fd_q  # the drag's effect: measured −13 %
+
+
+def test_a_failing_case_of_a_study_is_one_line_without_dask_logs(corpus, tmp_path):
+    """A power-matrix study of Capytaine's OSWEC on its hinge whose spread sea (s = 4)
+    leaves the data's headings: the case's error is one line, and the Dask worker's
+    "Compute Failed" log (with its Traceback) no longer precedes it on the terminal."""
+    import os
+    import subprocess
+    import sys
+
+    pytest.importorskip("distributed")
+    data = corpus / "WEC-Sim/capytaine_OSWEC_flap/outputs/oswec_hydrodynamics.nc"
+    flap = with_inertia(
+        cummins.read(data),
+        mass=[127000.0, 999.0],
+        center_of_gravity=[[0, 0, -3.9], [0, 0, -10.9]],
+        radii_of_gyration=[[3.817] * 3, [1.0] * 3],
+    )
+    cummins.write(flap, tmp_path / "oswec.nc")
+    (tmp_path / "study.yaml").write_text(
+        "data: oswec.nc\nanalysis: rao\nspectrum: pm\n"
+        "grid: {heading: [0], hs: [1], tp: [8], spreading: [4]}\n"
+        "system:\n  body_coupling: false\n  joints:\n"
+        "    - {kind: fixed, body: body2, base: ground}\n"
+        "    - {kind: revolute, body: body1, base: body2, axis: [0, 1, 0],"
+        " point: [0, 0, -8.9], pto: {damping: 1.2e7}}\n",
+        encoding="utf-8",
+    )
+    env = {**os.environ, "OPENBLAS_NUM_THREADS": "1"}
+    result = subprocess.run(
+        [sys.executable, "-m", "cummins", "batch", "study.yaml", "-o", "r.nc", "--workers", "1"],
+        cwd=tmp_path,
+        env=env,
+        capture_output=True,
+        text=True,
+        timeout=300,
+    )
+    output = result.stdout + result.stderr
+    assert result.returncode == 2, output
+    (line,) = [x for x in output.splitlines() if x.startswith("error:")]
+    assert "spreading 4" in line and "lies in a gap of the data's headings" in line
+    assert "Compute Failed" not in output and "Traceback" not in output, output
