@@ -784,3 +784,30 @@ def test_a_failing_case_of_a_study_is_one_line_without_dask_logs(corpus, tmp_pat
     (line,) = [x for x in output.splitlines() if x.startswith("error:")]
     assert "spreading 4" in line and "lies in a gap of the data's headings" in line
     assert "Compute Failed" not in output and "Traceback" not in output, output
+
+
+def test_a_point_on_a_translational_joint_is_said_to_change_nothing(tmp_path):
+    """The float–spar (Capytaine, tests/data): ``--point`` after a translational joint was
+    taken and silently did nothing (its constraints are the same through every point); a
+    note says so, and the RAOs are those without it."""
+    from pathlib import Path
+
+    from click.testing import CliRunner
+
+    from cummins.cli import main
+
+    data = Path(__file__).parent / "data" / "float_spar_capytaine.nc"
+    base = ["rao", str(data), "--headings", "0", "--n-omega", "4", "--joint", "translational"]
+    base += ["spar", "ground"]
+    rest = ["--joint", "translational", "float", "spar", "--pto-damping", "1e6"]
+    outputs, raos = [], []
+    for extra in ([], ["--point", "0", "0", "-10"]):
+        out = tmp_path / f"rao{len(extra)}.nc"
+        result = CliRunner().invoke(main, [*base, *extra, *rest, "-o", str(out)])
+        assert result.exit_code == 0, result.output
+        outputs.append(result.output)
+        with xr.open_dataset(out, engine="h5netcdf") as rao:
+            raos.append(rao.rao.values.copy())
+    note = "--joint translational spar ground: --point changes nothing"
+    assert note not in outputs[0] and note in outputs[1]
+    np.testing.assert_allclose(raos[0], raos[1], rtol=1e-12, atol=0)

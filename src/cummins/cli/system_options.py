@@ -297,6 +297,15 @@ def print_system(assembly) -> None:
 
     system = assembly.system
     several = len(bodies(assembly.ds)) > 1  # the body coupling means nothing for one
+    for joint in system.joints:
+        if joint.point is not None and joint.kind != "revolute":
+            console.print(
+                escape(
+                    f"note: {joint.where}: --point changes nothing: a {joint.kind} joint's "
+                    "constraints are the same through every point (only a revolute joint's "
+                    "hinge is placed by it)"
+                )
+            )
     if not several and not system.body_coupling:
         console.print(
             "note: --no-body-coupling changes nothing: the data hold one body, no coupling "
