@@ -811,3 +811,21 @@ def test_a_point_on_a_translational_joint_is_said_to_change_nothing(tmp_path):
     note = "--joint translational spar ground: --point changes nothing"
     assert note not in outputs[0] and note in outputs[1]
     np.testing.assert_allclose(raos[0], raos[1], rtol=1e-12, atol=0)
+
+
+def test_the_missing_inertia_message_gives_advice_that_works_for_heave(corpus, tmp_path):
+    """The WaveBot's .out holds no inertia: a heave-only PTO run without --mass asked for
+    the mass, centre of gravity and radii of gyration; the message now says --mass alone
+    does when only translations move, and following it the run goes through."""
+    from click.testing import CliRunner
+
+    from cummins.cli import main
+
+    data = corpus / "WEC-Sim_Applications/wamit_WaveBot/waveBotBuoy.out"
+    base = ["rao", str(data), "--rho", "1000", "--dof", "Heave", "--pto", "Heave", "ground"]
+    base += ["--pto-damping", "1000", "--n-omega", "3", "-o", str(tmp_path / "rao.nc")]
+    result = CliRunner().invoke(main, base)
+    assert result.exit_code == 1, result.output
+    assert "--mass alone when only translations move" in result.output, result.output
+    result = CliRunner().invoke(main, [*base, "--mass", "858.415"])
+    assert result.exit_code == 0, result.output
