@@ -829,3 +829,25 @@ def test_the_missing_inertia_message_gives_advice_that_works_for_heave(corpus, t
     assert "--mass alone when only translations move" in result.output, result.output
     result = CliRunner().invoke(main, [*base, "--mass", "858.415"])
     assert result.exit_code == 0, result.output
+
+
+def test_check_of_a_flap_points_to_the_hinge_pre_load(corpus):
+    """``cummins check`` of the 2015 WAMIT OSWEC: the free flap's pitch restoring is
+    negative (−1.9 MN·m/rad, its centre of gravity above its centre of buoyancy at
+    m = ρ∇) and the advice spoke of the centre of gravity only; it names the hinge's
+    pre-load that ``rao``/``simulate`` add with the joint (8.34 MN·m/rad: docs/wec.md).
+    Heave's advice (no hinge holds a body in heave) is unchanged."""
+    ds = cummins.read(corpus / "WEC-Sim/wamit_OSWEC_2015_with_bemio_h5/oswec.out", rho=1000.0)
+    found = {f.where: f for f in cummins.check(ds).findings if f.check == "hydrostatics"}
+    pitch = found["body1__Pitch"]
+    assert pitch.severity == "warning" and -2.0e6 < pitch.value < -1.8e6
+    assert "the joint's pre-load" in pitch.advice and "--joint" in pitch.advice
+    flipped = ds.copy(deep=True)
+    heave = {"influenced_dof": "body1__Heave", "radiating_dof": "body1__Heave"}
+    flipped["hydrostatic_stiffness"].loc[heave] *= -1
+    advice = next(
+        f.advice
+        for f in cummins.check(flipped).findings
+        if f.where == "body1__Heave" and f.check == "hydrostatics"
+    )
+    assert "pre-load" not in advice
