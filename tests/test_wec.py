@@ -603,3 +603,251 @@ def test_tank_scale_waves_get_a_time_step_of_their_period(corpus, tmp_path):
     with xr.open_dataset(rao_file, engine="h5netcdf") as rao:
         expected = float(rao.pto_power.isel(omega=0).squeeze()) * amplitude**2
     assert abs(simulated / expected - 1) < 0.005  # measured −0.2 %
+
+
+def test_irregular_run_prints_the_frequency_domain_power(corpus, tmp_path):
+    """The WaveBot (WEC-Sim_Applications' WAMIT run) heaving on a PTO to the ground in a
+    JONSWAP sea: ``simulate`` prints beside the run's mean power that of the
+    frequency-domain solution for the same wave components, Σ ½ c ω² |Δ̂|² a² (before,
+    irregular runs printed the time domain's alone). Measured: the run 16.016 W, the
+    frequency domain 16.103 W (−0.5 %); the spectrum's ∫ 2 P(ω) S(ω) dω of ``rao``,
+    16.109 W."""
+    import re
+
+    from click.testing import CliRunner
+
+    from cummins.cli import main
+    from cummins.seakeeping.spectra import jonswap
+
+    data = corpus / "WEC-Sim_Applications/wamit_WaveBot/waveBotBuoy.out"
+    common = ["--rho", "1000", "--mass", "858.415", "--dof", "Heave"]
+    common += ["--pto", "Heave", "ground", "--pto-damping", "1000"]
+    run_file, rao_file = tmp_path / "run.nc", tmp_path / "rao.nc"
+    args = ["simulate", str(data), *common, "--hs", "0.2", "--tp", "2", "--seed", "1"]
+    result = CliRunner().invoke(main, [*args, "--duration", "3600", "-o", str(run_file)])
+    assert result.exit_code == 0, result.output
+    assert "frequency domain (kW)" in result.output, result.output
+    row = re.search(r"pto1\s*│\s*([0-9.e+-]+)\s*│\s*([0-9.e+-]+)", result.output)
+    assert row is not None, result.output
+    printed_run, printed_fd = (float(v) * 1e3 for v in row.groups())
+    with xr.open_dataset(run_file, engine="h5netcdf") as run:
+        simulated = float(run.pto_power.isel(pto=0).mean())
+    assert printed_run == pytest.approx(simulated, rel=1e-4)
+    assert abs(printed_fd / simulated - 1) < 0.02  # measured 0.5 %
+    result = CliRunner().invoke(main, ["rao", str(data), *common, "-o", str(rao_file)])
+    assert result.exit_code == 0, result.output
+    with xr.open_dataset(rao_file, engine="h5netcdf") as rao:
+        omega = rao.omega.values
+        power = rao.pto_power.isel(pto=0, wave_direction=0).values
+    spectral = 2 * np.trapezoid(power * jonswap(omega, 0.2, 2.0), omega)
+    assert abs(printed_fd / spectral - 1) < 0.01  # measured 0.04 %
+
+
+def test_a_pto_on_a_misspelt_dof_names_the_dofs(corpus, tmp_path):
+    """``--pto heave ground`` on the WaveBot: a name that is not a DOF is taken for a body,
+    and the error said only "no body 'heave'; the bodies are body, or 'ground'" — now it
+    names the DOFs too and the one meant (exit status 2, one line)."""
+    from click.testing import CliRunner
+
+    from cummins.cli import main
+
+    data = corpus / "WEC-Sim_Applications/wamit_WaveBot/waveBotBuoy.out"
+    base = ["rao", str(data), "--rho", "1000", "--mass", "858.415", "--dof", "Heave"]
+    base += ["--n-omega", "3", "-o", str(tmp_path / "rao.nc")]
+    for name, meant in (("heave", "did you mean the DOF 'Heave'"), ("Heavy", "the DOFs are")):
+        result = CliRunner().invoke(main, [*base, "--pto", name, "ground", "--pto-damping", "1"])
+        assert result.exit_code == 2, result.output
+        assert f"--pto {name} ground" in result.output and meant in result.output
+        assert "Surge, Sway, Heave" in result.output and "Traceback" not in result.output
+    assert not (tmp_path / "rao.nc").exists()
+
+
+def test_a_spread_sea_beyond_the_headings_names_spreading(corpus, tmp_path):
+    """Capytaine's OSWEC (headings 0–90°, mirrored once the fixed base is dropped) on its
+    hinge, a short-crested sea about --heading 0: with s = 4 the cos-2s bins reach ±103°,
+    across the data's gap from 90° to 270°, and the error told the user to choose another
+    --heading (the one given). It names --spreading and the directions now (exit 2); with
+    s = 10 (±71°) the run goes through."""
+    from click.testing import CliRunner
+
+    from cummins.cli import main
+
+    data = corpus / "WEC-Sim/capytaine_OSWEC_flap/outputs/oswec_hydrodynamics.nc"
+    args = ["simulate", str(data), "--mass", "127000", "--mass", "999"]
+    args += ["--center-of-gravity", "0", "0", "-3.9", "--center-of-gravity", "0", "0", "-10.9"]
+    args += ["--radii-of-gyration", "3.817", "3.817", "3.817", "--radii-of-gyration", "1", "1"]
+    args += ["1", "--joint", "fixed", "body2", "ground", "--joint", "revolute", "body1"]
+    args += ["body2", "--axis", "0", "1", "0", "--point", "0", "0", "-8.9", "--pto-damping"]
+    args += ["1.2e7", "--no-body-coupling", "--heading", "0", "--hs", "2.5", "--tp", "8"]
+    args += ["--duration", "30", "--seed", "2", "-o", str(tmp_path / "run.nc")]
+    result = CliRunner().invoke(main, [*args, "--spreading", "4"])
+    assert result.exit_code == 2, result.output
+    assert "--spreading 4" in result.output and "-102.9° to 102.9°" in result.output
+    assert "choose one" not in result.output and "Traceback" not in result.output
+    assert not (tmp_path / "run.nc").exists()
+    result = CliRunner().invoke(main, [*args, "--spreading", "10"])
+    assert result.exit_code == 0, result.output
+    assert (tmp_path / "run.nc").exists()
+
+
+def test_no_body_coupling_on_one_body_says_it_does_nothing(corpus, tmp_path):
+    """``--no-body-coupling`` on the WaveBot (one body) did nothing and said nothing; a
+    note says so now, and the RAOs are those of the run without it."""
+    from click.testing import CliRunner
+
+    from cummins.cli import main
+
+    data = corpus / "WEC-Sim_Applications/wamit_WaveBot/waveBotBuoy.out"
+    base = ["rao", str(data), "--rho", "1000", "--mass", "858.415", "--dof", "Heave"]
+    base += ["--n-omega", "5"]
+    results = []
+    for extra in ([], ["--no-body-coupling"]):
+        out = tmp_path / f"rao{len(extra)}.nc"
+        result = CliRunner().invoke(main, [*base, *extra, "-o", str(out)])
+        assert result.exit_code == 0, result.output
+        results.append(result.output)
+        with xr.open_dataset(out, engine="h5netcdf") as rao:
+            results.append(rao.rao.values.copy())
+    assert "--no-body-coupling changes nothing" not in results[0]
+    assert "--no-body-coupling changes nothing: the data hold one body" in results[2]
+    np.testing.assert_array_equal(results[1], results[3])
+
+
+def test_the_linear_frequency_domain_says_what_it_leaves_out(corpus, tmp_path):
+    """The WaveBot in regular waves (T 2.5 s, a 0.2 m) with ``--quadratic-damping Heave
+    2000``: the run absorbs 101.4 W, the frequency domain (linear: no quadratic damping)
+    116.1 W — printed before as "frequency domain" beside the run, a 13 % gap that looked
+    like an error. The column is now the linear frequency domain and a note names the
+    option it leaves out; without the option the two agree (0.2 %) and no note."""
+    import re
+
+    from click.testing import CliRunner
+
+    from cummins.cli import main
+
+    data = corpus / "WEC-Sim_Applications/wamit_WaveBot/waveBotBuoy.out"
+    args = ["simulate", str(data), "--rho", "1000", "--mass", "858.415", "--dof", "Heave"]
+    args += ["--pto", "Heave", "ground", "--pto-damping", "1000", "--regular"]
+    args += ["--wave-period", "2.5", "--wave-amplitude", "0.2", "--duration", "60"]
+    powers = []
+    for extra in ([], ["--quadratic-damping", "Heave", "2000"]):
+        out = tmp_path / f"run{len(extra)}.nc"
+        result = CliRunner().invoke(main, [*args, *extra, "-o", str(out)])
+        assert result.exit_code == 0, result.output
+        note = "note: the frequency domain leaves out --quadratic-damping"
+        assert (note in result.output) == bool(extra), result.output
+        assert ("linear frequency domain (kW)" in result.output) == bool(extra)
+        row = re.search(r"pto1\s*│\s*([0-9.e+-]+)\s*│\s*([0-9.e+-]+)", result.output)
+        powers.append(tuple(float(v) for v in row.groups()))
+    (run, fd), (run_q, fd_q) = powers
+    assert abs(run / fd - 1) < 0.01 and fd_q == fd  # the same linear reference
+    assert run_q < 0.95 * fd_q  # the drag's effect: measured −13 %
+
+
+def test_a_failing_case_of_a_study_is_one_line_without_dask_logs(corpus, tmp_path):
+    """A power-matrix study of Capytaine's OSWEC on its hinge whose spread sea (s = 4)
+    leaves the data's headings: the case's error is one line, and the Dask worker's
+    "Compute Failed" log (with its Traceback) no longer precedes it on the terminal."""
+    import os
+    import subprocess
+    import sys
+
+    pytest.importorskip("distributed")
+    data = corpus / "WEC-Sim/capytaine_OSWEC_flap/outputs/oswec_hydrodynamics.nc"
+    flap = with_inertia(
+        cummins.read(data),
+        mass=[127000.0, 999.0],
+        center_of_gravity=[[0, 0, -3.9], [0, 0, -10.9]],
+        radii_of_gyration=[[3.817] * 3, [1.0] * 3],
+    )
+    cummins.write(flap, tmp_path / "oswec.nc")
+    (tmp_path / "study.yaml").write_text(
+        "data: oswec.nc\nanalysis: rao\nspectrum: pm\n"
+        "grid: {heading: [0], hs: [1], tp: [8], spreading: [4]}\n"
+        "system:\n  body_coupling: false\n  joints:\n"
+        "    - {kind: fixed, body: body2, base: ground}\n"
+        "    - {kind: revolute, body: body1, base: body2, axis: [0, 1, 0],"
+        " point: [0, 0, -8.9], pto: {damping: 1.2e7}}\n",
+        encoding="utf-8",
+    )
+    env = {**os.environ, "OPENBLAS_NUM_THREADS": "1"}
+    result = subprocess.run(
+        [sys.executable, "-m", "cummins", "batch", "study.yaml", "-o", "r.nc", "--workers", "1"],
+        cwd=tmp_path,
+        env=env,
+        capture_output=True,
+        text=True,
+        timeout=300,
+    )
+    output = result.stdout + result.stderr
+    assert result.returncode == 2, output
+    (line,) = [x for x in output.splitlines() if x.startswith("error:")]
+    assert "spreading 4" in line and "lies in a gap of the data's headings" in line
+    assert "Compute Failed" not in output and "Traceback" not in output, output
+
+
+def test_a_point_on_a_translational_joint_is_said_to_change_nothing(tmp_path):
+    """The float–spar (Capytaine, tests/data): ``--point`` after a translational joint was
+    taken and silently did nothing (its constraints are the same through every point); a
+    note says so, and the RAOs are those without it."""
+    from pathlib import Path
+
+    from click.testing import CliRunner
+
+    from cummins.cli import main
+
+    data = Path(__file__).parent / "data" / "float_spar_capytaine.nc"
+    base = ["rao", str(data), "--headings", "0", "--n-omega", "4", "--joint", "translational"]
+    base += ["spar", "ground"]
+    rest = ["--joint", "translational", "float", "spar", "--pto-damping", "1e6"]
+    outputs, raos = [], []
+    for extra in ([], ["--point", "0", "0", "-10"]):
+        out = tmp_path / f"rao{len(extra)}.nc"
+        result = CliRunner().invoke(main, [*base, *extra, *rest, "-o", str(out)])
+        assert result.exit_code == 0, result.output
+        outputs.append(result.output)
+        with xr.open_dataset(out, engine="h5netcdf") as rao:
+            raos.append(rao.rao.values.copy())
+    note = "--joint translational spar ground: --point changes nothing"
+    assert note not in outputs[0] and note in outputs[1]
+    np.testing.assert_allclose(raos[0], raos[1], rtol=1e-12, atol=0)
+
+
+def test_the_missing_inertia_message_gives_advice_that_works_for_heave(corpus, tmp_path):
+    """The WaveBot's .out holds no inertia: a heave-only PTO run without --mass asked for
+    the mass, centre of gravity and radii of gyration; the message now says --mass alone
+    does when only translations move, and following it the run goes through."""
+    from click.testing import CliRunner
+
+    from cummins.cli import main
+
+    data = corpus / "WEC-Sim_Applications/wamit_WaveBot/waveBotBuoy.out"
+    base = ["rao", str(data), "--rho", "1000", "--dof", "Heave", "--pto", "Heave", "ground"]
+    base += ["--pto-damping", "1000", "--n-omega", "3", "-o", str(tmp_path / "rao.nc")]
+    result = CliRunner().invoke(main, base)
+    assert result.exit_code == 1, result.output
+    assert "--mass alone when only translations move" in result.output, result.output
+    result = CliRunner().invoke(main, [*base, "--mass", "858.415"])
+    assert result.exit_code == 0, result.output
+
+
+def test_check_of_a_flap_points_to_the_hinge_pre_load(corpus):
+    """``cummins check`` of the 2015 WAMIT OSWEC: the free flap's pitch restoring is
+    negative (−1.9 MN·m/rad, its centre of gravity above its centre of buoyancy at
+    m = ρ∇) and the advice spoke of the centre of gravity only; it names the hinge's
+    pre-load that ``rao``/``simulate`` add with the joint (8.34 MN·m/rad: docs/wec.md).
+    Heave's advice (no hinge holds a body in heave) is unchanged."""
+    ds = cummins.read(corpus / "WEC-Sim/wamit_OSWEC_2015_with_bemio_h5/oswec.out", rho=1000.0)
+    found = {f.where: f for f in cummins.check(ds).findings if f.check == "hydrostatics"}
+    pitch = found["body1__Pitch"]
+    assert pitch.severity == "warning" and -2.0e6 < pitch.value < -1.8e6
+    assert "the joint's pre-load" in pitch.advice and "--joint" in pitch.advice
+    flipped = ds.copy(deep=True)
+    heave = {"influenced_dof": "body1__Heave", "radiating_dof": "body1__Heave"}
+    flipped["hydrostatic_stiffness"].loc[heave] *= -1
+    advice = next(
+        f.advice
+        for f in cummins.check(flipped).findings
+        if f.where == "body1__Heave" and f.check == "hydrostatics"
+    )
+    assert "pre-load" not in advice

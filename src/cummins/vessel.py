@@ -245,7 +245,8 @@ _HOW_TO_GIVE = {
         ".dat, MSS in its .mat; the solver's output often leaves it out",
         "give it with cummins.with_inertia(ds, mass=…, center_of_gravity=…, "
         "radii_of_gyration=…) or, on the command line, --mass KG --center-of-gravity X Y Z "
-        "--radii-of-gyration RX RY RZ (or --inertia-matrix FILE)",
+        "--radii-of-gyration RX RY RZ (or --inertia-matrix FILE; --mass alone when only "
+        "translations move, e.g. --dof Heave)",
     ),
     "hydrostatic_stiffness": (
         "the hydrostatic restoring matrix",

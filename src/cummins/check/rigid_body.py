@@ -59,7 +59,14 @@ def _check_rigid_body(ds: xr.Dataset) -> list[Finding]:
                             f"height?) and what the restoring holds ({describe_restoring(ds)}): "
                             "--center-of-gravity with --radii-of-gyration makes its weight "
                             "terms those of your body; --restoring-includes-weight no when the "
-                            "files hold the hydrostatics alone",
+                            "files hold the hydrostatics alone"
+                            + (
+                                "; a body on a hinge (a wave-energy flap) is held by it: `rao` "
+                                "and `simulate` with its --joint add the joint's pre-load "
+                                "stiffness (docs/wec.md, Joint pre-load)"
+                                if name != "Heave"
+                                else ""
+                            ),
                         )
                     )
                 elif c[k, k] == 0:

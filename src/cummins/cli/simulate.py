@@ -445,6 +445,8 @@ def simulate_command(
     )
     if at_speed:
         _print_speed_check(vessel.attrs)
+    if sea is not None and spreading:
+        _check_spread_directions(ds, vessel, sea, heading, spreading, directions)
     nonlinear = quadratic_damping_force(vessel.dofs, b_q) if b_q else None
     if sea is not None and nonlinear is not None:  # the Runge-Kutta path's stability
         _check_time_step(dt, ds, sea, vessel.state_space()[0])
@@ -497,7 +499,15 @@ def simulate_command(
     if vessel.ptos:
         from cummins.cli.system_options import print_pto_run
 
-        print_pto_run(run, vessel, sea if regular else None, ds, system, b_v)
+        left_out = [
+            option
+            for option, given in (
+                ("--quadratic-damping", bool(b_q)),
+                ("--second-order", second_order != "none" and not wave_record),
+            )
+            if given
+        ]
+        print_pto_run(run, vessel, sea, ds, system, b_v, regular=regular, left_out=left_out)
     from cummins.io.netcdf import save_netcdf
 
     save_netcdf(run, output)
@@ -542,6 +552,33 @@ def _print_speed_check(attrs) -> None:
 
 #: The exit status of a run whose energy balance fails (as a failed fit's).
 SIMULATION_FAILED = 3
+
+
+def _check_spread_directions(ds, vessel, sea, heading, spreading, directions) -> None:
+    """Refuse a short-crested sea whose directions leave the data's headings, naming
+    --spreading: the heading interpolation's error would ask for another --heading, which
+    the user gave (the directions of the cos-2s bins beside it are what lie outside). The
+    data are those of the DOFs the vessel moves (as ``simulate_waves`` takes them)."""
+    from cummins.errors import ArgumentError, HydroDataError
+    from cummins.hydrodb import select_dofs
+    from cummins.seakeeping.excitation import excitation_transfer
+
+    if "excitation_force" not in ds:
+        return
+    if [str(d) for d in ds.influenced_dof.values] != list(vessel.dofs):
+        ds = select_dofs(ds, list(vessel.dofs))
+    unique = np.unique(sea.direction)
+    try:
+        excitation_transfer(ds, np.full(unique.size, ds.omega.values[0]), unique)
+    except HydroDataError as exc:
+        offset = np.degrees(np.angle(np.exp(1j * (unique - np.radians(heading)))))
+        gap = getattr(exc, "message", str(exc))  # not its hint: another --heading
+        raise ArgumentError(
+            f"--spreading {spreading:g}: the spread sea's {directions} directions reach "
+            f"{heading + offset.min():.4g}° to {heading + offset.max():.4g}° about --heading "
+            f"{heading:g}°, beyond the data's headings ({gap})",
+            hint="give a larger s (a narrower spread), or data computed for more headings",
+        ) from None
 
 
 def _check_time_step(dt, ds, sea, state_matrix=None) -> None:

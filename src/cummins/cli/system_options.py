@@ -297,6 +297,22 @@ def print_system(assembly) -> None:
 
     system = assembly.system
     several = len(bodies(assembly.ds)) > 1  # the body coupling means nothing for one
+    for joint in system.joints:
+        if joint.point is not None and joint.kind != "revolute":
+            console.print(
+                escape(
+                    f"note: {joint.where}: --point changes nothing: a {joint.kind} joint's "
+                    "constraints are the same through every point (only a revolute joint's "
+                    "hinge is placed by it)"
+                )
+            )
+    if not several and not system.body_coupling:
+        console.print(
+            "note: --no-body-coupling changes nothing: the data hold one body, no coupling "
+            "between bodies to leave out"
+        )
+        if not system.joints and not system.ptos and not assembly.held:
+            return
     if system.is_plain and not assembly.held:
         if several:
             console.print(system.coupling_note())
@@ -322,12 +338,16 @@ def print_system(assembly) -> None:
         console.print(system.coupling_note())
 
 
-def print_pto_run(run, vessel, regular_sea, ds, system, viscous_damping=None) -> None:
+def print_pto_run(
+    run, vessel, sea, ds, system, viscous_damping=None, *, regular=False, left_out=()
+) -> None:
     """The PTOs of a run: the mean absorbed power (over the last whole wave periods of a
-    regular-wave run, up to 10; over the run otherwise); in regular waves also the steady
-    amplitudes of the relative displacement and of the force (fitted over those periods),
-    and the power of the frequency-domain solution of the same equations with the data's
-    A(ω), B(ω), F(ω)."""
+    regular-wave run, up to 10; over the run otherwise) beside that of the frequency-domain
+    solution of the same equations with the data's A(ω), B(ω), F(ω) for the same wave
+    components (``sea``; none for a wave record); in regular waves also the steady
+    amplitudes of the relative displacement and of the force (fitted over those periods).
+    ``left_out``: the options of the run that the linear frequency domain leaves out
+    (``--quadratic-damping``, ``--second-order``), said in the column and a note."""
     import numpy as np
     from rich.table import Table
 
@@ -337,49 +357,60 @@ def print_pto_run(run, vessel, regular_sea, ds, system, viscous_damping=None) ->
     t = run.time.values
     window = np.ones(t.size, bool)
     reference = None
-    if regular_sea is not None:
-        omega = float(regular_sea.omega[0])
+    if sea is not None:
+        reference = _frequency_domain_power(sea, ds, system, viscous_damping)
+    if regular:
+        omega = float(sea.omega[0])
         count = int(min(10, np.floor((t[-1] - t[0]) * omega / (2 * np.pi) + 1e-9)))
         window = last_periods(t, omega, 10)
-        reference = _frequency_domain_power(regular_sea, ds, system, viscous_damping)
-    table = Table(title="PTOs" + (" (steady state)" if regular_sea is not None else ""))
+    table = Table(title="PTOs" + (" (steady state)" if regular else ""))
     columns = ["PTO", "mean power (kW)"]
-    if regular_sea is not None:
-        columns += ["frequency domain (kW)", "amplitude", "force amplitude"]
+    if reference is not None:
+        columns += ["linear frequency domain (kW)" if left_out else "frequency domain (kW)"]
+    if regular:
+        columns += ["amplitude", "force amplitude"]
     for column in columns:
         table.add_column(column, justify="right")
     for k, pto in enumerate(vessel.ptos):
         power = float(run.pto_power.values[window, k].mean())
         row = [pto.name, f"{power / 1e3:.5g}"]
-        if regular_sea is not None:
+        if reference is not None:
+            row += [f"{reference[k] / 1e3:.5g}"]
+        if regular:
             periods = max(count, 1)
             delta = harmonic_amplitude(t, run.pto_displacement.values[:, k], omega, periods)
             force = harmonic_amplitude(t, run.pto_force.values[:, k], omega, periods)
             row += [
-                "" if reference is None else f"{reference[k] / 1e3:.5g}",
                 f"{abs(delta):.5g} {pto.units['displacement']}",
                 f"{abs(force):.5g} {pto.units['force']}",
             ]
         table.add_row(*row)
     console.print(table)
+    if reference is not None and left_out:
+        console.print(
+            f"note: the frequency domain leaves out {' and '.join(left_out)}: the run's "
+            f"power differs from it by {'their' if len(left_out) > 1 else 'its'} effect, "
+            "not by an error"
+        )
 
 
 def _frequency_domain_power(sea, ds, system, viscous_damping=None):
-    """½ c ω² |Δ̂|² a² of each PTO from the data's frequency-domain solution (None when it
-    cannot be computed: a frequency outside the data)."""
+    """Mean absorbed power of each PTO in the frequency domain, W: Σ_k ½ c ω_k² |Δ̂_k|² a_k²
+    over the wave components (ω_k, β_k, a_k) of ``sea`` (one for a regular wave), Δ̂ the
+    data's frequency-domain solution per unit amplitude — the mean of the products of
+    components of different frequencies vanishes (Falnes (2002)). None when it cannot be
+    computed (a component outside the data)."""
+    import numpy as np
+
     from cummins.errors import CumminsError
     from cummins.seakeeping.frequency_domain import motion_rao, pto_rao
 
-    amplitude = float(abs(sea.complex_amplitude[0]))
+    omegas, at_omega = np.unique(np.asarray(sea.omega, float), return_inverse=True)
+    directions, at_direction = np.unique(np.asarray(sea.direction, float), return_inverse=True)
     try:
-        rao = motion_rao(
-            ds,
-            [float(sea.omega[0])],
-            [float(sea.direction[0])],
-            viscous_damping=viscous_damping,
-            system=system,
-        )
-        power = pto_rao(rao, ds, system).pto_power.values[0, 0]
+        rao = motion_rao(ds, omegas, directions, viscous_damping=viscous_damping, system=system)
+        power = pto_rao(rao, ds, system).pto_power.transpose("omega", "wave_direction", "pto")
     except CumminsError:
         return None
-    return power * amplitude**2
+    per_component = power.values[at_omega.ravel(), at_direction.ravel()]  # (component, pto)
+    return (per_component * np.asarray(sea.amplitude, float)[:, None] ** 2).sum(axis=0)

@@ -231,7 +231,7 @@ def resolve_pto(pto: PTO, k: int, frame: BodyFrame, joints: Sequence[Joint]) -> 
             f"({joint.label})"
         )
         return PTOLine(name, d, pto.stiffness, pto.damping, rotational, text)
-    body = frame.resolve(str(pto.body), where)
+    body = _resolve_body_or_dof(frame, str(pto.body), where)
     base = frame.resolve(pto.base, where)
     if body is None or body == base:
         raise ArgumentError(f"{where}: a PTO needs a moving body and another body or the ground")
@@ -243,6 +243,21 @@ def resolve_pto(pto: PTO, k: int, frame: BodyFrame, joints: Sequence[Joint]) -> 
     motion = "rotation about" if rotational else "translation along"
     text = f"{motion} {_axis_text(axis)} of {pto.body} relative to {pto.base}"
     return PTOLine(name, d, pto.stiffness, pto.damping, rotational, text)
+
+
+def _resolve_body_or_dof(frame: BodyFrame, name: str, where: str) -> int | None:
+    """The body a PTO between bodies names; a name that is neither a body nor a DOF (the
+    command line takes ``--pto A B`` for DOFs too) is refused naming both lists, and one
+    that differs from a DOF only in case says which it means."""
+    try:
+        return frame.resolve(name, where)
+    except ArgumentError as exc:
+        near = [label for label in frame.labels if label.lower() == name.lower()]
+        meant = f"did you mean the DOF {near[0]!r} (names are case-sensitive)? " if near else ""
+        raise ArgumentError(
+            f"{where}: the data have no body or DOF {name!r}",
+            hint=f"{meant}the DOFs are {', '.join(frame.labels)}; {exc.hint}",
+        ) from None
 
 
 def _find_joint(pto: PTO, joints: Sequence[Joint]) -> Joint:

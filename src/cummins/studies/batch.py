@@ -608,7 +608,7 @@ def _compute(
                 threads_per_worker=1,
                 processes=True,
                 dashboard_address=":0",  # any free port: never a clash with another cluster
-                silence_logs=logging.ERROR,
+                silence_logs=logging.CRITICAL,  # a case's error is raised as one line
                 env=_BLAS_ENV,
             )
         try:
