@@ -686,3 +686,27 @@ def test_cli_says_the_model_holds_the_data_damping(shared_data, tmp_path):
     found = json.loads((tmp_path / "rep" / "damping.json").read_text())
     (term,) = found["estimates"][0]["terms"]
     assert abs(term["value"]) < 0.01 * 3e7  # measured 9.9e3: 0.03 % of the data's Bv44
+
+
+def test_a_positive_p2_from_the_release_is_said(shared_data):
+    """A free roll decay (10°) of the supply vessel's linear Cummins model (MSS's
+    supply.mat, sway–roll–yaw, its fluid memory fitted): no quadratic damping in it, yet the
+    fit finds p₂ = 0.015 1/rad, "positive" (1.2 % of the damping): the memory's transient
+    after the release. Without the first cycle p₂ is 0.0001: the note says p₂ depends on
+    the first cycle and what to do, and p2_without_first_cycle records it. A decay of
+    eq. (1) with p₂ = 0.3 keeps no note (test_roll_decay_judges_the_quadratic_term…)."""
+    supply = cummins.read(shared_data / "mss" / "supply" / "supply.mat")
+    ds = select_dofs(supply, ["Sway", "Roll", "Yaw"])
+    with warnings.catch_warnings():
+        warnings.simplefilter("ignore")
+        vessel = cummins.vessel_from_hydrodb(ds)
+    t = np.arange(0.0, 300.0, 0.05)
+    x0 = np.zeros(vessel.state_space()[0].shape[0])
+    x0[1] = np.radians(10.0)
+    run = simulate(vessel, t, np.zeros((t.size, 3)), initial_state=x0)
+    r = roll_decay(t, run.motion.sel(dof="Roll").values)
+    assert r["p2_significance"] == "positive"
+    assert "depends on the first cycle" in r["p2_note"] and "--burn-in" in r["p2_note"]
+    assert abs(r["p2_without_first_cycle"]) < 0.1 * r["p2"]  # measured 0.009 of it
+    cut = roll_decay(t[t >= 21.0], run.motion.sel(dof="Roll").values[t >= 21.0])
+    assert cut["p2_significance"] == "not significant"

@@ -243,6 +243,38 @@ def _quadratic_judgement(values: dict, amplitude: float) -> dict:
     }
 
 
+#: A positive p₂ that changes by more than this share of itself, and by more than its
+#: 95 % intervals allow, when the first cycle after the release is left out is said to
+#: depend on it (:func:`roll_decay`): a linear Cummins decay of the supply vessel
+#: (MSS, 10°) gives p₂ 0.055 1/rad "significant", not significant with the first
+#: cycles cut; an ODE decay with p₂ = 0.3 changes by 1e-6.
+RELEASE_CHANGE = 0.25
+
+
+def _release_judgement(t, phi, second_cycle: float, values: dict, method: str) -> dict:
+    """``p2_without_first_cycle`` and, when p₂ depends on the first cycle
+    (:data:`RELEASE_CHANGE`), the ``p2_note`` that says so."""
+    k = int(np.searchsorted(t, second_cycle))
+    try:
+        cut = roll_decay(t[k:], phi[k:], method=method, release_check=False)
+    except IdentificationError:
+        return {}
+    p2, p2_cut = values["p2"], cut["p2"]
+    z = scipy.stats.norm.ppf(0.5 + 0.5 * CONFIDENCE)
+    allowed = z * float(np.hypot(values["p2_std"], cut["p2_std"]))
+    out: dict = {"p2_without_first_cycle": float(p2_cut)}
+    if abs(p2_cut - p2) > max(allowed, RELEASE_CHANGE * abs(p2)):
+        low, high = cut["p2_interval"]
+        out["p2_note"] = (
+            f"p2 = {p2:.3g} 1/rad depends on the first cycle after the release: without it "
+            f"p2 = {p2_cut:.3g} 1/rad ({CONFIDENCE:.0%} interval [{low:.3g}, {high:.3g}], "
+            f"{cut['p2_significance']}); what follows the release (a fluid memory's "
+            "transient in a simulated decay, an unclean release in a test) is taken for "
+            "quadratic damping: identify again with the first cycles cut (--burn-in) to tell"
+        )
+    return out
+
+
 def _linear_decrement(times, extremes, w0) -> tuple[float, float]:
     """p₁ and its standard error from eq. (2) without the quadratic term."""
     amp = np.abs(extremes)
@@ -261,6 +293,7 @@ def roll_decay(
     stiffness: float | None = None,
     *,
     method: str = "fit",
+    release_check: bool = True,
 ) -> RollDecay:
     """Linear and quadratic roll damping from a free-decay record (module docstring).
 
@@ -276,6 +309,11 @@ def roll_decay(
         C₄₄, N·m/rad: the inertia is then C₄₄/ω₀² (when ``inertia`` is not given).
     method
         ``"fit"`` (default, the ODE fitted to the whole record) or ``"decrement"``.
+    release_check
+        When p₂ comes out significantly positive, identify again without the first cycle
+        and say in ``p2_note`` when p₂ depends on it (:data:`RELEASE_CHANGE`): what
+        happens just after the release — a fluid memory's transient, an unclean release
+        — is then taken for quadratic damping (``p2_without_first_cycle``).
 
     Returns
     -------
@@ -357,6 +395,8 @@ def roll_decay(
         span = slice(start, stop, step)
         values, offset, phi0, rate0 = _fit(t[span], phi[span], values, offset, t0, ext[0])
     values.update(_quadratic_judgement(values, float(amp[0])))
+    if release_check and values["p2_significance"] == "positive" and ext.size - 2 >= MIN_EXTREMES:
+        values.update(_release_judgement(t, phi, times[2], values, method))
     if values["p2_note"]:  # what the record says without the quadratic term
         if method == "fit":
             linear, *_ = _fit(t[span], phi[span], values, offset, t0, ext[0], quadratic=False)
