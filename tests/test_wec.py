@@ -853,3 +853,28 @@ def test_check_of_a_flap_points_to_the_hinge_pre_load(corpus):
         if f.where == "body1__Heave" and f.check == "hydrostatics"
     )
     assert "pre-load" not in advice
+
+
+def test_rao_plot_draws_the_pto_power(corpus, tmp_path):
+    """``cummins rao waveBotBuoy.out … --pto Heave ground --plot DIR`` wrote rao.png only:
+    a WEC user's first figure, the power RAO, was in the HTML report alone. DIR/pto.png now
+    holds each PTO's power, force and relative-motion RAOs (the report's figure); an
+    existing pto.png is not overwritten without --force (exit 2, nothing computed)."""
+    from click.testing import CliRunner
+    from PIL import Image
+
+    from cummins.cli import main
+
+    data = corpus / "WEC-Sim_Applications/wamit_WaveBot/waveBotBuoy.out"
+    plots = tmp_path / "plots"
+    args = ["rao", str(data), "--rho", "1000", "--mass", "858.415", "--dof", "Heave"]
+    args += ["--pto", "Heave", "ground", "--pto-damping", "1000", "--plot", str(plots)]
+    result = CliRunner().invoke(main, [*args, "-o", str(tmp_path / "rao.nc")])
+    assert result.exit_code == 0, result.output
+    assert f"wrote {plots / 'pto.png'}" in " ".join(result.output.split())
+    with Image.open(plots / "pto.png") as image:
+        assert image.format == "PNG" and min(image.size) > 300
+    (plots / "rao.png").unlink()
+    result = CliRunner().invoke(main, [*args, "-o", str(tmp_path / "again.nc")])
+    assert result.exit_code == 2 and "pto.png" in result.output
+    assert not (tmp_path / "again.nc").exists() and not (plots / "rao.png").exists()

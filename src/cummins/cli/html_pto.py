@@ -48,7 +48,7 @@ def is_rotational(description: str) -> bool:
     return description.startswith("rotation about") or (bool(first) and is_rotation(first))
 
 
-def _units(coordinate: xr.DataArray) -> dict[str, dict[str, str]]:
+def pto_units(coordinate: xr.DataArray) -> dict[str, dict[str, str]]:
     """Units of Δ, Δ̇ and the force of each PTO."""
     text = pto_descriptions(coordinate)
     out = {}
@@ -76,7 +76,7 @@ def pto_rao_sections(path: Path) -> list[Section]:
         if not any(str(n).startswith("pto_") for n in f.data_vars):
             return []
     pto = load_pto_rao(path)
-    units = _units(pto.pto)
+    units = pto_units(pto.pto)
     w = pto.omega.values
     rows = []
     for name in (str(p) for p in pto.pto.values):
@@ -189,7 +189,7 @@ def pto_run_sections(run: xr.Dataset) -> list[Section]:
     omega = 2 * np.pi / period if regular and period > 0 else None
     window = last_periods(t, omega, 10) if omega else np.ones(t.size, bool)
     count = int(min(10, np.floor((t[-1] - t[0]) / period + 1e-9))) if omega else 0
-    units = _units(run.pto)
+    units = pto_units(run.pto)
     rows = []
     means = {}
     for k, name in enumerate(str(p) for p in run.pto.values):

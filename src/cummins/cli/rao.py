@@ -139,7 +139,8 @@ def parse_headings(values: tuple[str, ...]) -> list[float]:
     "plot_dir",
     type=click.Path(file_okay=False),
     default=None,
-    help="Also write rao.png (|RAO| and phase per DOF) in this folder.",
+    help="Also write rao.png (|RAO| and phase per DOF) in this folder, and with --pto "
+    "pto.png (each PTO's power, force and relative-motion RAOs against the wave period).",
 )
 @speed_option()
 @force_option()
@@ -228,6 +229,8 @@ def rao_command(
 
         # several bodies: through the system, so that the body coupling is stated
         system = MechanicalSystem(dofs=tuple(dofs) or None)
+    if plot_dir and system is not None and system.ptos:  # before the work, as rao.png
+        prepare_outputs(Path(plot_dir) / "pto.png", force=force)
     if system is not None:
         from cummins.cli.system_options import print_system
         from cummins.mechanics import assemble
@@ -245,6 +248,7 @@ def rao_command(
         from cummins.seakeeping.frequency_domain import pto_rao
 
         pto = pto_rao(rao, ds, system)
+    pto_file = str(Path(plot_dir) / "pto.png") if plot_dir and pto is not None else None
     if "excitation_force" in ds and "wave_direction" in ds.dims:
         coverage = heading_coverage(ds)
         if coverage.mirror_used:
@@ -272,6 +276,12 @@ def rao_command(
         with stage_progress("drawing the RAOs"):
             save_figure(plot_rao(rao), plot_file, force=force)
         console.print(f"wrote {plot_file}")
+    if pto_file:
+        from cummins.cli.html_pto import plot_pto_rao, pto_units
+        from cummins.plots import save_figure
+
+        save_figure(plot_pto_rao(pto, pto_units(pto.pto)), pto_file, force=force)
+        console.print(f"wrote {pto_file}")
 
 
 #: A DOF whose |RAO| differs from the data's own by more than this fraction of its peak
