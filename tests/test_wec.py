@@ -609,7 +609,8 @@ def test_irregular_run_prints_the_frequency_domain_power(corpus, tmp_path):
     """The WaveBot (WEC-Sim_Applications' WAMIT run) heaving on a PTO to the ground in a
     JONSWAP sea: ``simulate`` prints beside the run's mean power that of the
     frequency-domain solution for the same wave components, Σ ½ c ω² |Δ̂|² a² (before,
-    irregular runs printed the time domain's alone). Measured: the run 16.016 W, the
+    irregular runs printed the time domain's alone); the run file keeps it
+    (``pto_mean_power_frequency_domain``) and ``report`` shows it. Measured: the run 16.016 W, the
     frequency domain 16.103 W (−0.5 %); the spectrum's ∫ 2 P(ω) S(ω) dω of ``rao``,
     16.109 W."""
     import re
@@ -630,10 +631,18 @@ def test_irregular_run_prints_the_frequency_domain_power(corpus, tmp_path):
     row = re.search(r"pto1\s*│\s*([0-9.e+-]+)\s*│\s*([0-9.e+-]+)", result.output)
     assert row is not None, result.output
     printed_run, printed_fd = (float(v) * 1e3 for v in row.groups())
+    from cummins.cli.html_pto import pto_run_sections
+
     with xr.open_dataset(run_file, engine="h5netcdf") as run:
         simulated = float(run.pto_power.isel(pto=0).mean())
+        # the run file keeps it, and the report shows it beside the run's
+        recorded = float(run.pto_mean_power_frequency_domain.isel(pto=0))
+        (section,) = pto_run_sections(run.load())
     assert printed_run == pytest.approx(simulated, rel=1e-4)
     assert abs(printed_fd / simulated - 1) < 0.02  # measured 0.5 %
+    assert recorded == pytest.approx(printed_fd, rel=1e-4)
+    assert "<th>frequency domain [kW]</th>" in section.body
+    assert f"<td>{recorded / 1e3:.4g}</td>" in section.body
     result = CliRunner().invoke(main, ["rao", str(data), *common, "-o", str(rao_file)])
     assert result.exit_code == 0, result.output
     with xr.open_dataset(rao_file, engine="h5netcdf") as rao:

@@ -190,6 +190,7 @@ def pto_run_sections(run: xr.Dataset) -> list[Section]:
     window = last_periods(t, omega, 10) if omega else np.ones(t.size, bool)
     count = int(min(10, np.floor((t[-1] - t[0]) / period + 1e-9))) if omega else 0
     units = pto_units(run.pto)
+    reference = run.get("pto_mean_power_frequency_domain")
     rows = []
     means = {}
     for k, name in enumerate(str(p) for p in run.pto.values):
@@ -198,12 +199,10 @@ def pto_run_sections(run: xr.Dataset) -> list[Section]:
         delta = run.pto_displacement.values[:, k]
         u = units[name]
         means[name] = float(power[window].mean())
-        row = [
-            name,
-            means[name] / 1e3,
-            float(np.trapezoid(power, t) / 1e6),
-            float(power.max() / 1e3),
-        ]
+        row = [name, means[name] / 1e3]
+        if reference is not None:
+            row += [float(reference.values[k]) / 1e3]
+        row += [float(np.trapezoid(power, t) / 1e6), float(power.max() / 1e3)]
         if omega:
             periods = max(count, 1)
             row += [
@@ -234,7 +233,17 @@ def pto_run_sections(run: xr.Dataset) -> list[Section]:
             else "."
         )
     )
-    header = ["PTO", "mean power [kW]", "energy [MJ]", "max power [kW]"]
+    header = ["PTO", "mean power [kW]"]
+    if reference is not None:
+        left_out = str(reference.attrs.get("left_out", "none"))
+        linear = "" if left_out == "none" else "linear "
+        header += [f"{linear}frequency domain [kW]"]
+        notes += _note(
+            "Frequency domain: the mean power of the linear frequency-domain solution of the "
+            "same equations for the run's wave components, Σ ½ c ω² |Δ̂|² a², as cummins "
+            "simulate prints it" + ("." if left_out == "none" else f" (it leaves out {left_out}).")
+        )
+    header += ["energy [MJ]", "max power [kW]"]
     header += ["amplitude Δ", "force amplitude"] if omega else ["2σ of Δ", "2σ of the force"]
     header += ["max |force|"]
     body = _description_note(run.pto) + notes + table_html(header, rows)

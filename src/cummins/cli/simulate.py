@@ -507,7 +507,20 @@ def simulate_command(
             )
             if given
         ]
-        print_pto_run(run, vessel, sea, ds, system, b_v, regular=regular, left_out=left_out)
+        reference = print_pto_run(
+            run, vessel, sea, ds, system, b_v, regular=regular, left_out=left_out
+        )
+        if reference is not None:  # the report shows it beside the run's
+            run["pto_mean_power_frequency_domain"] = (
+                "pto",
+                np.asarray(reference, dtype=float),
+                {
+                    "units": "W",
+                    "long_name": "mean absorbed power of the linear frequency-domain "
+                    "solution for the run's wave components",
+                    "left_out": ", ".join(left_out) or "none",
+                },
+            )
     from cummins.io.netcdf import save_netcdf
 
     save_netcdf(run, output)

@@ -340,14 +340,15 @@ def print_system(assembly) -> None:
 
 def print_pto_run(
     run, vessel, sea, ds, system, viscous_damping=None, *, regular=False, left_out=()
-) -> None:
+):
     """The PTOs of a run: the mean absorbed power (over the last whole wave periods of a
     regular-wave run, up to 10; over the run otherwise) beside that of the frequency-domain
     solution of the same equations with the data's A(ω), B(ω), F(ω) for the same wave
     components (``sea``; none for a wave record); in regular waves also the steady
     amplitudes of the relative displacement and of the force (fitted over those periods).
     ``left_out``: the options of the run that the linear frequency domain leaves out
-    (``--quadratic-damping``, ``--second-order``), said in the column and a note."""
+    (``--quadratic-damping``, ``--second-order``), said in the column and a note. Returns
+    the frequency domain's mean power of each PTO, W (None when there is none)."""
     import numpy as np
     from rich.table import Table
 
@@ -392,6 +393,7 @@ def print_pto_run(
             f"power differs from it by {'their' if len(left_out) > 1 else 'its'} effect, "
             "not by an error"
         )
+    return reference
 
 
 def _frequency_domain_power(sea, ds, system, viscous_damping=None):
