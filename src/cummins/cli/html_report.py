@@ -470,9 +470,11 @@ def lf_sections(path: Path) -> list[Section]:
         )
     ]
     if "speed_terms" in lf:  # lf-model --manoeuvring-speed: N(U), added to D
+        from cummins.timedomain.lfmodel.speed import speed_term_entries
+
         n = lf.speed_terms.transpose("influenced_dof", "radiating_dof")
-        speed = [[f"N[{n.influenced_dof.values[i]}, {n.radiating_dof.values[j]}]", n.values[i, j]]
-                 for i, j in zip(*np.nonzero(n.values), strict=True)]  # fmt: skip
+        entries = speed_term_entries(n.values, n.influenced_dof.values)
+        speed = [[f"N[{row}, {column}]", value] for row, column, value in entries]
         title = f"Speed terms at {float(lf.attrs.get('forward_speed', np.nan)):g} m/s"
         text = _note(str(lf.attrs.get("speed_terms", ""))) + table_html(["", "N(U)"], speed)
         sections.append(Section(title, text))

@@ -234,19 +234,17 @@ def lf_model_command(
 
 
 def _print_speed_terms(model, speed: float) -> None:
-    """The largest speed terms N(U) of :func:`cummins.timedomain.lfmodel.speed.at_forward_speed`,
-    one line each (the entries above 1e-9 of the largest of their row's kind)."""
-    n = np.asarray(model.speed_terms)
+    """The speed terms N(U) of :func:`cummins.timedomain.lfmodel.speed.at_forward_speed`,
+    one line each (:func:`~cummins.timedomain.lfmodel.speed.speed_term_entries`)."""
+    from cummins.timedomain.lfmodel.speed import speed_term_entries
+
     console.print(
         f"speed terms at {speed:g} m/s (linearised Coriolis and centripetal forces of the "
         "rigid body and the added mass, Fossen (2011); in D + N(U)):",
         highlight=False,
     )
-    scale = np.abs(n).max()
-    for i, row in enumerate(model.dofs):
-        for j, column in enumerate(model.dofs):
-            if scale > 0 and abs(n[i, j]) > 1e-9 * scale:
-                console.print(f"  N[{row}, {column}] = {n[i, j]:.4g}", highlight=False)
+    for row, column, value in speed_term_entries(model.speed_terms, model.dofs):
+        console.print(f"  N[{row}, {column}] = {value:.4g}", highlight=False)
 
 
 def _data_damping(ds, names, given) -> dict[str, str]:

@@ -57,6 +57,25 @@ def speed_matrix(mass: ArrayLike, speed: float) -> NDArray[np.float64]:
     return out
 
 
+#: Entries of N(U) below this fraction of its largest are round-off, not speed terms.
+SPEED_TERM_FLOOR = 1e-9
+
+
+def speed_term_entries(speed_terms: ArrayLike, dofs) -> list[tuple[str, str, float]]:
+    """The entries of N(U) that are speed terms, (row DOF, column DOF, value), row by
+    row: those above :data:`SPEED_TERM_FLOOR` of the largest (``cummins lf-model`` prints
+    them, ``cummins report`` tabulates them)."""
+    n = np.asarray(speed_terms, dtype=float)
+    floor = SPEED_TERM_FLOOR * np.abs(n).max() if n.size else 0.0
+    labels = [str(d) for d in dofs]
+    return [
+        (labels[i], labels[j], float(n[i, j]))
+        for i in range(n.shape[0])
+        for j in range(n.shape[1])
+        if abs(n[i, j]) > floor
+    ]
+
+
 def at_forward_speed(model: LowFrequencyModel, speed: float) -> LowFrequencyModel:
     """The low-frequency model of the ship moving ahead at ``speed`` U, m/s: the model
     (built from zero-speed data) with N_RB(U) + N_A(U) (module docstring) in
