@@ -229,8 +229,10 @@ def rao_command(
 
         # several bodies: through the system, so that the body coupling is stated
         system = MechanicalSystem(dofs=tuple(dofs) or None)
+    pto_file = None
     if plot_dir and system is not None and system.ptos:  # before the work, as rao.png
-        prepare_outputs(Path(plot_dir) / "pto.png", force=force)
+        pto_file = str(Path(plot_dir) / "pto.png")
+        prepare_outputs(pto_file, force=force)
     if system is not None:
         from cummins.cli.system_options import print_system
         from cummins.mechanics import assemble
@@ -248,7 +250,6 @@ def rao_command(
         from cummins.seakeeping.frequency_domain import pto_rao
 
         pto = pto_rao(rao, ds, system)
-    pto_file = str(Path(plot_dir) / "pto.png") if plot_dir and pto is not None else None
     if "excitation_force" in ds and "wave_direction" in ds.dims:
         coverage = heading_coverage(ds)
         if coverage.mirror_used:
