@@ -12,7 +12,7 @@ from click.testing import CliRunner
 
 import cummins
 from cummins.cli import main
-from cummins.errors import HydroDataError
+from cummins.errors import AssumptionWarning, HydroDataError
 from cummins.io.wamit.numeric_writer import write_wamit
 
 SEMISUB = Path(__file__).parent / "data" / "semisub_capytaine.nc"
@@ -101,3 +101,70 @@ def test_forward_speed_is_refused(tmp_path):
     s175 = cummins.read(cummins.demo_files().parent / "s175" / "s175.mat")
     with pytest.raises(HydroDataError, match="forward speed"):
         write_wamit(s175.isel(forward_speed=4), tmp_path / "s.1")
+
+
+SPHERE = "corpus/WEC-Sim_Applications/wamit_mean_drift_sphere/outputFiles/sphere.1"
+DRIFT_SPHERE = Path(__file__).parent / "data" / "sphere_drift_capytaine.nc"
+
+
+def _rows(path):
+    """The rows of a mean-drift file of positive mode index, in file order: (PER, β₁, β₂,
+    I, |F|, Re F), F nondimensional."""
+    rows = [[float(v) for v in line.split()] for line in path.read_text().splitlines()[1:]]
+    return np.array([[*x[:5], x[6]] for x in rows if x[3] > 0])
+
+
+def test_mean_drift_is_written_as_wamit_wrote_it(shared_data, tmp_path):
+    """The drift sphere's .7, .8 and .9 (control surface, momentum, pressure), read and
+    written again: each estimate to the file of its method, the same rows in the same
+    order (the .8 surge, sway and yaw alone, as WAMIT's) and the same numbers as WAMIT's
+    own files (its periods printed to 6 digits, its values to 7)."""
+    original = shared_data / SPHERE
+    ds = _read(original)
+    files = write_wamit(ds, tmp_path / "sphere.1", hydrodyn=False)
+    assert [f.suffix for f in files] == [".1", ".3", ".hst", ".7", ".9", ".8"]
+    for suffix in (".7", ".8", ".9"):
+        mine, theirs = _rows(tmp_path / f"sphere{suffix}"), _rows(original.with_suffix(suffix))
+        assert mine.shape == theirs.shape, suffix
+        np.testing.assert_allclose(mine[:, 0], theirs[:, 0], rtol=1e-5)  # 6 digits: 5e-6
+        np.testing.assert_array_equal(mine[:, 1:4], theirs[:, 1:4])
+        peak = np.abs(theirs[:, 4]).max()
+        np.testing.assert_allclose(mine[:, 4:], theirs[:, 4:], rtol=1e-6, atol=1e-9 * peak)
+    back = _read(files[0], rho=ds.attrs["rho"], g=ds.attrs["g"])
+    for name in ("drift_force", "drift_force_pressure", "drift_force_momentum"):
+        assert back[name].attrs["method"].split(",")[0] == ds[name].attrs["method"].split(",")[0]
+        np.testing.assert_allclose(back[name].values, ds[name].values, rtol=PRINTED)
+
+
+def test_capytaine_far_field_drift_goes_to_the_dot8(tmp_path):
+    """Capytaine's far-field drift (momentum: surge, sway, yaw) is HydroDyn's MnDrift = 8
+    file; read back with the .1, the same numbers to 7 digits."""
+    ds = _read(DRIFT_SPHERE)
+    files = write_wamit(ds, tmp_path / "s.1", hydrodyn=False)
+    assert [f.suffix for f in files][-1] == ".8"
+    assert set(_rows(tmp_path / "s.8")[:, 3]) == {1.0, 2.0, 6.0}
+    back = _read(files[0], rho=ds.attrs["rho"], g=ds.attrs["g"])
+    assert back.drift_force.attrs["method"].startswith("momentum")
+    a, b = back.drift_force.values, ds.drift_force.values
+    assert np.abs(a - b).max() <= PRINTED * np.abs(b).max()
+
+
+def test_a_drift_of_unknown_method_is_written_with_the_choice_said(shared_data, tmp_path):
+    """MSS's supply vessel records no method and holds surge, sway and yaw: written to the
+    .8 with an AssumptionWarning naming it; z-down data in WAMIT's z-up axes, read back."""
+    ds = _read(shared_data / "mss" / "supply" / "supply.mat")
+    with pytest.warns(AssumptionWarning, match=r"not recorded: written to the \.8"):
+        files = write_wamit(ds, tmp_path / "s.1", hydrodyn=False)
+    assert files[-1].suffix == ".8"
+    back = _read(files[0], rho=ds.attrs["rho"], g=ds.attrs["g"])
+    z_up = cummins.change_axes(ds, "z-up").drift_force.values
+    assert np.abs(back.drift_force.values - z_up).max() <= PRINTED * np.abs(z_up).max()
+    assert np.abs(z_up[..., 1]).max() > 0.1 * np.abs(z_up).max()  # sway: a real check
+
+
+def test_convert_says_which_drift_file_hydrodyn_reads(shared_data, tmp_path):
+    result = CliRunner().invoke(main, ["convert", str(shared_data / SPHERE), str(tmp_path / "x.1")])
+    assert result.exit_code == 0, result.output
+    text = " ".join(result.output.split())
+    assert "x.7 (control surface" in text and "MnDrift (or NewmanApp) = 7 or 9 or 8" in text
+    assert all((tmp_path / f"x{s}").exists() for s in (".7", ".8", ".9"))

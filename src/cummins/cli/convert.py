@@ -112,7 +112,8 @@ def convert_command(
     ElastoDyn adds the weight), the .1 its w = 0 and w = inf rows (estimated when the
     data lack them, see --limit-rows). Moments are about the reference point written,
     which HydroDyn's PtfmRefxt/yt/zt must give: --reference-point 0 0 0 for the usual
-    origin on the free surface. The QTFs go to their own files (x.12d, x.12s).
+    origin on the free surface. The mean drift goes to x.7, x.8 or x.9 by its method
+    (HydroDyn's MnDrift), the QTFs to their own files (x.12d, x.12s).
 
     \b
     Examples:
@@ -216,7 +217,7 @@ def _write_for_hydrodyn(ds, destination, source, limit_rows, force) -> None:
     from cummins.errors import AssumptionWarning
     from cummins.hydrodb import change_axes
     from cummins.io.wamit.hydrodyn import hydrodyn_data
-    from cummins.io.wamit.numeric_writer import write_wamit
+    from cummins.io.wamit.numeric_writer import drift_files, write_wamit
 
     if ds.attrs.get("axis_convention", "z-up") != "z-up":
         ds = change_axes(ds, "z-up")
@@ -251,15 +252,23 @@ def _write_for_hydrodyn(ds, destination, source, limit_rows, force) -> None:
         console.print(
             "the data's QTFs are not in the .1: write them with "
             + " and ".join(f"cummins convert {source} {files[name]}" for name in held)
-            + " (HydroDyn's DiffQTF/SumQTF = 12)"
+            + " (HydroDyn's DiffQTF/SumQTF = 12"
+            + ("" if "drift_force" in ds else "; MnDrift = 12 takes the mean drift from the .12d")
+            + ")"
         )
-    if "drift_force" in ds:
+    drifts = drift_files(prepared.ds)[0]
+    if drifts:
+        stem = Path(destination).with_suffix("")
+        methods = {
+            suffix: prepared.ds[name].attrs.get("method") or "method not recorded"
+            for suffix, name in drifts.items()
+        }
+        written = [f"{stem.name}{suffix} ({method})" for suffix, method in methods.items()]
         console.print(
-            "the data's mean drift is not in the .1: HydroDyn reads it from the WAMIT "
-            ".7, .8 or .9 beside the .1 (MnDrift or NewmanApp = 7, 8 or 9): copy those of "
-            f"the run ({ds.drift_force.attrs.get('method', 'method not recorded')}); for "
-            "WEC-Sim a BEMIO .h5 holds it (cummins convert "
-            f"{source} {Path(destination).with_suffix('.h5')})"
+            f"the mean drift: {', '.join(written)}; HydroDyn's MnDrift (or NewmanApp) = "
+            + " or ".join(suffix[1:] for suffix in drifts)
+            + f" reads it (for WEC-Sim a BEMIO .h5: cummins convert {source} "
+            f"{stem.with_suffix('.h5')})"
         )
 
 

@@ -15,6 +15,16 @@ nondimensional as WAMIT writes them (WAMIT User Manual v7 §4.1; the scales of
   restoring of buoyancy and waterplane alone, as HydroDyn reads it (the weight's terms
   the data record taken out), and the ``.1`` with estimated limit rows when the data
   lack them (:mod:`cummins.io.wamit.hydrodyn`);
+* ``.7``, ``.8``, ``.9`` the mean drift (``drift_force`` and the other estimates a run
+  holds, ``drift_force_<method>``), each in the file of its method — ``.7`` the control
+  surface, ``.8`` momentum conservation, ``.9`` pressure integration (WAMIT User Manual v7
+  §4.10; what HydroDyn's ``MnDrift``/``NewmanApp`` = 7, 8 or 9 read): ``PER  β  β  I
+  |F̄|  arg F̄  Re F̄  Im F̄``, F̄ = F/(ρ g L^(1+k_i)) per squared wave amplitude, a
+  title line, then one row per period, heading (β₁ = β₂) and DOF the method computes
+  (``dofs_computed``). A drift whose
+  method the data do not record (MSS, VERES, AQWA) goes to the ``.9`` when it holds
+  heave, roll or pitch (which only the near-field methods compute), else to the ``.8``,
+  with an :class:`~cummins.errors.AssumptionWarning` naming the choice;
 
 k = 1 for rotations, 0 for translations and generalized modes; PER the period 2π/ω, s.
 Numbers are written as WAMIT prints them, with 7 significant digits (``E14.6``), so a
@@ -28,14 +38,17 @@ HydroDyn does not read.
 from __future__ import annotations
 
 import os
+import warnings
 from pathlib import Path
 
 import numpy as np
 import xarray as xr
 
-from cummins.errors import HydroDataError, check_writable
+from cummins._version import __version__
+from cummins.errors import AssumptionWarning, HydroDataError, check_writable
 from cummins.hydrodb import change_axes, dof_matrix, single_speed
 from cummins.io._common import force_exponents, length_exponents
+from cummins.qtf.data import DRIFT_ALTERNATIVES
 
 __all__ = ["write_wamit"]
 
@@ -103,6 +116,89 @@ def format_dot3(ds: xr.Dataset, rho: float, g: float, length: float) -> str:
     return "\n".join(lines) + "\n"
 
 
+#: The mean-drift file of each method (WAMIT's suffixes).
+DRIFT_SUFFIXES: dict[str, str] = {"control_surface": ".7", "momentum": ".8", "pressure": ".9"}
+#: How the readers name the methods (the start of the ``method`` attribute).
+_METHOD_NAMES = (
+    ("control surface", "control_surface"),
+    ("pressure", "pressure"),
+    ("momentum", "momentum"),
+    ("far field", "momentum"),
+)
+
+
+def drift_files(ds: xr.Dataset) -> tuple[dict[str, str], list[str]]:
+    """{suffix: variable} of the mean-drift estimates of ``ds`` (module docstring), and
+    the assumptions made: a method not recorded, an estimate whose file another takes."""
+    files: dict[str, str] = {}
+    assumed: list[str] = []
+    for name in ("drift_force", *DRIFT_ALTERNATIVES):
+        if name not in ds:
+            continue
+        if name != "drift_force":
+            method = name.removeprefix("drift_force_")
+        else:
+            text = str(ds[name].attrs.get("method", "")).lower()
+            method = next((m for start, m in _METHOD_NAMES if text.startswith(start)), None)
+        if method is None:
+            computed = _computed(ds, name)
+            vertical = any(d.split("__")[-1] in ("Heave", "Roll", "Pitch") for d in computed)
+            method = "pressure" if vertical else "momentum"
+            assumed.append(
+                f"the mean drift's method is not recorded: written to the "
+                f"{DRIFT_SUFFIXES[method]} ("
+                + (
+                    "it holds heave, roll or pitch, which only the near field computes"
+                    if vertical
+                    else "surge, sway and yaw alone, as momentum conservation"
+                )
+                + f"; HydroDyn's MnDrift = {DRIFT_SUFFIXES[method][1:]})"
+            )
+        suffix = DRIFT_SUFFIXES[method]
+        if suffix in files:
+            assumed.append(f"{name} not written: {files[suffix]} takes the {suffix}")
+            continue
+        files[suffix] = name
+    return files, assumed
+
+
+def _computed(ds: xr.Dataset, name: str) -> list[str]:
+    """The DOFs the estimate ``name`` computes (``dofs_computed``, else those not zero at
+    every frequency and heading)."""
+    labels = [str(d) for d in ds.influenced_dof.values]
+    recorded = ds[name].attrs.get("dofs_computed")
+    if recorded:
+        return [d for d in labels if d in str(recorded).split()]
+    nonzero = (ds[name] != 0).any([d for d in ds[name].dims if d != "influenced_dof"])
+    return [d for d, used in zip(labels, nonzero.values, strict=True) if used]
+
+
+def format_mean_drift(ds: xr.Dataset, name: str, rho: float, g: float, length: float) -> str:
+    """The text of a ``.7``/``.8``/``.9`` file of the estimate ``name`` (module docstring)."""
+    labels = [str(d) for d in ds.influenced_dof.values]
+    n = len(labels)
+    scale = rho * g * length ** force_exponents(n, 1, _modes(ds))
+    w = np.asarray(ds.omega.values, dtype=float)
+    f = ds[name].transpose("omega", "wave_direction", "influenced_dof").values / scale
+    beta = np.degrees(np.asarray(ds.wave_direction.values, dtype=float))
+    keep = [labels.index(d) for d in _computed(ds, name)]
+    source = Path(str(ds[name].attrs.get("source") or ds.attrs.get("source_file", ""))).name
+    lines = [  # a title line first, as WAMIT writes it (HydroDyn's WAMIT2 skips it)
+        f" WAMIT Numeric Output -- mean drift ({name}) of {source or 'the data'} "
+        f"written by cummins {__version__}"
+    ]
+    for k in np.argsort(w):  # the longest period first, as WAMIT lists a run's
+        per = _NUMBER.format(_periods(w)[k])
+        for h, heading in enumerate(beta):
+            angle = _NUMBER.format(heading)
+            for i in keep:
+                z = complex(f[k, h, i])
+                values = (abs(z), np.degrees(np.angle(z)), z.real, z.imag)
+                numbers = " ".join(_NUMBER.format(v) for v in values)
+                lines.append(f"{per} {angle} {angle} {i + 1:5d} {numbers}")
+    return "\n".join(lines) + "\n"
+
+
 def format_hst(ds: xr.Dataset, rho: float, g: float, length: float) -> str:
     """The text of the ``.hst`` file (module docstring)."""
     n = ds.sizes["influenced_dof"]
@@ -126,8 +222,9 @@ def write_wamit(
     hydrodyn: bool = True,
     limits: bool = True,
 ) -> list[Path]:
-    """Write ``ds`` as WAMIT numeric files: ``<stem>.1``, and ``<stem>.3`` and
-    ``<stem>.hst`` when the data hold the excitation and the hydrostatics.
+    """Write ``ds`` as WAMIT numeric files: ``<stem>.1``, and ``<stem>.3``, ``<stem>.hst``
+    and the mean drift's ``<stem>.7``/``.8``/``.9`` when the data hold the excitation, the
+    hydrostatics and mean drift (module docstring).
 
     Parameters
     ----------
@@ -175,9 +272,6 @@ def write_wamit(
     if ds.attrs.get("axis_convention", "z-up") != "z-up":
         ds = change_axes(ds, "z-up")
     if hydrodyn:
-        import warnings
-
-        from cummins.errors import AssumptionWarning
         from cummins.io.wamit.hydrodyn import hydrodyn_data
 
         prepared = hydrodyn_data(ds, limits=limits)
@@ -190,8 +284,13 @@ def write_wamit(
         texts[path.with_suffix(".3")] = format_dot3(ds, rho, g, ulen)
     if "hydrostatic_stiffness" in ds:
         texts[path.with_suffix(".hst")] = format_hst(ds, rho, g, ulen)
+    drifts, assumed = drift_files(ds)
+    for suffix, name in drifts.items():
+        texts[path.with_suffix(suffix)] = format_mean_drift(ds, name, rho, g, ulen)
     for target in texts:
         check_writable(target, force)
     for target, text in texts.items():
         target.write_text(text, encoding="utf-8")
+    for line in assumed:
+        warnings.warn(AssumptionWarning(line), stacklevel=2)
     return list(texts)

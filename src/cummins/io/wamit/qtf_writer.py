@@ -58,8 +58,8 @@ def write_wamit_qtf(
             "a mean drift",
             path=p,
             hint="HydroDyn's mean drift and Newman's approximation (MnDrift, NewmanApp = 7, "
-            "8 or 9) read the run's WAMIT .7/.8/.9: give it those; a BEMIO .h5 holds the "
-            "drift for WEC-Sim (cummins convert … x.h5)",
+            "8 or 9) read WAMIT's .7/.8/.9: cummins convert … x.1 writes them beside the "
+            ".1; a BEMIO .h5 holds the drift for WEC-Sim (cummins convert … x.h5)",
         )
     table = qtf_table(ds, kind)
     name = QTF_VARIABLES[kind]
