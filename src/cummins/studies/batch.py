@@ -62,9 +62,10 @@ from typing import Any
 import numpy as np
 import xarray as xr
 
-from cummins.errors import CumminsError, SimulationError, check_writable
+from cummins.errors import CumminsError, check_writable
 from cummins.files import replacing
 from cummins.radiation.model import MODEL_FAILURES, model_failures
+from cummins.studies.speed import select_study_speed, vessel_at_study_speed
 from cummins.studies.study import (
     _BLAS_ENV,
     _RESULT_KIND,
@@ -162,7 +163,7 @@ def prepare_study(study: Study) -> tuple[StudyContext, str]:
     from cummins.studies.equation_of_motion import check_study_data, complete_study_data
 
     full = complete_study_data(read(study.data, rho=study.rho, g=study.g), study)
-    ds = _select_speed(full, study)
+    ds = select_study_speed(full, study)
     check_study_data(ds, study)
     labels = [str(d) for d in ds.influenced_dof.values]
     system = {}
@@ -204,80 +205,15 @@ def prepare_study(study: Study) -> tuple[StudyContext, str]:
     if study.model is not None:
         model = RadiationModel.load(study.model)
         digest.update(Path(study.model).read_bytes())
-    if _speed_terms_apart(full, study):
-        from cummins.hydrodb import select_dofs
-        from cummins.radiation.speed import vessel_at_speed
-
-        dofs = None if study.system is None else study.system.dofs
-        try:
-            vessel = vessel_at_speed(
-                full,
-                study.speed,
-                dofs=dofs,
-                soft_springs=study.soft_springs,
-                viscous_damping=damping,
-            )
-        except SimulationError as exc:  # a free ship at speed: the study's keys to give
-            message = str(exc)[: -len(exc.hint) - 2] if exc.hint else str(exc)
-            raise StudyError(
-                f"{at_key(study.source, 'speed')}: {message}",
-                hint="give the study soft_springs: 200 (a period in s, surge, sway and yaw "
-                "held as by an autopilot) or keep the vertical plane (system: {dofs: "
-                "[Heave, Pitch]})",
-            ) from None
-        if dofs is not None:  # the DOFs the vessel has, for the excitation of the cases
-            ds = select_dofs(ds, dofs)
+    at_speed = vessel_at_study_speed(full, ds, study, damping)
+    if at_speed is not None:
+        vessel, ds = at_speed
     else:
-        if study.soft_springs is not None:
-            raise StudyError(
-                f"{at_key(study.source, 'soft_springs')}: applies to a ship at a speed > 0 "
-                "whose data hold zero speed too"
-            )
         vessel = vessel_from_hydrodb(
             single_speed(ds), model, viscous_damping=damping, system=study.system
         )
     vessel.stability()
     return StudyContext(study, ds, vessel=vessel, **system), digest.hexdigest()
-
-
-def _speed_terms_apart(full: xr.Dataset, study: Study) -> bool:
-    """Whether a time-domain study runs the vessel at speed with the speed terms kept
-    apart (:func:`cummins.radiation.speed.vessel_at_speed`, as ``cummins simulate
-    --speed``): a speed > 0, data holding zero speed too, no model given. A system of
-    joints or PTOs is refused there (bodies at zero speed); one that keeps DOFs only
-    selects them."""
-    if not study.speed or study.model is not None or "forward_speed" not in full.dims:
-        return False
-    if not np.any(np.abs(full.forward_speed.values) <= 1e-3):
-        return False
-    system = study.system
-    if system is not None and (system.joints or system.ptos or not system.body_coupling):
-        raise StudyError(
-            f"{at_key(study.source, 'system')}: joints, PTOs and body_coupling are for "
-            "bodies at zero speed; at a speed a system may keep DOFs only (dofs: [...])"
-        )
-    return True
-
-
-def _select_speed(ds: xr.Dataset, study: Study) -> xr.Dataset:
-    if "forward_speed" not in ds.dims:
-        return ds
-    speeds = ds.forward_speed.values
-    listed = ", ".join(f"{u:g}" for u in speeds)
-    if study.speed is None:
-        if speeds.size > 1:
-            raise StudyError(
-                f"{at_key(study.source, 'speed')}: the data hold several forward speeds "
-                f"({listed} m/s): choose one"
-            )
-        return ds.isel(forward_speed=0)
-    match = np.flatnonzero(np.abs(speeds - study.speed) <= 1e-3)
-    if not match.size:
-        raise StudyError(
-            f"{at_key(study.source, 'speed')}: no data at {study.speed:g} m/s; the data hold "
-            f"{listed} m/s"
-        )
-    return ds.isel(forward_speed=int(match[0]))
 
 
 def _dataset_digest(ds: xr.Dataset) -> str:
