@@ -528,8 +528,10 @@ def test_per_speed_keeps_the_memory_nearer_the_data(s175):
     vertical = select_dofs(s175, VERTICAL)
     for k, u in enumerate(best.speeds):
         one = vertical.isel(forward_speed=k)
-        error = {name: _rao_error(m, one) for name, m in (("best", best), ("fitted", fitted))}
-        error["derived"] = _rao_error(derived, one)
+        error = {
+            name: _rao_error(models, one)
+            for name, models in (("best", best), ("fitted", fitted), ("derived", derived))
+        }
         assert error["best"] <= min(error["fitted"], error["derived"]) * (1 + 1e-9), (u, error)
         recorded = best.attrs["speed_motion_errors"][k]
         kept = best.attrs["speed_memory"][k]
