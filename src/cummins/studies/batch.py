@@ -65,6 +65,7 @@ import xarray as xr
 from cummins.errors import CumminsError, check_writable
 from cummins.files import replacing
 from cummins.radiation.model import MODEL_FAILURES, model_failures
+from cummins.studies.speed import select_study_speed, vessel_at_study_speed
 from cummins.studies.study import (
     _BLAS_ENV,
     _RESULT_KIND,
@@ -137,6 +138,9 @@ class StudyContext:
         }
         if attrs.get("motion_error") is not None:
             out["radiation_model_motion_error"] = float(attrs["motion_error"])
+        for key in ("speed_memory", "speed_motion_error", "speed_terms", "soft_springs"):
+            if key in self.vessel.attrs:  # a ship at speed (vessel_at_speed)
+                out[key] = self.vessel.attrs[key]
         failures = model_failures(attrs)
         if failures:
             out[MODEL_FAILURES] = "\n".join(failures)
@@ -158,9 +162,8 @@ def prepare_study(study: Study) -> tuple[StudyContext, str]:
     from cummins.io import read
     from cummins.studies.equation_of_motion import check_study_data, complete_study_data
 
-    ds = read(study.data, rho=study.rho, g=study.g)
-    ds = _select_speed(ds, study)
-    ds = complete_study_data(ds, study)
+    full = complete_study_data(read(study.data, rho=study.rho, g=study.g), study)
+    ds = select_study_speed(full, study)
     check_study_data(ds, study)
     labels = [str(d) for d in ds.influenced_dof.values]
     system = {}
@@ -202,32 +205,15 @@ def prepare_study(study: Study) -> tuple[StudyContext, str]:
     if study.model is not None:
         model = RadiationModel.load(study.model)
         digest.update(Path(study.model).read_bytes())
-    vessel = vessel_from_hydrodb(
-        single_speed(ds), model, viscous_damping=damping, system=study.system
-    )
+    at_speed = vessel_at_study_speed(full, ds, study, damping)
+    if at_speed is not None:
+        vessel, ds = at_speed
+    else:
+        vessel = vessel_from_hydrodb(
+            single_speed(ds), model, viscous_damping=damping, system=study.system
+        )
     vessel.stability()
     return StudyContext(study, ds, vessel=vessel, **system), digest.hexdigest()
-
-
-def _select_speed(ds: xr.Dataset, study: Study) -> xr.Dataset:
-    if "forward_speed" not in ds.dims:
-        return ds
-    speeds = ds.forward_speed.values
-    listed = ", ".join(f"{u:g}" for u in speeds)
-    if study.speed is None:
-        if speeds.size > 1:
-            raise StudyError(
-                f"{at_key(study.source, 'speed')}: the data hold several forward speeds "
-                f"({listed} m/s): choose one"
-            )
-        return ds.isel(forward_speed=0)
-    match = np.flatnonzero(np.abs(speeds - study.speed) <= 1e-3)
-    if not match.size:
-        raise StudyError(
-            f"{at_key(study.source, 'speed')}: no data at {study.speed:g} m/s; the data hold "
-            f"{listed} m/s"
-        )
-    return ds.isel(forward_speed=int(match[0]))
 
 
 def _dataset_digest(ds: xr.Dataset) -> str:

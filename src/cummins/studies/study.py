@@ -82,7 +82,10 @@ STUDY_KEYS: dict[str, str] = {
     "omega_max": "rad/s, highest RAO frequency (rao; default: the data's)",
     "n_omega": "number of RAO frequencies (rao)",
     "viscous_damping": "{DOF: value}, linear damping added (kg/s, kg m^2/s)",
-    "speed": "m/s: the forward speed to take from data holding several",
+    "speed": "m/s: the forward speed to take from data holding several (simulate, data "
+    "holding zero speed too: the speed terms kept apart, as simulate --speed)",
+    "soft_springs": "s: period of soft springs in surge, sway and yaw of a ship at speed "
+    "(simulate, as simulate --soft-springs)",
     **EQUATION_OF_MOTION_KEYS,
     "system": "joints, PTOs, dofs, body_coupling (cummins.mechanics.system_from_mapping); "
     "the results then hold each PTO's mean absorbed power",
@@ -92,7 +95,7 @@ STUDY_KEYS: dict[str, str] = {
 #: The keys that apply to one analysis only (the others are refused with it).
 ANALYSIS_KEYS: dict[str, tuple[str, ...]] = {
     "rao": ("omega_min", "omega_max", "n_omega"),
-    "simulate": ("model", "dt", "components"),
+    "simulate": ("model", "dt", "components", "soft_springs"),
 }
 #: Their defaults, where the analysis they apply to is run.
 ANALYSIS_DEFAULTS: dict[str, Any] = {"dt": 0.1, "components": 200, "n_omega": 400}
@@ -400,6 +403,7 @@ class Study:
     n_omega: int | None = None
     viscous_damping: Any = None
     speed: float | None = None
+    soft_springs: float | None = None
     limits: Any = ()
     scatter: Any = ()
     name: str = ""
@@ -459,7 +463,7 @@ class Study:
                 "cases",
                 tuple(_case_from_mapping(c, k, src) for k, c in enumerate(self.cases)),
             )
-        for key in ("duration", "dt"):
+        for key in ("duration", "dt", "soft_springs"):
             if getattr(self, key) is None:
                 continue
             if not _number(getattr(self, key), key, src) > 0:
@@ -525,6 +529,10 @@ class Study:
             "viscous_damping": [list(p) for p in self.viscous_damping],
             "speed": self.speed,
         }
+        if self.analysis == "simulate" and self.speed:  # the memory at speed is chosen
+            out["memory_at_speed"] = "nearer of derived and fitted"  # (memory_at_speed)
+        if self.soft_springs is not None:
+            out["soft_springs"] = self.soft_springs
         if self.system is not None:
             out["system"] = self.system.describe()
         if self.analysis == "rao":

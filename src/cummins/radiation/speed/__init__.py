@@ -3,16 +3,20 @@
 Hjulstad (2004), ch. 3, 5.3–5.4, 6, 10 and 12.1. Three ways to give a
 radiation model a forward speed U (m/s):
 
-1. **Per-speed fits** (:func:`fit_per_speed`, :mod:`~cummins.radiation.speed.per_speed`):
-   one model per speed of a multi-speed database, blended linearly in U between the two
-   neighbouring fitted speeds (:class:`SpeedModels`, :mod:`~cummins.radiation.speed.blending`).
+1. **Per-speed models** (:func:`fit_per_speed`, :mod:`~cummins.radiation.speed.per_speed`):
+   one memory per speed of a multi-speed database, the speed terms that are not memory
+   kept apart, blended linearly in U between the two neighbouring speeds
+   (:class:`SpeedModels`, :mod:`~cummins.radiation.speed.blending`).
 2. **Salvesen–Tuck–Faltinsen speed terms on zero-speed data** (:func:`stf_speed_terms`,
    :mod:`~cummins.radiation.speed.stf`; Hjulstad (2004) eqs. 3.29, 3.33, 5.45–5.46, 10.1, §6).
 3. **Speed kernels** (:func:`speed_dependent_model`, :mod:`~cummins.radiation.speed.kernels`,
    eqs. 3.28–3.36): K_U = K⁰ + U K¹ + U² K², with K¹, K² derived exactly from K⁰.
 
-The time-domain vessel at speed is :func:`vessel_at_speed`
-(:mod:`~cummins.radiation.speed.vessel`); encounter frequencies are in
+The memory at one speed is K⁰ + U K¹ + U² K² (3.) or a fit of the data at that speed
+less the speed terms, whichever gives RAOs nearer the data's
+(:func:`memory_at_speed`, :mod:`~cummins.radiation.speed.memory`): the per-speed models
+and the time-domain vessel at speed, :func:`vessel_at_speed`
+(:mod:`~cummins.radiation.speed.vessel`), choose there alike; encounter frequencies are in
 :mod:`~cummins.radiation.speed.encounter`, :class:`SpeedError` in
 :mod:`~cummins.radiation.speed.errors`.
 
@@ -42,10 +46,12 @@ from cummins.radiation.speed.kernels import (  # noqa: F401
     SpeedDependentModel,
     speed_dependent_model,
 )
-from cummins.radiation.speed.per_speed import (  # noqa: F401
-    fit_per_speed,
+from cummins.radiation.speed.memory import (  # noqa: F401
+    MemoryAtSpeed,
+    memory_at_speed,
     memory_part,
 )
+from cummins.radiation.speed.per_speed import fit_per_speed
 from cummins.radiation.speed.stf import (
     speed_coupling_matrix,
     stf_speed_terms,
@@ -57,12 +63,14 @@ from cummins.radiation.speed.vessel import (  # noqa: F401
 
 __all__ = [
     "ForcedMotionResult",
+    "MemoryAtSpeed",
     "SpeedDependentModel",
     "SpeedModels",
     "encounter_frequency",
     "encounter_spectrum",
     "fit_per_speed",
     "forced_motion_error",
+    "memory_at_speed",
     "speed_coupling_matrix",
     "speed_dependent_model",
     "stf_causality",

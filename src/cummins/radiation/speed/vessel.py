@@ -1,36 +1,30 @@
 """The time-domain vessel of a ship at forward speed (:func:`vessel_at_speed`).
 
 The radiation force at constant speed of Hjulstad (2004) eq. 3.28, with the speed terms
-that are not memory kept apart (§6, §10.2): the memory fitted at that speed, the
-U·α∞ damping and the radiation restoring added to the vessel's damping and stiffness,
-and soft springs where a free ship at speed is directionally unstable.
+that are not memory kept apart (§6, §10.2): the memory at that speed (derived from the
+zero-speed fit or fitted at speed, the nearer to the data kept:
+:func:`~cummins.radiation.speed.memory.memory_at_speed`), the U·α∞ damping and the
+radiation restoring added to the vessel's damping and stiffness, and soft springs where a
+free ship at speed is directionally unstable.
 """
 
 from __future__ import annotations
 
 from collections.abc import Sequence
-from dataclasses import replace
 from typing import Any
 
 import numpy as np
 import xarray as xr
 
-from cummins.errors import SimulationError
-from cummins.hydrodb import split_dof
-from cummins.radiation.fingerprint import data_fingerprint
 from cummins.radiation.speed.errors import SpeedError
 from cummins.radiation.speed.kernels import SPEED_FIT_DEFAULTS, speed_dependent_model
-from cummins.radiation.speed.per_speed import _memory_model_at
-
-#: Damping ratio of the soft springs of :func:`vessel_at_speed`.
-SPRING_DAMPING_RATIO = 0.7
-
-#: The two memories :func:`vessel_at_speed` builds at U ≠ 0 (its ``speed_memory`` attribute
-#: names the one kept): the data at U less the speed terms, fitted (:func:`memory_part`),
-#: and K⁰ + U K¹ + U² K² derived exactly from the zero-speed fit (STF, Hjulstad (2004)
-#: eq. 3.28; :func:`speed_dependent_model`).
-MEMORY_FITTED = "fitted to the data at speed (speed terms removed), plus U K1"
-MEMORY_DERIVED = "K0 + U K1 + U^2 K2 derived from the zero-speed fit (STF)"
+from cummins.radiation.speed.memory import (  # noqa: F401  (their earlier home)
+    MEMORY_CHOICES,
+    MEMORY_DERIVED,
+    MEMORY_FITTED,
+    SPRING_DAMPING_RATIO,
+    memory_at_speed,
+)
 
 
 def vessel_at_speed(
@@ -53,15 +47,17 @@ def vessel_at_speed(
 
     with D¹, G¹, G² from the zero-speed fit K⁰ (:func:`speed_dependent_model`). Two
     memories K_U are built and the one whose RAOs at speed are nearer the data's own
-    frequency domain is kept (:func:`~cummins.radiation.speed.checks.speed_motion_error`;
-    the ``speed_memory`` attribute names it):
+    frequency domain is kept (:func:`~cummins.radiation.speed.memory.memory_at_speed`,
+    which :func:`~cummins.radiation.speed.per_speed.fit_per_speed` shares; the
+    ``speed_memory`` attribute names it, ``speed_motion_error`` is its error):
 
     - K⁰ + U K¹ + U² K², derived exactly from K⁰ (STF; the G² of the stiffness is then the
       very constant K⁰/s² leaves, whatever K⁰'s A(0) is): right when the data at speed are
       the STF terms of the zero-speed data (strip theory);
-    - the data at U less U D¹ and the 1/s terms, fitted (:func:`memory_part`), plus the
-      antisymmetric U K¹ (the per-speed fit is of the symmetric part): for data at speed
-      that hold more than STF (transom terms, 3-D panel codes at speed).
+    - the data at U less U D¹ and the 1/s terms, fitted
+      (:func:`~cummins.radiation.speed.memory.memory_part`), plus the antisymmetric U K¹
+      (the per-speed fit is of the symmetric part): for data at speed that hold more than
+      STF (transom terms, 3-D panel codes at speed).
 
     In the vessel: ``radiation`` = K_U with A∞, ``viscous_damping`` += U D¹ (skew: B₃₅ =
     +U A∞₃₃, B₅₃ = −U A∞₃₃ …, no energy), ``stiffness`` += U G¹ + U² G² (pitch: −U² A₃₃(0),
@@ -116,7 +112,7 @@ def vessel_at_speed(
     """
     from cummins.hydrodb import select_dofs
 
-    if memory not in ("best", "derived", "fitted"):
+    if memory not in MEMORY_CHOICES:
         raise SpeedError(f"memory must be 'best', 'derived' or 'fitted', not {memory!r}")
     if soft_springs is not None and not soft_springs > 0:
         raise SpeedError(f"soft_springs must be a period in s > 0, not {soft_springs}")
@@ -137,83 +133,14 @@ def vessel_at_speed(
         )
     if not at:
         raise SpeedError(f"no data at {speed:g} m/s; the data hold {listed} m/s")
-    data = ds.isel(forward_speed=at[0])
-    u = float(data.forward_speed)
     base = speed_dependent_model(ds.isel(forward_speed=zero[0]), **options)
-    candidates = {}
-    if memory != "derived" or u == 0.0:  # at U = 0 both are K⁰
-        candidates[MEMORY_FITTED] = _memory_model_at(data, u, base, options)
-    if memory != "fitted" and u != 0.0:
-        derived = base.memory_model(u)
-        candidates[MEMORY_DERIVED] = replace(derived, attrs=dict(base.k0.attrs))
-    built, refusal = [], None
-    for source, model in candidates.items():
-        try:
-            built.append(
-                _vessel(data, model, base, u, soft_springs, viscous_damping, additional, source)
-            )
-        except SimulationError as exc:
-            refusal = refusal or exc
-    if not built:
-        raise refusal
-    return min(built, key=lambda vessel: vessel.attrs["speed_motion_error"])
-
-
-def _vessel(data, model, base, u, soft_springs, viscous_damping, additional, source):
-    """The vessel at speed ``u`` with the memory ``model`` (K_U with A∞) and the speed
-    terms of ``base``, judged against ``data`` (:func:`speed_motion_error`)."""
-    from cummins.radiation.speed.checks import speed_motion_error
-    from cummins.vessel import vessel_from_hydrodb
-
-    # the memory of these very data (speed terms taken out): their fingerprint
-    model = replace(model, attrs={**model.attrs, "data_fingerprint": data_fingerprint(data)})
-    vessel = vessel_from_hydrodb(
-        data, model, viscous_damping=viscous_damping, additional=additional
+    kept = memory_at_speed(
+        ds.isel(forward_speed=at[0]),
+        base,
+        memory=memory,
+        fit_options=options,
+        soft_springs=soft_springs,
+        viscous_damping=viscous_damping,
+        additional=additional,
     )
-    stiffness = vessel.stiffness + u * base.restoring[0] + u**2 * base.restoring[1]
-    labels = list(vessel.dofs)
-    damping = vessel.viscous_damping + u * base.damping_inf
-    springs = []
-    if soft_springs is not None:
-        mass, omega_s = vessel.mass, 2 * np.pi / soft_springs
-        for k, label in enumerate(labels):
-            if split_dof(label)[1] in ("Surge", "Sway", "Yaw"):
-                stiffness[k, k] = max(stiffness[k, k], 0.0) + mass[k, k] * omega_s**2
-                damping[k, k] += 2 * SPRING_DAMPING_RATIO * mass[k, k] * omega_s
-                springs.append(label)
-    attrs = {
-        **dict(vessel.attrs),
-        "forward_speed": u,
-        "speed_terms": "U D1 in viscous_damping, U G1 + U^2 G2 in stiffness, "
-        + ("U K1 in radiation" if source == MEMORY_FITTED else "U K1 + U^2 K2 in radiation"),
-        "soft_springs": f"{soft_springs:g} s on {', '.join(springs)}" if springs else "none",
-    }
-    out = replace(
-        vessel,
-        viscous_damping=damping,
-        stiffness=stiffness,
-        attrs=attrs,
-    )
-    try:
-        out.stability()
-    except SimulationError as exc:
-        message = str(exc)[: -len(exc.hint) - 2] if exc.hint else str(exc)
-        raise SimulationError(
-            f"at {u:g} m/s: {message}",
-            hint="a free ship at speed is directionally unstable in potential flow (yaw Munk "
-            "moment): give soft springs (--soft-springs 200, a period in s; Python: "
-            "soft_springs=200) or keep the vertical plane (--dof Heave --dof Pitch; "
-            "Python: dofs=['Heave', 'Pitch'])",
-        ) from None
-    error, per_dof = speed_motion_error(out, data, leave_out=springs)
-    return replace(
-        out,
-        attrs={
-            **out.attrs,
-            "speed_memory": source,
-            "speed_motion_error": error,
-            "speed_motion_error_by_dof": ", ".join(
-                f"{k} {100 * e:.2g} %" for k, e in per_dof.items()
-            ),
-        },
-    )
+    return kept.vessel
