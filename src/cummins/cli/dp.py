@@ -138,8 +138,8 @@ def dp_demo_command(
     \b
     The scenario of Smogeli et al. (2004) §7, with the nonlinear 6-DOF model of the
     Marine Systems Simulator (their eq. 56): body-fixed kinematics, the fluid memory as
-    a state-space model fitted to the MSS data, first-order wave forces at the
-    instantaneous relative heading, Newman drift, ITTC surge resistance and cross-flow
+    a state-space model fitted to the MSS data, first-order wave forces and the wave
+    drift at the instantaneous relative heading, ITTC surge resistance and cross-flow
     drag, optional current and wind, a nonlinear PID with a wave filter and thrust
     allocation to four thrusters. Sea: JONSWAP Hs 4 m, wp 0.60 rad/s, gamma 3.3,
     short-crested, from 45 deg off the starboard bow. At t = 100 s a 1000 kN crane load

@@ -134,29 +134,43 @@ def direction_stencil(
     """:func:`direction_weights` without the refusal: a direction in a gap of the data
     wider than ``max_gap`` (or any other direction than the only one) takes the value of
     the nearest data direction, and ``outside`` marks it. Returns (a, b, t, outside)."""
-    beta = np.mod(np.asarray(beta, dtype=float), _TWO_PI)
-    d = np.mod(directions, _TWO_PI)
-    order = np.argsort(d)
-    ds = d[order]
-    m = ds.size
-    pos = np.searchsorted(ds, beta, side="right")  # ds[pos - 1] <= beta < ds[pos]
-    lo = (pos - 1) % m
-    hi = pos % m
-    left, right = ds[lo], ds[hi]
-    span = np.mod(right - left, _TWO_PI)
-    span = np.where((span == 0) & (m > 1), _TWO_PI, span)
-    off = np.mod(beta - left, _TWO_PI)
-    off = np.minimum(off, _TWO_PI - off)
-    exact_lo = off <= 1e-6
-    off_hi = np.mod(right - beta, _TWO_PI)
-    off_hi = np.minimum(off_hi, _TWO_PI - off_hi)
-    exact_hi = off_hi <= 1e-6
-    with np.errstate(invalid="ignore", divide="ignore"):
-        t = np.where(span > 0, np.mod(beta - left, _TWO_PI) / span, 0.0)
-    outside = ~(exact_lo | exact_hi) & ((span > max_gap) | (m == 1))
-    nearer_hi = outside & (off_hi < off)
-    t = np.where(exact_lo | (outside & ~nearer_hi), 0.0, np.where(exact_hi | nearer_hi, 1.0, t))
-    return order[lo], order[hi], t, outside
+    return DirectionStencil(directions, max_gap)(beta)
+
+
+class DirectionStencil:
+    """:func:`direction_stencil` on fixed data directions, prepared once (for a load
+    that looks directions up at every time step)."""
+
+    def __init__(self, directions: ArrayLike, max_gap: float = np.pi / 2) -> None:
+        d = np.mod(np.asarray(directions, dtype=float).reshape(-1), _TWO_PI)
+        self.order = np.argsort(d)
+        self.sorted = d[self.order]
+        m = self.sorted.size
+        self.m = m
+        right = np.roll(self.sorted, -1)
+        span = np.mod(right - self.sorted, _TWO_PI)
+        self.span = np.where((span == 0) & (m > 1), _TWO_PI, span)  # from node k to k + 1
+        self.wide = (self.span > max_gap) | (m == 1)
+
+    def __call__(
+        self, beta: ArrayLike
+    ) -> tuple[NDArray[np.intp], NDArray[np.intp], NDArray[np.float64], NDArray[np.bool_]]:
+        beta = np.mod(np.asarray(beta, dtype=float), _TWO_PI)
+        m = self.m
+        lo = (np.searchsorted(self.sorted, beta, side="right") - 1) % m
+        hi = (lo + 1) % m
+        span = self.span[lo]
+        off = np.mod(beta - self.sorted[lo], _TWO_PI)
+        off_lo = np.minimum(off, _TWO_PI - off)  # distances on the circle
+        exact_lo = off_lo <= 1e-6
+        off_hi = np.mod(self.sorted[hi] - beta, _TWO_PI)
+        off_hi = np.minimum(off_hi, _TWO_PI - off_hi)
+        exact_hi = off_hi <= 1e-6
+        t = off / np.where(span > 0, span, 1.0)
+        outside = ~(exact_lo | exact_hi) & self.wide[lo]
+        near_lo = exact_lo | (outside & (off_lo <= off_hi))
+        t = np.where(near_lo, 0.0, np.where(exact_hi | outside, 1.0, t))
+        return self.order[lo], self.order[hi], t, outside
 
 
 def _unique_direction_weights(directions, beta, max_gap):

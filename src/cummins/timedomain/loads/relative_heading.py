@@ -44,7 +44,7 @@ from numpy.typing import NDArray
 
 from cummins.errors import AssumptionWarning
 from cummins.qtf.data import QTFTable
-from cummins.qtf.interpolation import direction_stencil, mean_direction, weight_matrix
+from cummins.qtf.interpolation import DirectionStencil, mean_direction, weight_matrix
 
 _TWO_PI = 2.0 * np.pi
 
@@ -124,6 +124,7 @@ class HeadingTable:
     _group_mean: NDArray[np.float64] = field(init=False, repr=False)
     _members: NDArray[np.float64] = field(init=False, repr=False)
     _pair_direction: NDArray[np.float64] = field(init=False, repr=False)
+    _lookup: DirectionStencil = field(init=False, repr=False)
     _warned: list = field(init=False, repr=False, default_factory=list)
 
     def __post_init__(self) -> None:
@@ -140,6 +141,7 @@ class HeadingTable:
         object.__setattr__(self, "_group_mean", group_mean)
         object.__setattr__(self, "_members", members)
         object.__setattr__(self, "_pair_direction", mean_direction(first[:, None], first[None, :]))
+        object.__setattr__(self, "_lookup", DirectionStencil(self.directions, self.max_gap))
 
     @property
     def n_dofs(self) -> int:
@@ -149,7 +151,7 @@ class HeadingTable:
     def _stencil(self, relative: NDArray[np.float64], t: float):
         """Linear weights in the data directions at ``relative`` (rad); a direction
         outside them is held at the nearest (warned once)."""
-        a0, a1, w, outside = direction_stencil(self.directions, relative, max_gap=self.max_gap)
+        a0, a1, w, outside = self._lookup(relative)
         if outside.any() and not self.held and not self._warned:
             self._warned.append(t)
             angle = float(np.degrees(np.mod(relative.reshape(-1)[np.argmax(outside)], _TWO_PI)))

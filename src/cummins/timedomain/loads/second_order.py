@@ -32,9 +32,11 @@ components at 0.05 s in about a second), :meth:`force` the load of the nonlinear
 linear simulation starts from to be stationary at once.
 
 Axes: :meth:`from_hydrodb` builds the load of the nonlinear DP model — z-down body axes,
-directions relative to the heading ψ₀ the vessel holds (the QTF is looked up there; a DP
-vessel keeps its heading) — and :func:`second_order_force` the force of a linear
-simulation in the dataset's own axes, without position phase.
+the data taken at the vessel's instantaneous relative heading β_i − ψ(t) at every call
+(:mod:`cummins.timedomain.loads.relative_heading`: the data's directions, mirrored for a
+symmetric hull, interpolated linearly; ``follow_heading=False`` holds the start heading
+ψ₀) — and :func:`second_order_force` the force of a linear simulation in the dataset's own
+axes, without position phase.
 """
 
 from __future__ import annotations
