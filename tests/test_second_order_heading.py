@@ -311,3 +311,29 @@ def test_cli_dp_demo_yaw_setpoint(tmp_path):
     run = xr.open_dataset(out / "run.nc", engine="h5netcdf")
     assert run.attrs["yaw_setpoint_deg"] == pytest.approx(30.0)
     assert np.degrees(run.eta.sel(dof="Yaw").values[-1]) > 15.0
+
+
+def test_a_half_plane_qtf_of_a_symmetric_hull_is_mirrored(tanker_qtf):
+    """The tanker's QTF (0–180°, z-up) on 36 directions: the new ones the old ones' images,
+    sway, roll and yaw negated (the mirror rule of the first order); a QTF whose sway
+    does not vanish in head seas says the hull is not symmetric and is left as it is."""
+    from cummins.qtf.headings import mirrored_qtf
+
+    _, dq = tanker_qtf
+    table, coverage = mirrored_qtf(dq)
+    assert coverage.mirror_used and table.directions.size == 36
+    data = dq.qtf_difference.transpose("qtf_omega", "qtf_omega2", "qtf_wave_direction", ...).values
+    for k, beta in enumerate(np.degrees(table.directions)):
+        source = int(np.argmin(np.abs(np.degrees(dq.qtf_wave_direction.values) - beta)))
+        if beta <= 180.0 + 1e-9:
+            np.testing.assert_array_equal(table.values[:, :, k], data[:, :, source])
+        else:
+            image = int(np.argmin(np.abs(np.degrees(dq.qtf_wave_direction.values) - (360 - beta))))
+            np.testing.assert_array_equal(table.values[:, :, k], data[:, :, image] * MIRROR_SIGNS)
+    skewed = dq.copy(deep=True)
+    head = int(np.argmin(np.abs(dq.qtf_wave_direction.values - np.pi)))
+    sway = skewed.qtf_difference.values[:, :, head, 1]
+    skewed.qtf_difference.values[:, :, head, 1] = sway + 0.01 * np.abs(data[..., 0]).max()
+    table, coverage = mirrored_qtf(skewed)
+    assert not coverage.mirror_used and table.directions.size == 19
+    assert "not mirrored: the QTF's Sway in waves along the x axis" in coverage.reason

@@ -194,6 +194,9 @@ def dp_demo_command(
             viscous_damping=damping,
             progress=lambda fraction: bar.update(task, completed=fraction),
         )
+    for load in scenario.loads:  # what the second-order load assumes (headings, grid)
+        for line in getattr(load, "notes", ()):
+            console.print(f"note: {load.name}: {line}")
     save_netcdf(scenario.run, out / "run.nc")
     for file in [out / "run.nc", *write_scenario_plots(scenario, out, force=force)]:
         console.print(f"wrote {file}")
