@@ -129,10 +129,11 @@ def test_a_vessel_turned_by_90_degrees_sees_the_beam_sea_drift(tanker):
     assert beam[1] > 0 and beam[1] > 3 * abs(head[0])
 
 
-def test_the_mean_of_dp_demo_and_of_the_second_order_load_agree_at_any_heading(tanker):
-    """`dp-demo --second-order mean` (WaveDriftLoad without its slowly varying part) and
-    SecondOrderWaveLoad(model='mean'), two implementations, in a short-crested sea at
-    headings all round."""
+@pytest.mark.parametrize("model", ["mean", "newman"])
+def test_dp_demos_drift_and_the_second_order_load_agree_at_any_heading(tanker, model):
+    """`dp-demo --second-order mean|newman` (WaveDriftLoad, without or with its slowly
+    varying part) and SecondOrderWaveLoad(model=...), two implementations, in a
+    short-crested sea at headings all round and off the origin."""
     sea = irregular_waves(
         wave_spectrum("jonswap", 4.0, 10.0),
         duration=600,
@@ -144,11 +145,12 @@ def test_the_mean_of_dp_demo_and_of_the_second_order_load_agree_at_any_heading(t
         omega_max=SOUND,
         data=tanker,
     )
-    ours = SecondOrderWaveLoad.from_hydrodb(tanker, sea, model="mean")
-    dp = WaveDriftLoad.from_hydrodb(tanker, sea, slowly_varying=False, extrapolate="zero")
+    ours = SecondOrderWaveLoad.from_hydrodb(tanker, sea, model=model)
+    slowly = model == "newman"
+    dp = WaveDriftLoad.from_hydrodb(tanker, sea, slowly_varying=slowly, extrapolate="zero")
     for psi in np.arange(-180.0, 180.0, 17.0):
-        a = ours.force(1.0, _pose(psi), np.zeros(6))
-        b = dp.force(1.0, _pose(psi), np.zeros(6))
+        a = ours.force(41.0, _pose(psi, 5.0, -7.0), np.zeros(6))
+        b = dp.force(41.0, _pose(psi, 5.0, -7.0), np.zeros(6))
         np.testing.assert_allclose(a, b, rtol=1e-10, atol=1e-10 * np.abs(b).max())
 
 
