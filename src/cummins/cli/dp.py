@@ -102,7 +102,8 @@ from cummins.validation import check_simulation_size
 @second_order_option(
     "newman",
     "Wave drift, each at the instantaneous relative heading of the waves (the data's "
-    "headings interpolated, mirrored for a symmetric hull): newman (mean and slowly "
+    "headings interpolated, mirrored for a symmetric hull; beyond them the nearest "
+    "heading's values, with a note): newman (mean and slowly "
     "varying drift by Newman's approximation, the paper's), mean (the data's mean drift "
     "alone), full (the data's QTF, and its sum-frequency QTF when it has one; the bundled "
     "S-175 has none: it then stops with an error) or none.",
