@@ -339,3 +339,40 @@ def test_a_half_plane_qtf_of_a_symmetric_hull_is_mirrored(tanker_qtf):
     table, coverage = mirrored_qtf(skewed)
     assert not coverage.mirror_used and table.directions.size == 19
     assert "not mirrored: the QTF's Sway in waves along the x axis" in coverage.reason
+
+
+def test_a_bidirectional_qtf_follows_the_relative_heading(tanker):
+    """A bi-directional QTF of the tanker's drift, Q(ω₁, ω₂, β₁, β₂) = ½(T(ω₁, β₁) +
+    T(ω₂, β₂)) (Newman's pairing of two directions; every second heading, 0.3–1.6 rad/s),
+    in a short-crested sea on the beam: the full load follows the heading as the DP
+    model's Newman drift does, to rounding, while the relative directions stay on the
+    data's half-plane (a bi-directional QTF is not mirrored)."""
+    w = tanker.omega.values
+    ds = tanker.isel(omega=(w > 0.3) & (w < 1.6), wave_direction=slice(None, None, 2))
+    t = ds.drift_force.transpose("omega", "wave_direction", "influenced_dof").values
+    q = (0.5 * (t[:, None, :, None] + t[None, :, None, :])).astype(complex)
+    dofs = tuple(str(d) for d in ds.influenced_dof.values)
+    table = QTFTable(
+        "difference", ds.omega.values, ds.wave_direction.values, q, dofs, bidirectional=True
+    )
+    dq = with_second_order(ds, [table])
+    sea = irregular_waves(
+        wave_spectrum("jonswap", 4.0, 10.0),
+        duration=600,
+        n_components=20,
+        direction=np.radians(270.0),
+        spreading=5,
+        n_directions=5,
+        seed=2,
+        omega_min=0.4,
+        omega_max=1.5,
+    )  # directions 184.8–355.2°: within the data's 180–360° (z-down) for |ψ| < 4.8°
+    full = SecondOrderWaveLoad.from_hydrodb(dq, sea, model="full")
+    assert full.headings.difference.bidirectional
+    newman = WaveDriftLoad.from_hydrodb(
+        ds, sea, extrapolate="zero", keep_suspect=True, mirror=False, max_heading_gap=np.pi
+    )
+    for psi in (0.0, 3.3, -4.0, 4.5):
+        a = full.force(33.0, _pose(psi, 2.0, 1.0), np.zeros(6))
+        b = newman.force(33.0, _pose(psi, 2.0, 1.0), np.zeros(6))
+        np.testing.assert_allclose(a, b, rtol=0, atol=1e-9 * np.abs(b).max())
