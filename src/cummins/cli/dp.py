@@ -2,6 +2,7 @@
 
 from __future__ import annotations
 
+import math
 from pathlib import Path
 
 import click
@@ -88,11 +89,24 @@ from cummins.validation import check_simulation_size
     "record it (VERES, MSS structs): the wave numbers of the wave loads. Default: deep "
     "water, with a warning.",
 )
+@click.option(
+    "--yaw-setpoint",
+    type=heading_degrees(),
+    default=0.0,
+    show_default=True,
+    metavar="DEG",
+    help="DP set-point in yaw (clockwise from North). The ship starts heading North with "
+    "the waves from 45 deg off its starboard bow; a set-point turns it (45: head seas), "
+    "and every wave load follows its relative heading.",
+)
 @second_order_option(
     "newman",
-    "Wave drift: newman (Newman's approximation at the instantaneous relative heading, "
-    "the paper's), mean, full (a QTF of the data; the bundled S-175 has none: it then "
-    "stops with an error) or none.",
+    "Wave drift, each at the instantaneous relative heading of the waves (the data's "
+    "headings interpolated, mirrored for a symmetric hull; beyond them the nearest "
+    "heading's values, with a note): newman (mean and slowly "
+    "varying drift by Newman's approximation, the paper's), mean (the data's mean drift "
+    "alone), full (the data's QTF, and its sum-frequency QTF when it has one; the bundled "
+    "S-175 has none: it then stops with an error) or none.",
 )
 @keep_suspect_option
 @force_option("Overwrite the files of an earlier run.")
@@ -115,6 +129,7 @@ def dp_demo_command(
     wind_from,
     data_path,
     water_depth,
+    yaw_setpoint,
     second_order,
     keep_suspect,
     force,
@@ -124,8 +139,8 @@ def dp_demo_command(
     \b
     The scenario of Smogeli et al. (2004) §7, with the nonlinear 6-DOF model of the
     Marine Systems Simulator (their eq. 56): body-fixed kinematics, the fluid memory as
-    a state-space model fitted to the MSS data, first-order wave forces at the
-    instantaneous relative heading, Newman drift, ITTC surge resistance and cross-flow
+    a state-space model fitted to the MSS data, first-order wave forces and the wave
+    drift at the instantaneous relative heading, ITTC surge resistance and cross-flow
     drag, optional current and wind, a nonlinear PID with a wave filter and thrust
     allocation to four thrusters. Sea: JONSWAP Hs 4 m, wp 0.60 rad/s, gamma 3.3,
     short-crested, from 45 deg off the starboard bow. At t = 100 s a 1000 kN crane load
@@ -144,6 +159,7 @@ def dp_demo_command(
     Example:
       cummins dp-demo -o dp --duration 600 --seed 1
       cummins dp-demo -o dp_supply --duration 200 --data supply.mat
+      cummins dp-demo -o dp_turn --duration 300 --yaw-setpoint 60 --second-order mean
     """
     from cummins.cli.dp_scenario import (
         CRANE_TIME,
@@ -175,9 +191,13 @@ def dp_demo_command(
             wind_from_deg=wind_from,
             second_order=second_order,
             keep_suspect=keep_suspect,
+            yaw_setpoint=math.radians(yaw_setpoint),
             viscous_damping=damping,
             progress=lambda fraction: bar.update(task, completed=fraction),
         )
+    for load in scenario.loads:  # what the second-order load assumes (headings, grid)
+        for line in getattr(load, "notes", ()):
+            console.print(f"note: {load.name}: {line}")
     save_netcdf(scenario.run, out / "run.nc")
     for file in [out / "run.nc", *write_scenario_plots(scenario, out, force=force)]:
         console.print(f"wrote {file}")

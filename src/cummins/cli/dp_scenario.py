@@ -195,14 +195,18 @@ def build_scenario(
     second_order: str = "newman",
     viscous_damping: dict[str, float] | None = None,
     keep_suspect: bool = False,
+    yaw_setpoint: float = 0.0,
 ):
     """The unified model, loads and controller of the scenario (module docstring);
     ``bandwidth`` (rad/s) of the position loop and ``filter_cutoff`` (rad/s) of the
     wave filter (keep it ≈ 4 × the bandwidth and well below the waves' 0.6 rad/s);
     ``second_order``: the wave drift, ``"newman"`` (the paper's, at the instantaneous
-    relative heading), ``"mean"``, ``"full"`` (a QTF of the data:
+    relative heading), ``"mean"`` (the data's mean drift at the instantaneous relative
+    heading), ``"full"`` (a QTF of the data at the instantaneous relative heading:
     :class:`cummins.timedomain.loads.SecondOrderWaveLoad`, the S-175 of MSS has none) or
-    ``"none"``; ``viscous_damping``: linear damping of surge, sway and yaw (default
+    ``"none"``; ``yaw_setpoint`` (rad): the DP set-point in yaw (the ship starts heading
+    North, 0, and turns to it; the wave loads follow its relative heading);
+    ``viscous_damping``: linear damping of surge, sway and yaw (default
     :data:`LOW_FREQUENCY_DAMPING`, the S-175's; :func:`scenario_data` gives another
     vessel's). Dimensions not in the data are the S-175's; the block coefficient is
     ∇/(L B T) when the displaced volume is known.
@@ -271,7 +275,10 @@ def build_scenario(
     gains = DPGains.from_vessel(model.mass, model.damping, bandwidth=bandwidth)
     thrusters = Thrusters.typical(length, max_thrust=1.0e6, beam=breadth)
     controller = DPController(
-        gains, thrusters, wave_filter=WaveFilter(cutoff=filter_cutoff), setpoint=(0.0, 0.0, 0.0)
+        gains,
+        thrusters,
+        wave_filter=WaveFilter(cutoff=filter_cutoff),
+        setpoint=(0.0, 0.0, float(yaw_setpoint)),
     )
     return model, tuple(loads), controller, sea
 
@@ -283,7 +290,7 @@ def _drift_load(ds, sea, second_order: str, keep_suspect: bool = False) -> list:
 
     if second_order == "none":
         return []
-    if second_order == "full":
+    if second_order == "full":  # at the instantaneous relative heading, as the others
         return [
             ld.SecondOrderWaveLoad.from_hydrodb(
                 ds, sea, model="full", name="wave drift", keep_suspect=keep_suspect
@@ -322,6 +329,7 @@ def run_scenario(
             "omega_p": OMEGA_P,
             "gamma": GAMMA,
             "waves_from_deg_off_bow": WAVES_FROM_DEG,
+            "yaw_setpoint_deg": float(np.degrees(options.get("yaw_setpoint", 0.0))),
             "seed": seed,
         }
     )

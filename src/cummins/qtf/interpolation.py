@@ -115,35 +115,62 @@ def direction_weights(
         A direction in a gap of the data wider than ``max_gap`` (one data direction: any
         other direction).
     """
-    beta = np.mod(np.asarray(beta, dtype=float), _TWO_PI)
-    d = np.mod(directions, _TWO_PI)
-    order = np.argsort(d)
-    ds = d[order]
-    m = ds.size
-    pos = np.searchsorted(ds, beta, side="right")  # ds[pos - 1] <= beta < ds[pos]
-    lo = (pos - 1) % m
-    hi = pos % m
-    left, right = ds[lo], ds[hi]
-    span = np.mod(right - left, _TWO_PI)
-    span = np.where((span == 0) & (m > 1), _TWO_PI, span)
-    off = np.mod(beta - left, _TWO_PI)
-    exact_lo = np.minimum(off, _TWO_PI - off) <= 1e-6
-    off_hi = np.mod(right - beta, _TWO_PI)
-    exact_hi = np.minimum(off_hi, _TWO_PI - off_hi) <= 1e-6
-    with np.errstate(invalid="ignore", divide="ignore"):
-        t = np.where(span > 0, off / span, 0.0)
-    t = np.where(exact_lo, 0.0, np.where(exact_hi, 1.0, t))
-    bad = ~(exact_lo | exact_hi) & ((span > max_gap) | (m == 1))
-    if bad.any():
-        k = int(np.argmax(bad.reshape(-1)))
-        b = float(np.degrees(beta.reshape(-1)[k]))
+    a, b, t, outside = direction_stencil(directions, beta, max_gap=max_gap)
+    if outside.any():
+        k = int(np.argmax(outside.reshape(-1)))
+        angle = float(np.degrees(np.mod(np.asarray(beta, dtype=float).reshape(-1)[k], _TWO_PI)))
         have = ", ".join(f"{x:.4g}" for x in np.degrees(directions))
         raise HydroDataError(
-            f"the {what} has no wave direction near {b:.4g} deg (it has {have} deg)",
+            f"the {what} has no wave direction near {angle:.4g} deg (it has {have} deg)",
             hint="waves from the directions the solver computed, or a run with more "
             "directions; for a symmetric hull the directions may be mirrored first",
         )
-    return order[lo], order[hi], t
+    return a, b, t
+
+
+def direction_stencil(
+    directions: NDArray[np.float64], beta: ArrayLike, *, max_gap: float = np.pi / 2
+) -> tuple[NDArray[np.intp], NDArray[np.intp], NDArray[np.float64], NDArray[np.bool_]]:
+    """:func:`direction_weights` without the refusal: a direction in a gap of the data
+    wider than ``max_gap`` (or any other direction than the only one) takes the value of
+    the nearest data direction, and ``outside`` marks it. Returns (a, b, t, outside)."""
+    return DirectionStencil(directions, max_gap)(beta)
+
+
+class DirectionStencil:
+    """:func:`direction_stencil` on fixed data directions, prepared once (for a load
+    that looks directions up at every time step)."""
+
+    def __init__(self, directions: ArrayLike, max_gap: float = np.pi / 2) -> None:
+        d = np.mod(np.asarray(directions, dtype=float).reshape(-1), _TWO_PI)
+        self.order = np.argsort(d)
+        self.sorted = d[self.order]
+        m = self.sorted.size
+        self.m = m
+        right = np.roll(self.sorted, -1)
+        span = np.mod(right - self.sorted, _TWO_PI)
+        self.span = np.where((span == 0) & (m > 1), _TWO_PI, span)  # from node k to k + 1
+        self.wide = (self.span > max_gap) | (m == 1)
+
+    def __call__(
+        self, beta: ArrayLike
+    ) -> tuple[NDArray[np.intp], NDArray[np.intp], NDArray[np.float64], NDArray[np.bool_]]:
+        beta = np.mod(np.asarray(beta, dtype=float), _TWO_PI)
+        m = self.m
+        lo = (np.searchsorted(self.sorted, beta, side="right") - 1) % m
+        hi = (lo + 1) % m
+        span = self.span[lo]
+        off = np.mod(beta - self.sorted[lo], _TWO_PI)
+        off_lo = np.minimum(off, _TWO_PI - off)  # distances on the circle
+        exact_lo = off_lo <= 1e-6
+        off_hi = np.mod(self.sorted[hi] - beta, _TWO_PI)
+        off_hi = np.minimum(off_hi, _TWO_PI - off_hi)
+        exact_hi = off_hi <= 1e-6
+        t = off / np.where(span > 0, span, 1.0)
+        outside = ~(exact_lo | exact_hi) & self.wide[lo]
+        near_lo = exact_lo | (outside & (off_lo <= off_hi))
+        t = np.where(near_lo, 0.0, np.where(exact_hi | outside, 1.0, t))
+        return self.order[lo], self.order[hi], t, outside
 
 
 def _unique_direction_weights(directions, beta, max_gap):
@@ -154,7 +181,7 @@ def _unique_direction_weights(directions, beta, max_gap):
     return a[inverse], b[inverse], t[inverse]
 
 
-def _mean_direction(b1: NDArray, b2: NDArray) -> NDArray:
+def mean_direction(b1: NDArray, b2: NDArray) -> NDArray:
     """The circular mean of two directions (rad), ambiguity of opposite ones resolved
     towards b1."""
     delta = np.mod(b2 - b1 + np.pi, _TWO_PI) - np.pi
@@ -216,7 +243,7 @@ def interpolate(
         )
         per_pair = m * m
     else:
-        a0, a1, ta = _unique_direction_weights(table.directions, _mean_direction(b1, b2), max_gap)
+        a0, a1, ta = _unique_direction_weights(table.directions, mean_direction(b1, b2), max_gap)
         heads = ((a0, 1 - ta), (a1, ta))
         per_pair = m
     heads = tuple((h, wh) for h, wh in heads if np.any(wh))  # one direction: one corner
@@ -282,7 +309,7 @@ def at_directions(
             + (1 - ta[0]) * tc[0] * v[:, :, a0[0], c1[0]]
             + ta[0] * tc[0] * v[:, :, a1[0], c1[0]]
         )
-    mean = _mean_direction(np.array([beta1]), np.array([beta2]))
+    mean = mean_direction(np.array([beta1]), np.array([beta2]))
     a0, a1, ta = direction_weights(table.directions, mean, max_gap=max_gap)
     v = table.values[..., dof]
     return (1 - ta[0]) * v[:, :, a0[0]] + ta[0] * v[:, :, a1[0]]

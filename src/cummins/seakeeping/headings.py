@@ -118,7 +118,7 @@ def symmetry_evidence(ds: xr.Dataset) -> tuple[bool, str]:
         if "excitation_force" in ds
         else None
     )
-    beta = np.mod(ds.wave_direction.values, _TWO_PI) if "wave_direction" in ds.dims else []
+    beta = np.mod(ds.wave_direction.values, _TWO_PI) if "wave_direction" in ds.dims else np.zeros(0)
     along = np.flatnonzero(
         (np.abs(beta) < _ANGLE_TOL)
         | (np.abs(beta - np.pi) < _ANGLE_TOL)
@@ -144,7 +144,9 @@ def symmetry_evidence(ds: xr.Dataset) -> tuple[bool, str]:
     )
 
 
-def heading_coverage(ds: xr.Dataset, *, mirror: bool | None = None) -> HeadingCoverage:
+def heading_coverage(
+    ds: xr.Dataset, *, mirror: bool | None = None, directions: ArrayLike | None = None
+) -> HeadingCoverage:
     """The directions available for interpolation, with mirrored ones (module docstring §3).
 
     Parameters
@@ -154,11 +156,17 @@ def heading_coverage(ds: xr.Dataset, *, mirror: bool | None = None) -> HeadingCo
     mirror
         None: mirror when the data cover one half-plane only and the body looks
         port/starboard symmetric; True: mirror (single body); False: never.
+    directions
+        The directions to cover (rad), when not the dataset's ``wave_direction`` (a
+        QTF's own directions, :func:`cummins.qtf.headings.mirrored_qtf`); the symmetry
+        is judged from ``ds`` all the same.
     """
     ds = single_speed(ds)
-    if "wave_direction" not in ds.dims:
-        raise HydroDataError("the dataset has no wave directions", path=_where(ds))
-    beta = np.mod(ds.wave_direction.values.astype(float), _TWO_PI)
+    if directions is None:
+        if "wave_direction" not in ds.dims:
+            raise HydroDataError("the dataset has no wave directions", path=_where(ds))
+        directions = ds.wave_direction.values
+    beta = np.mod(np.asarray(directions, dtype=float).reshape(-1), _TWO_PI)
     beta[np.abs(beta - _TWO_PI) < _ANGLE_TOL] = 0.0
     order = np.argsort(beta, kind="stable")
     beta, source = beta[order], order

@@ -41,7 +41,7 @@ class                          model                                           S
 :class:`Current`               current velocity, relative velocity (no load)   eqs. 40, 49
 :class:`FirstOrderWaveLoad`    first-order wave excitation                     eq. 46
 :class:`WaveDriftLoad`         mean and slowly varying drift (Newman)          eqs. 47–48
-:class:`SecondOrderWaveLoad`   mean and slow drift (Newman or QTF), sum freq.
+:class:`SecondOrderWaveLoad`   mean and slow drift (Newman or QTF), sum freq.  eqs. 46–47
 :class:`SurgeResistance`       ITTC 1957 friction line resistance              eqs. 50–51, 54
 :class:`CrossFlowDrag`         cross-flow drag in sway and yaw (strips)        eqs. 52–54
 :class:`WindLoad`              wind with gusts (Harris, NORSOK)                eq. 55, §4.2
@@ -56,7 +56,9 @@ Modules
 * :mod:`~cummins.timedomain.loads.current`: :class:`Current` and the relative velocity;
 * :mod:`~cummins.timedomain.loads.waves`: first-order wave excitation and wave drift;
 * :mod:`~cummins.timedomain.loads.second_order`: the second-order wave force from QTFs
-  (:mod:`~cummins.timedomain.loads.quadratic_form`: its factorised double sum);
+  (:mod:`~cummins.timedomain.loads.quadratic_form`: its factorised double sum;
+  :mod:`~cummins.timedomain.loads.relative_heading`: at the vessel's instantaneous
+  relative heading);
 * :mod:`~cummins.timedomain.loads.viscous`: surge resistance and cross-flow drag;
 * :mod:`~cummins.timedomain.loads.wind`: gust spectra, wind, wind coefficients, wind load;
 * :mod:`~cummins.timedomain.loads.external`: point, constant and function loads, and sums.

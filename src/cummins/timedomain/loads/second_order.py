@@ -32,9 +32,11 @@ components at 0.05 s in about a second), :meth:`force` the load of the nonlinear
 linear simulation starts from to be stationary at once.
 
 Axes: :meth:`from_hydrodb` builds the load of the nonlinear DP model — z-down body axes,
-directions relative to the heading ψ₀ the vessel holds (the QTF is looked up there; a DP
-vessel keeps its heading) — and :func:`second_order_force` the force of a linear
-simulation in the dataset's own axes, without position phase.
+the data taken at the vessel's instantaneous relative heading β_i − ψ(t) at every call
+(:mod:`cummins.timedomain.loads.relative_heading`: the data's directions, mirrored for a
+symmetric hull, interpolated linearly; ``follow_heading=False`` holds the start heading
+ψ₀) — and :func:`second_order_force` the force of a linear simulation in the dataset's own
+axes, without position phase.
 """
 
 from __future__ import annotations
@@ -47,7 +49,8 @@ from numpy.typing import NDArray
 
 from cummins.errors import ArgumentError, HydroDataError
 from cummins.hydrodb import bodies, change_axes, dof_index, single_speed
-from cummins.qtf.data import NO_QTF_HINT, has_qtf, qtf_table
+from cummins.qtf.data import NO_QTF_HINT, has_qtf
+from cummins.qtf.headings import mirrored_qtf
 from cummins.qtf.interpolation import (
     at_directions,
     coverage,
@@ -66,6 +69,7 @@ from cummins.timedomain.loads.quadratic_form import (
     newman_form,
     time_series,
 )
+from cummins.timedomain.loads.relative_heading import HeadingTable, heading_table
 from cummins.timedomain.loads.waves import _wave_vectors
 
 #: The second-order models.
@@ -109,6 +113,12 @@ class SecondOrderWaveLoad:
     drift_left_out
         The frequencies (rad/s) left out of the mean drift (``drift_force``) as suspect
         (irregular frequencies: :mod:`cummins.qtf.suspect_drift`).
+    headings
+        The data at each of their directions, for a :meth:`force` at the vessel's
+        instantaneous relative heading
+        (:class:`~cummins.timedomain.loads.relative_heading.HeadingTable`); None: the
+        force at the directions of ``waves`` as given (the heading ψ₀ of
+        :meth:`from_hydrodb` with ``follow_heading=False``, or the data's axes).
     """
 
     waves: WaveComponents
@@ -123,6 +133,7 @@ class SecondOrderWaveLoad:
     notes: tuple[str, ...] = ()
     name: str = "second-order wave force"
     drift_left_out: tuple[float, ...] = ()
+    headings: HeadingTable | None = None
     _k: NDArray | None = field(default=None, init=False, repr=False)
 
     def __post_init__(self) -> None:
@@ -144,8 +155,10 @@ class SecondOrderWaveLoad:
         max_gap: float = np.pi / 2,
         name: str = "second-order wave force",
         keep_suspect: bool = False,
+        follow_heading: bool = True,
     ) -> SecondOrderWaveLoad:
-        """The load of the nonlinear DP model (z-down axes, b-frame about O).
+        """The load of the nonlinear DP model (z-down axes, b-frame about O), at the
+        vessel's instantaneous relative heading (module docstring).
 
         Parameters
         ----------
@@ -160,7 +173,9 @@ class SecondOrderWaveLoad:
             Include the sum-frequency force (``"full"`` only; default: when the data
             have ``qtf_sum``).
         heading
-            ψ₀, rad: the heading at which the QTF is looked up (β_i − ψ₀).
+            ψ₀, rad: the vessel's heading at the start. The data must cover the sea's
+            relative directions β_i − ψ₀ there; :meth:`time_series`,
+            :meth:`stationary_state` and ``mean`` are the force held at ψ₀.
         position_phase
             Include the phase of the vessel's horizontal position.
         tol
@@ -172,6 +187,10 @@ class SecondOrderWaveLoad:
         keep_suspect
             Keep the mean drift (``drift_force``) at the suspect frequencies of the
             radiation data (default: left out, :mod:`cummins.qtf.suspect_drift`).
+        follow_heading
+            :meth:`force` at the instantaneous relative heading β_i − ψ(t), ψ(t) = η₆
+            (default; :mod:`~cummins.timedomain.loads.relative_heading`); False: at
+            β_i − ψ₀ whatever the vessel's yaw.
         """
         ds = single_speed(ds)
         if len(bodies(ds)) != 1:
@@ -189,9 +208,22 @@ class SecondOrderWaveLoad:
         k = wavenumber(
             waves.omega, float(ds.attrs.get("water_depth", np.inf)), float(ds.attrs.get("g", 9.81))
         )
-        notes = parts["notes"] + [
-            f"QTF looked up at the heading {np.degrees(heading):.4g} deg (held by DP)"
-        ]
+        table = None
+        if follow_heading:
+            table = heading_table(
+                model,
+                waves.omega,
+                waves.phase,
+                waves.amplitude,
+                waves.direction,
+                parts["directions"],
+                parts["per_direction"],
+                difference=parts["table"],
+                sum_table=parts["sum_table"],
+                max_gap=max_gap,
+                what=parts["what"],
+            )
+        notes = parts["notes"] + [_heading_note(parts, heading, follow_heading, max_gap)]
         return cls(
             waves,
             parts["dofs"],
@@ -205,6 +237,7 @@ class SecondOrderWaveLoad:
             tuple(notes),
             name,
             parts["left_out"],
+            table,
         )
 
     def time_series(self, t) -> NDArray[np.float64]:
@@ -243,13 +276,42 @@ class SecondOrderWaveLoad:
         shift = None
         if self.position_phase and self._k is not None:
             shift = np.asarray(eta, dtype=float)[:2] @ self._k
-        value = self.mean if self.difference is None else self.difference.at(t, shift)
-        if self.sum is not None:
-            value = value + self.sum.at(t, shift)
+        if self.headings is not None:
+            value = self.headings.force(t, float(eta[5]), shift)
+        else:
+            value = self.mean if self.difference is None else self.difference.at(t, shift)
+            if self.sum is not None:
+                value = value + self.sum.at(t, shift)
         out = np.zeros(6)
         index = self.index if self.index is not None else np.arange(min(6, value.size))
         out[index] = value[: index.size]
         return out
+
+
+def _heading_note(parts: dict, heading: float, follow: bool, max_gap: float) -> str:
+    """What the DP load does with the vessel's heading, and the data's directions."""
+    what, directions = parts["what"], np.sort(np.mod(parts["directions"], 2 * np.pi))
+    have = ", ".join(f"{x:.4g}" for x in np.degrees(directions[:12]))
+    have += (" …" if directions.size > 12 else "") + " deg"
+    start = f"{np.degrees(heading):.4g} deg"
+    if not follow:
+        return f"{what} at the relative directions of the heading {start}, whatever the yaw"
+    if directions.size == 1:
+        return (
+            f"the {what} has one direction ({have}): held at every relative heading "
+            f"(the drift does not follow the yaw; start heading {start})"
+        )
+    ends = np.append(directions[1:], directions[0] + 2 * np.pi)
+    if np.any(ends - directions > max_gap + 1e-12):
+        return (
+            f"{what} at the instantaneous relative heading, linear between its directions "
+            f"({have}); in gaps over {np.degrees(max_gap):.4g} deg it takes the nearest "
+            f"direction's values (a warning says when); start heading {start}"
+        )
+    return (
+        f"{what} at the instantaneous relative heading, linear between its directions "
+        f"({have}); start heading {start}"
+    )
 
 
 def _static_state(f: NDArray, g: NDArray, force: NDArray) -> tuple[NDArray, list[str]]:
@@ -308,24 +370,33 @@ def _build(ds, waves: WaveComponents, model, sum_frequency, tol, max_gap, keep_s
             hint=f"{NO_QTF_HINT}, or use Newman's approximation (model='newman', "
             "--second-order newman), which needs only the mean drift",
         )
+    table = None
     if have_qtf:
-        table = qtf_table(ds, "difference")
+        table = _mirrored(ds, "difference", notes)
         cover = coverage(table, waves.omega, a)
         inside = cover.inside
         if cover.note():
             notes.append(cover.note())
-        diag = interpolate(
-            table, waves.omega, waves.omega, waves.direction, waves.direction, max_gap=max_gap
-        ).real
+        directions = table.directions
+        per_direction = np.stack(
+            [interpolate(table, waves.omega, waves.omega, g, g).real for g in directions]
+        )
         source = f"the QTF's diagonal ({table.omega.size} frequencies)"
+        what = "QTF"
         if np.unique(np.round(waves.direction, 9)).size > 1 and not table.bidirectional:
             notes.append(
                 "unidirectional QTF in a short-crested sea: a pair of components of two "
                 "directions takes the QTF at their mean direction"
             )
     else:
-        diag, inside, source, left_out = _drift_diagonal(ds, waves, max_gap, notes, keep_suspect)
-    diag = np.where(inside[:, None], diag, 0.0)
+        directions, per_direction, inside, source, left_out = _drift_table(
+            ds, waves, notes, keep_suspect
+        )
+        what = "mean drift"
+    per_direction = np.where(inside[None, :, None], per_direction, 0.0)
+    a0, a1, ta = direction_weights(directions, waves.direction, max_gap=max_gap, what=what)
+    rows = np.arange(len(waves))
+    diag = (1 - ta)[:, None] * per_direction[a0, rows] + ta[:, None] * per_direction[a1, rows]
     mean = (a**2) @ diag
     if model == "full":
         difference = _full(table, waves, tol, max_gap)
@@ -339,14 +410,15 @@ def _build(ds, waves: WaveComponents, model, sum_frequency, tol, max_gap, keep_s
     else:
         difference = None
         notes.append(f"mean drift only, from {source}")
-    total_sum = None
+    total_sum = sum_table = None
     want_sum = has_qtf(ds, "sum") if sum_frequency is None else bool(sum_frequency)
     if want_sum and model == "full":
         if not has_qtf(ds, "sum"):
             raise HydroDataError(
                 "the data have no sum-frequency QTF", path=ds.attrs.get("source_file")
             )
-        total_sum = _full(qtf_table(ds, "sum"), waves, tol, max_gap)
+        sum_table = _mirrored(ds, "sum", [])
+        total_sum = _full(sum_table, waves, tol, max_gap)
         notes.append("sum-frequency QTF: " + _describe(total_sum, tol))
     return {
         "dofs": dofs,
@@ -355,7 +427,21 @@ def _build(ds, waves: WaveComponents, model, sum_frequency, tol, max_gap, keep_s
         "mean": mean,
         "notes": notes,
         "left_out": left_out,
+        "directions": directions,
+        "per_direction": per_direction,
+        "table": table if model == "full" else None,
+        "sum_table": sum_table,
+        "what": what,
     }
+
+
+def _mirrored(ds, kind: str, notes: list[str]):
+    """The dataset's QTF on its directions mirrored for a symmetric hull
+    (:func:`cummins.qtf.headings.mirrored_qtf`); a note when mirrored."""
+    table, cover = mirrored_qtf(ds, kind)
+    if cover.mirror_used:
+        notes.append(f"{kind}-frequency QTF of the mirrored directions: {cover.reason}")
+    return table
 
 
 def _full(table, waves: WaveComponents, tol: float, max_gap: float) -> QuadraticForm:
@@ -386,13 +472,15 @@ def _describe(form: QuadraticForm, tol: float) -> str:
     return f"{sum(sizes)} terms over the DOFs (truncated at {tol:g} of each DOF's weight)"
 
 
-def _drift_diagonal(
-    ds, waves: WaveComponents, max_gap, notes, keep_suspect=False
-) -> tuple[NDArray, NDArray, str, tuple[float, ...]]:
-    """T_i of every component from ``drift_force``: linear in ω (zero outside the data's
-    frequencies) and in direction; without the suspect frequencies
+def _drift_table(
+    ds, waves: WaveComponents, notes, keep_suspect=False
+) -> tuple[NDArray, NDArray, NDArray, str, tuple[float, ...]]:
+    """T_i of every component at each direction of ``drift_force`` (mirrored for a
+    symmetric hull), shape (m, N, d): linear in ω (zero outside the data's frequencies);
+    without the suspect frequencies
     (:func:`~cummins.qtf.suspect_drift.drift_suspect_frequencies`) unless
-    ``keep_suspect``, which are returned."""
+    ``keep_suspect``, which are returned. Returns (directions, table, inside, source,
+    left out)."""
     if "drift_force" not in ds:
         raise HydroDataError(
             "the data have neither a QTF nor a mean drift (drift_force)",
@@ -415,11 +503,7 @@ def _drift_diagonal(
         w, drift = w[sound], drift[sound]
     i, t, inside = frequency_weights(w, waves.omega)
     hi = np.minimum(i + 1, w.size - 1)
-    a0, a1, ta = direction_weights(
-        mirrored.wave_direction.values, waves.direction, max_gap=max_gap, what="mean drift"
-    )
-    value = (1 - t)[:, None] * ((1 - ta)[:, None] * drift[i, a0] + ta[:, None] * drift[i, a1])
-    value += t[:, None] * ((1 - ta)[:, None] * drift[hi, a0] + ta[:, None] * drift[hi, a1])
+    value = (1 - t)[:, None, None] * drift[i] + t[:, None, None] * drift[hi]  # (N, m, d)
     if not inside.all():
         a2 = waves.amplitude**2
         share = a2[~inside].sum() / a2.sum()
@@ -429,4 +513,5 @@ def _drift_diagonal(
             "from them"
         )
     method = ds.drift_force.attrs.get("method", "mean drift")
-    return value, inside, f"drift_force ({method})", left_out
+    directions = mirrored.wave_direction.values.astype(float)
+    return directions, np.moveaxis(value, 1, 0), inside, f"drift_force ({method})", left_out
