@@ -196,8 +196,18 @@ def power_text(watts: float, per: str = "", digits: int = 4) -> str:
     >>> power_text(float("nan"))
     'nan W'
     """
+    factor, unit = power_unit(watts)
+    return f"{watts / factor:.{digits}g} {unit}{per}"
+
+
+def power_unit(watts: float) -> tuple[float, str]:
+    """(factor, unit) of :func:`power_text` for a power of this size (an axis's largest).
+
+    >>> power_unit(28.2), power_unit(-4.6e3)
+    ((1.0, 'W'), (1000.0, 'kW'))
+    """
     size = abs(watts)
     for factor, unit in ((1e6, "MW"), (1e3, "kW")):
         if size >= factor:
-            return f"{watts / factor:.{digits}g} {unit}{per}"
-    return f"{watts:.{digits}g} W{per}"
+            return factor, unit
+    return 1.0, "W"

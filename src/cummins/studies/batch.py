@@ -152,6 +152,9 @@ class StudyContext:
         failures = model_failures(attrs)
         if failures:
             out[MODEL_FAILURES] = "\n".join(failures)
+        if len(self.vessels) > 1:  # a PTO sweep: one model for every value
+            fitted = "" if study.model else ", fitted at the smallest damping"
+            out["radiation_model_sweep"] = f"one radiation model for every PTO value{fitted}"
         return out
 
     @property

@@ -664,6 +664,8 @@ grid:                     # outer product of the axes; or `cases:` a list of map
   # gamma: [1, 3.3]       # JONSWAP peakedness
   # spreading: [4]        # cos-2s exponent: short-crested seas
   # seed: [1, 2, 3]       # simulate: realisations (default: one per case)
+  # pto_damping: [3.0e+5, 1.0e+6, 3.0e+6]  # with a system's PTO: N s/m (N m s/rad);
+  #                       # the best per sea state and for the scatter diagram is added
 viscous_damping:
   Roll: 5.0e+8            # kg m^2/s
 # what the files lack, as simulate's options (--mass ...), one value or list per body:
