@@ -64,7 +64,7 @@ import xarray as xr
 from cummins.errors import CumminsError, check_writable
 from cummins.files import replacing
 from cummins.radiation.model import MODEL_FAILURES, model_failures
-from cummins.studies.pto_sweep import best_pto_damping, case_system, sweep_units
+from cummins.studies.pto_sweep import SWEEP_AXES, best_pto_damping, case_system, sweep_units
 from cummins.studies.results import is_results, load_results, write_results
 from cummins.studies.study import (
     _BLAS_ENV,
@@ -268,8 +268,10 @@ def _dataset_digest(ds: xr.Dataset) -> str:
 
 
 def _derived_seed(case: Case) -> int:
-    """A seed from the case's parameters: the same case gets the same sea anywhere."""
-    text = json.dumps(case.parameters(), sort_keys=True)
+    """A seed from the case's parameters: the same case gets the same sea anywhere, and
+    every value of a PTO sweep the same sea (the dampings compared on one realisation)."""
+    sea = {k: v for k, v in case.parameters().items() if k not in SWEEP_AXES}
+    text = json.dumps(sea, sort_keys=True)
     return int(hashlib.sha256(text.encode()).hexdigest()[:8], 16)
 
 
