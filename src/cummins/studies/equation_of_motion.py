@@ -24,6 +24,7 @@ stiffness in surge and sway::
 
 from __future__ import annotations
 
+import math
 from collections.abc import Mapping, Sequence
 from pathlib import Path
 from typing import Any
@@ -144,9 +145,10 @@ def normalised_keys(values: Mapping[str, Any], source: Path | None) -> dict[str,
     for key in ("rho", "g"):
         out[key] = None if values.get(key) is None else _positive(values[key], key, source)
     depth = values.get("water_depth")
-    if depth is not None and str(depth).strip().lower() not in ("inf", ".inf"):
-        depth = _positive(depth, "water_depth", source)
-    out["water_depth"] = None if depth is None else float(depth)
+    if depth is not None:  # .inf (YAML's infinity) or inf: deep water
+        deep = str(depth).strip().lower() in ("inf", ".inf")
+        depth = math.inf if deep else _positive(depth, "water_depth", source)
+    out["water_depth"] = depth
     out["mass"] = _per_body(values.get("mass"), None, "mass", source)
     for key in ("center_of_gravity", "radii_of_gyration"):
         out[key] = _per_body(values.get(key), 3, key, source)
