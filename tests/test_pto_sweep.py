@@ -321,3 +321,22 @@ def test_the_example_study_shows_the_sweep(tmp_path):
     assert "pto_damping" not in Case(180, 2, 8).parameters()
     (tmp_path / "study.yaml").write_text(example_study_text(str(cummins.demo_files() / "tanker.1")))
     assert load_study(tmp_path / "study.yaml").swept_pto is None
+
+
+def test_limits_with_a_sweep_are_judged_per_damping(corpus):
+    """With limits, the damping is a design choice, not a realisation of the sea: the
+    operability and the limiting H_s are given per damping (more damping, less heave:
+    the limiting H_s grows with it), the axis keeps its units, and the report's
+    operability and limiting-H_s figures are drawn."""
+    from cummins.cli.html_report import batch_sections
+    from cummins.studies.operability import limiting_hs, operability
+
+    study = _study(corpus / WAVEBOT, [300.0, 3000.0, 30000.0], limits={"Heave": "0.05 m"})
+    results = _run(study)
+    assert results.pto_damping.attrs["units"] == "N s/m"
+    op = operability(results)
+    assert set(op.dims) == {"heading", "pto_damping"}
+    lim = limiting_hs(results).sel(heading=0, tp=2.0)
+    assert lim.dims == ("pto_damping",) and bool((lim.diff("pto_damping") > 0).all())
+    titles = [s.title for s in batch_sections(results)]
+    assert "Operability" in titles and "PTO damping sweep" in titles

@@ -775,4 +775,5 @@ def gather_results(
         out["limiting_hs"] = lim.drop_vars("beyond_grid")
         out["limiting_hs_beyond_grid"] = lim.beyond_grid.fillna(False).astype(bool)
         out.limiting_hs_beyond_grid.attrs = dict(lim.beyond_grid.attrs)
+    out = out.assign_coords({d: ds[d] for d in dims if d in ds.coords})  # with their units
     return best_pto_damping(out)
