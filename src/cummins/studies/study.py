@@ -387,7 +387,10 @@ class Study:
     Parameters mirror the keys of a study file (:data:`STUDY_KEYS`, :func:`load_study`);
     ``grid`` and ``limits`` may be given as mappings, ``cases`` as mappings or
     :class:`Case`\\ s. Paths are used as given (:func:`load_study` resolves them against
-    the study file's folder).
+    the study file's folder). ``swept_pto`` is derived: the PTO whose damping and
+    stiffness the grid's ``pto_damping`` and ``pto_stiffness`` set
+    (:mod:`cummins.studies.pto_sweep`: the system's only PTO, or the one named,
+    ``pto_damping: {name: [..]}``).
 
     Examples
     --------
