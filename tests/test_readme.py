@@ -119,6 +119,28 @@ def test_the_pages_are_read():
     assert [a for a in tour if a not in guide] == [("demo", "-o", "cummins-demo")]
 
 
+def _study_files() -> dict[str, str]:
+    """The YAML blocks of the pages that open with their file's name (``# rm3_sweep.yaml``):
+    a reader saves them under that name before the commands that read them."""
+    out = {}
+    for path in (p for group in GROUPS for p in group):
+        for block in _blocks(path, "yaml"):
+            first = block.splitlines()[0] if block.strip() else ""
+            found = re.fullmatch(r"# (\S+\.ya?ml)", first.strip())
+            if found:
+                out[found.group(1)] = block
+    return out
+
+
+STUDY_FILES = _study_files()
+
+
+def test_study_files_are_found():
+    """The guide's PTO-damping sweep is a study file the tests write and run."""
+    assert "rm3_sweep.yaml" in STUDY_FILES
+    assert any(c.args[:2] == ("batch", "rm3_sweep.yaml") for c in COMMANDS)
+
+
 #: the options that name a file or folder a command writes (refused when it exists)
 WRITES = ("-o", "--output", "--plot", "--json", "--report", "--openfast", "--mss")
 
@@ -164,6 +186,8 @@ def workdir(tmp_path, shared_data, monkeypatch):
     eta = 0.8 * np.cos(0.6 * t) + 0.5 * np.cos(0.9 * t + 1.0) + 0.3 * np.cos(0.45 * t + 2.0)
     rows = "".join(f"{a:g}, {b:.6f}\n" for a, b in zip(t, eta, strict=True))
     (tmp_path / "probe.csv").write_text("time [s], wave elevation [m]\n" + rows)
+    for name, text in STUDY_FILES.items():  # the study files the pages show
+        (tmp_path / name).write_text(text, encoding="utf-8")
     monkeypatch.chdir(tmp_path)
     return tmp_path
 
@@ -211,6 +235,10 @@ QUOTED = {
     ],
     "reduce tanker_model.nc -o tanker_model_small.nc --tol 0.02 --data tanker.1": [
         ("docs/guide/reduce.md", r"→ (\d+) states", "`--tol 0.02` gives {0} states"),
+    ],
+    "batch rm3_sweep.yaml -o rm3_sweep.nc --workers 1": [
+        ("docs/guide/wec.md", r"3e\+06: ([\d.]+) kW", "3·10⁶ N·s/m ({0} kW)"),
+        ("docs/guide/wec.md", r"│ 2\.5 │ 1e\+06 \(([\d.]+) kW\)", "({0} kW at H_s 2.5 m)"),
     ],
     "dp-demo -o dp --duration 300 --seed 1": [
         ("docs/guide/dp.md", r"static heel [-\d.]+° \((-?[\d.]+) %\)", "prints {0} %"),

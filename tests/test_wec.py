@@ -605,6 +605,18 @@ def test_tank_scale_waves_get_a_time_step_of_their_period(corpus, tmp_path):
     assert abs(simulated / expected - 1) < 0.005  # measured −0.2 %
 
 
+def pto_row(output: str) -> tuple[float, ...]:
+    """The powers (W) of the row of ``pto1`` in a printed PTO table ("16.02 W", "278.3 kW")."""
+    import re
+
+    number = r"([0-9.e+-]+) (W|kW|MW)"
+    row = re.search(rf"pto1\s*│\s*{number}\s*│\s*{number}", output)
+    assert row is not None, output
+    scale = {"W": 1.0, "kW": 1e3, "MW": 1e6}
+    values = row.groups()
+    return tuple(float(v) * scale[u] for v, u in zip(values[::2], values[1::2], strict=True))
+
+
 def test_irregular_run_prints_the_frequency_domain_power(corpus, tmp_path):
     """The WaveBot (WEC-Sim_Applications' WAMIT run) heaving on a PTO to the ground in a
     JONSWAP sea: ``simulate`` prints beside the run's mean power that of the
@@ -613,7 +625,6 @@ def test_irregular_run_prints_the_frequency_domain_power(corpus, tmp_path):
     (``pto_mean_power_frequency_domain``) and ``report`` shows it. Measured: the run 16.016 W, the
     frequency domain 16.103 W (−0.5 %); the spectrum's ∫ 2 P(ω) S(ω) dω of ``rao``,
     16.109 W."""
-    import re
 
     from click.testing import CliRunner
 
@@ -627,10 +638,9 @@ def test_irregular_run_prints_the_frequency_domain_power(corpus, tmp_path):
     args = ["simulate", str(data), *common, "--hs", "0.2", "--tp", "2", "--seed", "1"]
     result = CliRunner().invoke(main, [*args, "--duration", "3600", "-o", str(run_file)])
     assert result.exit_code == 0, result.output
-    assert "frequency domain (kW)" in result.output, result.output
-    row = re.search(r"pto1\s*│\s*([0-9.e+-]+)\s*│\s*([0-9.e+-]+)", result.output)
-    assert row is not None, result.output
-    printed_run, printed_fd = (float(v) * 1e3 for v in row.groups())
+    assert "frequency domain" in result.output, result.output
+    printed_run, printed_fd = pto_row(result.output)
+    assert "pto1 │ 16.0" in " ".join(result.output.split())  # W: not 1.6e-02 kW
     from cummins.cli.html_pto import pto_run_sections
 
     with xr.open_dataset(run_file, engine="h5netcdf") as run:
@@ -728,7 +738,6 @@ def test_the_linear_frequency_domain_says_what_it_leaves_out(corpus, tmp_path, m
     116.1 W — printed before as "frequency domain" beside the run, a 13 % gap that looked
     like an error. The column is now the linear frequency domain and a note names the
     option it leaves out; without the option the two agree (0.2 %) and no note."""
-    import re
 
     from click.testing import CliRunner
 
@@ -747,9 +756,8 @@ def test_the_linear_frequency_domain_says_what_it_leaves_out(corpus, tmp_path, m
         assert result.exit_code == 0, result.output
         note = "note: the frequency domain leaves out --quadratic-damping"
         assert (note in result.output) == bool(extra), result.output
-        assert ("linear frequency domain (kW)" in result.output) == bool(extra), result.output
-        row = re.search(r"pto1\s*│\s*([0-9.e+-]+)\s*│\s*([0-9.e+-]+)", result.output)
-        powers.append(tuple(float(v) for v in row.groups()))
+        assert ("linear frequency domain" in result.output) == bool(extra), result.output
+        powers.append(pto_row(result.output))
     (run, fd), (run_q, fd_q) = powers
     assert abs(run / fd - 1) < 0.01 and fd_q == fd  # the same linear reference
     assert run_q < 0.95 * fd_q  # the drag's effect: measured −13 %

@@ -180,3 +180,34 @@ def phase_line(
     phase = np.asarray(phase_deg, dtype=float).reshape(-1)
     wraps = np.flatnonzero(np.abs(np.diff(phase)) > 180.0) + 1
     return np.insert(w, wraps, np.nan), np.insert(phase, wraps, np.nan)
+
+
+def power_text(watts: float, per: str = "", digits: int = 4) -> str:
+    """A power in the unit that reads best: W below 1 kW (a tank-scale buoy's 0.0408 W,
+    not 4.08e-05 kW), kW below 1000 kW, MW above; ``per`` follows the unit (``"/m²"``
+    for a power per unit wave amplitude squared).
+
+    >>> power_text(0.0408)
+    '0.0408 W'
+    >>> power_text(278_330.0)
+    '278.3 kW'
+    >>> power_text(2.5e6, "/m²")
+    '2.5 MW/m²'
+    >>> power_text(float("nan"))
+    'nan W'
+    """
+    factor, unit = power_unit(watts)
+    return f"{watts / factor:.{digits}g} {unit}{per}"
+
+
+def power_unit(watts: float) -> tuple[float, str]:
+    """(factor, unit) of :func:`power_text` for a power of this size (an axis's largest).
+
+    >>> power_unit(28.2), power_unit(-4.6e3)
+    ((1.0, 'W'), (1000.0, 'kW'))
+    """
+    size = abs(watts)
+    for factor, unit in ((1e6, "MW"), (1e3, "kW")):
+        if size >= factor:
+            return factor, unit
+    return 1.0, "W"

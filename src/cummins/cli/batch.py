@@ -20,6 +20,7 @@ from cummins.cli.common import (
 )
 from cummins.cli.option_rules import Command, option_rules
 from cummins.cli.outputs import output_written
+from cummins.display import power_text
 
 
 @click.command(name="batch", cls=Command)
@@ -60,12 +61,15 @@ def batch_command(study_file, output, scheduler, workers, example, force):
     \b
     STUDY is a YAML file (`cummins batch --example study.yaml` writes a commented
     one): the vessel data (and a model file; what the files lack as keys named as
-    simulate's options: rho, g, mass, center_of_gravity, radii_of_gyration,
+    simulate's options: rho, g, water_depth, mass, center_of_gravity, radii_of_gyration,
     inertia_matrix, external_stiffness, external_damping), the analysis — `rao`, frequency domain:
     significant amplitude 2 sqrt(m0) and most probable maximum per DOF, or `simulate`,
     time domain: the same from a run in a realisation of the sea —, the cases as a
     grid (heading, hs, tp, gamma, spreading, seed) or a list, and limits such as
-    `Roll: 4 deg` (significant) or `Heave: {max: 2.5 m}`.
+    `Roll: 4 deg` (significant) or `Heave: {max: 2.5 m}`. With a `system:` of
+    joints and PTOs the results hold each PTO's mean power, and the grid may sweep
+    a PTO's damping (`pto_damping: [3.0e+5, 1.0e+6, 3.0e+6]`, N s/m or N m s/rad):
+    the best damping per sea state and for the scatter diagram are printed.
 
     \b
     Cases run in parallel on Dask (pip install cummins[dask]): a local cluster of
@@ -130,12 +134,13 @@ def batch_command(study_file, output, scheduler, workers, example, force):
     )
     if "pto_mean_power" in run.results:
         for name in run.results.pto.values:
-            power = run.results.pto_mean_power.sel(pto=name).values / 1e3
+            power = run.results.pto_mean_power.sel(pto=name).values
             console.print(
-                f"{name}: mean absorbed power {np.nanmin(power):.4g} to {np.nanmax(power):.4g} kW "
-                "over the cases (pto_mean_power)"
+                f"{name}: mean absorbed power {power_text(np.nanmin(power))} to "
+                f"{power_text(np.nanmax(power))} over the cases (pto_mean_power)"
             )
     _print_tables(run.results)
+    _print_pto_sweep(run.results)
     console.print(f"wrote {output}")
 
 
@@ -204,3 +209,65 @@ def _print_tables(results) -> None:
         note = beyond_grid_note(lim)
         if note:
             console.print(escape(note), highlight=False)
+
+
+def _print_pto_sweep(results) -> None:
+    """The best PTO damping of a sweep (:func:`cummins.studies.pto_sweep.best_pto_damping`):
+    a table per heading of the best damping and its power per H_s (rows) and T_p
+    (columns), "*" where it is the end of the list; with a scatter diagram, the mean power
+    per damping over it and the best single damping for the site."""
+    if "pto_damping_best" not in results:
+        return
+    best = results.pto_damping_best
+    units = results.pto_damping.attrs.get("units", "")
+    edge_note = False
+    if set(best.dims) == {"heading", "hs", "tp"}:
+        for heading in best.heading.values:
+            one = results.sel(heading=heading)
+            title = f"Best PTO damping [{units}] (mean power), heading {heading:g} deg"
+            table = Table(title=escape(f"{title}: Hs [m] (rows), Tp [s] (columns)"))
+            table.add_column("Hs", justify="right")
+            for tp in one.tp.values:
+                table.add_column(f"{tp:g}", justify="right")
+            for hs in one.hs.values:
+                cells = []
+                for tp in one.tp.values:
+                    cell = one.sel(hs=hs, tp=tp)
+                    edge = bool(cell.pto_damping_best_at_edge)
+                    edge_note |= edge
+                    text = f"{float(cell.pto_damping_best):.3g}{'*' if edge else ''}"
+                    cells.append(
+                        f"{text} ({power_text(float(cell.pto_mean_power_best), digits=3)})"
+                    )
+                table.add_row(f"{hs:g}", *cells)
+            console.print(table)
+    else:
+        console.print(
+            f"best PTO damping per case: pto_damping_best (dims {', '.join(best.dims)}) "
+            "in the results"
+        )
+    if "pto_damping_site_best" in results:
+        site = results.pto_mean_power_site
+        for index in np.ndindex(*results.pto_damping_site_best.shape):
+            at = dict(zip(results.pto_damping_site_best.dims, index, strict=True))
+            curve = site.isel(at)
+            label = ", ".join(f"{d} {float(results[d][i]):g}" for d, i in at.items())
+            listed = "; ".join(
+                f"{c:.3g}: {power_text(float(p), digits=3)}"
+                for c, p in zip(results.pto_damping.values, curve.values, strict=True)
+            )
+            chosen = results.pto_damping_site_best.isel(at)
+            edge = bool(results.pto_damping_site_best_at_edge.isel(at))
+            edge_note |= edge
+            console.print(
+                escape(
+                    f"site ({label}), mean power over the scatter diagram per damping [{units}]: "
+                    f"{listed}; best {float(chosen):.3g}{'*' if edge else ''} {units}, "
+                    f"{power_text(float(results.pto_mean_power_site_best.isel(at)))}"
+                ),
+                highlight=False,
+            )
+    if edge_note:
+        console.print(
+            "* the smallest or largest damping of the list: the optimum may lie beyond it"
+        )

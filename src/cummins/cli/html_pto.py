@@ -13,7 +13,10 @@ WEC-Sim user reads it:
     absorbed, the force and relative motion, their time series and the running mean power;
 ``batch`` (a study with a ``system:``)
     the power matrix ``pto_mean_power`` over H_s × T_p as a table and a heat map, and the
-    mean over the scatter diagram when the study has one.
+    mean over the scatter diagram when the study has one; with a sweep of a PTO's damping
+    (:mod:`cummins.studies.pto_sweep`) the best damping per sea state and its power, the
+    mean power against the damping per T_p, and over the scatter diagram the power per
+    damping and the best single damping for the site.
 """
 
 from __future__ import annotations
@@ -25,7 +28,7 @@ import numpy as np
 import xarray as xr
 
 from cummins.cli.html_page import Section, _note, figure_html, table_html
-from cummins.display import rotation_scale
+from cummins.display import power_text, power_unit, rotation_scale
 from cummins.hydrodb import is_rotation
 
 #: Power matrices drawn at most (one per PTO and heading …); the tables show them all.
@@ -302,18 +305,19 @@ def pto_batch_sections(results: xr.Dataset) -> list[Section]:
     """The power matrix of a batch study (none without ``pto_mean_power``)."""
     if "pto_mean_power" not in results:
         return []
-    power = results.pto_mean_power / 1e3
+    factor, unit = power_unit(float(np.nanmax(np.abs(results.pto_mean_power.values), initial=0)))
+    power = (results.pto_mean_power / factor).assign_attrs(units=unit)
     how = (
         "∫ 2 P(ω) S(ω) dω of the power RAO P (frequency domain)"
         if results.attrs.get("analysis") == "rao"
         else "the mean of pto_power over each run (one realisation per case)"
     )
-    body = _description_note(results.pto) + _note(f"Mean absorbed power [kW]: {how}.")
+    body = _description_note(results.pto) + _note(f"Mean absorbed power [{unit}]: {how}.")
     if {"hs", "tp"} <= set(power.dims):
         body += _matrices(power, results.get("probability"))
     else:
         body += _case_table(power)
-    return [Section("Power matrix", body)]
+    return [Section("Power matrix", body), *pto_sweep_sections(results)]
 
 
 def _others(power: xr.DataArray) -> list[dict[str, object]]:
@@ -348,10 +352,11 @@ def _matrices(power: xr.DataArray, probability: xr.DataArray | None) -> str:
             if scatter:
                 weights = probability.transpose("hs", "tp").values
                 mean = float(np.nansum(weights * grid.values) / np.sum(weights))
-                text += _note(f"Mean over the scatter diagram: {mean:.4g} kW.")
+                text += _note(f"Mean over the scatter diagram: {mean:.4g} {power.attrs['units']}.")
             text += table_html(header, rows)
             if drawn < MOST_MATRICES:
-                text += figure_html(plot_power_matrix(grid, title), f"Power matrix, {title}")
+                figure = plot_power_matrix(grid, title, power.attrs["units"])
+                text += figure_html(figure, f"Power matrix, {title}")
                 drawn += 1
             out.append(text)
     total = len(power.pto) * len(_others(power))
@@ -367,12 +372,12 @@ def _case_table(power: xr.DataArray) -> str:
         [str(r["pto"]), *(float(r[k]) for k in keys), float(r["power"])]
         for _, r in frame.iterrows()
     ]
-    return table_html(["PTO", *keys, "mean power [kW]"], rows)
+    return table_html(["PTO", *keys, f"mean power [{power.attrs['units']}]"], rows)
 
 
-def plot_power_matrix(grid: xr.DataArray, title: str):
-    """A heat map of the mean power [kW] over H_s (rows) and T_p (columns), each cell
-    written in."""
+def plot_power_matrix(grid: xr.DataArray, title: str, unit: str = "kW"):
+    """A heat map of the mean power [``unit``] over H_s (rows) and T_p (columns), each
+    cell written in."""
     from matplotlib.figure import Figure
 
     values = grid.values
@@ -398,5 +403,107 @@ def plot_power_matrix(grid: xr.DataArray, title: str):
     ax.set_xlabel("Tp [s]")
     ax.set_ylabel("Hs [m]")
     ax.set_title(title)
-    fig.colorbar(image, ax=ax, label="mean power [kW]")
+    fig.colorbar(image, ax=ax, label=f"mean power [{unit}]")
+    return fig
+
+
+# --------------------------------------------------------------------------- PTO sweep
+
+
+def pto_sweep_sections(results: xr.Dataset) -> list[Section]:
+    """The best damping of a PTO sweep (``pto_damping_best`` …, none without a sweep):
+    per heading a table of the best damping and its mean power per H_s and T_p, the mean
+    power against the damping per T_p at the largest H_s, and with a scatter diagram the
+    mean power over it per damping and the best single damping for the site."""
+    if "pto_damping_best" not in results:
+        return []
+    units = results.pto_damping.attrs.get("units", "")
+    body = _note(
+        f"The damping [{units}] of the study's list with the largest mean power absorbed by "
+        "the PTOs, per sea state; * where it is the smallest or largest of the list (the "
+        "optimum may lie beyond it)."
+    )
+    best = results.pto_damping_best
+    if not {"hs", "tp"} <= set(best.dims):
+        frame = best.to_dataframe().reset_index()
+        keys = [c for c in frame.columns if c != "pto_damping_best"]
+        rows = [
+            [*(float(r[k]) for k in keys), float(r["pto_damping_best"])]
+            for _, r in frame.iterrows()
+        ]
+        return [Section("PTO damping sweep", body + table_html([*keys, f"best [{units}]"], rows))]
+    total = results.pto_mean_power.sum("pto", min_count=1)
+    for pick in _others(best):
+        one = results[["pto_damping_best", "pto_mean_power_best", "pto_damping_best_at_edge"]]
+        one = one.sel(**pick).transpose("hs", "tp")
+        title = _label(pick)
+        header = ["Hs [m] \\ Tp [s]"] + [f"{t:g}" for t in one.tp.values]
+        rows = []
+        for hs in one.hs.values:
+            cell = one.sel(hs=hs)
+            rows.append(
+                [
+                    float(hs),
+                    *(
+                        f"{c:.3g}{'*' if e else ''} ({power_text(float(p), digits=3)})"
+                        for c, p, e in zip(
+                            cell.pto_damping_best.values,
+                            cell.pto_mean_power_best.values,
+                            cell.pto_damping_best_at_edge.values,
+                            strict=True,
+                        )
+                    ),
+                ]
+            )
+        body += (f"<h3>{title}</h3>" if title else "") + table_html(header, rows)
+        curves = total.sel(**{k: v for k, v in pick.items() if k in total.dims})
+        if "seed" in curves.dims:
+            curves = curves.mean("seed")
+        curves = curves.sel(hs=curves.hs.max()).transpose("tp", "pto_damping")
+        body += figure_html(
+            plot_power_against_damping(curves, units, title),
+            "Mean power against the PTO damping" + (f", {title}" if title else ""),
+        )
+    if "pto_damping_site_best" in results:
+        site = results.pto_mean_power_site
+        for pick in _others(results.pto_damping_site_best):
+            chosen = float(results.pto_damping_site_best.sel(**pick))
+            edge = bool(results.pto_damping_site_best_at_edge.sel(**pick))
+            listed = "; ".join(
+                f"{c:.3g}: {power_text(float(p))}"
+                for c, p in zip(results.pto_damping.values, site.sel(**pick).values, strict=True)
+            )
+            power = power_text(float(results.pto_mean_power_site_best.sel(**pick)))
+            label = f" ({_label(pick)})" if pick else ""
+            body += _note(
+                f"Over the scatter diagram{label}, mean power per damping [{units}]: {listed}. "
+                f"Best single damping for the site: {chosen:.3g}{'*' if edge else ''} "
+                f"{units}, {power}."
+            )
+    return [Section("PTO damping sweep", body)]
+
+
+def plot_power_against_damping(curves: xr.DataArray, units: str, title: str):
+    """The mean power absorbed against the PTO damping (log axis), one curve per T_p
+    (``curves``: dims tp, pto_damping, W), the best of each curve marked."""
+    from matplotlib.figure import Figure
+
+    c = curves.pto_damping.values
+    order = np.argsort(c)
+    factor, unit = power_unit(float(np.nanmax(np.abs(curves.values))))
+    fig = Figure(figsize=(6.4, 4.0), layout="constrained")
+    ax = fig.subplots()
+    for tp in curves.tp.values:
+        p = curves.sel(tp=tp).values[order] / factor
+        (line,) = ax.plot(c[order], p, marker="o", ms=3, label=f"Tp {tp:g} s")
+        if np.isfinite(p).any():
+            k = int(np.nanargmax(p))
+            ax.plot(c[order][k], p[k], marker="*", ms=12, color=line.get_color())
+    ax.set_xscale("log")
+    ax.set_xlabel(f"PTO damping [{units}]")
+    ax.set_ylabel(f"mean power [{unit}]")
+    hs = float(curves.hs) if "hs" in curves.coords else None
+    ax.set_title(", ".join(x for x in (title, "" if hs is None else f"Hs {hs:g} m") if x))
+    ax.legend(fontsize="small")
+    ax.grid(True, which="both", alpha=0.3)
     return fig

@@ -618,7 +618,8 @@ def _plot_limiting_hs(lim: xr.DataArray):
 
     fig = Figure(figsize=(7, 3.6), layout="constrained")
     ax = fig.subplots()
-    reduced = lim.min([d for d in lim.dims if d not in ("heading", "tp")]) if lim.ndim > 2 else lim
+    extra = [d for d in lim.dims if d not in ("heading", "tp")]  # the smallest over them
+    reduced = lim.min(extra).assign_coords(beyond_grid=lim.beyond_grid.all(extra)) if extra else lim
     for k, h in enumerate(reduced.heading.values):
         values = reduced.sel(heading=h).values
         beyond = reduced.beyond_grid.sel(heading=h).values.astype(bool)

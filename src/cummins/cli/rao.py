@@ -30,6 +30,7 @@ from cummins.cli.system_options import (
     system_from_options,
     system_options,
 )
+from cummins.display import power_text
 from cummins.dofs import bodies, is_rotation
 
 #: Options that take a list of numbers: ``--headings 0 45 90`` (as well as repeated).
@@ -322,7 +323,7 @@ def pto_table(pto) -> Table:
     """Largest mean absorbed power per unit wave amplitude squared of each PTO, with the
     frequency and heading where it occurs."""
     table = Table(title="PTOs: mean absorbed power 0.5 c w^2 |x|^2 per unit wave amplitude^2")
-    for column in ("PTO", "max power (kW/m²)", "at ω (rad/s)", "period (s)", "heading (deg)"):
+    for column in ("PTO", "max power", "at ω (rad/s)", "period (s)", "heading (deg)"):
         table.add_column(column, justify="right")
     w = pto.omega.values
     for name in pto.pto.values:
@@ -330,7 +331,7 @@ def pto_table(pto) -> Table:
         i, j = np.unravel_index(int(np.argmax(power)), power.shape)
         table.add_row(
             str(name),
-            f"{power[i, j] / 1e3:.4g}",
+            power_text(power[i, j], "/m²"),
             f"{w[i]:.4g}",
             f"{2 * np.pi / w[i]:.4g}",
             f"{np.degrees(pto.wave_direction.values[j]):.4g}",

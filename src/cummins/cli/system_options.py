@@ -353,6 +353,7 @@ def print_pto_run(
     from rich.table import Table
 
     from cummins.cli.common import console
+    from cummins.display import power_text
     from cummins.timedomain.harmonics import harmonic_amplitude, last_periods
 
     t = run.time.values
@@ -365,18 +366,18 @@ def print_pto_run(
         count = int(min(10, np.floor((t[-1] - t[0]) * omega / (2 * np.pi) + 1e-9)))
         window = last_periods(t, omega, 10)
     table = Table(title="PTOs" + (" (steady state)" if regular else ""))
-    columns = ["PTO", "mean power (kW)"]
+    columns = ["PTO", "mean power"]
     if reference is not None:
-        columns += ["linear frequency domain (kW)" if left_out else "frequency domain (kW)"]
+        columns += ["linear frequency domain" if left_out else "frequency domain"]
     if regular:
         columns += ["amplitude", "force amplitude"]
     for column in columns:
         table.add_column(column, justify="right")
     for k, pto in enumerate(vessel.ptos):
         power = float(run.pto_power.values[window, k].mean())
-        row = [pto.name, f"{power / 1e3:.5g}"]
+        row = [pto.name, power_text(power, digits=5)]
         if reference is not None:
-            row += [f"{reference[k] / 1e3:.5g}"]
+            row += [power_text(reference[k], digits=5)]
         if regular:
             periods = max(count, 1)
             delta = harmonic_amplitude(t, run.pto_displacement.values[:, k], omega, periods)

@@ -34,6 +34,10 @@ MIRROR_SIGNS = np.array([1.0, -1.0, 1.0, -1.0, 1.0, -1.0])
 #: Relative size below which a coupling or force counts as zero for the symmetry test.
 SYMMETRY_TOLERANCE = 1e-3
 
+#: How a user chooses the heading, in the hint of a direction in a gap (a batch study
+#: says its own key instead: :func:`cummins.studies.batch.case_statistics`).
+HEADING_CHOICE = "on the command line --heading DEG, the default being 180°"
+
 _TWO_PI = 2.0 * np.pi
 _ANGLE_TOL = 1e-6  # rad: headings closer than this are the same heading
 
@@ -290,9 +294,9 @@ def _heading_weights(
                 f"wave direction {_deg(t[todo][inside][0])} lies in a gap of the data's "
                 f"headings, from {_deg(s)} to {_deg(np.mod(e, _TWO_PI))}{note}",
                 path=where,
-                hint=f"available headings: {listed}; choose one (on the command line "
-                "--heading DEG, the default being 180°), pass mirror=True (Python) if the "
-                "body is port/starboard symmetric, or compute the missing headings",
+                hint=f"available headings: {listed}; choose one ({HEADING_CHOICE}), pass "
+                "mirror=True (Python) if the body is port/starboard symmetric, or compute the "
+                "missing headings",
             )
     if gaps:  # an open arc: start after the widest gap, not-a-knot spline along it
         widths = [e - s for s, e in gaps]

@@ -53,9 +53,8 @@ import os
 import shutil
 import time
 import uuid
-import warnings
 from collections.abc import Callable, Sequence
-from dataclasses import dataclass, field
+from dataclasses import dataclass, field, replace
 from pathlib import Path
 from typing import Any
 
@@ -65,6 +64,8 @@ import xarray as xr
 from cummins.errors import CumminsError, check_writable
 from cummins.files import replacing
 from cummins.radiation.model import MODEL_FAILURES, model_failures
+from cummins.studies.pto_sweep import SWEEP_AXES, best_pto_damping, case_system, sweep_units
+from cummins.studies.results import is_results, load_results, write_results
 from cummins.studies.speed import select_study_speed, vessel_at_study_speed
 from cummins.studies.study import (
     _BLAS_ENV,
@@ -120,6 +121,17 @@ class StudyContext:
     cache: dict = field(default_factory=dict, repr=False)
     dofs: tuple[str, ...] = ()
     ptos: tuple[str, ...] = ()
+    vessels: dict = field(default_factory=dict, repr=False)  # per swept (c, k) of a PTO
+    units: dict = field(default_factory=dict)  # of the sweep's axes
+
+    def system(self, case: Case):
+        """The study's system with the case's swept PTO values (:mod:`.pto_sweep`)."""
+        s = self.study
+        return case_system(s.system, s.swept_pto, case.pto_damping, case.pto_stiffness)
+
+    def vessel_for(self, case: Case):
+        """The vessel of a time-domain case: with the case's swept PTO values."""
+        return self.vessels.get((case.pto_damping, case.pto_stiffness), self.vessel)
 
     @property
     def radiation_model(self) -> dict[str, Any]:
@@ -144,6 +156,9 @@ class StudyContext:
         failures = model_failures(attrs)
         if failures:
             out[MODEL_FAILURES] = "\n".join(failures)
+        if len(self.vessels) > 1:  # a PTO sweep: one model for every value
+            fitted = "" if study.model else ", fitted at the smallest damping"
+            out["radiation_model_sweep"] = f"one radiation model for every PTO value{fitted}"
         return out
 
     @property
@@ -162,7 +177,9 @@ def prepare_study(study: Study) -> tuple[StudyContext, str]:
     from cummins.io import read
     from cummins.studies.equation_of_motion import check_study_data, complete_study_data
 
-    full = complete_study_data(read(study.data, rho=study.rho, g=study.g), study)
+    full = complete_study_data(
+        read(study.data, rho=study.rho, g=study.g, water_depth=study.water_depth), study
+    )
     ds = select_study_speed(full, study)
     check_study_data(ds, study)
     labels = [str(d) for d in ds.influenced_dof.values]
@@ -173,6 +190,7 @@ def prepare_study(study: Study) -> tuple[StudyContext, str]:
         assembly = assemble(single_speed(ds), study.system)
         labels = list(assembly.dofs)
         system = {"dofs": assembly.dofs, "ptos": tuple(p.name for p in assembly.ptos)}
+        system["units"] = sweep_units(assembly, study.swept_pto)
     for lim in study.limits:
         if lim.dof not in labels:
             raise StudyError(
@@ -206,14 +224,22 @@ def prepare_study(study: Study) -> tuple[StudyContext, str]:
         model = RadiationModel.load(study.model)
         digest.update(Path(study.model).read_bytes())
     at_speed = vessel_at_study_speed(full, ds, study, damping)
-    if at_speed is not None:
+    if at_speed is not None:  # no PTO at speed (studies/speed.py): nothing swept
         vessel, ds = at_speed
-    else:
-        vessel = vessel_from_hydrodb(
-            single_speed(ds), model, viscous_damping=damping, system=study.system
+        vessel.stability()
+        return StudyContext(study, ds, vessel=vessel, **system), digest.hexdigest()
+    swept = {(c.pto_damping, c.pto_stiffness) for c in study.all_cases}
+    context = StudyContext(study, ds, **system)
+    vessels = {}  # one fit, at the smallest damping swept (the most resonant system)
+    for c, k in sorted(swept, key=lambda ck: (ck[0] or 0.0, str(ck[1]))):
+        swept_system = case_system(study.system, study.swept_pto, c, k)
+        vessels[c, k] = vessel_from_hydrodb(
+            single_speed(ds), model, viscous_damping=damping, system=swept_system
         )
-    vessel.stability()
-    return StudyContext(study, ds, vessel=vessel, **system), digest.hexdigest()
+        model = vessels[c, k].radiation
+        vessels[c, k].stability()
+    vessel = next(iter(vessels.values()))
+    return replace(context, vessel=vessel, vessels=vessels), digest.hexdigest()
 
 
 def _dataset_digest(ds: xr.Dataset) -> str:
@@ -231,8 +257,10 @@ def _dataset_digest(ds: xr.Dataset) -> str:
 
 
 def _derived_seed(case: Case) -> int:
-    """A seed from the case's parameters: the same case gets the same sea anywhere."""
-    text = json.dumps(case.parameters(), sort_keys=True)
+    """A seed from the case's parameters: the same case gets the same sea anywhere, and
+    every value of a PTO sweep the same sea (the dampings compared on one realisation)."""
+    sea = {k: v for k, v in case.parameters().items() if k not in SWEEP_AXES}
+    text = json.dumps(sea, sort_keys=True)
     return int(hashlib.sha256(text.encode()).hexdigest()[:8], 16)
 
 
@@ -294,7 +322,8 @@ def case_statistics(context: StudyContext, case: Case) -> dict[str, Any]:
         n_directions=study.directions if case.spreading is not None else 1,
         seed=seed,
     )
-    run = simulate_waves(context.vessel, context.ds, sea, duration=study.duration, dt=study.dt)
+    vessel = context.vessel_for(case)
+    run = simulate_waves(vessel, context.ds, sea, duration=study.duration, dt=study.dt)
     xi = run.motion.values
     std = xi.std(axis=0)
     centred = xi - xi.mean(axis=0)
@@ -334,20 +363,21 @@ def _rao_statistics(context: StudyContext, case: Case, heading: float) -> dict[s
         directions, weights = np.array([heading]), None
     else:
         directions, weights = spreading_directions(heading, case.spreading, study.directions)
-    key = tuple(directions.tolist())
+    key = (*directions.tolist(), case.pto_damping, case.pto_stiffness)
     rao = context.cache.get(key)
     if rao is None:
+        system = context.system(case)
         rao = motion_rao(
             context.ds,
             context.omega,
             directions,
             viscous_damping=dict(study.viscous_damping) or None,
-            system=study.system,
+            system=system,
         )
-        if study.system is not None and study.system.ptos:
+        if system is not None and system.ptos:
             from cummins.seakeeping.frequency_domain import pto_rao
 
-            rao = (rao, pto_rao(rao, context.ds, study.system).pto_power)
+            rao = (rao, pto_rao(rao, context.ds, system).pto_power)
         context.cache[key] = rao
     power = None
     if isinstance(rao, tuple):
@@ -379,10 +409,13 @@ def _rao_statistics(context: StudyContext, case: Case, heading: float) -> dict[s
 
 def _run_case(context: StudyContext, case: Case) -> dict[str, Any]:
     """The task a worker runs: statistics of one case (errors name the case)."""
+    from cummins.seakeeping.headings import HEADING_CHOICE
+
     try:
         return case_statistics(context, case)
     except CumminsError as exc:
-        raise StudyError(f"case {case.label}: {exc}") from None
+        where = "the study's heading: grid.heading or a case's heading, deg"
+        raise StudyError(f"case {case.label}: {str(exc).replace(HEADING_CHOICE, where)}") from None
 
 
 # --------------------------------------------------------------------------- running
@@ -548,7 +581,10 @@ def run_study(
         )
     finally:
         _remove_if_empty(folder)  # a study refused or failed before its first case
-    results = gather_results(study, [done[i] for i in ids], ids, context.labels, ptos=context.ptos)
+    values = [done[i] for i in ids]
+    results = gather_results(
+        study, values, ids, context.labels, ptos=context.ptos, units=context.units
+    )
     results.attrs.update(context.radiation_model)
     write_results(results, output, force=force)
     shutil.rmtree(folder, ignore_errors=True)
@@ -641,11 +677,14 @@ def gather_results(
     dofs: Sequence[str],
     *,
     ptos: Sequence[str] = (),
+    units: dict | None = None,
 ) -> xr.Dataset:
     """One Dataset of the cases' statistics, limits applied (:func:`cummins.studies.operability.
     exceedance`): ``values`` from :func:`case_statistics` and ``ids`` from :func:`case_ids`
     in ``study.all_cases`` order; ``dofs`` the DOF labels of the results; ``ptos`` the PTOs'
-    names (their ``pto_mean_power``, W)."""
+    names (their ``pto_mean_power``, W); ``units`` those of the grid's axes where they
+    depend on the data (a PTO sweep's, :func:`.pto_sweep.sweep_units`). A PTO sweep's
+    best damping is added (:func:`.pto_sweep.best_pto_damping`)."""
     from cummins._version import __version__
     from cummins.studies.operability import exceedance
 
@@ -653,8 +692,9 @@ def gather_results(
     n_dof = len(dofs)
     if study.grid is not None:
         shape = tuple(len(v) for _, v in study.grid)
+        units = {**GRID_AXES, **(units or {})}
         coords: dict[str, Any] = {
-            name: (name, np.asarray(v), {"units": GRID_AXES[name]}) for name, v in study.grid
+            name: (name, np.asarray(v), {"units": units[name]}) for name, v in study.grid
         }
     else:
         shape = (len(cases),)
@@ -724,48 +764,5 @@ def gather_results(
         out["limiting_hs"] = lim.drop_vars("beyond_grid")
         out["limiting_hs_beyond_grid"] = lim.beyond_grid.fillna(False).astype(bool)
         out.limiting_hs_beyond_grid.attrs = dict(lim.beyond_grid.attrs)
-    return out
-
-
-def write_results(results: xr.Dataset, path: str | os.PathLike[str], *, force: bool = False):
-    """Write gathered results as NetCDF, or Zarr when ``path`` ends in ``.zarr``."""
-    path = Path(path)
-    check_writable(path, force)
-    out = results.copy()
-    for name in ("case_id",):
-        out[name] = out[name].astype(str)
-    if path.suffix.lower() == ".zarr":
-        try:
-            import zarr  # noqa: F401
-        except ImportError:
-            raise CumminsError("writing Zarr needs the zarr package: pip install zarr") from None
-        if path.exists():
-            shutil.rmtree(path)
-        with warnings.catch_warnings():
-            warnings.simplefilter("ignore")  # zarr's notes on its format-3 specification
-            out.to_zarr(path, mode="w", zarr_format=2, consolidated=True)
-        return path
-    from cummins.io.netcdf import save_netcdf
-
-    return save_netcdf(out, path)
-
-
-def load_results(path: str | os.PathLike[str]) -> xr.Dataset:
-    """Read results written by :func:`run_study` (NetCDF or Zarr)."""
-    path = Path(path)
-    try:
-        if path.suffix.lower() == ".zarr":
-            ds = xr.open_zarr(path).load()
-        else:
-            with xr.open_dataset(path, engine="h5netcdf") as f:
-                ds = f.load()
-    except (OSError, ValueError) as exc:
-        raise StudyError(f"{path}: cannot read the results ({exc})") from None
-    if ds.attrs.get("cummins_kind") != _RESULT_KIND:
-        raise StudyError(f"{path}: not the results of a cummins batch study")
-    return ds
-
-
-def is_results(ds: xr.Dataset) -> bool:
-    """True for a Dataset of batch results."""
-    return ds.attrs.get("cummins_kind") == _RESULT_KIND
+    out = out.assign_coords({d: ds[d] for d in dims if d in ds.coords})  # with their units
+    return best_pto_damping(out)

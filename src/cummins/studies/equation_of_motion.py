@@ -1,9 +1,10 @@
 """The terms of the equation of motion a study file gives: what ``cummins simulate`` and
-``cummins convert`` take as options (``--rho``, ``--g``, ``--mass``,
+``cummins convert`` take as options (``--rho``, ``--g``, ``--water-depth``, ``--mass``,
 ``--center-of-gravity``, ``--radii-of-gyration``, ``--inertia-matrix``,
 ``--restoring-includes-weight``, ``--external-stiffness``, ``--external-damping``), as
 study keys of the same meaning, applied by the same functions
-(:func:`cummins.io.read`'s ``rho``/``g``, :func:`cummins.mass_properties.with_inertia`,
+(:func:`cummins.io.read`'s ``rho``/``g``/``water_depth``,
+:func:`cummins.mass_properties.with_inertia`,
 :func:`cummins.mass_properties.complete_restoring`,
 :func:`cummins.mass_properties.with_external_terms`) to the data before any case is
 built; and the check that the data then hold what the analysis needs (the inertia, the
@@ -23,6 +24,7 @@ stiffness in surge and sway::
 
 from __future__ import annotations
 
+import math
 from collections.abc import Mapping, Sequence
 from pathlib import Path
 from typing import Any
@@ -38,6 +40,8 @@ from cummins.mass_properties import check_inertia_terms
 KEYS: dict[str, str] = {
     "rho": "kg/m^3: water density of nondimensional formats (--rho; default 1025)",
     "g": "m/s^2: acceleration of gravity of nondimensional formats (--g; default 9.81)",
+    "water_depth": "m (.inf: deep water) where the files record none (--water-depth; "
+    "default deep water, with a warning where a result depends on it)",
     "mass": "kg, one per body (--mass; with radii_of_gyration; default rho x volume)",
     "center_of_gravity": "[x, y, z] m, one per body, the data's axes (--center-of-gravity)",
     "radii_of_gyration": "[rxx, ryy, rzz] m about the centre of gravity, one per body "
@@ -140,6 +144,11 @@ def normalised_keys(values: Mapping[str, Any], source: Path | None) -> dict[str,
     out: dict[str, Any] = {}
     for key in ("rho", "g"):
         out[key] = None if values.get(key) is None else _positive(values[key], key, source)
+    depth = values.get("water_depth")
+    if depth is not None:  # .inf (YAML's infinity) or inf: deep water
+        deep = str(depth).strip().lower() in ("inf", ".inf")
+        depth = math.inf if deep else _positive(depth, "water_depth", source)
+    out["water_depth"] = depth
     out["mass"] = _per_body(values.get("mass"), None, "mass", source)
     for key in ("center_of_gravity", "radii_of_gyration"):
         out[key] = _per_body(values.get(key), 3, key, source)

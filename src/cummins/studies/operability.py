@@ -16,6 +16,9 @@ maximum in the frequency domain, observed maximum in the time domain), in m or r
   case gives H_s / max(response/limit) exactly; the smallest over H_s, γ, spreading and
   seeds is taken.
 
+A PTO sweep's axes (``pto_damping``, ``pto_stiffness``: :mod:`cummins.studies.pto_sweep`)
+are of the design, not of the sea: both are given per value of them.
+
 Examples
 --------
 >>> import numpy as np, xarray as xr
@@ -48,6 +51,8 @@ __all__ = [
 
 #: Case axes that describe a sea state (the rest, ``seed``, are realisations of it).
 SEA_KEYS = ("heading", "gamma", "spreading", "hs", "tp")
+#: Case axes of the design (a PTO sweep): operability and limiting H_s are given per value.
+DESIGN_KEYS = ("pto_damping", "pto_stiffness")
 
 
 def exceedance(results: xr.Dataset, limits: Sequence) -> xr.Dataset:
@@ -120,7 +125,7 @@ def sea_states(results: xr.Dataset) -> pd.DataFrame:
     """One row per sea state (the cases merged over their seeds): ``operable`` (all
     seeds), the worst ``ratio``, its ``probability``; indexed by the sea-state keys."""
     frame = _case_table(results)
-    keys = [k for k in SEA_KEYS if k in frame]
+    keys = [k for k in (*SEA_KEYS, *DESIGN_KEYS) if k in frame]
     return frame.groupby(keys).agg(
         operable=("operable", "all"), ratio=("ratio", "max"), probability=("probability", "max")
     )
@@ -131,7 +136,7 @@ def operability(results: xr.Dataset) -> xr.DataArray:
     holds, per heading, 0 to 1. The sea states are the study's (H_s, T_p, γ, spreading)
     combinations; their realisations (seeds) must all meet the criteria."""
     states = sea_states(results).reset_index()
-    by = states.heading
+    by = [states[k] for k in ("heading", *DESIGN_KEYS) if k in states]
     grouped = (states.probability * states.operable).groupby(by).sum() / (
         states.probability.groupby(by).sum()
     )
@@ -158,7 +163,7 @@ def limiting_hs(results: xr.Dataset) -> xr.DataArray:
     states = sea_states(results).reset_index()
     with np.errstate(divide="ignore"):
         scaled = pd.Series(states.hs.to_numpy() / states.ratio.to_numpy())
-    groups = [states.heading, states.tp]
+    groups = [states[k] for k in ("heading", "tp", *DESIGN_KEYS) if k in states]
     limit = scaled.groupby(groups).min().to_xarray()
     top = states.hs.groupby(groups).max().to_xarray()
     beyond = limit > top

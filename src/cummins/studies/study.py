@@ -36,6 +36,7 @@ from cummins.hydrodb import DOF_NAMES, is_rotation, split_dof
 from cummins.mechanics import MechanicalSystem, system_from_mapping
 from cummins.studies.equation_of_motion import KEYS as EQUATION_OF_MOTION_KEYS
 from cummins.studies.equation_of_motion import normalised_keys
+from cummins.studies.pto_sweep import named_sweep, swept_pto
 
 #: The analyses a study can run on each case.
 ANALYSES: dict[str, str] = {
@@ -50,6 +51,8 @@ GRID_AXES: dict[str, str] = {
     "gamma": "1",
     "spreading": "1",
     "seed": "1",
+    "pto_damping": "N s/m | N m s/rad",
+    "pto_stiffness": "N/m | N m/rad",
 }
 #: Statistics a limit can bound: the name in the YAML file → the result variable.
 STATISTICS: dict[str, str] = {
@@ -72,7 +75,8 @@ STUDY_KEYS: dict[str, str] = {
     "model": "radiation model from `cummins fit` (simulate; default: fitted once)",
     "analysis": "rao | simulate",
     "spectrum": "jonswap | pm | torsethaugen",
-    "grid": "axes of an outer product: heading (deg), hs (m), tp (s), gamma, spreading, seed",
+    "grid": "axes of an outer product: heading (deg), hs (m), tp (s), gamma, spreading, seed; "
+    "with a system's PTO also pto_damping (N s/m, N m s/rad) and pto_stiffness",
     "cases": "an explicit list of cases (mappings with the grid's keys, and probability)",
     "duration": "s: exposure of the most probable maximum (rao) or length of each run",
     "dt": "s: time step (simulate)",
@@ -100,6 +104,7 @@ ANALYSIS_KEYS: dict[str, tuple[str, ...]] = {
 #: Their defaults, where the analysis they apply to is run.
 ANALYSIS_DEFAULTS: dict[str, Any] = {"dt": 0.1, "components": 200, "n_omega": 400}
 _CASE_KEYS = ("heading", "hs", "tp", "gamma", "spreading", "seed", "probability")
+_SWEEP_KEYS = ("pto_damping", "pto_stiffness")
 _BLAS_ENV = {
     "OMP_NUM_THREADS": "1",
     "OPENBLAS_NUM_THREADS": "1",
@@ -235,6 +240,8 @@ class Case:
         Random phases (``simulate``; None: derived from the case).
     probability
         Weight of the sea state in operability (list studies; grids use ``scatter``).
+    pto_damping, pto_stiffness
+        The swept PTO's damping and stiffness (a grid's PTO sweep; None: the system's).
     """
 
     heading: float
@@ -244,9 +251,13 @@ class Case:
     spreading: float | None = None
     seed: int | None = None
     probability: float | None = None
+    pto_damping: float | None = None
+    pto_stiffness: float | None = None
 
     def parameters(self) -> dict[str, Any]:
-        """What determines the result (not the probability), JSON-ready."""
+        """What determines the result (not the probability), JSON-ready (a PTO's swept
+        values only when given: the ids of the cases of other studies do not change)."""
+        sweep = {k: float(getattr(self, k)) for k in _SWEEP_KEYS if getattr(self, k) is not None}
         return {
             "heading": float(self.heading),
             "hs": float(self.hs),
@@ -254,13 +265,14 @@ class Case:
             "gamma": None if self.gamma is None else float(self.gamma),
             "spreading": None if self.spreading is None else float(self.spreading),
             "seed": None if self.seed is None else int(self.seed),
+            **sweep,
         }
 
     @property
     def label(self) -> str:
         """``"heading 180 deg, Hs 4 m, Tp 10 s"`` (+ the optional parameters)."""
         text = f"heading {self.heading:g} deg, Hs {self.hs:g} m, Tp {self.tp:g} s"
-        for name in ("gamma", "spreading", "seed"):
+        for name in ("gamma", "spreading", "seed", *_SWEEP_KEYS):
             value = getattr(self, name)
             if value is not None:
                 text += f", {name} {value:g}"
@@ -326,7 +338,7 @@ def _normalise_grid(raw: Any, source: Path | None) -> tuple[tuple[str, tuple], .
         if name == "seed":
             numbers = [int(v) for v in numbers]
         if not numbers:
-            raise StudyError(f"{at_key(source, f'grid.{name}')}: no values")
+            raise StudyError(f"{at_key(source, f'grid.{name}')}: no values (an empty list)")
         if len(set(numbers)) != len(numbers):
             raise StudyError(f"{at_key(source, f'grid.{name}')}: repeated values")
         if name == "heading" and not all(-360.0 <= v <= 360.0 for v in numbers):
@@ -378,7 +390,10 @@ class Study:
     Parameters mirror the keys of a study file (:data:`STUDY_KEYS`, :func:`load_study`);
     ``grid`` and ``limits`` may be given as mappings, ``cases`` as mappings or
     :class:`Case`\\ s. Paths are used as given (:func:`load_study` resolves them against
-    the study file's folder).
+    the study file's folder). ``swept_pto`` is derived: the PTO whose damping and
+    stiffness the grid's ``pto_damping`` and ``pto_stiffness`` set
+    (:mod:`cummins.studies.pto_sweep`: the system's only PTO, or the one named,
+    ``pto_damping: {name: [..]}``).
 
     Examples
     --------
@@ -418,6 +433,8 @@ class Study:
     restoring_includes_weight: str | None = None
     external_stiffness: Any = ()
     external_damping: Any = ()
+    water_depth: float | None = None
+    swept_pto: str | None = None
 
     def __post_init__(self) -> None:
         src = self.source
@@ -455,7 +472,12 @@ class Study:
         if (self.grid is None) == (not self.cases):
             raise StudyError(f"{at_key(src, 'grid')}: give either a grid or a list of cases")
         if self.grid is not None:
-            set_(self, "grid", _normalise_grid(self.grid, src))
+            try:
+                grid, named = named_sweep(self.grid, at_key(src, "grid"))
+            except ArgumentError as exc:
+                raise StudyError(str(exc)) from None
+            set_(self, "grid", _normalise_grid(grid, src))
+            set_(self, "swept_pto", named or self.swept_pto)
             set_(self, "cases", ())
         else:
             set_(
@@ -494,6 +516,11 @@ class Study:
                 set_(self, "system", system_from_mapping(self.system, at_key(src, "system")))
             except ArgumentError as exc:
                 raise StudyError(str(exc)) from None
+        try:
+            swept = swept_pto(self.grid or (), self.system, self.swept_pto, at_key(src, "grid"))
+        except ArgumentError as exc:
+            raise StudyError(str(exc)) from None
+        set_(self, "swept_pto", swept)
         set_(self, "limits", _parse_limits(self.limits, src))
         set_(self, "scatter", _normalise_scatter(self.scatter or None, self.grid, src))
         if self.analysis == "rao":
@@ -535,6 +562,10 @@ class Study:
             out["soft_springs"] = self.soft_springs
         if self.system is not None:
             out["system"] = self.system.describe()
+        if self.swept_pto is not None:
+            out["swept_pto"] = self.swept_pto
+        if self.water_depth is not None:
+            out["water_depth"] = self.water_depth
         if self.analysis == "rao":
             out.update(omega_min=self.omega_min, omega_max=self.omega_max, n_omega=self.n_omega)
         else:
@@ -644,6 +675,8 @@ grid:                     # outer product of the axes; or `cases:` a list of map
   # gamma: [1, 3.3]       # JONSWAP peakedness
   # spreading: [4]        # cos-2s exponent: short-crested seas
   # seed: [1, 2, 3]       # simulate: realisations (default: one per case)
+  # pto_damping: [3.0e+5, 1.0e+6, 3.0e+6]  # with a system's PTO: N s/m (N m s/rad);
+  #                       # the best per sea state and for the scatter diagram is added
 viscous_damping:
   Roll: 5.0e+8            # kg m^2/s
 # what the files lack, as simulate's options (--mass ...), one value or list per body:
