@@ -226,3 +226,43 @@ def test_files_without_ptos_get_no_pto_section(tmp_path):
     assert pto_rao_sections(tmp_path / "rao.nc") == []
     empty = xr.Dataset({"motion": (("time", "dof"), np.zeros((3, 1)))})
     assert pto_run_sections(empty) == [] and pto_batch_sections(empty) == []
+
+
+def test_tank_scale_pto_tables_are_in_watts(corpus, tmp_path):
+    """The WaveBot (858 kg) in a regular wave of 1 cm and its RAOs on a PTO of 1 N·s/m:
+    the run page's and RAO page's PTO tables write the powers in W (0.29 W, not
+    0.00029 kW; the energy in J), as ``simulate`` and ``rao`` print them, each number the
+    file's (kept in W) to its printed digits; before, these tables were in kW alone."""
+    from cummins.cli.html_pto import pto_rao_sections, pto_run_sections
+    from cummins.seakeeping.frequency_domain import load_pto_rao
+    from cummins.timedomain.harmonics import last_periods
+
+    data = str(corpus / "WEC-Sim_Applications/wamit_WaveBot/waveBotBuoy.out")
+    common = [data, "--rho", "1000", "--mass", "858.415", "--dof", "Heave"]
+    common += ["--pto", "Heave", "ground"]
+    run_file, rao_file = tmp_path / "run.nc", tmp_path / "rao.nc"
+    sea = ["--regular", "--wave-period", "2.5", "--wave-amplitude", "0.01", "--duration", "30"]
+    _run(["simulate", *common, "--pto-damping", "1000", *sea, "-o", str(run_file)])
+    _run(["rao", *common, "--pto-damping", "1", "--n-omega", "40", "-o", str(rao_file)])
+
+    with cummins_open(run_file) as f:
+        run = f.load()
+    (section,) = pto_run_sections(run)
+    power = run.pto_power.values[:, 0]
+    mean = float(power[last_periods(run.time.values, 2 * np.pi / 2.5, 10)].mean())
+    reference = float(run.pto_mean_power_frequency_domain.values[0])
+    energy = float(np.trapezoid(power, run.time.values))
+    assert 0.05 < mean < 1.0  # W (measured 0.29 W): the scale the W column is for
+    for header in ("mean power [W]", "frequency domain [W]", "energy [J]", "max power [W]"):
+        assert f"<th>{header}</th>" in section.body
+    row = _rows(section.body)[0]
+    assert row[1:5] == [_printed(v) for v in (mean, reference, energy, power.max())]
+    text = re.sub(r"<img[^>]*>", "", section.body)  # a figure's base64 may spell kW
+    assert "kW" not in text and "MJ" not in text
+
+    (section,) = pto_rao_sections(rao_file)
+    pto = load_pto_rao(rao_file).pto_power.isel(pto=0, wave_direction=0).values
+    assert 0.1 < pto.max() < 1e3  # W/m² at 1 N·s/m
+    assert "<th>max power [W/m²]</th>" in section.body
+    assert _rows(section.body)[0][2] == _printed(pto.max())
+    assert "kW" not in re.sub(r"<img[^>]*>", "", section.body)

@@ -651,8 +651,8 @@ def test_irregular_run_prints_the_frequency_domain_power(corpus, tmp_path):
     assert printed_run == pytest.approx(simulated, rel=1e-4)
     assert abs(printed_fd / simulated - 1) < 0.02  # measured 0.5 %
     assert recorded == pytest.approx(printed_fd, rel=1e-4)
-    assert "<th>frequency domain [kW]</th>" in section.body
-    assert f"<td>{recorded / 1e3:.4g}</td>" in section.body
+    assert "<th>frequency domain [W]</th>" in section.body  # 16.1 W, not 0.0161 kW
+    assert f"<td>{recorded:.4g}</td>" in section.body
     result = CliRunner().invoke(main, ["rao", str(data), *common, "-o", str(rao_file)])
     assert result.exit_code == 0, result.output
     with xr.open_dataset(rao_file, engine="h5netcdf") as rao:

@@ -206,8 +206,22 @@ def power_unit(watts: float) -> tuple[float, str]:
     >>> power_unit(28.2), power_unit(-4.6e3)
     ((1.0, 'W'), (1000.0, 'kW'))
     """
-    size = abs(watts)
-    for factor, unit in ((1e6, "MW"), (1e3, "kW")):
+    return _prefixed_unit(watts, "W")
+
+
+def energy_unit(joules: float) -> tuple[float, str]:
+    """(factor, unit) to show an energy of this size: J below 1 kJ (a tank-scale buoy's
+    8.7 J, not 8.7e-06 MJ), kJ below 1000 kJ, MJ above, as :func:`power_unit`.
+
+    >>> energy_unit(8.7), energy_unit(2.2e7)
+    ((1.0, 'J'), (1000000.0, 'MJ'))
+    """
+    return _prefixed_unit(joules, "J")
+
+
+def _prefixed_unit(value: float, base: str) -> tuple[float, str]:
+    size = abs(value)
+    for factor, prefix in ((1e6, "M"), (1e3, "k")):
         if size >= factor:
-            return factor, unit
-    return 1.0, "W"
+            return factor, prefix + base
+    return 1.0, base

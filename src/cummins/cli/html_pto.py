@@ -28,7 +28,7 @@ import numpy as np
 import xarray as xr
 
 from cummins.cli.html_page import Section, _note, figure_html, table_html
-from cummins.display import power_text, power_unit, rotation_scale
+from cummins.display import energy_unit, power_text, power_unit, rotation_scale
 from cummins.hydrodb import is_rotation
 
 #: Power matrices drawn at most (one per PTO and heading …); the tables show them all.
@@ -81,6 +81,7 @@ def pto_rao_sections(path: Path) -> list[Section]:
     pto = load_pto_rao(path)
     units = pto_units(pto.pto)
     w = pto.omega.values
+    factor, unit = power_unit(float(np.nanmax(np.abs(pto.pto_power.values), initial=0)))
     rows = []
     for name in (str(p) for p in pto.pto.values):
         one = pto.sel(pto=name)
@@ -94,7 +95,7 @@ def pto_rao_sections(path: Path) -> list[Section]:
                 [
                     name,
                     float(np.degrees(beta)),
-                    float(power[i, j] / 1e3),
+                    float(power[i, j] / factor),
                     float(w[i]),
                     float(2 * np.pi / w[i]),
                     f"{abs(force):.4g} {u['force']}/m",
@@ -112,7 +113,7 @@ def pto_rao_sections(path: Path) -> list[Section]:
             [
                 "PTO",
                 "heading [deg]",
-                "max power [kW/m²]",
+                f"max power [{unit}/m²]",
                 "ω [rad/s]",
                 "period [s]",
                 "|force| RAO",
@@ -148,8 +149,9 @@ def plot_pto_rao(pto: xr.Dataset, units: dict[str, dict[str, str]]):
         one = pto.sel(pto=name)
         u = units[name]
         scale, shown = rotation_scale(u["displacement"])
+        factor, unit = power_unit(float(np.nanmax(np.abs(one.pto_power.values), initial=0)))
         series = [
-            (one.pto_power / 1e3, "power [kW/m²]", 1.0),
+            (one.pto_power / factor, f"power [{unit}/m²]", 1.0),
             (np.abs(one.pto_force), f"|force| [{u['force']}/m]", 1.0),
             (np.abs(one.pto_displacement), f"|Δ| [{shown}/m]", scale),
         ]
@@ -194,18 +196,26 @@ def pto_run_sections(run: xr.Dataset) -> list[Section]:
     count = int(min(10, np.floor((t[-1] - t[0]) / period + 1e-9))) if omega else 0
     units = pto_units(run.pto)
     reference = run.get("pto_mean_power_frequency_domain")
+    names = [str(p) for p in run.pto.values]
+    powers = run.pto_power.values
+    means = {name: float(powers[window, k].mean()) for k, name in enumerate(names)}
+    energies = [float(np.trapezoid(powers[:, k], t)) for k in range(len(names))]
+    shown = [*means.values(), *([] if reference is None else reference.values)]
+    mean_factor, mean_unit = power_unit(float(np.nanmax(np.abs(shown), initial=0)))
+    peak_factor, peak_unit = power_unit(float(np.nanmax(np.abs(powers), initial=0)))
+    damper = run.attrs.get("energy_pto")
+    energy_factor, energy_unit_text = energy_unit(
+        float(np.nanmax(np.abs([*energies, float(damper or 0.0)]), initial=0))
+    )
     rows = []
-    means = {}
-    for k, name in enumerate(str(p) for p in run.pto.values):
-        power = run.pto_power.values[:, k]
+    for k, name in enumerate(names):
         force = run.pto_force.values[:, k]
         delta = run.pto_displacement.values[:, k]
         u = units[name]
-        means[name] = float(power[window].mean())
-        row = [name, means[name] / 1e3]
+        row = [name, means[name] / mean_factor]
         if reference is not None:
-            row += [float(reference.values[k]) / 1e3]
-        row += [float(np.trapezoid(power, t) / 1e6), float(power.max() / 1e3)]
+            row += [float(reference.values[k]) / mean_factor]
+        row += [energies[k] / energy_factor, float(powers[:, k].max() / peak_factor)]
         if omega:
             periods = max(count, 1)
             row += [
@@ -227,26 +237,26 @@ def pto_run_sections(run: xr.Dataset) -> list[Section]:
         )
     else:
         where = f"over the whole run (t {t[0]:g} to {t[-1]:g} s, the start-up included)"
-    damper = run.attrs.get("energy_pto")
     notes = _note(
         f"Mean absorbed power {where}. Energy: ∫ pto_power dt over the run"
         + (
-            f" (the PTO dampers' work in the energy balance: {float(damper) / 1e6:.4g} MJ)."
+            " (the PTO dampers' work in the energy balance: "
+            f"{float(damper) / energy_factor:.4g} {energy_unit_text})."
             if damper is not None
             else "."
         )
     )
-    header = ["PTO", "mean power [kW]"]
+    header = ["PTO", f"mean power [{mean_unit}]"]
     if reference is not None:
         left_out = str(reference.attrs.get("left_out", "none"))
         linear = "" if left_out == "none" else "linear "
-        header += [f"{linear}frequency domain [kW]"]
+        header += [f"{linear}frequency domain [{mean_unit}]"]
         notes += _note(
             "Frequency domain: the mean power of the linear frequency-domain solution of the "
             "same equations for the run's wave components, Σ ½ c ω² |Δ̂|² a², as cummins "
             "simulate prints it" + ("." if left_out == "none" else f" (it leaves out {left_out}).")
         )
-    header += ["energy [MJ]", "max power [kW]"]
+    header += [f"energy [{energy_unit_text}]", f"max power [{peak_unit}]"]
     header += ["amplitude Δ", "force amplitude"] if omega else ["2σ of Δ", "2σ of the force"]
     header += ["max |force|"]
     body = _description_note(run.pto) + notes + table_html(header, rows)
@@ -271,24 +281,26 @@ def plot_pto_time_series(
     one = run.sel(pto=name)
     scale, velocity_unit = rotation_scale(units["velocity"])
     power = one.pto_power.values
+    factor, unit = power_unit(float(np.nanmax(np.abs(power), initial=0)))
     fig = Figure(figsize=(11, 7), layout="constrained")
     axes = fig.subplots(4, 1)
     series = [
         (one.pto_force.values, f"force [{units['force']}]", 1.0),
         (one.pto_velocity.values, f"velocity [{velocity_unit}]", scale),
-        (power / 1e3, "power [kW]", 1.0),
+        (power / factor, f"power [{unit}]", 1.0),
     ]
-    for k, (values, label, factor) in enumerate(series):
-        axes[k].plot(t[keep], factor * values[keep], color=f"C{k}", lw=0.8)
+    for k, (values, label, scaling) in enumerate(series):
+        axes[k].plot(t[keep], scaling * values[keep], color=f"C{k}", lw=0.8)
         axes[k].set_ylabel(label)
         axes[k].sharex(axes[0])
     elapsed = t - t[0]
     work = np.concatenate([[0.0], np.cumsum(0.5 * (power[1:] + power[:-1]) * np.diff(t))])
     running = np.divide(work, elapsed, out=np.full(t.size, np.nan), where=elapsed > 0)
     mean = float(power[window].mean())
-    axes[3].plot(t, running / 1e3, color="C3", label="running mean (1/t)∫P dt")
-    axes[3].axhline(mean / 1e3, color="k", ls="--", lw=0.8, label=f"mean {mean / 1e3:.4g} kW")
-    axes[3].set_ylabel("mean power [kW]")
+    factor, unit = power_unit(float(np.nanmax(np.abs([*running, mean]), initial=0)))
+    axes[3].plot(t, running / factor, color="C3", label="running mean (1/t)∫P dt")
+    axes[3].axhline(mean / factor, color="k", ls="--", lw=0.8, label=f"mean {power_text(mean)}")
+    axes[3].set_ylabel(f"mean power [{unit}]")
     axes[3].legend(fontsize="small", loc="lower right")
     for ax in axes:
         ax.grid(alpha=0.3)
