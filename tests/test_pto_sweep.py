@@ -12,6 +12,7 @@ from __future__ import annotations
 
 import math
 import warnings
+from dataclasses import replace
 
 import numpy as np
 import pytest
@@ -340,3 +341,177 @@ def test_limits_with_a_sweep_are_judged_per_damping(corpus):
     assert lim.dims == ("pto_damping",) and bool((lim.diff("pto_damping") > 0).all())
     titles = [s.title for s in batch_sections(results)]
     assert "Operability" in titles and "PTO damping sweep" in titles
+
+
+# --------------------------------------------------------------------------- a list of cases
+
+LIST_STUDY = {
+    "analysis": "rao",
+    "rho": 1000,
+    "mass": MASS,
+    "center_of_gravity": [0, 0, 0],
+    "radii_of_gyration": [0.3, 0.3, 0.3],
+    "n_omega": 200,
+    "system": {"dofs": ["Heave"], "ptos": [{"dofs": ["Heave", "ground"], "damping": 1000}]},
+}
+
+
+def test_a_list_of_cases_carries_its_pto_values_as_a_grid_does(corpus):
+    """``cases:`` with ``pto_damping`` (and ``pto_stiffness``) per case — refused as an
+    unknown key before — runs each case with its values: its mean power is the grid's at
+    the same sea state and values (the same solution, to rounding), a case without them
+    runs and is recorded at the PTO's own (1000 N s/m, stiffness 0), the results record
+    both per case with the units of the PTO, and the best damping, which needs a grid,
+    is said not computed in one attribute instead of failing."""
+    data = corpus / WAVEBOT
+    grid = {"heading": [0], "hs": [0.1, 0.2], "tp": [2.0, 3.0], "pto_damping": [300.0, 1000.0]}
+    reference = _run(Study(data=data, grid=grid, **LIST_STUDY))
+    stiff = _run(Study(data=data, grid={**grid, "pto_stiffness": [500.0]}, **LIST_STUDY))
+    cases = [
+        {"heading": 0, "hs": 0.2, "tp": 2, "pto_damping": 300},
+        {"heading": 0, "hs": 0.1, "tp": 3, "pto_damping": 1000, "pto_stiffness": 500},
+        {"heading": 0, "hs": 0.2, "tp": 3},  # the PTO's own values
+        {"heading": 0, "hs": 0.1, "tp": 2, "pto_damping": 300, "probability": 1},
+    ]
+    results = _run(Study(data=data, cases=cases, **LIST_STUDY))
+    assert results.pto_damping.dims == ("case",)
+    assert results.pto_damping.values.tolist() == [300.0, 1000.0, 1000.0, 300.0]
+    assert results.pto_stiffness.values.tolist() == [0.0, 500.0, 0.0, 0.0]
+    assert results.pto_damping.attrs["units"] == "N s/m"
+    assert results.pto_stiffness.attrs["units"] == "N/m"
+    expected = [
+        reference.sel(hs=0.2, tp=2.0, pto_damping=300.0),
+        stiff.sel(hs=0.1, tp=3.0, pto_damping=1000.0, pto_stiffness=500.0),
+        reference.sel(hs=0.2, tp=3.0, pto_damping=1000.0),
+        reference.sel(hs=0.1, tp=2.0, pto_damping=300.0),
+    ]
+    for k, one in enumerate(expected):
+        np.testing.assert_allclose(
+            results.pto_mean_power.isel(case=k).values,
+            one.pto_mean_power.squeeze("heading").values,
+            rtol=1e-9,
+        )
+        np.testing.assert_allclose(
+            results.significant_amplitude.isel(case=k).values,
+            one.significant_amplitude.squeeze("heading").values,
+            rtol=1e-9,
+        )
+    # the stiffness changes the answer: the case ran it, not the grid's 0
+    assert (
+        abs(
+            float(expected[1].pto_mean_power.squeeze())
+            / float(reference.pto_mean_power.sel(hs=0.1, tp=3.0, pto_damping=1000.0).squeeze())
+            - 1
+        )
+        > 1e-3
+    )
+    assert "pto_damping_best" not in results
+    assert results.attrs["pto_damping_best_note"].startswith("best PTO damping not computed")
+
+
+def test_a_list_study_prints_and_reports_what_it_cannot_summarise(folder):
+    """``cummins batch`` of a YAML list with ``pto_damping``: exit 0, the best damping's
+    note in one line, the report's power table lists each case's damping and says the
+    same."""
+    text = STUDY.format(sweep="").split("grid:")[0] + (
+        "cases:\n"
+        "  - {heading: 0, hs: 0.2, tp: 2, pto_damping: 300}\n"
+        "  - {heading: 0, hs: 0.2, tp: 2, pto_damping: {pto1: 3000}}\n"
+    )
+    (folder / "list.yaml").write_text(text, encoding="utf-8")
+    out, page = folder / "list.nc", folder / "list.html"
+    runner = CliRunner()
+    result = runner.invoke(main, ["batch", str(folder / "list.yaml"), "-o", str(out)])
+    assert result.exit_code == 0, result.output
+    notes = [line for line in result.output.splitlines() if "best PTO damping" in line]
+    assert len(notes) == 1 and "the cases are a list" in notes[0], result.output
+    result = runner.invoke(main, ["report", str(out), "-o", str(page)])
+    assert result.exit_code == 0, result.output
+    html = page.read_text(encoding="utf-8")
+    assert "best PTO damping not computed: the cases are a list" in html
+    assert "<th>pto_damping</th>" in html
+
+
+@pytest.mark.parametrize(
+    ("cases", "system", "message"),
+    [
+        (
+            "[{heading: 0, hs: 1, tp: 2, pto_damping: 300}, "
+            "{heading: 0, hs: 1, tp: 2, pto_damping: -1000}]",
+            None,
+            "cases[1].pto_damping: -1000 is negative",
+        ),
+        (
+            "[{heading: 0, hs: 1, tp: 2}, {heading: 0, hs: 1, tp: 2, pto_damping: 300}]",
+            "system:\n  dofs: [Heave]\n",
+            "cases[1].pto_damping: the study has no PTO to sweep",
+        ),
+        (
+            "[{heading: 0, hs: 1, tp: 2, pto_damping: 300}]",
+            "",
+            "cases[0].pto_damping: the study has no PTO to sweep",
+        ),
+        (
+            "[{heading: 0, hs: 1, tp: 2, pto_damping: {pto9: 300}}]",
+            None,
+            "cases[0].pto_damping: no PTO 'pto9'; the PTOs are pto1",
+        ),
+        (
+            "[{heading: 0, hs: 1, tp: 2, pto_damping: {pto1: [300]}}]",
+            None,
+            "cases[0].pto_damping: [300] is not a number",
+        ),
+        (
+            "[{heading: 0, hs: 1, tp: 2, pto_damping: {pto1: 3, pto2: 4}}]",
+            None,
+            "cases[0].pto_damping: name one PTO and its values, e.g. pto_damping: {pto1: value}",
+        ),
+    ],
+)
+def test_bad_list_cases_are_refused_in_one_line_naming_the_case(folder, cases, system, message):
+    text = STUDY.format(sweep="").split("grid:")[0] + f"cases: {cases}\n"
+    if system is not None:
+        head, _, rest = text.partition("system:\n")
+        text = head + system + "cases:" + rest.split("cases:", 1)[1]
+    (folder / "bad.yaml").write_text(text, encoding="utf-8")
+    result = CliRunner().invoke(
+        main, ["batch", str(folder / "bad.yaml"), "-o", str(folder / "bad.nc")]
+    )
+    assert result.exit_code == 2, result.output
+    lines = [line for line in result.output.splitlines() if line.strip()]
+    assert len(lines) == 1 and message in lines[0], result.output
+    assert not (folder / "bad.nc.parts").exists()
+
+
+def test_a_list_with_several_ptos_names_the_one_it_sets():
+    """Two PTOs: a case's plain value is refused (which PTO?), ``{name: value}`` sets that
+    one (the other keeps its own), a case naming another PTO or one leaving the name out
+    beside cases that give it are refused, each naming its case."""
+    system = {
+        "ptos": [
+            {"dofs": ["Heave", "ground"], "damping": 10, "name": "pa"},
+            {"dofs": ["Heave", "ground"], "damping": 20, "name": "pb"},
+        ]
+    }
+    sea = {"heading": 0, "hs": 1, "tp": 2}
+    with pytest.raises(StudyError, match=r"cases\[0\].pto_damping: the system has 2 PTOs"):
+        Study(data="x.out", system=system, cases=[{**sea, "pto_damping": 1}])
+    study = Study(data="x.out", system=system, cases=[sea, {**sea, "pto_damping": {"pb": 7}}])
+    assert study.swept_pto == "pb"
+    assert [c.pto_damping for c in study.cases] == [20.0, 7.0]  # pb's own, then 7
+    swept = case_system(study.system, study.swept_pto, study.cases[1].pto_damping, None)
+    assert [p.damping for p in swept.ptos] == [10.0, 7.0]
+    with pytest.raises(StudyError, match=r"cases\[1\]: names the PTO 'pa', cases\[0\] names 'pb'"):
+        Study(
+            data="x.out",
+            system=system,
+            cases=[{**sea, "pto_damping": {"pb": 7}}, {**sea, "pto_stiffness": {"pa": 1}}],
+        )
+    with pytest.raises(StudyError, match=r"cases\[1\].pto_damping: the system has 2 PTOs .*as the"):
+        Study(
+            data="x.out",
+            system=system,
+            cases=[{**sea, "pto_damping": {"pb": 7}}, {**sea, "pto_damping": 8}],
+        )
+    again = replace(study, name="again")  # dataclasses.replace re-checks the cases: the same
+    assert again.swept_pto == "pb" and again.cases == study.cases

@@ -216,6 +216,8 @@ def _print_pto_sweep(results) -> None:
     a table per heading of the best damping and its power per H_s (rows) and T_p
     (columns), "*" where it is the end of the list; with a scatter diagram, the mean power
     per damping over it and the best single damping for the site."""
+    if "pto_damping_best_note" in results.attrs:  # a list of cases
+        console.print(f"note: {escape(results.attrs['pto_damping_best_note'])}", highlight=False)
     if "pto_damping_best" not in results:
         return
     best = results.pto_damping_best

@@ -427,6 +427,8 @@ def pto_sweep_sections(results: xr.Dataset) -> list[Section]:
     per heading a table of the best damping and its mean power per H_s and T_p, the mean
     power against the damping per T_p at the largest H_s, and with a scatter diagram the
     mean power over it per damping and the best single damping for the site."""
+    if "pto_damping_best_note" in results.attrs:  # a list of cases: said, not computed
+        return [Section("PTO damping sweep", _note(results.attrs["pto_damping_best_note"]))]
     if "pto_damping_best" not in results:
         return []
     units = results.pto_damping.attrs.get("units", "")

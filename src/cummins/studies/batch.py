@@ -690,20 +690,20 @@ def gather_results(
 
     cases = study.all_cases
     n_dof = len(dofs)
+    axis_units = {**GRID_AXES, **(units or {})}
     if study.grid is not None:
         shape = tuple(len(v) for _, v in study.grid)
-        units = {**GRID_AXES, **(units or {})}
         coords: dict[str, Any] = {
-            name: (name, np.asarray(v), {"units": units[name]}) for name, v in study.grid
+            name: (name, np.asarray(v), {"units": axis_units[name]}) for name, v in study.grid
         }
-    else:
+    else:  # a list: each case's values (a PTO's too) as coordinates along "case"
         shape = (len(cases),)
         coords = {"case": ("case", np.arange(len(cases)))}
-        for name in ("heading", "hs", "tp", "gamma", "spreading", "seed"):
+        for name in GRID_AXES:
             column = [getattr(c, name) for c in cases]
             if any(v is not None for v in column):
                 column = [np.nan if v is None else float(v) for v in column]
-                coords[name] = ("case", np.asarray(column), {"units": GRID_AXES[name]})
+                coords[name] = ("case", np.asarray(column), {"units": axis_units[name]})
     coords["dof"] = ("dof", dofs)
     dims = study.dims
     data: dict[str, Any] = {}

@@ -36,7 +36,13 @@ from cummins.hydrodb import DOF_NAMES, is_rotation, split_dof
 from cummins.mechanics import MechanicalSystem, system_from_mapping
 from cummins.studies.equation_of_motion import KEYS as EQUATION_OF_MOTION_KEYS
 from cummins.studies.equation_of_motion import normalised_keys
-from cummins.studies.pto_sweep import named_sweep, swept_pto
+from cummins.studies.pto_sweep import (
+    list_swept_pto,
+    named_case_values,
+    named_sweep,
+    swept_pto,
+    with_own_values,
+)
 
 #: The analyses a study can run on each case.
 ANALYSES: dict[str, str] = {
@@ -77,7 +83,8 @@ STUDY_KEYS: dict[str, str] = {
     "spectrum": "jonswap | pm | torsethaugen",
     "grid": "axes of an outer product: heading (deg), hs (m), tp (s), gamma, spreading, seed; "
     "with a system's PTO also pto_damping (N s/m, N m s/rad) and pto_stiffness",
-    "cases": "an explicit list of cases (mappings with the grid's keys, and probability)",
+    "cases": "an explicit list of cases (mappings with the grid's keys, and probability; "
+    "with a system's PTO pto_damping and pto_stiffness per case)",
     "duration": "s: exposure of the most probable maximum (rao) or length of each run",
     "dt": "s: time step (simulate)",
     "components": "wave components per direction (simulate)",
@@ -103,8 +110,8 @@ ANALYSIS_KEYS: dict[str, tuple[str, ...]] = {
 }
 #: Their defaults, where the analysis they apply to is run.
 ANALYSIS_DEFAULTS: dict[str, Any] = {"dt": 0.1, "components": 200, "n_omega": 400}
-_CASE_KEYS = ("heading", "hs", "tp", "gamma", "spreading", "seed", "probability")
 _SWEEP_KEYS = ("pto_damping", "pto_stiffness")
+_CASE_KEYS = ("heading", "hs", "tp", "gamma", "spreading", "seed", "probability", *_SWEEP_KEYS)
 _BLAS_ENV = {
     "OMP_NUM_THREADS": "1",
     "OPENBLAS_NUM_THREADS": "1",
@@ -241,7 +248,8 @@ class Case:
     probability
         Weight of the sea state in operability (list studies; grids use ``scatter``).
     pto_damping, pto_stiffness
-        The swept PTO's damping and stiffness (a grid's PTO sweep; None: the system's).
+        The swept PTO's damping and stiffness (a grid's PTO sweep, or a list case's;
+        None: the system's).
     """
 
     heading: float
@@ -391,9 +399,9 @@ class Study:
     ``grid`` and ``limits`` may be given as mappings, ``cases`` as mappings or
     :class:`Case`\\ s. Paths are used as given (:func:`load_study` resolves them against
     the study file's folder). ``swept_pto`` is derived: the PTO whose damping and
-    stiffness the grid's ``pto_damping`` and ``pto_stiffness`` set
+    stiffness the grid's ``pto_damping`` and ``pto_stiffness`` set, or a list's cases
     (:mod:`cummins.studies.pto_sweep`: the system's only PTO, or the one named,
-    ``pto_damping: {name: [..]}``).
+    ``pto_damping: {name: [..]}``, ``{name: value}`` in a case).
 
     Examples
     --------
@@ -439,6 +447,10 @@ class Study:
     def __post_init__(self) -> None:
         src = self.source
         set_ = object.__setattr__
+
+        def case_key(k: int) -> str:
+            return at_key(src, f"cases[{k}]")
+
         set_(self, "data", Path(self.data))
         if self.model is not None:
             set_(self, "model", Path(self.model))
@@ -480,11 +492,15 @@ class Study:
             set_(self, "swept_pto", named or self.swept_pto)
             set_(self, "cases", ())
         else:
-            set_(
-                self,
-                "cases",
-                tuple(_case_from_mapping(c, k, src) for k, c in enumerate(self.cases)),
-            )
+            try:
+                raw, named_cases = named_case_values(self.cases, case_key)
+            except ArgumentError as exc:
+                raise StudyError(str(exc)) from None
+            named_cases = [  # a Case of Python: the PTO of swept_pto (dataclasses.replace)
+                self.swept_pto if isinstance(c, Case) else n
+                for c, n in zip(self.cases, named_cases, strict=True)
+            ]
+            set_(self, "cases", tuple(_case_from_mapping(c, k, src) for k, c in enumerate(raw)))
         for key in ("duration", "dt", "soft_springs"):
             if getattr(self, key) is None:
                 continue
@@ -517,7 +533,11 @@ class Study:
             except ArgumentError as exc:
                 raise StudyError(str(exc)) from None
         try:
-            swept = swept_pto(self.grid or (), self.system, self.swept_pto, at_key(src, "grid"))
+            if self.grid is not None:
+                swept = swept_pto(self.grid, self.system, self.swept_pto, at_key(src, "grid"))
+            else:
+                swept = list_swept_pto(self.cases, named_cases, self.system, case_key)
+                set_(self, "cases", with_own_values(self.cases, self.system, swept))
         except ArgumentError as exc:
             raise StudyError(str(exc)) from None
         set_(self, "swept_pto", swept)
