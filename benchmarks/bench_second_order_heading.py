@@ -17,6 +17,11 @@ In one run of the script:
 3. **The tanker's drift yaw moment over a 30° heading change**: the mean drift of the
    sea of (1), long-crested, as the relative heading goes from head seas (180°) to 150°
    in steps of 5°, and the moment it would keep held at head seas (zero by symmetry).
+4. **Construction of the following load** (``from_hydrodb``, ``full`` from the QTF of
+   (1)), short-crested seas of 40 × 5, 100 × 9 and 200 × 9 components (the last
+   ``cummins simulate``'s default): now, the forms held at ψ₀ deferred to their first
+   use, against the construction as it was before, which built them too (the same
+   construction followed by their build, ``load.difference``), and the ratio.
 
 Run: ``python benchmarks/bench_second_order_heading.py``.
 """
@@ -137,6 +142,41 @@ def main() -> None:
             f"{f[5] / 1e6:10.2f}"
         )
     print(f"   (evaluated in {1e3 * (time.perf_counter() - start):.1f} ms)")
+    _construction(ds, dq, shape)
+
+
+def _construction(ds, dq, shape) -> None:
+    """Section 4: the following load built with its fixed-heading forms deferred, against
+    the same load with them built (what ``from_hydrodb`` did before)."""
+    print("4. SecondOrderWaveLoad.from_hydrodb, full QTF, following the heading, construction:")
+    for n, m in ((40, 5), (100, 9), (200, 9)):
+        with warnings.catch_warnings():
+            warnings.simplefilter("ignore")
+            sea = irregular_waves(
+                shape,
+                duration=600,
+                n_components=n,
+                direction=np.pi,
+                spreading=5,
+                n_directions=m,
+                seed=1,
+                omega_max=2.9,
+                data=ds,
+            )
+
+            def lazy(sea=sea):
+                return SecondOrderWaveLoad.from_hydrodb(dq, sea, model="full")
+
+            def eager(sea=sea):
+                load = lazy(sea)
+                return load.difference  # the forms held at psi0, as built before
+
+            t_lazy, _ = timed(lazy, 3)
+            t_eager, _ = timed(eager, 2)
+        print(
+            f"   short-crested {n} x {m} = {n * m} components: deferred {t_lazy:.3f} s, "
+            f"built as before {t_eager:.3f} s ({t_eager / t_lazy:.1f}x)"
+        )
 
 
 if __name__ == "__main__":

@@ -16,7 +16,7 @@ from scipy.interpolate import CubicSpline
 import cummins
 from cummins.cli import main
 from cummins.errors import AssumptionWarning, HydroDataError
-from cummins.qtf import QTFTable, with_second_order
+from cummins.qtf import QTFTable, qtf_table, with_second_order
 from cummins.seakeeping.headings import MIRROR_SIGNS
 from cummins.seakeeping.waves import WaveComponents, irregular_waves, wave_spectrum
 from cummins.timedomain.loads import SecondOrderWaveLoad, WaveDriftLoad
@@ -376,3 +376,65 @@ def test_a_bidirectional_qtf_follows_the_relative_heading(tanker):
         a = full.force(33.0, _pose(psi, 2.0, 1.0), np.zeros(6))
         b = newman.force(33.0, _pose(psi, 2.0, 1.0), np.zeros(6))
         np.testing.assert_allclose(a, b, rtol=0, atol=1e-9 * np.abs(b).max())
+
+
+def test_a_load_that_follows_the_heading_builds_its_fixed_forms_on_first_use(
+    tanker_qtf, monkeypatch
+):
+    """The DP load following the heading does not use the forms held at ψ₀ (the pair
+    matrices of a short-crested sea decomposed: the costliest set-up); it builds them on
+    the first ``time_series`` or ``stationary_state`` (once), and these, and ``mean``,
+    equal the held load's to rounding. The multi-heading QTF of the tanker's drift, with
+    the same values as a sum-frequency QTF (for the sum's form: the corpus's sum QTFs
+    have one heading, which no short-crested sea fits), a sea of 30 × 3 components."""
+    from cummins.timedomain.loads import second_order
+
+    built = []
+    full = second_order._full
+
+    def counted(table, *args):
+        built.append(table.kind)
+        return full(table, *args)
+
+    monkeypatch.setattr(second_order, "_full", counted)
+    ds, dq = tanker_qtf
+    table = qtf_table(dq, "difference")
+    both = with_second_order(
+        ds,
+        [table, QTFTable("sum", table.omega, table.directions, table.values, table.dofs)],
+    )
+    sea = irregular_waves(
+        wave_spectrum("jonswap", 4.0, 10.0),
+        duration=600,
+        n_components=30,
+        direction=np.pi,
+        spreading=5,
+        n_directions=3,
+        seed=3,
+        omega_max=2.9,  # inside the QTF grid
+        data=ds,
+    )
+    with warnings.catch_warnings():
+        warnings.simplefilter("ignore")
+        follow = SecondOrderWaveLoad.from_hydrodb(both, sea, model="full", heading=0.2)
+        assert built == []  # nothing of the fixed heading built for the DP run
+        held = SecondOrderWaveLoad.from_hydrodb(
+            both, sea, model="full", heading=0.2, follow_heading=False
+        )
+        assert built == ["difference", "sum"]
+        follow.force(10.0, _pose(12.0), np.zeros(6))
+        assert built == ["difference", "sum"]  # the run's force: the heading table's
+        t = np.arange(0.0, 600.0, 0.1)
+        expected = held.time_series(t)
+        np.testing.assert_allclose(
+            follow.time_series(t), expected, rtol=0, atol=1e-12 * np.abs(expected).max()
+        )
+        assert built == ["difference", "sum"] * 2
+        vessel = cummins.vessel_from_hydrodb(ds)
+        x, notes = follow.stationary_state(vessel)
+        y, held_notes = held.stationary_state(vessel)
+    np.testing.assert_allclose(x, y, rtol=0, atol=1e-12 * np.abs(y).max())
+    assert notes == held_notes and built == ["difference", "sum"] * 2  # built once
+    np.testing.assert_array_equal(follow.mean, held.mean)
+    assert follow.difference is not None and follow.sum is not None
+    assert any("sum-frequency QTF: exact at the instantaneous" in n for n in follow.notes)

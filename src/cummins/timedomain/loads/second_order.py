@@ -36,12 +36,17 @@ the data taken at the vessel's instantaneous relative heading β_i − ψ(t) at 
 (:mod:`cummins.timedomain.loads.relative_heading`: the data's directions, mirrored for a
 symmetric hull, interpolated linearly; ``follow_heading=False`` holds the start heading
 ψ₀) — and :func:`second_order_force` the force of a linear simulation in the dataset's own
-axes, without position phase.
+axes, without position phase. A load that follows the heading builds the factorised
+forms held at ψ₀ (``difference``, ``sum``: the pair matrices of a short-crested sea
+decomposed, the run's costliest set-up) only on first use, by :meth:`time_series` or
+:meth:`stationary_state`: its :meth:`force` does not use them.
 """
 
 from __future__ import annotations
 
+from collections.abc import Callable
 from dataclasses import dataclass, field
+from functools import partial
 
 import numpy as np
 import xarray as xr
@@ -95,9 +100,10 @@ class SecondOrderWaveLoad:
         ``"full"``, ``"newman"`` or ``"mean"``.
     difference
         The factorised difference-frequency force (mean included); None for the mean
-        drift alone.
+        drift alone. Given as a function that builds it, it is built on first use (the
+        ``difference`` property; a load that follows the heading).
     sum
-        The factorised sum-frequency force, or None.
+        The factorised sum-frequency force, or None (or a function that builds it).
     mean
         The mean force Σ_i a_i² Re Q⁻(ω_i, ω_i), shape (n_dofs,), N and N·m.
     index
@@ -124,8 +130,8 @@ class SecondOrderWaveLoad:
     waves: WaveComponents
     dofs: tuple[str, ...]
     model: str
-    difference: QuadraticForm | None
-    sum: QuadraticForm | None
+    _difference: QuadraticForm | Callable[[], QuadraticForm] | None
+    _sum: QuadraticForm | Callable[[], QuadraticForm] | None
     mean: NDArray[np.float64]
     index: NDArray[np.intp] | None = None
     wavenumbers: NDArray[np.float64] | None = None
@@ -140,6 +146,23 @@ class SecondOrderWaveLoad:
         if self.wavenumbers is not None:
             k = np.asarray(self.wavenumbers, dtype=float)
             object.__setattr__(self, "_k", _wave_vectors(k, self.waves.direction))
+
+    @property
+    def difference(self) -> QuadraticForm | None:
+        """The factorised difference-frequency force (built now if it was deferred)."""
+        return self._built("_difference")
+
+    @property
+    def sum(self) -> QuadraticForm | None:
+        """The factorised sum-frequency force, or None (built now if it was deferred)."""
+        return self._built("_sum")
+
+    def _built(self, name: str) -> QuadraticForm | None:
+        value = getattr(self, name)
+        if callable(value):  # deferred: built once, kept
+            value = value()
+            object.__setattr__(self, name, value)
+        return value
 
     @classmethod
     def from_hydrodb(
@@ -203,7 +226,9 @@ class SecondOrderWaveLoad:
         relative = WaveComponents(
             waves.omega, waves.amplitude, waves.phase, waves.direction - float(heading)
         )
-        parts = _build(ds, relative, model, sum_frequency, tol, max_gap, keep_suspect)
+        parts = _build(
+            ds, relative, model, sum_frequency, tol, max_gap, keep_suspect, defer=follow_heading
+        )
         index = np.array([dof_index(str(d)) for d in ds.influenced_dof.values], dtype=np.intp)
         k = wavenumber(
             waves.omega, float(ds.attrs.get("water_depth", np.inf)), float(ds.attrs.get("g", 9.81))
@@ -245,7 +270,7 @@ class SecondOrderWaveLoad:
         t = np.asarray(t, dtype=float).reshape(-1)
         forms = [f for f in (self.difference, self.sum) if f is not None]
         out = time_series(forms, t) if forms else np.zeros((t.size, self.mean.size))
-        if self.difference is None:
+        if self._difference is None:
             out += self.mean
         return out
 
@@ -253,7 +278,7 @@ class SecondOrderWaveLoad:
         """The state of a :class:`~cummins.vessel.Vessel` that makes its response to this
         force stationary from t = 0 (QuadraticForm.stationary_state), and notes."""
         f, g = vessel.state_space()
-        if self.difference is None:
+        if self._difference is None:
             x, notes = _static_state(f, g, self.mean)
         elif len(self.waves) > STATIONARY_LIMIT:
             x, notes = _static_state(f, g, self.mean)
@@ -352,7 +377,11 @@ def second_order_force(
     )
 
 
-def _build(ds, waves: WaveComponents, model, sum_frequency, tol, max_gap, keep_suspect) -> dict:
+def _build(
+    ds, waves: WaveComponents, model, sum_frequency, tol, max_gap, keep_suspect, defer=False
+) -> dict:
+    """The parts of a load (a dict): the factorised forms as functions that build them
+    when ``defer`` (a load that follows the heading: :class:`SecondOrderWaveLoad`)."""
     if model not in MODELS:
         raise ArgumentError(f"second-order model must be one of {', '.join(MODELS)}, not {model!r}")
     if not 0 < tol < 1:
@@ -398,14 +427,20 @@ def _build(ds, waves: WaveComponents, model, sum_frequency, tol, max_gap, keep_s
     rows = np.arange(len(waves))
     diag = (1 - ta)[:, None] * per_direction[a0, rows] + ta[:, None] * per_direction[a1, rows]
     mean = (a**2) @ diag
+    exact = "exact at the instantaneous relative heading"  # HeadingTable: no truncation
     if model == "full":
-        difference = _full(table, waves, tol, max_gap)
+        difference = partial(_full, table, waves, tol, max_gap)
+        if not defer:
+            difference = difference()
         notes.append(
             f"full difference-frequency QTF ({table.omega.size} x {table.omega.size} "
-            f"frequencies) over the pairs of {len(waves)} components: " + _describe(difference, tol)
+            f"frequencies) over the pairs of {len(waves)} components: "
+            + (exact if defer else _describe(difference, tol))
         )
     elif model == "newman":
-        difference = newman_form(waves.omega, waves.phase, a, diag)
+        difference = partial(newman_form, waves.omega, waves.phase, a, diag)
+        if not defer:
+            difference = difference()
         notes.append(f"Newman's approximation from {source}")
     else:
         difference = None
@@ -418,8 +453,10 @@ def _build(ds, waves: WaveComponents, model, sum_frequency, tol, max_gap, keep_s
                 "the data have no sum-frequency QTF", path=ds.attrs.get("source_file")
             )
         sum_table = _mirrored(ds, "sum", [])
-        total_sum = _full(sum_table, waves, tol, max_gap)
-        notes.append("sum-frequency QTF: " + _describe(total_sum, tol))
+        total_sum = partial(_full, sum_table, waves, tol, max_gap)
+        if not defer:
+            total_sum = total_sum()
+        notes.append("sum-frequency QTF: " + (exact if defer else _describe(total_sum, tol)))
     return {
         "dofs": dofs,
         "difference": difference,
