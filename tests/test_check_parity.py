@@ -150,3 +150,35 @@ def test_break_patterns_on_constructed_tables():
         pytest.approx(4.0),
     )
     assert degree_ranges([190, 200, 210, 250, 300, 310]) == "190–210°, 250°, 300–310°"
+
+
+def test_the_drift_loads_warn_about_a_drift_that_does_not_mirror(shared_data):
+    """The mean drift as used in the time domain (the DP scenario's waves travel to 225°,
+    in the half MSS fills): WaveDriftLoad warns, naming the DOFs and the headings, and
+    not once the solvers' half-plane is kept (mirrored then by the load itself). At 225°
+    (JONSWAP Hs 4 m, Tp 10.5 s) the tanker.mat drift's mean surge force is +3.3e5 N
+    (forward), its mirror −4.2e5 N."""
+    from cummins.errors import HydroDataWarning
+    from cummins.seakeeping.waves import irregular_waves, wave_spectrum
+    from cummins.timedomain.loads import WaveDriftLoad
+
+    ds = _read(shared_data / "mss" / "tanker" / "tanker.mat")
+    spectrum = wave_spectrum("jonswap", 4.0, 2 * np.pi / 0.6, gamma=3.3)
+    sea = irregular_waves(spectrum, duration=300, n_components=50, direction=3.93, seed=1)
+    with pytest.warns(HydroDataWarning, match=r"drift_force of Surge, Sway, Yaw .* at 190–"):
+        WaveDriftLoad.from_hydrodb(ds, sea, extrapolate="zero")
+    with warnings.catch_warnings(record=True) as caught:
+        warnings.simplefilter("always")
+        WaveDriftLoad.from_hydrodb(_half_plane(ds), sea, extrapolate="zero")
+    assert not [w for w in caught if "mirror image" in str(w.message)]
+    kept, _ = mirror_headings(_half_plane(ds))
+    w = ds.omega.values
+    sound = w < 3.5  # below the irregular frequencies
+    density = np.asarray(spectrum(w[sound]))
+    for heading in (220, 230):
+        j = int(np.argmin(np.abs(np.degrees(ds.wave_direction.values) - heading)))
+        mean = [  # 2 ∫ S(ω) D(ω) dω, surge
+            2 * np.trapezoid(density * d.drift_force.values[sound, j, 0], w[sound])
+            for d in (ds, kept)
+        ]
+        assert mean[0] > 1.5e5 and mean[1] < -2e5  # +3.3e5 N and −4.2e5 N

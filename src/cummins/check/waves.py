@@ -66,6 +66,28 @@ def _check_wave_parity(ds: xr.Dataset) -> list[Finding]:
     return out
 
 
+def drift_mirror_note(ds: xr.Dataset) -> str | None:
+    """One line on a mean drift that breaks the port/starboard mirror where the first-order
+    tables of the same headings keep it (the ``wave_parity`` warnings of the drift, MSS's
+    own structs'), or None: the drift loads warn with it, as they use the data as given."""
+    found = [
+        f
+        for f in _check_wave_parity(ds)
+        if f.severity == "warning" and (f.details or {}).get("first_order_mismatch") is not None
+    ]
+    if not found:
+        return None
+    dofs = ", ".join(dict.fromkeys(str(f.where) for f in found))
+    headings = sorted({h for f in found for h in f.details.get("headings_deg", [])})
+    at = f" at {degree_ranges(headings)}" if headings else ""
+    explained = next((f.advice for f in found if f.details.get("pattern")), None)
+    return f"drift_force of {dofs} is not the port/starboard mirror image{at} although the " + (
+        f"first-order excitation is; {explained}"
+        if explained
+        else "first-order excitation is: used as given (cummins check, wave_parity, says how)"
+    )
+
+
 def _mirror_sign(label: str) -> float:
     """T_ii of a DOF label (1 for a mode that is not a rigid-body DOF)."""
     from cummins.seakeeping.excitation import MIRROR_SIGNS
