@@ -229,6 +229,12 @@ def _read_mss(path, rho, g, speed, rao_reference) -> xr.Dataset:
         history.append(
             "drift_force: MSS gives surge, sway and yaw only; heave, roll and pitch set to 0"
         )
+        if extras is None and np.any(np.mod(headings, 2 * np.pi) > np.pi + 1e-6):
+            history.append(
+                "drift_force read as stored at every heading: MSS fills 190-350 deg itself, "
+                "not always as the port/starboard mirror of 10-170 deg (cummins check, "
+                "wave_parity, names the headings)"
+            )
     if bv_all is not None and np.any(bv_all):
         history.append("additional_damping = vessel.Bv (MSS viscous damping estimate)")
     extra_attrs = _extras(extras, path, history)

@@ -75,7 +75,7 @@ from cummins.timedomain.loads.quadratic_form import (
     time_series,
 )
 from cummins.timedomain.loads.relative_heading import HeadingTable, heading_table
-from cummins.timedomain.loads.waves import _wave_vectors
+from cummins.timedomain.loads.waves import _wave_vectors, warn_drift_mirror
 
 #: The second-order models.
 MODELS = ("full", "newman", "mean")
@@ -527,6 +527,7 @@ def _drift_table(
         )
     from cummins.seakeeping.headings import mirror_headings
 
+    warn_drift_mirror(ds, stacklevel=5)
     # a port/starboard symmetric hull's drift on the other half-plane, as the first order
     parts = [v for v in ("added_mass", "radiation_damping", "excitation_force") if v in ds]
     mirrored, coverage = mirror_headings(ds[[*parts, "drift_force"]])

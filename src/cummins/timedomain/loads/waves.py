@@ -19,7 +19,7 @@ import numpy as np
 import xarray as xr
 from numpy.typing import ArrayLike, NDArray
 
-from cummins.errors import CumminsError, HydroDataError
+from cummins.errors import CumminsError, HydroDataError, HydroDataWarning
 from cummins.hydrodb import bodies, change_axes, dof_index, single_speed, water_depth
 from cummins.kinematics import point_load
 from cummins.qtf.suspect_drift import suspects_left_out
@@ -57,6 +57,20 @@ def _prepare_hydrodb(ds: xr.Dataset, variable: str) -> tuple[xr.Dataset, NDArray
         ds = change_axes(ds, "z-down")
     index = np.array([dof_index(str(d)) for d in ds.influenced_dof.values], dtype=int)
     return ds, index
+
+
+def warn_drift_mirror(ds: xr.Dataset, stacklevel: int = 3) -> None:
+    """A :class:`~cummins.errors.HydroDataWarning` when the mean drift breaks the port/
+    starboard mirror where the first-order tables keep it
+    (:func:`cummins.check.waves.drift_mirror_note`: MSS's own structs at 190–350°)."""
+    import warnings
+
+    from cummins.check.waves import drift_mirror_note
+
+    note = drift_mirror_note(ds)
+    if note:
+        source = ds.attrs.get("source_file") or "the data"
+        warnings.warn(HydroDataWarning(f"{source}: {note}"), stacklevel=stacklevel)
 
 
 def _in_six(values: NDArray, index: NDArray[np.int64]) -> NDArray:
@@ -441,6 +455,7 @@ class WaveDriftLoad:
         where = ds.attrs.get("source_file")
         if "wave_direction" not in ds["drift_force"].dims:
             raise HydroDataError("drift_force has no wave_direction dimension", path=where)
+        warn_drift_mirror(ds)
         use = mirror if (mirror is not None or "excitation_force" in ds) else False
         coverage = heading_coverage(ds, mirror=use)
         gaps = coverage.gaps(max_heading_gap)
