@@ -22,10 +22,10 @@ from cummins.io.mss.points import _rigid_body_cg
 from cummins.seakeeping.headings import MIRROR_SIGNS, mirror_headings
 
 
-def _read(path):
+def _read(path, **options):
     with warnings.catch_warnings():
         warnings.simplefilter("ignore")
-        return cummins.read(path)
+        return cummins.read(path, **options)
 
 
 def _parity_warnings(ds):
@@ -50,7 +50,7 @@ def test_the_mss_tanker_drift_is_shifted_by_180_degrees_not_mirrored(shared_data
     tanker.9) over 0.4–1.5 rad/s at 190–350°: the file's surge and yaw correlate
     negatively (−0.89, −0.62: the surge pushes the hull forward in near-head seas), the
     kept half-plane mirrored positively (0.90, 0.65, as 10–170° do)."""
-    ds = _read(shared_data / "mss" / "tanker" / "tanker.mat")
+    ds = _read(shared_data / "mss" / "tanker" / "tanker.mat", drift_as_stored=True)
     flagged = _parity_warnings(ds)
     assert sorted(f.where for f in flagged) == ["Surge", "Sway", "Yaw"]
     for f in flagged:
@@ -74,6 +74,9 @@ def test_the_mss_tanker_drift_is_shifted_by_180_degrees_not_mirrored(shared_data
             <= 1e-12 * np.abs(ds[name].values).max()
         )
     assert not _parity_warnings(_half_plane(ds))
+    default = _read(shared_data / "mss" / "tanker" / "tanker.mat")  # mirrored on reading
+    assert np.array_equal(default.drift_force.values, kept.drift_force.values)
+    assert not _parity_warnings(default)
 
     wamit, _ = mirror_headings(
         change_axes(_read(shared_data / "mss" / "tanker" / "tanker.1"), "z-down")
@@ -94,7 +97,7 @@ def test_the_mss_veres_yaw_drift_keeps_its_sign_about_the_veres_point(shared_dat
     about a point the check finds by least squares — the VERES motion reference point at
     the x of G (−5.386 m, −2.547 m from CO; cummins moved the drift from there to CO)."""
     path = shared_data / "mss" / case
-    ds = _read(path)
+    ds = _read(path, drift_as_stored=True)
     from scipy.io import loadmat
 
     x_g = _rigid_body_cg(loadmat(path)["vessel"][0, 0]["MRB"])[0]
@@ -111,7 +114,7 @@ def test_the_supply_drift_against_veres_own(shared_data):
     Fossen's axes, moved to CO) to 4.5e-8 of each DOF's peak (single precision); at
     190–350° the yaw is off by 117 % of its peak; the kept half-plane mirrored is VERES's
     mirrored to 4.5e-8 again."""
-    ds = _read(shared_data / "mss" / "supply" / "supply.mat")
+    ds = _read(shared_data / "mss" / "supply" / "supply.mat", drift_as_stored=True)
     veres = change_axes(_read(shared_data / "mss" / "supply" / "input.re7"), "z-down")
     veres, _ = mirror_headings(move_reference_point(veres, ds.attrs["reference_point"]))
     ref = veres.drift_force.values
@@ -125,6 +128,11 @@ def test_the_supply_drift_against_veres_own(shared_data):
     assert error(ds.drift_force.values, ~lower)[2] > 0.5
     kept, _ = mirror_headings(_half_plane(ds))
     assert error(kept.drift_force.values, slice(None)).max() < 1e-6
+    # read by default, the struct's 190–350° are that mirror: VERES's own, everywhere
+    default = _read(shared_data / "mss" / "supply" / "supply.mat")
+    assert error(default.drift_force.values, slice(None)).max() < 1e-6
+    assert "mirror image of the solver's 0–180°" in default.attrs["history"]
+    assert not _parity_warnings(default)
 
 
 def test_break_patterns_on_constructed_tables():
@@ -162,15 +170,16 @@ def test_the_drift_loads_warn_about_a_drift_that_does_not_mirror(shared_data):
     from cummins.seakeeping.waves import irregular_waves, wave_spectrum
     from cummins.timedomain.loads import WaveDriftLoad
 
-    ds = _read(shared_data / "mss" / "tanker" / "tanker.mat")
+    ds = _read(shared_data / "mss" / "tanker" / "tanker.mat", drift_as_stored=True)
     spectrum = wave_spectrum("jonswap", 4.0, 2 * np.pi / 0.6, gamma=3.3)
     sea = irregular_waves(spectrum, duration=300, n_components=50, direction=3.93, seed=1)
     with pytest.warns(HydroDataWarning, match=r"drift_force of Surge, Sway, Yaw .* at 190–"):
         WaveDriftLoad.from_hydrodb(ds, sea, extrapolate="zero")
-    with warnings.catch_warnings(record=True) as caught:
-        warnings.simplefilter("always")
-        WaveDriftLoad.from_hydrodb(_half_plane(ds), sea, extrapolate="zero")
-    assert not [w for w in caught if "mirror image" in str(w.message)]
+    for fine in (_half_plane(ds), _read(shared_data / "mss" / "tanker" / "tanker.mat")):
+        with warnings.catch_warnings(record=True) as caught:
+            warnings.simplefilter("always")
+            WaveDriftLoad.from_hydrodb(fine, sea, extrapolate="zero")
+        assert not [w for w in caught if "mirror image" in str(w.message)]
     kept, _ = mirror_headings(_half_plane(ds))
     w = ds.omega.values
     sound = w < 3.5  # below the irregular frequencies

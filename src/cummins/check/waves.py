@@ -88,6 +88,22 @@ def drift_mirror_note(ds: xr.Dataset) -> str | None:
     )
 
 
+def mss_drift_fill(ds: xr.Dataset) -> list[Finding]:
+    """The ``wave_parity`` warnings of an MSS struct's drift whose break is one of MSS's
+    fills of 190–350° (:data:`_MSS_FILL`) where the first-order tables mirror: what
+    :func:`cummins.io.mss.reader.mirrored_mss_drift` mends."""
+    if ds.attrs.get("source_format") != "mss" or "drift_force" not in ds:
+        return []
+    return [
+        f
+        for f in _check_wave_parity(ds)
+        if f.severity == "warning"
+        and (f.details or {}).get("pattern") in _MSS_FILL
+        and f.details.get("first_order_mismatch") is not None
+        and f.details.get("headings_deg")
+    ]
+
+
 def _mirror_sign(label: str) -> float:
     """T_ii of a DOF label (1 for a mode that is not a rigid-body DOF)."""
     from cummins.seakeeping.excitation import MIRROR_SIGNS
@@ -202,9 +218,9 @@ def _parity_advice(sub: xr.Dataset, name: str, pattern: str | None) -> str:
     """What to do about a table that does not mirror: MSS's fill named when recognised."""
     if sub.attrs.get("source_format") == "mss" and name == "drift_force" and pattern:
         return (
-            f"{_MSS_FILL[pattern]}; cummins uses the values as given: keep 0–180°, "
-            "ds.isel(wave_direction=np.flatnonzero(ds.wave_direction.values <= np.pi + "
-            "1e-9)), and cummins mirrors them for a symmetric hull (docs/guide/mss.md)"
+            f"{_MSS_FILL[pattern]}; cummins.read mirrors the solver's 0–180° there by "
+            "default, these values were kept (read(..., drift_as_stored=True); "
+            "docs/guide/mss.md)"
         )
     return (
         "the file may hold magnitudes instead of signed values, or a sign error: check the "

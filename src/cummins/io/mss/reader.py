@@ -74,6 +74,7 @@ def read_mss(
     g: float | None = None,
     speed: float | None = None,
     rao_reference: ArrayLike | None = None,
+    drift_as_stored: bool = False,
 ) -> xr.Dataset:
     """Read an MSS ``vessel`` struct (``.mat``) into a canonical ``HydroDB``.
 
@@ -92,6 +93,11 @@ def read_mss(
         Point (m, z-down, from CO) about which ``forceRAO``, ``motionRAO`` and
         ``driftfrc`` are given, when it differs from the matrices' reference point;
         detected for VERES-derived structs (see :mod:`cummins.io.mss`).
+    drift_as_stored
+        Keep ``driftfrc`` at 190–350° as the struct stores it. By default, where it breaks
+        the port/starboard mirror that the struct's first-order tables keep (MSS's
+        processing: :func:`mirrored_mss_drift`), those headings take the mirror image of
+        10–170°, and ``history`` says so.
 
     Returns
     -------
@@ -105,7 +111,7 @@ def read_mss(
     """
     path = Path(path)
     try:
-        return _read_mss(path, rho, g, speed, rao_reference)
+        ds = _read_mss(path, rho, g, speed, rao_reference)
     except HydroDataError:
         raise
     except (KeyError, IndexError, ValueError, TypeError, AttributeError) as exc:
@@ -114,6 +120,57 @@ def read_mss(
             path=path,
             hint="the file may be damaged or not written by MSS",
         ) from None
+    return ds if drift_as_stored else mirrored_mss_drift(ds)
+
+
+def mirrored_mss_drift(ds: xr.Dataset) -> xr.Dataset:
+    """``ds`` with ``drift_force`` at the headings in (180°, 360°) replaced by the mirror
+    image T F(360° − β) of (0°, 180°), T = diag(1, −1, 1, −1, 1, −1), when the drift breaks
+    the port/starboard mirror there in one of MSS's patterns although the first-order
+    tables keep it (:func:`cummins.check.waves.mss_drift_fill`); else ``ds`` itself.
+
+    MSS fills ``driftfrc`` at 190–350° from 10–170° in processing (``wamit2vessel.m``
+    copies them in the same order, ``read_veres_WD.m`` mirrors the yaw moment without its
+    sign change: :mod:`cummins.check.parity`), while 0–180° are the solver's (MSS's
+    ``tanker.mat`` equals its ``tanker.9``, ``supply.mat`` its VERES ``.re2``): the
+    tanker's surge drift at 190° pushed the ship forward in nearly head seas, the S-175's
+    yaw drift moment at 225° had the wrong sign.
+    """
+    from cummins.check.parity import degree_ranges, mirror_pairs
+    from cummins.check.waves import _MSS_FILL, mss_drift_fill
+    from cummins.seakeeping.excitation import MIRROR_SIGNS
+
+    found = mss_drift_fill(ds)
+    if not found:
+        return ds
+    beta = np.mod(ds.wave_direction.values, 2 * np.pi)
+    source, target = [], []
+    for k, m in mirror_pairs(beta):
+        if k != m:
+            low, high = (k, m) if beta[k] < np.pi else (m, k)
+            source.append(low)
+            target.append(high)
+    labels = [str(d) for d in ds.influenced_dof.values]
+    signs = xr.DataArray(
+        [MIRROR_SIGNS[DOF_NAMES.index(d)] if d in DOF_NAMES else 1.0 for d in labels],
+        dims="influenced_dof",
+    )
+    drift = ds.drift_force.copy()
+    mirrored = ds.drift_force.isel(wave_direction=source) * signs
+    drift[{"wave_direction": target}] = mirrored.transpose(*drift.dims).values
+    out = ds.copy()
+    out["drift_force"] = drift
+    dofs = ", ".join(dict.fromkeys(str(f.where) for f in found))
+    fills = "; ".join(dict.fromkeys(_MSS_FILL[f.details["pattern"]] for f in found))
+    headings = sorted({h for f in found for h in f.details["headings_deg"]})
+    add_history(
+        out,
+        f"drift_force at {degree_ranges(np.degrees(beta[target]).tolist())}: the mirror image "
+        f"of the solver's 0–180° (the struct's {dofs} at {degree_ranges(headings)} broke "
+        f"the port/starboard mirror its first-order tables keep: {fills}); "
+        "read(..., drift_as_stored=True) keeps the struct's values",
+    )
+    return out
 
 
 def _read_mss(path, rho, g, speed, rao_reference) -> xr.Dataset:
