@@ -39,12 +39,14 @@ Conventions, checked against the WAMIT and VERES files MSS processed (see the te
   and the history says so).
 * ``forceRAO.amp`` etc. have a third index over up to 10 speed slots, of which the first
   ``numel(velocities)`` are used.
-* MSS computes 0–180° and fills 190–350° itself; the reader takes every heading as
-  stored. The first-order tables there are the port/starboard mirror images, the
-  ``driftfrc`` of MSS's own files is not: ``wamit2vessel`` puts the drift of 10–170° at
-  190–350° in the same order, sway and yaw negated (``tanker.mat``), ``read_veres_WD``
-  mirrors the yaw drift with its sign kept (``supply.mat``, ``s175.mat``). ``cummins
-  check`` (``wave_parity``) names the headings and the pattern; the history says so.
+* MSS computes 0–180° and fills 190–350° itself. The first-order tables there are the
+  port/starboard mirror images, the ``driftfrc`` of MSS's own files is not:
+  ``wamit2vessel`` puts the drift of 10–170° at 190–350° in the same order, sway and yaw
+  negated (``tanker.mat``), ``read_veres_WD`` mirrors the yaw drift with its sign kept
+  (``supply.mat``, ``s175.mat``). The reader replaces such a drift at 190–350° by the
+  mirror image of 0–180° (:func:`~cummins.io.mss.reader.mirrored_mss_drift`; the history
+  says so, ``drift_as_stored=True`` keeps MSS's numbers, which ``cummins check``'s
+  ``wave_parity`` then names with the headings and the pattern).
 
 Reference point. MSS calls the origin CO of its b-frame the point on the waterline at
 Lpp/2 on the centre line. ``main.CG`` is written in two ways: older files (all three
