@@ -37,6 +37,7 @@ off symmetric has forbidden couplings of the order of its asymmetry) is a warnin
 
 from __future__ import annotations
 
+import warnings
 from dataclasses import dataclass
 
 import numpy as np
@@ -232,9 +233,10 @@ def body_symmetry(ds: xr.Dataset, body: str | None) -> BodySymmetry | None:
             else "it has no sway force in waves along x"
             if along
             else "its wave forces mirror with the heading"
-        ) + f" (to {_pct(eps)} of the largest force)"
+        ) + f" (to {_pct(eps)} of the largest force"
         if moments > PARITY_TOL:
-            text += f" (the moments to {_pct(moments)} of the largest moment)"
+            text += f"; the moments to {_pct(moments)} of the largest moment"
+        text += ")"
         if rotational:
             text += f", {diag}"
         return BodySymmetry(body, True, rotational, eps, rot, text, revolved)
@@ -274,8 +276,6 @@ def fitted_pairs(ds: xr.Dataset) -> list[tuple[int, int]]:
     size above :data:`FIT_THRESHOLD`, X_ij deciding, or the pairs fitted as given);
     without a fit (the data cannot be fitted: other checks say why), the pairs whose
     size exceeds the threshold."""
-    import warnings
-
     from cummins.errors import CumminsError
     from cummins.radiation.fit.data import prepare_fit
     from cummins.radiation.fit.options import DEFAULT
@@ -321,6 +321,55 @@ def forbidden_couplings(
                 )
             )
     return sorted(out, key=lambda c: -c.size)
+
+
+def symmetry_plane_offset(
+    ds: xr.Dataset, symmetry: BodySymmetry, fitted: list[tuple[int, int]]
+) -> tuple[float, float] | None:
+    """The y of the body's plane of symmetry when its couplings say it is not y = 0:
+    about a point off the plane by e, a port/starboard symmetric body has the couplings
+    of the moved moments, A₃₄ = −e A₃₃, A₁₆ = e A₁₁, A₄₅ = −e A₃₅ … (the screw transform,
+    Smogeli et al. (2004) eq. 45). e is the least-squares ratio −A₃₄/A₃₃; returned
+    (y of the plane, the largest forbidden coupling about the point moved there) when,
+    about that point, no coupling the mirror forbids is costly any more; else None."""
+    from cummins.errors import CumminsError
+    from cummins.hydrodb import dof_matrix, move_reference_point, reference_points
+
+    if not symmetry.mirror:
+        return None
+    labels = [str(d) for d in ds.influenced_dof.values]
+    cols = _rigid_columns(labels, symmetry.body)
+    a = dof_matrix(ds, "added_mass")
+    heave, roll = a[:, cols[2], cols[2]], a[:, cols[2], cols[3]]
+    if not np.any(heave):
+        return None
+    e = -float(heave @ roll / (heave @ heave))
+    points = reference_points(ds).copy()
+    radiation = ds[["added_mass", "radiation_damping"]]
+    index = bodies(ds).index(symmetry.body) if len(points) > 1 else 0
+    best = None
+    for sign in (1.0, -1.0):
+        moved_points = points.copy()
+        moved_points[index, 1] += sign * e
+        try:
+            with warnings.catch_warnings():  # the radiation alone is moved: nothing to say
+                warnings.simplefilter("ignore")
+                moved = move_reference_point(
+                    radiation, moved_points if len(points) > 1 else moved_points[0]
+                )
+        except (CumminsError, ValueError):  # a diagnosis, never a failure of the check
+            return None
+        plane = BodySymmetry(
+            symmetry.body, True, False, symmetry.mirror_asymmetry, 1.0, symmetry.evidence
+        )
+        left = forbidden_couplings(moved, plane, fitted)
+        worst = max((c.size for c in left if c.active), default=0.0)
+        if best is None or worst < best[1]:
+            best = (float(moved_points[index, 1]), worst, left)
+    y, worst, left = best
+    if any(c.size > max(FIT_THRESHOLD, EXPLAINED * c.explained) for c in left if c.active):
+        return None
+    return y, worst
 
 
 def _joined_block(
@@ -421,18 +470,34 @@ def _body_finding(
         fit_block=block,
         threshold_leaving_them_out=level,
     )
+    plane = symmetry_plane_offset(sub, symmetry, fitted)
+    cause = (
+        "the solver's numerical noise, or a mesh or reference point off the symmetry the "
+        "rest of the data keep"
+    )
+    first = ""
+    if plane is not None:
+        details.update(symmetry_plane_y=plane[0], couplings_about_plane=plane[1])
+        cause = (
+            f"they are those of a body whose plane of symmetry is y = {plane[0]:.4g}, not "
+            f"the reference point's y: about a point on it they fall to {_pct(plane[1])}"
+        )
+        first = (
+            f"check the mesh's position, or take the data about a point on y = "
+            f"{plane[0]:.4g} (cummins.move_reference_point); otherwise "
+        )
     return Finding(
         "forbidden_couplings",
         "warning",
         f"{head}; yet couplings its symmetry forbids reach {listed} of their diagonals "
         f"(the size cummins fit gives a coupling, which it models above {FIT_THRESHOLD:g}; "
-        f"the body's asymmetry would explain {_pct(EXPLAINED * eps)} at most): the solver's "
-        "numerical noise, or a mesh or reference point off the symmetry the rest of the "
-        f"data keep. cummins fit takes them for physics and joins {block} in one block of "
+        f"the body's asymmetry would explain {_pct(EXPLAINED * eps)}): {cause}. "
+        f"cummins fit takes them for physics and joins {block} in one block of "
         "common poles" + (f", where the symmetry keeps {apart} apart" if apart else ""),
         where=where,
         value=costly[0].size,
-        advice=(
+        advice=first
+        + (
             "solve again with a finer mesh, or with the body's planes of symmetry declared "
             "to the solver (WAMIT's ISX/ISY, the x/y symmetry flags of HAMS's "
             "HullMesh.pnl), which makes these couplings exactly zero; or fit with "
