@@ -56,9 +56,9 @@ The checks live in modules by subject: :mod:`~cummins.check.coefficients` (frequ
 grid, symmetry, damping, A∞, decay), :mod:`~cummins.check.physical`,
 :mod:`~cummins.check.plausibility`,
 :mod:`~cummins.check.rigid_body` (inertia, hydrostatics), :mod:`~cummins.check.artefacts`
-(read damage, copied DOFs, suspect frequencies), :mod:`~cummins.check.retardation` and
-:mod:`~cummins.check.waves` (wave parity); the report in :mod:`~cummins.check.report`,
-the tolerances in :mod:`~cummins.check.common`.
+(read damage, copied DOFs, suspect frequencies), :mod:`~cummins.check.retardation`,
+:mod:`~cummins.check.waves` (wave parity), :mod:`~cummins.check.forbidden_couplings`;
+the report in :mod:`~cummins.check.report`, the tolerances in :mod:`~cummins.check.common`.
 """
 
 from __future__ import annotations

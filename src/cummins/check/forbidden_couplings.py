@@ -50,8 +50,10 @@ from cummins.hydrodb import DOF_NAMES, bodies, split_dof
 
 #: Largest relative difference of surge/sway and roll/pitch diagonals (A and B, each
 #: over the larger of the two) of a body taken as rotationally symmetric. The corpus:
-#: the HAMS cylinders 0.6 %, the WAMIT, NEMOH, AQWA bodies of revolution ≤ 0.4 %; the
-#: two NEMOH cubes side by side 5–8 %, ships and flaps ≥ 50 %.
+#: the HAMS cylinders 0.6 %, the other bodies of revolution of WAMIT, NEMOH, AQWA,
+#: Capytaine ≤ 0.44 % (the RM3 spar/plate), AQWA's pendulum hull 0.9 %; the WAMIT
+#: drift sphere 3.4 % (its roll and pitch about the centre: noise of nothing), the two
+#: NEMOH cubes side by side 5–8 %, ships, flaps and barges ≥ 50 %.
 ROTATION_TOL = 0.02
 
 #: A forbidden coupling is noise beyond the body's own asymmetry ε (the relative
