@@ -53,7 +53,7 @@ from cummins.hydrodb import DOF_NAMES, bodies, split_dof
 #: the HAMS cylinders 0.6 %, the other bodies of revolution of WAMIT, NEMOH, AQWA,
 #: Capytaine ≤ 0.44 % (the RM3 spar/plate), AQWA's pendulum hull 0.9 %; the WAMIT
 #: drift sphere 3.4 % (its roll and pitch about the centre: noise of nothing), the two
-#: NEMOH cubes side by side 5–8 %, ships, flaps and barges ≥ 50 %.
+#: NEMOH cubes side by side 5–8 %, ships, flaps and the long GBM barge ≥ 50 %.
 ROTATION_TOL = 0.02
 
 #: A forbidden coupling is noise beyond the body's own asymmetry ε (the relative
@@ -403,7 +403,14 @@ def _check_forbidden_couplings(ds: xr.Dataset) -> list[Finding]:
         found = [s for s in (body_symmetry(sub, body) for body in bodies(sub)) if s is not None]
         if not found:
             continue
-        fitted = fitted_pairs(sub) if any(s.mirror or s.rotational for s in found) else []
+        # the fit's own choice of couplings (a preparation of the data) only where a
+        # forbidden coupling is large enough for it to matter
+        large = any(
+            c.active and c.size > FIT_THRESHOLD
+            for symmetry in found
+            for c in forbidden_couplings(sub, symmetry, [])
+        )
+        fitted = fitted_pairs(sub) if large else []
         out.extend(_body_finding(sub, symmetry, fitted) for symmetry in found)
     return out
 
