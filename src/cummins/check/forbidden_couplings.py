@@ -463,9 +463,13 @@ def _body_finding(
         return Finding(
             "forbidden_couplings",
             "ok",
-            f"{head}; the couplings its symmetry forbids reach "
-            + (f"at most {_pct(size)} of their diagonals" if size > NEGLIGIBLE else "nothing")
-            + ", none of them modelled by cummins fit",
+            f"{head}; the couplings its symmetry forbids "
+            + (
+                f"reach at most {_pct(size)} of their diagonals, none of them modelled by "
+                "cummins fit"
+                if size > NEGLIGIBLE
+                else f"stay below {_pct(NEGLIGIBLE)} of their diagonals"
+            ),
             where=where,
             value=size,
             details=details,
