@@ -68,13 +68,12 @@ FIT_THRESHOLD = 0.01
 #: symmetry tolerance, :data:`cummins.seakeeping.headings.SYMMETRY_TOLERANCE`).
 NEGLIGIBLE = 1e-3
 
+#: The DOFs that keep their sign under y → −y.
 _SYMMETRIC = ("Surge", "Heave", "Pitch")
-_ANTISYMMETRIC = ("Sway", "Roll", "Yaw")
 #: Couplings a body of revolution keeps (beyond the diagonal).
 _AXISYMMETRIC_KEPT = {("Surge", "Pitch"), ("Sway", "Roll")}
 #: Couplings an N-fold rotational symmetry without a mirror plane keeps (A₁₄ = A₂₅, A₃₆).
 _ROTATION_KEPT = _AXISYMMETRIC_KEPT | {("Surge", "Roll"), ("Sway", "Pitch"), ("Heave", "Yaw")}
-_MIRROR = np.array([1.0, -1.0, 1.0, -1.0, 1.0, -1.0])
 
 
 @dataclass(frozen=True)
@@ -158,13 +157,15 @@ def mirror_mismatch(force: np.ndarray, beta: np.ndarray) -> tuple[float, float] 
     """max |F(ω, −β) − T F(ω, β)| over the mirrored headings and ω, of the forces (over
     the largest force) and of the moments (over the largest moment); None without
     mirrored headings. ``force`` is (omega, wave_direction, 6), surge … yaw."""
+    from cummins.seakeeping.headings import MIRROR_SIGNS
+
     pairs = mirror_pairs(beta)
     if not pairs:
         return None
     scale = _kind_scale(force)
     worst = np.zeros(6)
     for k, m in pairs:
-        d = np.abs(force[:, m] - _MIRROR * force[:, k]).max(axis=0) / scale
+        d = np.abs(force[:, m] - MIRROR_SIGNS * force[:, k]).max(axis=0) / scale
         worst = np.maximum(worst, d)
     return float(worst[:3].max()), float(worst[3:].max())
 
