@@ -242,7 +242,8 @@ def body_symmetry(ds: xr.Dataset, body: str | None) -> BodySymmetry | None:
         text += ")"
         if rotational:
             text += f", {diag}"
-        return BodySymmetry(body, True, rotational, eps, rot, text, revolved)
+        shown = revolution is not None and revolution[0] <= PARITY_TOL
+        return BodySymmetry(body, True, rotational, eps, rot, text, shown)
     if rotational:
         why = (
             "no excitation to judge the port/starboard mirror by"
