@@ -7,6 +7,11 @@ changed in the data. Each finding says what was measured, where, and what to do.
   ω = ∞ limits are present.
 * ``symmetry`` — A(ω) and B(ω) symmetric (zero speed): worst relative asymmetry per DOF
   pair, |X_ij − X_ji| / √(max|X_ii| · max|X_jj|).
+* ``forbidden_couplings`` — per body, the radiation couplings its own symmetry forbids
+  (port/starboard, judged from the excitation's mirror; rotational about z, from the
+  surge/sway and roll/pitch diagonals): a warning where they are as large as the
+  couplings ``cummins fit`` models and larger than the body's measured asymmetry
+  explains (:mod:`cummins.check.forbidden_couplings`).
 * ``damping_positive`` — B(ω) positive semidefinite at each frequency: eigenvalues of
   the symmetric part of the diagonally scaled matrix D^{-1/2} B D^{-1/2}
   (D = peak |B_ii|), not determinants; negative diagonal entries are named, and a
@@ -51,9 +56,9 @@ The checks live in modules by subject: :mod:`~cummins.check.coefficients` (frequ
 grid, symmetry, damping, A∞, decay), :mod:`~cummins.check.physical`,
 :mod:`~cummins.check.plausibility`,
 :mod:`~cummins.check.rigid_body` (inertia, hydrostatics), :mod:`~cummins.check.artefacts`
-(read damage, copied DOFs, suspect frequencies), :mod:`~cummins.check.retardation` and
-:mod:`~cummins.check.waves` (wave parity); the report in :mod:`~cummins.check.report`,
-the tolerances in :mod:`~cummins.check.common`.
+(read damage, copied DOFs, suspect frequencies), :mod:`~cummins.check.retardation`,
+:mod:`~cummins.check.waves` (wave parity), :mod:`~cummins.check.forbidden_couplings`;
+the report in :mod:`~cummins.check.report`, the tolerances in :mod:`~cummins.check.common`.
 """
 
 from __future__ import annotations
@@ -81,6 +86,7 @@ from cummins.check.common import (
     SYMMETRY_TOL,
     TAIL_TOL,
 )
+from cummins.check.forbidden_couplings import _check_forbidden_couplings
 from cummins.check.physical import _check_physical
 from cummins.check.plausibility import plausibility_findings
 from cummins.check.reciprocity import _check_reciprocity
@@ -149,6 +155,7 @@ def check(ds: xr.Dataset) -> CheckReport:
         _check_grid,
         _check_symmetry,
         _check_reciprocity,
+        _check_forbidden_couplings,
         _check_damping,
         _check_added_mass_inf,
         _check_decay,

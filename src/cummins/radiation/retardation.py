@@ -510,29 +510,57 @@ def truncate_retardation(
 # --------------------------------------------------------------------------- diagnostics
 
 
-def significant_couplings(
-    ds: xr.Dataset, threshold: float = 0.01, *, either: bool = False
-) -> list[tuple[int, int]]:
-    """(i, j) with i ≤ j whose damping or added-mass variation is not negligible.
+def coupling_sizes(ds: xr.Dataset, *, either: bool = False) -> tuple[np.ndarray, np.ndarray]:
+    """The size of each coupling as the fit judges it, and which DOFs it models.
 
-    A coupling is kept when max|B_ij| or the range of A_ij exceeds ``threshold`` times
-    the geometric mean of the same measure for B_ii and B_jj (or A_ii, A_jj); diagonal
-    terms are kept unless they are negligible against the other DOFs of their kind
-    (e.g. the yaw of an axisymmetric body), and the couplings of such a DOF are left out
-    too (a DOF without damping cannot have coupled damping in passive data). With
-    ``either``, a pair is kept when X_ij or X_ji is (data that are not reciprocal:
-    :mod:`cummins.radiation.fit.reciprocity`); else X_ij decides.
+    The size of (i, j) is the larger of max|B_ij| and the range of A_ij, each over the
+    geometric mean of the same measure for the two diagonal terms (0 where that mean is
+    0); a DOF is modelled unless its damping is negligible (below 10⁻⁶) against the
+    other DOFs of its kind (translations, rotations: the yaw of an axisymmetric body).
+    With ``either``, X_ij and X_ji count alike (the larger).
+
+    Returns
+    -------
+    sizes : numpy.ndarray
+        (n, n), dimensionless; 1 on a diagonal that varies.
+    modelled : numpy.ndarray
+        (n,), bool.
     """
     ds = single_speed(ds)
     b = np.abs(dof_matrix(ds, "radiation_damping")).max(axis=0)
     a = np.ptp(dof_matrix(ds, "added_mass"), axis=0)
     if either:
         a, b = np.maximum(a, a.T), np.maximum(b, b.T)
-    n = b.shape[0]
     labels = [str(d) for d in ds.influenced_dof.values]
     rotation = np.array([is_rotation(lab) for lab in labels])
+    diag_b = np.diag(b)
+    modelled = np.array(
+        [diag_b[i] > 1e-6 * diag_b[rotation == rotation[i]].max() for i in range(len(labels))]
+    )
+    sizes = np.zeros(b.shape)
+    for m in (a, b):
+        scale = np.sqrt(np.outer(np.diag(m), np.diag(m)))
+        with np.errstate(divide="ignore", invalid="ignore"):
+            sizes = np.maximum(sizes, np.where(scale > 0, m / scale, 0.0))
+    return sizes, modelled
+
+
+def significant_couplings(
+    ds: xr.Dataset, threshold: float = 0.01, *, either: bool = False
+) -> list[tuple[int, int]]:
+    """(i, j) with i ≤ j whose damping or added-mass variation is not negligible.
+
+    A coupling is kept when max|B_ij| or the range of A_ij exceeds ``threshold`` times
+    the geometric mean of the same measure for B_ii and B_jj (or A_ii, A_jj)
+    (:func:`coupling_sizes`); diagonal terms are kept unless they are negligible against
+    the other DOFs of their kind (e.g. the yaw of an axisymmetric body), and the
+    couplings of such a DOF are left out too (a DOF without damping cannot have coupled
+    damping in passive data). With ``either``, a pair is kept when X_ij or X_ji is (data
+    that are not reciprocal: :mod:`cummins.radiation.fit.reciprocity`); else X_ij decides.
+    """
+    sizes, modelled = coupling_sizes(ds, either=either)
+    n = sizes.shape[0]
     out = []
-    modelled = [b[i, i] > 1e-6 * np.diag(b)[rotation == rotation[i]].max() for i in range(n)]
     for i in range(n):
         for j in range(i, n):
             if i == j:
@@ -541,11 +569,7 @@ def significant_couplings(
                 continue
             if not (modelled[i] and modelled[j]):
                 continue  # no damping of its own: its couplings are numerical noise
-            measures = []
-            for m in (a, b):
-                scale = np.sqrt(m[i, i] * m[j, j])
-                measures.append(m[i, j] / scale if scale > 0 else 0.0)
-            if max(measures) > threshold:
+            if sizes[i, j] > threshold:
                 out.append((i, j))
     return out
 
