@@ -1,0 +1,36 @@
+"""Shared by the benchmark scripts that measure a change against the code of an earlier
+commit in the same run: that commit's ``src`` (``git archive``) and a child process
+that runs a snippet with either source tree and hands back what it returns (pickled)."""
+
+from __future__ import annotations
+
+import os
+import pickle
+import subprocess
+import sys
+import tarfile
+from io import BytesIO
+from pathlib import Path
+from typing import Any
+
+ROOT = Path(__file__).resolve().parents[1]
+
+
+def reference_source(ref: str, into: Path) -> Path:
+    """The ``src`` folder of commit ``ref`` of this repository, extracted into ``into``."""
+    archive = subprocess.run(
+        ["git", "-C", str(ROOT), "archive", ref, "src"], capture_output=True, check=True
+    ).stdout
+    with tarfile.open(fileobj=BytesIO(archive)) as tar:
+        tar.extractall(into, filter="data")
+    return into / "src"
+
+
+def run_with(src: Path, code: str, *args: str) -> Any:
+    """Run ``code`` (which writes ``pickle.dumps(result)`` to stdout) in a fresh Python
+    importing cummins from ``src``, one BLAS thread; its result."""
+    env = {**os.environ, "PYTHONPATH": str(src), "OPENBLAS_NUM_THREADS": "1"}
+    done = subprocess.run(
+        [sys.executable, "-c", code, *args], env=env, capture_output=True, check=True
+    )
+    return pickle.loads(done.stdout)
