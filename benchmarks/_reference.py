@@ -9,6 +9,7 @@ import pickle
 import subprocess
 import sys
 import tarfile
+from collections.abc import Sequence
 from io import BytesIO
 from pathlib import Path
 from typing import Any
@@ -34,3 +35,20 @@ def run_with(src: Path, code: str, *args: str) -> Any:
         [sys.executable, "-c", code, *args], env=env, capture_output=True, check=True
     )
     return pickle.loads(done.stdout)
+
+
+def alternating(sources: Sequence[Path], code: str, args: Sequence[str], rounds: int = 3):
+    """Run ``code`` (whose result is a list of (best time, value) per case) with each of
+    ``sources`` in turn, ``rounds`` times, alternating so that a load on the machine
+    falls on every source alike; per source, the best time of each case over the rounds
+    and the values of the last round."""
+    out: list[list] = [[] for _ in sources]
+    for _ in range(rounds):
+        for k, src in enumerate(sources):
+            result = run_with(src, code, *args)
+            out[k] = (
+                result
+                if not out[k]
+                else [(min(t, t0), v) for (t, v), (t0, _) in zip(result, out[k], strict=True)]
+            )
+    return out

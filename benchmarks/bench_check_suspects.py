@@ -15,7 +15,7 @@ import sys
 import tempfile
 from pathlib import Path
 
-from _reference import ROOT, reference_source, run_with
+from _reference import ROOT, alternating, reference_source
 from _timing import SHARED_DATA
 
 #: The last commit whose check found the suspect frequencies twice.
@@ -49,9 +49,9 @@ sys.stdout.buffer.write(pickle.dumps(out))
 def main(repeat: int = 5, ref: str = REFERENCE) -> None:
     paths = [str(p) for p in CASES.values()]
     with tempfile.TemporaryDirectory() as tmp:
-        old = run_with(reference_source(ref, Path(tmp)), _CHILD, str(repeat), *paths)
-    new = run_with(ROOT / "src", _CHILD, str(repeat), *paths)
-    print(f"cummins.check, best of {repeat}, this tree against {ref}")
+        old_src = reference_source(ref, Path(tmp))
+        old, new = alternating((old_src, ROOT / "src"), _CHILD, (str(repeat), *paths))
+    print(f"cummins.check, best of {repeat} x 3 alternating runs, this tree against {ref}")
     print(f"{'data':<36} {'before':>9} {'after':>9} {'ratio':>6} same report")
     for name, (t0, r0), (t1, r1) in zip(CASES, old, new, strict=True):
         print(f"{name:<36} {t0 * 1e3:7.1f}ms {t1 * 1e3:7.1f}ms {t0 / t1:6.2f} {r0 == r1}")

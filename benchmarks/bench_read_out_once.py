@@ -18,7 +18,7 @@ import tempfile
 import warnings
 from pathlib import Path
 
-from _reference import ROOT, reference_source, run_with
+from _reference import ROOT, alternating, reference_source
 from _timing import SHARED_DATA
 
 #: The last commit whose WAMIT reader opened the ``.out`` several times.
@@ -56,9 +56,9 @@ def main(repeat: int = 7, ref: str = REFERENCE) -> None:
             shutil.copy(tanker / f"tanker{suffix}", Path(tmp) / f"tanker{suffix}")
         cases = {**CASES, NO_DOT3: Path(tmp) / "tanker.1"}
         paths = [str(p) for p in cases.values()]
-        old = run_with(reference_source(ref, Path(tmp)), _CHILD, str(repeat), *paths)
-        new = run_with(ROOT / "src", _CHILD, str(repeat), *paths)
-    print(f"cummins.read, best of {repeat}, this tree against {ref}")
+        old_src = reference_source(ref, Path(tmp))
+        old, new = alternating((old_src, ROOT / "src"), _CHILD, (str(repeat), *paths))
+    print(f"cummins.read, best of {repeat} x 3 alternating runs, this tree against {ref}")
     print(f"{'run':<66} {'before':>9} {'after':>9} {'ratio':>6} identical")
     for name, (t0, ds0), (t1, ds1) in zip(cases, old, new, strict=True):
         with warnings.catch_warnings():
