@@ -40,15 +40,20 @@ def _key(key: str, source: Path | None) -> str:
 def study_warnings(source: Path | None = None) -> Iterator[None]:
     """Re-issue the warnings raised inside (same category, same origin) in the words of
     the study defined in ``source`` (:func:`study_wording`), once the work inside ends
-    (also with an error); the caller's filters apply to them then."""
+    (also with an error), each text from one place once; the caller's filters apply to
+    them then."""
     caught: list[warnings.WarningMessage] = []
     try:
         with warnings.catch_warnings(record=True) as caught:
             warnings.simplefilter("always")
             yield
     finally:
+        seen: set[tuple] = set()
         for w in caught:
             text = str(w.message)
+            if (text, w.category, w.filename, w.lineno) in seen:
+                continue
+            seen.add((text, w.category, w.filename, w.lineno))
             worded = study_wording(text, source)
             message = w.message
             if worded != text:
