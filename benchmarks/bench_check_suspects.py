@@ -26,6 +26,7 @@ CASES = {
     / "corpus/WEC-Sim_Applications/wamit_mean_drift_sphere/outputFiles/sphere.1",
     "MSS S-175 (5 speeds, drift)": ROOT / "src/cummins/data/s175/s175.mat",
     "WEC-Sim RM3 (2 bodies, no drift)": SHARED_DATA / "corpus/WEC-Sim/wamit_RM3_2body/rm3.1",
+    "OC4 semi (full QTFs)": SHARED_DATA / "corpus/WEIS/ss_fitting_OC4_semi/marin_semi.1",
 }
 
 _CHILD = """
