@@ -1,6 +1,7 @@
 """Shared by the benchmark scripts that measure a change against the code of an earlier
 commit in the same run: that commit's ``src`` (``git archive``) and a child process
-that runs a snippet with either source tree and hands back what it returns (pickled)."""
+that runs a snippet with either source tree and hands back what it returns (pickled),
+in turn with each tree (:func:`alternating`)."""
 
 from __future__ import annotations
 
@@ -9,6 +10,7 @@ import pickle
 import subprocess
 import sys
 import tarfile
+import tempfile
 from collections.abc import Sequence
 from io import BytesIO
 from pathlib import Path
@@ -25,6 +27,24 @@ def reference_source(ref: str, into: Path) -> Path:
     with tarfile.open(fileobj=BytesIO(archive)) as tar:
         tar.extractall(into, filter="data")
     return into / "src"
+
+
+def reference_tree(ref: str | None = None) -> Path:
+    """The reference ``src`` folder: ``BENCH_REFERENCE_SRC``, or commit
+    ``BENCH_REFERENCE`` (else ``ref``, else the merge base of ``main`` and ``HEAD``)
+    extracted into a temporary folder of its own (left for the run's processes)."""
+    given = os.environ.get("BENCH_REFERENCE_SRC")
+    if given:
+        return Path(given)
+    ref = os.environ.get("BENCH_REFERENCE") or ref
+    if not ref:
+        ref = subprocess.run(
+            ["git", "-C", str(ROOT), "merge-base", "main", "HEAD"],
+            check=True,
+            capture_output=True,
+            text=True,
+        ).stdout.strip()
+    return reference_source(ref, Path(tempfile.mkdtemp(prefix="cummins-reference-")))
 
 
 def run_with(src: Path, code: str, *args: str) -> Any:
