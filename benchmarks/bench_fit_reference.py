@@ -32,12 +32,13 @@ os.environ.setdefault("OPENBLAS_NUM_THREADS", "1")
 import json
 import subprocess
 import sys
-import tempfile
 import time
 import warnings
 from pathlib import Path
 
 import numpy as np
+
+from _reference import reference_tree
 
 HERE = Path(__file__).resolve().parent
 ROOT = HERE.parent
@@ -82,29 +83,6 @@ def worker(name: str) -> None:
             }
         )
     )
-
-
-def reference_tree() -> Path:
-    """The reference ``src`` folder: BENCH_REFERENCE_SRC, or BENCH_REFERENCE (default the
-    merge base of ``main`` and ``HEAD``) extracted with ``git archive``."""
-    given = os.environ.get("BENCH_REFERENCE_SRC")
-    if given:
-        return Path(given)
-    ref = (
-        os.environ.get("BENCH_REFERENCE")
-        or subprocess.run(
-            ["git", "-C", str(ROOT), "merge-base", "main", "HEAD"],
-            check=True,
-            capture_output=True,
-            text=True,
-        ).stdout.strip()
-    )
-    folder = Path(tempfile.mkdtemp(prefix="cummins-reference-"))
-    archive = subprocess.run(
-        ["git", "-C", str(ROOT), "archive", ref, "src"], check=True, capture_output=True
-    ).stdout
-    subprocess.run(["tar", "-x", "-C", str(folder)], input=archive, check=True)
-    return folder / "src"
 
 
 def run(tree: Path, name: str) -> dict | None:

@@ -1,6 +1,7 @@
 """Study keys that say what the command-line options say: a heading in a gap of the
-data's headings names the study's key (not ``--heading``), and ``water_depth`` is
-``--water-depth`` for the data whose files record no depth."""
+data's headings names the study's key (not ``--heading``), as the warnings of what the
+files lack do (not ``--rho``), and ``water_depth`` and ``ulen`` are ``--water-depth`` and
+``--ulen`` for the data whose files record neither."""
 
 from __future__ import annotations
 
@@ -78,3 +79,72 @@ def test_water_depth_key_is_the_cli_option(corpus):
     )
     with pytest.raises(HydroDataError, match="water_depth = 20 m was given but the files record"):
         prepare_study(wavebot)
+
+
+def test_warnings_name_the_study_keys_not_the_options(corpus, tmp_path):
+    """The RM1's files record neither rho, g, ULEN nor the depth: the warnings of a
+    study on it said "give --rho (rho=)", options batch does not have; they name the
+    keys of the study's file now, as the heading's error does, once each, and say what
+    was assumed as before."""
+    grid = {"heading": [45], "hs": [2], "tp": [8]}
+    study = _rm1(corpus, grid=grid, source=tmp_path / "rm1.yaml")
+    with warnings.catch_warnings(record=True) as caught:
+        warnings.simplefilter("always")
+        context, _ = prepare_study(study)
+        _run_case(context, study.all_cases[0])
+    texts = [str(w.message) for w in caught if issubclass(w.category, AssumptionWarning)]
+    for key, assumed in (
+        ("rho", "1025 kg/m^3 assumed"),
+        ("g", "9.81 m/s^2 assumed"),
+        ("ulen", "1 m assumed"),
+        ("water_depth", "deep water assumed"),
+    ):
+        named = [t for t in texts if f"give the key {key} of rm1.yaml" in t]
+        assert len(named) == 1 and assumed in named[0], key
+    assert not [t for t in texts if "--" in t]
+
+
+def test_ulen_key_is_the_cli_option(corpus, tmp_path):
+    """The RM1's files record no ULEN: ``ulen: 2`` reads them as ``rao --ulen 2`` does
+    (every coefficient scaled by its power of the length), the study's RAOs are the
+    command's, differ from those at ULEN 1, ulen enters the case ids and ``--example``
+    lists it."""
+    import numpy as np
+    import xarray as xr
+    from click.testing import CliRunner
+
+    from cummins.cli import main
+    from cummins.studies.batch import case_ids
+    from cummins.studies.study import example_study_text
+
+    grid = {"heading": [45], "hs": [2], "tp": [8]}
+    raos = {}
+    for ulen in (None, 2):
+        study = _rm1(corpus, grid=grid, water_depth=50, ulen=ulen)
+        context, digest = prepare_study(study)
+        _run_case(context, study.all_cases[0])
+        (raos[ulen],) = context.cache.values()
+        raos[ulen] = np.abs(raos[ulen].transpose("omega", "wave_direction", ...).values)
+        assert ("ulen" in study.settings()) == (ulen is not None)
+        ids = case_ids(study, digest)
+    assert study.settings()["ulen"] == 2.0 and ids != case_ids(_rm1(corpus, grid=grid), digest)
+    omega = context.omega
+    result = CliRunner().invoke(
+        main,
+        [
+            "rao", str(corpus / RM1), "--ulen", "2", "--mass", "1e6",
+            "--center-of-gravity", "0", "0", "-5", "--radii-of-gyration", "10", "10", "10",
+            "--restoring-includes-weight", "no", "--water-depth", "50", "--headings", "45",
+            "--omega-min", repr(float(omega[0])), "--omega-max", repr(float(omega[-1])),
+            "--n-omega", str(omega.size), "-o", str(tmp_path / "rao.nc"),
+        ],
+    )  # fmt: skip
+    assert result.exit_code == 0, result.output
+    with xr.open_dataset(tmp_path / "rao.nc") as out:
+        np.testing.assert_allclose(out.omega.values, omega, rtol=1e-12)
+        rao = out.rao.sel(complex="re") + 1j * out.rao.sel(complex="im")
+        command = np.abs(rao.transpose("omega", "wave_direction", "dof").values)
+    scale = command.max(axis=(0, 1))
+    np.testing.assert_allclose(raos[2], command, rtol=1e-9, atol=1e-12 * scale.max())
+    assert np.abs(raos[None] - command).max(axis=(0, 1)).max() > 0.05 * scale.max()
+    assert "# ulen: " in example_study_text()  # `cummins batch --example` lists it

@@ -240,3 +240,39 @@ def test_wave_parity_at_a_heading_that_is_its_own_mirror(shared_data):
     flagged = [x for x in cummins.check(ds).by_check("wave_parity") if x.severity == "warning"]
     assert [x.where for x in flagged] == ["Yaw"]
     assert "at 0°, its own mirror heading, it should be 0" in flagged[0].message
+
+
+def test_one_check_judges_the_suspect_frequencies_once(monkeypatch):
+    """Each DOF's suspect frequencies (suspects_by_dof, ~30-50 ms a dataset) were found
+    three times per check of the S-175 at zero speed (the suspect_frequencies check, the
+    mean drift's drift_suspect, the fit reciprocity prepares) and twice at each other
+    speed; now once per speed, shared, with the same findings as each check on its own."""
+    import importlib
+
+    from cummins.check.artefacts import _check_suspect_frequencies
+    from cummins.check.second_order import _check_second_order
+
+    ds = cummins.read(cummins.demo_files().parent / "s175" / "s175.mat")  # 5 speeds, drift
+    assert ds.sizes["forward_speed"] == 5 and "drift_force" in ds
+    repair = importlib.import_module("cummins.repair")
+    original, computed = repair.suspects_by_dof, []
+
+    def recording(data, judged=()):
+        if not any(known is data or known.identical(data) for known, _ in judged):
+            computed.append(data)  # not among the data judged already: found again
+        return original(data, judged) if judged else original(data)
+
+    for name in ("repair", "check", "check.artefacts", "radiation.fit.data"):
+        module = importlib.import_module(f"cummins.{name}")  # where it is called from
+        monkeypatch.setattr(module, "suspects_by_dof", recording, raising=False)
+    report = cummins.check(ds)
+    monkeypatch.undo()
+    assert len(computed) == 5
+    for i, one in enumerate(computed):
+        assert not any(one.identical(other) for other in computed[i + 1 :]), i
+    for name, alone in (
+        ("suspect_frequencies", _check_suspect_frequencies(ds)),
+        ("drift_suspect", [f for f in _check_second_order(ds) if f.check == "drift_suspect"]),
+    ):
+        assert list(report.by_check(name)) == alone
+        assert alone

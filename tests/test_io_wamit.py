@@ -432,3 +432,32 @@ def test_a_piston_mode_without_restoring_is_warned_of(corpus):
     with pytest.warns(HydroDataWarning, match="Mode7: no restoring"):
         vessel = vessel_from_hydrodb(ds, system=system, max_order=10)
     assert "Mode7" in vessel.attrs["unrestrained_modes"]
+
+
+def test_a_run_reads_its_out_once(tmp_path, monkeypatch):
+    """A .1 takes constants, body parameters, the excitation (no .3) and the mean drift
+    from its .out: the log is opened once (was up to five times: banner, header, drift
+    search, one parse per table wanted), and what it gives equals the log read alone."""
+    import builtins
+    import io
+
+    demo = cummins.demo_files()
+    for name in ("tanker.1", "tanker.hst", "tanker.frc", "tanker.out"):
+        shutil.copy(demo / name, tmp_path / name)
+    alone = cummins.read(tmp_path / "tanker.out")
+    opened: list[str] = []
+    real_open = io.open
+
+    def counting_open(file, *args, **kwargs):
+        if str(file).endswith(".out"):
+            opened.append(str(file))
+        return real_open(file, *args, **kwargs)
+
+    monkeypatch.setattr(io, "open", counting_open)
+    monkeypatch.setattr(builtins, "open", counting_open)
+    ds = cummins.read(tmp_path / "tanker.1")  # no .3: the excitation from the .out
+    monkeypatch.undo()
+    assert opened == [str(tmp_path / "tanker.out")]
+    np.testing.assert_array_equal(ds.excitation_force.values, alone.excitation_force.values)
+    np.testing.assert_array_equal(ds.drift_force.values, alone.drift_force.values)
+    assert "mean drift from tanker.out" in ds.attrs["history"]

@@ -69,7 +69,7 @@ from cummins.dofs import (
 from cummins.dofs import dof_index as dof_index
 from cummins.dofs import dof_labels as dof_labels
 from cummins.dofs import is_rotation as is_rotation
-from cummins.errors import HydroDataError
+from cummins.errors import AssumptionWarning, HydroDataError
 from cummins.kinematics import Z_UP_TO_Z_DOWN, screw_transform
 from cummins.qtf.data import second_order_summary
 
@@ -731,14 +731,14 @@ def water_depth(ds: xr.Dataset, use: str = "the wave numbers") -> float:
     if ds.attrs.get("water_depth_assumed"):
         import warnings
 
-        from cummins.errors import AssumptionWarning
+        from cummins.io._common import CONSTANT_CHOICES
 
         source = str(ds.attrs.get("source_file", "") or "")
         name = source.replace("\\", "/").rsplit("/", 1)[-1] + ": " if source else ""
         warnings.warn(
             AssumptionWarning(
                 f"{name}the water depth is not recorded in the files: deep water assumed for "
-                f"{use}; give --water-depth M (water_depth=) if the run had a finite depth"
+                f"{use}; give {CONSTANT_CHOICES['water_depth']} if the run had a finite depth"
             ),
             stacklevel=3,
         )

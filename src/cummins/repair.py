@@ -496,7 +496,11 @@ class DofSuspects:
         return tuple(x for r in self.resonances if r.kept for x in r.omega)
 
 
-def suspects_by_dof(ds: xr.Dataset) -> dict[str, DofSuspects]:
+#: Datasets :func:`suspects_by_dof` has judged, each with what it found.
+Judged = Sequence[tuple[xr.Dataset, Mapping[str, "DofSuspects"]]]
+
+
+def suspects_by_dof(ds: xr.Dataset, judged: Judged = ()) -> dict[str, DofSuspects]:
     """Per DOF label, the suspect frequencies of its own curves and those that are a sharp
     resonance, with whether the fit keeps it (what the fit leaves out of each DOF's
     couplings, and ``cummins check`` reports).
@@ -507,7 +511,15 @@ def suspects_by_dof(ds: xr.Dataset) -> dict[str, DofSuspects]:
     frequency: its "peak" is where the data end, and A(ω) follows B(ω) through it only
     with the damping tail assumed beyond them (the NEMOH two cubes' body2 pitch at
     1.56–2 rad/s: kept, it took the fit to 1.95 rad/s, where body1's sway fell to R² 0.56
-    from 0.995 and body2's yaw was modelled at −5.3)."""
+    from 0.995 and body2's yaw was modelled at −5.3).
+
+    ``judged``: datasets already judged, with what was found; for one ``identical`` to
+    ``ds`` that is the answer (``cummins check`` judges each forward speed's data once,
+    for its checks and the fit it prepares: ~30–50 ms each time).
+    """
+    for data, found in judged:
+        if data is ds or data.identical(ds):
+            return dict(found)
     labels = [str(d) for d in ds.influenced_dof.values]
     found, groups = {}, {}
     curves = ds[["added_mass", "radiation_damping"]]  # all the tests read of each DOF

@@ -63,6 +63,8 @@ the report in :mod:`~cummins.check.report`, the tolerances in :mod:`~cummins.che
 
 from __future__ import annotations
 
+from functools import partial
+
 import xarray as xr
 
 from cummins.check.artefacts import _check_read_warnings, _check_suspect_frequencies, copied_dofs
@@ -85,6 +87,7 @@ from cummins.check.common import (
     PARITY_TOL,
     SYMMETRY_TOL,
     TAIL_TOL,
+    _speeds,
 )
 from cummins.check.forbidden_couplings import _check_forbidden_couplings
 from cummins.check.physical import _check_physical
@@ -96,6 +99,7 @@ from cummins.check.rigid_body import _check_rigid_body
 from cummins.check.second_order import _check_second_order
 from cummins.check.waves import _check_long_wave_limit, _check_wave_parity
 from cummins.hydrodb import validate
+from cummins.repair import suspects_by_dof
 
 __all__ = [
     "A_INF_TOL",
@@ -149,23 +153,25 @@ def check(ds: xr.Dataset) -> CheckReport:
         # overflows and failed eigenvalue problems
         findings.extend(_check_read_warnings(ds))
         return CheckReport(source=str(source), findings=tuple(findings))
+    # each speed's suspect frequencies, found once for the checks and the fit that use them
+    judged = [(sub, suspects_by_dof(sub)) for sub in _speeds(ds)]
     for part in (
         _check_read_warnings,
         plausibility_findings,
         _check_grid,
         _check_symmetry,
-        _check_reciprocity,
+        partial(_check_reciprocity, judged=judged),
         _check_forbidden_couplings,
         _check_damping,
         _check_added_mass_inf,
         _check_decay,
         _check_rigid_body,
         copied_dofs,
-        _check_suspect_frequencies,
+        partial(_check_suspect_frequencies, judged=judged),
         _check_retardation,
         _check_wave_parity,
         _check_long_wave_limit,
-        _check_second_order,
+        partial(_check_second_order, judged=judged),
     ):
         findings.extend(part(ds))
     return CheckReport(source=str(source), findings=tuple(findings))

@@ -15,7 +15,12 @@ import xarray as xr
 from cummins.check.common import _labels, _speed_suffix, _speeds
 from cummins.check.report import Finding
 from cummins.dofs import split_dof
-from cummins.repair import find_suspect_frequencies, irregular_frequency_spans, suspects_by_dof
+from cummins.repair import (
+    Judged,
+    find_suspect_frequencies,
+    irregular_frequency_spans,
+    suspects_by_dof,
+)
 
 
 def _check_read_warnings(ds: xr.Dataset) -> list[Finding]:
@@ -90,11 +95,13 @@ def _copy_advice(one: str, two: str) -> str:
     return "a solver computes each DOF on its own: check that both were computed, not copied"
 
 
-def _check_suspect_frequencies(ds: xr.Dataset) -> list[Finding]:
+def _check_suspect_frequencies(ds: xr.Dataset, judged: Judged = ()) -> list[Finding]:
+    """The ``suspect_frequencies`` findings (``judged``: the data
+    :func:`~cummins.repair.suspects_by_dof` has judged already, with what it found)."""
     out = []
     for sub in _speeds(ds):
         suffix = _speed_suffix(sub)
-        own = suspects_by_dof(sub)
+        own = suspects_by_dof(sub, judged)
         # a frequency every DOF that flags it calls a sharp resonance is physics
         resonant = set().union(*(found.features for found in own.values()))
         for found in own.values():

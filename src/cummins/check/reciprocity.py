@@ -12,6 +12,7 @@ couplings are fitted as given, K_ij and K_ji each, passive as K(jω) + K(jω)ᴴ
 from __future__ import annotations
 
 import warnings
+from typing import TYPE_CHECKING
 
 import xarray as xr
 
@@ -19,10 +20,14 @@ from cummins.check.common import _speeds
 from cummins.check.report import Finding
 from cummins.errors import CumminsError
 
+if TYPE_CHECKING:
+    from cummins.repair import Judged
 
-def _check_reciprocity(ds: xr.Dataset) -> list[Finding]:
+
+def _check_reciprocity(ds: xr.Dataset, judged: Judged = ()) -> list[Finding]:
     """One finding at zero speed when some coupling is not reciprocal (none when every
-    pair is, or the data cannot be fitted: other checks say why)."""
+    pair is, or the data cannot be fitted: other checks say why); ``judged``: data whose
+    suspect frequencies were found already (:func:`cummins.repair.suspects_by_dof`)."""
     from cummins.radiation.fit.data import prepare_fit
     from cummins.radiation.fit.options import DEFAULT
 
@@ -32,7 +37,7 @@ def _check_reciprocity(ds: xr.Dataset) -> list[Finding]:
     try:
         with warnings.catch_warnings():
             warnings.simplefilter("ignore")
-            inp = prepare_fit(zero[0], DEFAULT.checked())
+            inp = prepare_fit(zero[0], DEFAULT.checked(), judged=judged)
     except (CumminsError, ValueError, ArithmeticError):
         return []
     found = inp.reciprocity

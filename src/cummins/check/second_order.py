@@ -21,6 +21,8 @@ other, and what the QTF's frequency grid covers and resolves.
 
 from __future__ import annotations
 
+from typing import TYPE_CHECKING
+
 import numpy as np
 import xarray as xr
 
@@ -28,6 +30,9 @@ from cummins.check.common import _speed_suffix, _speeds
 from cummins.check.report import Finding
 from cummins.qtf.data import DRIFT_ALTERNATIVES, QTF_VARIABLES, qtf_table, significant_dofs
 from cummins.qtf.suspect_drift import DRIFT_SUSPECT_RATIO
+
+if TYPE_CHECKING:
+    from cummins.repair import Judged
 
 #: |Q(ω₂, ω₁) − Q(ω₁, ω₂)*| (or the imaginary part of the mean drift) over max|Q| of a DOF.
 QTF_SYMMETRY_TOL = 0.01
@@ -46,7 +51,9 @@ def _significant(peaks: np.ndarray, labels) -> np.ndarray:
     return significant_dofs(peaks, labels, SIGNIFICANT)
 
 
-def _check_second_order(ds: xr.Dataset) -> list[Finding]:
+def _check_second_order(ds: xr.Dataset, judged: Judged = ()) -> list[Finding]:
+    """The second-order findings (``judged``: the data
+    :func:`~cummins.repair.suspects_by_dof` has judged already, with what it found)."""
     out: list[Finding] = []
     for kind, name in QTF_VARIABLES.items():
         if name in ds:
@@ -55,7 +62,7 @@ def _check_second_order(ds: xr.Dataset) -> list[Finding]:
         if QTF_VARIABLES["difference"] in sub:
             out.extend(_against_drift(sub))
         out.extend(_drift_methods(sub))
-        out.extend(_drift_at_suspects(sub))
+        out.extend(_drift_at_suspects(sub, judged))
     if QTF_VARIABLES["difference"] in ds:
         out.extend(_grid(ds))
     return out
@@ -259,12 +266,12 @@ def _drift_methods(ds: xr.Dataset) -> list[Finding]:
     return out
 
 
-def _drift_at_suspects(ds: xr.Dataset) -> list[Finding]:
-    from cummins.qtf.suspect_drift import drift_at_suspects
+def _drift_at_suspects(ds: xr.Dataset, judged: Judged) -> list[Finding]:
+    from cummins.qtf.suspect_drift import drift_at_suspects, drift_suspect_frequencies
 
     if "drift_force" not in ds:
         return []
-    found = drift_at_suspects(ds)
+    found = drift_at_suspects(ds, drift_suspect_frequencies(ds, judged))
     if found is None:
         return []
     listed = ", ".join(f"{x:.4g}" for x in found.omega)

@@ -61,15 +61,16 @@ def batch_command(study_file, output, scheduler, workers, example, force):
     \b
     STUDY is a YAML file (`cummins batch --example study.yaml` writes a commented
     one): the vessel data (and a model file; what the files lack as keys named as
-    simulate's options: rho, g, water_depth, mass, center_of_gravity, radii_of_gyration,
-    inertia_matrix, external_stiffness, external_damping), the analysis — `rao`, frequency domain:
-    significant amplitude 2 sqrt(m0) and most probable maximum per DOF, or `simulate`,
-    time domain: the same from a run in a realisation of the sea —, the cases as a
-    grid (heading, hs, tp, gamma, spreading, seed) or a list, and limits such as
-    `Roll: 4 deg` (significant) or `Heave: {max: 2.5 m}`. With a `system:` of
-    joints and PTOs the results hold each PTO's mean power, and the grid may sweep
-    a PTO's damping (`pto_damping: [3.0e+5, 1.0e+6, 3.0e+6]`, N s/m or N m s/rad):
-    the best damping per sea state and for the scatter diagram are printed.
+    simulate's options: rho, g, ulen, water_depth, mass, center_of_gravity,
+    radii_of_gyration, inertia_matrix, external_stiffness, external_damping), the
+    analysis — `rao`, frequency domain: significant amplitude 2 sqrt(m0) and most
+    probable maximum per DOF, or `simulate`, time domain: the same from a run in a
+    realisation of the sea —, the cases as a grid (heading, hs, tp, gamma,
+    spreading, seed) or a list, and limits such as `Roll: 4 deg` (significant) or
+    `Heave: {max: 2.5 m}`. With a `system:` of joints and PTOs the results hold each
+    PTO's mean power, and the grid may sweep a PTO's damping (`pto_damping: [3.0e+5,
+    1.0e+6, 3.0e+6]`, N s/m or N m s/rad): the best damping per sea state and for
+    the scatter diagram are printed.
 
     \b
     Cases run in parallel on Dask (pip install cummins[dask]): a local cluster of

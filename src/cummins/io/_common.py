@@ -14,6 +14,16 @@ from cummins.errors import AssumptionWarning, HydroDataError, HydroDataWarning
 DEFAULT_RHO = 1025.0
 DEFAULT_G = 9.81
 
+#: How the messages of the library tell a user to give a constant the files lack: the
+#: command-line option and the keyword of :func:`cummins.read` (a batch study says its
+#: own key instead: :func:`cummins.studies.wording.study_wording`).
+CONSTANT_CHOICES = {
+    "rho": "--rho (rho=)",
+    "g": "--g (g=)",
+    "ulen": "--ulen (ulen=)",
+    "water_depth": "--water-depth M (water_depth=)",
+}
+
 
 def resolve_constant(
     name: str,
@@ -74,7 +84,7 @@ def resolve_constant(
     )
     assume(
         f"{name} is not recorded in the files read: {default:g} {unit} assumed; give "
-        f"--{name} ({name}=) if the run used another value",
+        f"{CONSTANT_CHOICES.get(name, f'--{name} ({name}=)')} if the run used another value",
         path=path,
     )
     return default

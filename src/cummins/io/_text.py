@@ -42,6 +42,14 @@ class TextFile:
             raise HydroDataError("expected a file, found a directory", path=p) from None
         except OSError as exc:
             raise HydroDataError(f"cannot read the file ({exc.strerror})", path=p) from None
+        return cls.from_bytes(p, raw)
+
+    @classmethod
+    def from_bytes(cls, path: Path, raw: bytes) -> TextFile:
+        """The text of ``raw``, the bytes read from ``path`` (see :meth:`read`, which
+        also records the file as read); an empty or binary content raises
+        :class:`HydroDataError`."""
+        p = path
         if not raw.strip():
             raise HydroDataError("the file is empty", path=p)
         if b"\x00" in raw[:65536]:

@@ -22,12 +22,16 @@ from __future__ import annotations
 
 import warnings
 from dataclasses import dataclass
+from typing import TYPE_CHECKING
 
 import numpy as np
 import xarray as xr
 from numpy.typing import NDArray
 
 from cummins.errors import AssumptionWarning
+
+if TYPE_CHECKING:
+    from cummins.repair import Judged
 
 #: The mean drift at the suspect frequencies beyond this multiple of its largest value
 #: elsewhere (a DOF's) is spoilt: ``cummins check`` names it a warning and the
@@ -37,7 +41,7 @@ from cummins.errors import AssumptionWarning
 DRIFT_SUSPECT_RATIO = 1.5
 
 
-def drift_suspect_frequencies(ds: xr.Dataset) -> NDArray[np.float64]:
+def drift_suspect_frequencies(ds: xr.Dataset, judged: Judged = ()) -> NDArray[np.float64]:
     """The frequencies (rad/s, sorted) of ``ds`` at which its mean drift is not trusted:
     those suspect in any DOF's own A(ω), B(ω) (:func:`cummins.repair.suspects_by_dof`),
     sharp resonances of the data excepted.
@@ -46,11 +50,14 @@ def drift_suspect_frequencies(ds: xr.Dataset) -> NDArray[np.float64]:
     ----------
     ds
         A ``HydroDB`` at one forward speed, with ``added_mass`` and ``radiation_damping``.
+    judged
+        Data :func:`~cummins.repair.suspects_by_dof` has judged already, with what it
+        found (``cummins check``).
     """
     from cummins.repair import suspects_by_dof
 
     found: set[float] = set()
-    for own in suspects_by_dof(ds).values():
+    for own in suspects_by_dof(ds, judged).values():
         found |= {s.omega for s in own.suspects if s.omega not in own.features}
     return np.array(sorted(found), dtype=float)
 

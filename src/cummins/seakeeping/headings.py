@@ -35,7 +35,7 @@ MIRROR_SIGNS = np.array([1.0, -1.0, 1.0, -1.0, 1.0, -1.0])
 SYMMETRY_TOLERANCE = 1e-3
 
 #: How a user chooses the heading, in the hint of a direction in a gap (a batch study
-#: says its own key instead: :func:`cummins.studies.batch.case_statistics`).
+#: says its own key instead: :func:`cummins.studies.wording.study_wording`).
 HEADING_CHOICE = "on the command line --heading DEG, the default being 180°"
 
 _TWO_PI = 2.0 * np.pi

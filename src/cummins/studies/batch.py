@@ -81,6 +81,7 @@ from cummins.studies.study import (
     load_study,
     parse_limit_value,
 )
+from cummins.studies.wording import study_warnings, study_wording
 from cummins.validation import check_memory, simulation_memory, time_steps
 
 __all__ = [
@@ -172,13 +173,21 @@ def prepare_study(study: Study) -> tuple[StudyContext, str]:
     terms (:mod:`cummins.studies.equation_of_motion`), check that they hold what the
     analysis needs, fit once if needed; (context, digest of the inputs). Everything a
     study can fail on in its definition or its data is found here, before any Dask
-    work."""
+    work. Its warnings name the study's keys, not the options of the command line
+    (:func:`~cummins.studies.wording.study_warnings`)."""
+    with study_warnings(study.source):
+        return _prepare_study(study)
+
+
+def _prepare_study(study: Study) -> tuple[StudyContext, str]:
+    """:func:`prepare_study`'s work."""
     from cummins.hydrodb import single_speed
     from cummins.io import read
     from cummins.studies.equation_of_motion import check_study_data, complete_study_data
 
     full = complete_study_data(
-        read(study.data, rho=study.rho, g=study.g, water_depth=study.water_depth), study
+        read(study.data, rho=study.rho, g=study.g, ulen=study.ulen, water_depth=study.water_depth),
+        study,
     )
     ds = select_study_speed(full, study)
     check_study_data(ds, study)
@@ -408,14 +417,14 @@ def _rao_statistics(context: StudyContext, case: Case, heading: float) -> dict[s
 
 
 def _run_case(context: StudyContext, case: Case) -> dict[str, Any]:
-    """The task a worker runs: statistics of one case (errors name the case)."""
-    from cummins.seakeeping.headings import HEADING_CHOICE
-
+    """The task a worker runs: statistics of one case (errors name the case; errors and
+    warnings name the study's keys: :mod:`cummins.studies.wording`)."""
+    source = context.study.source
     try:
-        return case_statistics(context, case)
+        with study_warnings(source):
+            return case_statistics(context, case)
     except CumminsError as exc:
-        where = "the study's heading: grid.heading or a case's heading, deg"
-        raise StudyError(f"case {case.label}: {str(exc).replace(HEADING_CHOICE, where)}") from None
+        raise StudyError(f"case {case.label}: {study_wording(str(exc), source)}") from None
 
 
 # --------------------------------------------------------------------------- running

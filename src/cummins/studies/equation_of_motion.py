@@ -1,9 +1,9 @@
 """The terms of the equation of motion a study file gives: what ``cummins simulate`` and
-``cummins convert`` take as options (``--rho``, ``--g``, ``--water-depth``, ``--mass``,
+``cummins convert`` take as options (``--rho``, ``--g``, ``--ulen``, ``--water-depth``, ``--mass``,
 ``--center-of-gravity``, ``--radii-of-gyration``, ``--inertia-matrix``,
 ``--restoring-includes-weight``, ``--external-stiffness``, ``--external-damping``), as
 study keys of the same meaning, applied by the same functions
-(:func:`cummins.io.read`'s ``rho``/``g``/``water_depth``,
+(:func:`cummins.io.read`'s ``rho``/``g``/``ulen``/``water_depth``,
 :func:`cummins.mass_properties.with_inertia`,
 :func:`cummins.mass_properties.complete_restoring`,
 :func:`cummins.mass_properties.with_external_terms`) to the data before any case is
@@ -40,6 +40,7 @@ from cummins.mass_properties import check_inertia_terms
 KEYS: dict[str, str] = {
     "rho": "kg/m^3: water density of nondimensional formats (--rho; default 1025)",
     "g": "m/s^2: acceleration of gravity of nondimensional formats (--g; default 9.81)",
+    "ulen": "m: WAMIT's length scale ULEN (--ulen; default from the .out, else 1)",
     "water_depth": "m (.inf: deep water) where the files record none (--water-depth; "
     "default deep water, with a warning where a result depends on it)",
     "mass": "kg, one per body (--mass; with radii_of_gyration; default rho x volume)",
@@ -142,7 +143,7 @@ def normalised_keys(values: Mapping[str, Any], source: Path | None) -> dict[str,
     the CLI checks its options: mass and centre of gravity build the inertia together
     with the radii of gyration; the inertia matrix excludes them."""
     out: dict[str, Any] = {}
-    for key in ("rho", "g"):
+    for key in ("rho", "g", "ulen"):
         out[key] = None if values.get(key) is None else _positive(values[key], key, source)
     depth = values.get("water_depth")
     if depth is not None:  # .inf (YAML's infinity) or inf: deep water

@@ -434,6 +434,7 @@ class Study:
     system: Any = None
     rho: float | None = None
     g: float | None = None
+    ulen: float | None = None
     mass: Any = ()
     center_of_gravity: Any = ()
     radii_of_gyration: Any = ()
@@ -586,6 +587,8 @@ class Study:
             out["swept_pto"] = self.swept_pto
         if self.water_depth is not None:
             out["water_depth"] = self.water_depth
+        if self.ulen is not None:  # a length scale of the data: in the case ids
+            out["ulen"] = self.ulen
         if self.analysis == "rao":
             out.update(omega_min=self.omega_min, omega_max=self.omega_max, n_omega=self.n_omega)
         else:
@@ -701,6 +704,7 @@ viscous_damping:
   Roll: 5.0e+8            # kg m^2/s
 # what the files lack, as simulate's options (--mass ...), one value or list per body:
 # rho: 1025              # kg/m^3, g: 9.81 (nondimensional formats)
+# ulen: 1                # m: WAMIT's length scale ULEN, as --ulen (default from the .out)
 # mass: 1.2e8            # kg; with center_of_gravity and radii_of_gyration
 # center_of_gravity: [0, 0, -2]
 # radii_of_gyration: [14, 60, 60]

@@ -11,7 +11,13 @@ import xarray as xr
 
 from cummins.errors import HydroDataError
 from cummins.hydrodb import DOF_NAMES, dof_labels, make_hydrodb
-from cummins.io._common import DEPTH_ASSUMED, assume, resolve_rho_g, warn_damage
+from cummins.io._common import (
+    CONSTANT_CHOICES,
+    DEPTH_ASSUMED,
+    assume,
+    resolve_rho_g,
+    warn_damage,
+)
 from cummins.io._text import TextFile
 from cummins.io.nemoh.cal import _body_point, _mode_name, _NemohCal, _read_cal
 from cummins.io.nemoh.files import (
@@ -182,7 +188,7 @@ def read_nemoh(
         assume(
             "no Nemoh.cal beside the results: the DOFs are taken as Surge…Yaw about "
             "(0, 0, 0) and the depth as deep water; put the run's Nemoh.cal there (or give "
-            "--rho, --g, --water-depth)",
+            f"{', '.join(CONSTANT_CHOICES[k] for k in ('rho', 'g', 'water_depth'))})",
             path=run.radiation,
         )
     if unit != "rad/s":

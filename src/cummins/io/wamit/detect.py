@@ -11,7 +11,7 @@ from pathlib import Path
 from cummins.io._text import (
     parse_numbers,
 )
-from cummins.io.wamit.text import _head_lines
+from cummins.io.wamit.text import _head_lines, has_out_banner
 
 
 def numeric_kind(path: str | os.PathLike[str]) -> str | None:
@@ -60,10 +60,10 @@ def is_out_file(path: str | os.PathLike[str]) -> bool:
     """True if ``path`` is a WAMIT ``.out`` log (by its banner)."""
     try:
         with open(path, "rb") as f:
-            head = f.read(4096).decode("utf-8", errors="replace")
+            head = f.read(4096)
     except OSError:
         return False
-    return "WAMIT" in head and ("Version" in head or "POTEN" in head or "Output from" in head)
+    return has_out_banner(head)
 
 
 def sniff(path: Path) -> bool:

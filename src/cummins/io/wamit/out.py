@@ -37,7 +37,12 @@ from cummins.io.wamit.frc import _read_frc
 from cummins.io.wamit.input_files import _Config, _Mmx, _read_cfg
 from cummins.io.wamit.mass import _body_attrs, _mass_matrices, _restoring_weight
 from cummins.io.wamit.modes import _check_memory, _mode_layout
-from cummins.io.wamit.out_header import _FLOAT, _hydrostatics_matrix, _out_header
+from cummins.io.wamit.out_header import (
+    _FLOAT,
+    _hydrostatics_matrix,
+    _out_header,
+    _OutHeader,
+)
 from cummins.io.wamit.second_order import DRIFT_PREFERENCE, drift_variables
 from cummins.io.wamit.settings import RunSettings
 from cummins.io.wamit.text import MAX_ABS_VALUE, _read_text
@@ -245,8 +250,34 @@ def read_wamit_out(
     text = _read_text(path)
     if not is_out_file(path):
         raise text.error("not a WAMIT .out file (no WAMIT banner)")
+    return _read_out_text(
+        text,
+        _out_header(text),
+        rho=rho,
+        g=g,
+        ulen=ulen,
+        modes=modes,
+        water_depth=water_depth,
+        sections=sections,
+    )
+
+
+def _read_out_text(
+    text: TextFile,
+    header: _OutHeader,
+    *,
+    rho: float | None = None,
+    g: float | None = None,
+    ulen: float | None = None,
+    modes: int | Sequence[int] | None = None,
+    water_depth: float | None = None,
+    sections: Collection[str] | None = None,
+) -> xr.Dataset:
+    """:func:`read_wamit_out` of a log already read (``text``) whose ``header`` was
+    parsed (:func:`~cummins.io.wamit.out_header._out_header`): a ``.1`` that takes the
+    excitation or the drift from its ``.out`` reads the file once."""
+    path = text.path
     notes: list[str] = []
-    header = _out_header(text)
     history = [f"read {path.name}"]
     for body in header.bodies:
         history.extend(body.notes)

@@ -38,11 +38,11 @@ from cummins.io.wamit.numeric import (
     _read_hst,
     _read_wave_file,
 )
-from cummins.io.wamit.out import DRIFT_SECTIONS, read_wamit_out
+from cummins.io.wamit.out import DRIFT_SECTIONS, _read_out_text, read_wamit_out
 from cummins.io.wamit.out_header import _hydrostatics_matrix, _out_header, _OutHeader
 from cummins.io.wamit.second_order import attach_wamit_second_order, wamit_second_order
 from cummins.io.wamit.settings import RunSettings
-from cummins.io.wamit.text import _read_text
+from cummins.io.wamit.text import _read_out_log
 from cummins.qtf.data import DRIFT_ALTERNATIVES
 
 
@@ -205,9 +205,10 @@ def read_wamit_run(
     mmx_path, cfg_path, pot_path = sibling(".mmx"), sibling(".cfg"), sibling(".pot")
 
     header = _OutHeader()
-    have_out = out_path is not None and is_out_file(out_path)
+    out_text = _read_out_log(out_path) if out_path is not None else None
+    have_out = out_text is not None
     if have_out:
-        header = _out_header(_read_text(out_path))
+        header = _out_header(out_text)
         history.append(f"constants and body parameters from {out_path.name}")
         if not header.has_gravity_line or header.ulen is None:
             warn_damage(
@@ -326,13 +327,16 @@ def read_wamit_run(
     if a_zero is not None:
         extra["added_mass_zero"] = a_zero * scale_a
     force_scale = rho_v * g_v * L ** force_exponents(n, 2, layout)
+    parsed_out = None  # the .out read whole for the excitation, reused for the drift
     if dot3 is not None:
         x_bar, beta = _read_wave_file(dot3, d.first, n, what="excitation")
         extra["excitation_force"] = x_bar * force_scale
         extra["wave_direction"] = beta
         history.append(f"excitation from {dot3.name}")
     elif have_out:
-        _excitation_from_out(out_path, omega, layout, rho_v, g_v, L, extra, history)
+        parsed_out = _excitation_from_out(
+            out_text, header, omega, layout, (rho_v, g_v, L), extra, history
+        )
     if dot4 is not None:
         try:
             rao_bar, beta4 = _read_wave_file(dot4, d.first, n, what="RAO")
@@ -422,7 +426,13 @@ def read_wamit_run(
     )
     if second is not None and have_out and not second["drift"]:
         _drift_from_out(
-            out_path, second, omega, extra.get("wave_direction"), (rho_v, g_v, L), layout, notes
+            (out_text, header, parsed_out),
+            second,
+            omega,
+            extra.get("wave_direction"),
+            (rho_v, g_v, L),
+            layout,
+            notes,
         )
     return ds if second is None else attach_wamit_second_order(ds, second)
 
@@ -432,22 +442,25 @@ def _same_depth(a: float, b: float) -> bool:
     return (np.isinf(a) and np.isinf(b)) or bool(np.isclose(a, b, rtol=1e-6))
 
 
-def _drift_from_out(out_path, second: dict, omega, directions, constants, layout, notes) -> None:
-    """The mean drift printed in the ``.out`` into ``second`` (of
+def _drift_from_out(out, second: dict, omega, directions, constants, layout, notes) -> None:
+    """The mean drift printed in the ``.out`` (``out``: its text, its header and the
+    dataset :func:`_excitation_from_out` read from it, if any) into ``second`` (of
     :func:`~cummins.io.wamit.second_order.wamit_second_order`) when the run has no
     ``.7``/``.8``/``.9``: every method the log prints, ``drift_force`` the preferred one
     (:data:`~cummins.io.wamit.second_order.DRIFT_PREFERENCE`). ``second["attrs"]`` and
     ``["history"]`` say where it came from; a log of other frequencies or headings is
     left out with a line in ``history``, a damaged one with a warning."""
-    if b"DRIFT FORCES" not in out_path.read_bytes():
+    text, header, parsed = out
+    out_path = text.path
+    if not any("DRIFT FORCES" in line for line in text.lines):
         return
     history = second["history"]
     try:
         with warnings.catch_warnings():  # the header's warnings were given with the .1
             warnings.simplefilter("ignore")
             rho, g, ulen = constants
-            out = read_wamit_out(
-                out_path, rho=rho, g=g, ulen=ulen, modes=layout, sections=DRIFT_SECTIONS
+            out = parsed or _read_out_text(
+                text, header, rho=rho, g=g, ulen=ulen, modes=layout, sections=DRIFT_SECTIONS
             )
     except HydroDataError as exc:
         warn_damage(f"mean drift not read: {exc}", path=out_path, notes=notes)
@@ -476,18 +489,23 @@ def _drift_from_out(out_path, second: dict, omega, directions, constants, layout
     )
 
 
-def _excitation_from_out(out_path, omega, layout, rho_v, g_v, L, extra, history) -> None:
-    """Excitation printed in the ``.out`` when the run has no ``.3`` file."""
-    out = read_wamit_out(out_path, rho=rho_v, g=g_v, ulen=L, modes=layout)
+def _excitation_from_out(text, header, omega, layout, constants, extra, history) -> xr.Dataset:
+    """Excitation printed in the ``.out`` (``text``, its ``header`` parsed) when the run
+    has no ``.3`` file, into ``extra``; the log read as :func:`read_wamit_out` does (all
+    its tables, for :func:`_drift_from_out` too)."""
+    rho_v, g_v, L = constants
+    out = _read_out_text(text, header, rho=rho_v, g=g_v, ulen=L, modes=layout)
+    out_path = text.path
     if "excitation_force" not in out:
         history.append(f"no excitation: no .3 file, and {out_path.name} prints none")
-        return
+        return out
     if out.sizes["omega"] != omega.size or not np.allclose(out.omega.values, omega, rtol=1e-5):
         history.append(f"no excitation: no .3 file, and {out_path.name} has other frequencies")
-        return
+        return out
     extra["excitation_force"] = out.excitation_force.values
     extra["wave_direction"] = out.wave_direction.values
     history.append(
         f"excitation from {out_path.name} (no .3 file; the log prints 7 digits and phases "
         "in whole degrees)"
     )
+    return out

@@ -11,6 +11,7 @@ from pathlib import Path
 
 import numpy as np
 
+from cummins.files import note_read
 from cummins.io._text import (
     TextFile,
     check_cut_numbers,
@@ -25,10 +26,35 @@ MAX_ABS_VALUE = 1e30
 
 def _read_text(path: Path) -> TextFile:
     """:meth:`TextFile.read` without a UTF-8 byte-order mark (not damage)."""
-    text = TextFile.read(path)
+    return _without_bom(TextFile.read(path))
+
+
+def _without_bom(text: TextFile) -> TextFile:
+    """``text`` without a (second) UTF-8 byte-order mark at its start."""
     if text.lines and text.lines[0].startswith("\ufeff"):
         return TextFile(text.path, (text.lines[0][1:], *text.lines[1:]))
     return text
+
+
+def has_out_banner(raw: bytes) -> bool:
+    """True if ``raw``, the first bytes of a file, start a WAMIT ``.out`` log (its banner
+    within the first 4096 bytes)."""
+    head = raw[:4096].decode("utf-8", errors="replace")
+    return "WAMIT" in head and ("Version" in head or "POTEN" in head or "Output from" in head)
+
+
+def _read_out_log(path: Path) -> TextFile | None:
+    """The text of the WAMIT ``.out`` log ``path``, the file read once; ``None`` when it
+    cannot be read or has no WAMIT banner (not a log). An empty or binary log raises
+    :class:`HydroDataError` as :meth:`TextFile.read` does."""
+    try:
+        raw = Path(path).read_bytes()
+    except OSError:
+        return None
+    if not has_out_banner(raw):
+        return None
+    note_read(Path(path))
+    return _without_bom(TextFile.from_bytes(Path(path), raw))
 
 
 def _head_lines(path: Path, nbytes: int = 65536) -> list[str]:

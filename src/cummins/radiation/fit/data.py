@@ -63,6 +63,7 @@ from cummins.radiation.retardation import (
 )
 from cummins.radiation.transforms import shared_kernels
 from cummins.repair import (
+    Judged,
     find_suspect_frequencies,
     irregular_frequency_spans,
     limit_frequency_range,
@@ -170,18 +171,23 @@ class FitInput:
 
 
 def prepare_fit(
-    ds: xr.Dataset, options: FitOptions, joined: JoinedMotion | None = None
+    ds: xr.Dataset, options: FitOptions, joined: JoinedMotion | None = None, judged: Judged = ()
 ) -> FitInput:
     """The first stage of an identification: the data selected and prepared as the fit
     will use them (module docstring). ``options`` as checked by
     :meth:`~cummins.radiation.fit.options.FitOptions.checked`; ``joined``: the mechanics
-    whose motions the fit aims at (:class:`~cummins.radiation.fit.motion.JoinedMotion`)."""
+    whose motions the fit aims at (:class:`~cummins.radiation.fit.motion.JoinedMotion`);
+    ``judged``: data whose suspect frequencies were found already, with what was found
+    (:func:`cummins.repair.suspects_by_dof`)."""
     with shared_kernels():  # the Kramers–Kronig integrals' logarithms once per grid
-        return _prepare_fit(ds, options, joined)
+        return _prepare_fit(ds, options, joined, judged)
 
 
-def _prepare_fit(ds: xr.Dataset, options: FitOptions, joined: JoinedMotion | None) -> FitInput:
-    """:func:`prepare_fit`'s work."""
+def _prepare_fit(
+    ds: xr.Dataset, options: FitOptions, joined: JoinedMotion | None, judged: Judged
+) -> FitInput:
+    """:func:`prepare_fit`'s work (``judged``: data whose suspect frequencies were found
+    already, :func:`cummins.repair.suspects_by_dof`)."""
     ds = single_speed(ds)
     guard_hydro_data(ds)  # non-finite or absurd values: FitError naming the DOF pair
     given = ds  # the data as the user gave them: the model's fingerprint
@@ -193,7 +199,7 @@ def _prepare_fit(ds: xr.Dataset, options: FitOptions, joined: JoinedMotion | Non
     if options.passivity != "none":
         ds, passive_part = nearest_passive_damping(ds, significant_couplings(ds, options.threshold))
     raw, keep_dof, sound, data_notes, resonant_dofs = _fit_data(
-        ds, options.omega_min, options.omega_max, options.exclude_suspect
+        ds, options.omega_min, options.omega_max, options.exclude_suspect, judged
     )
     every_frequency = raw  # for Ogilvie's A∞, before the range is cut
     if passive_part is not None and passive_part.note():
@@ -583,7 +589,7 @@ def response_weights(data: xr.Dataset) -> NDArray[np.float64]:
 
 
 def _fit_data(
-    ds, omega_min, omega_max, exclude_suspect
+    ds, omega_min, omega_max, exclude_suspect, judged: Judged = ()
 ) -> tuple[xr.Dataset, NDArray[np.bool_], NDArray[np.bool_], list[str], tuple[int, ...]]:
     """The data to fit, which frequencies each DOF keeps (omega, dof), which hold sound
     data (those and its suspect points that are sharp features of the data:
@@ -616,7 +622,7 @@ def _fit_data(
                 f"{min(s.omega for s in suspects):.4g} rad/s left out with it"
             )
     elif exclude_suspect:
-        own = suspects_by_dof(data)
+        own = suspects_by_dof(data, judged)
         resonances = []
         for d, label in enumerate(labels):
             for s in own[label].suspects:  # a sharp resonance the motions depend on stays

@@ -1,0 +1,64 @@
+"""The library's hints said as a study's keys: where a message tells the user of a
+command to give ``--rho``, ``--water-depth`` or ``--heading``, a batch study's log names
+the study's key (``rho``, ``water_depth``, ``grid.heading``), the option it has.
+
+The library writes each such hint from one constant
+(:data:`cummins.io._common.CONSTANT_CHOICES`,
+:data:`cummins.seakeeping.headings.HEADING_CHOICE`); :func:`study_wording` replaces it,
+:func:`study_warnings` re-issues the warnings raised while a study is prepared or a case
+runs in those words.
+"""
+
+from __future__ import annotations
+
+import warnings
+from collections.abc import Iterator
+from contextlib import contextmanager
+from pathlib import Path
+
+from cummins.io._common import CONSTANT_CHOICES
+from cummins.seakeeping.headings import HEADING_CHOICE
+
+#: The study's keys that choose a case's heading.
+HEADING_KEYS = "the study's heading: grid.heading or a case's heading, deg"
+
+
+def study_wording(text: str, source: Path | None = None) -> str:
+    """``text`` with the command-line hints of :data:`CONSTANT_CHOICES` and
+    :data:`HEADING_CHOICE` replaced by the keys of the study defined in ``source``."""
+    for key, choice in CONSTANT_CHOICES.items():
+        text = text.replace(choice, _key(key, source))
+    return text.replace(HEADING_CHOICE, HEADING_KEYS)
+
+
+def _key(key: str, source: Path | None) -> str:
+    """The study's ``key``, named with the file that defines the study."""
+    return f"the key {key} of {Path(source).name}" if source else f"the study key {key}"
+
+
+@contextmanager
+def study_warnings(source: Path | None = None) -> Iterator[None]:
+    """Re-issue the warnings raised inside (same category, same origin) in the words of
+    the study defined in ``source`` (:func:`study_wording`), once the work inside ends
+    (also with an error), each text from one place once; the caller's filters apply to
+    them then."""
+    caught: list[warnings.WarningMessage] = []
+    try:
+        with warnings.catch_warnings(record=True) as caught:
+            warnings.simplefilter("always")
+            yield
+    finally:
+        seen: set[tuple] = set()
+        for w in caught:
+            text = str(w.message)
+            if (text, w.category, w.filename, w.lineno) in seen:
+                continue
+            seen.add((text, w.category, w.filename, w.lineno))
+            worded = study_wording(text, source)
+            message = w.message
+            if worded != text:
+                try:
+                    message = w.category(worded)
+                except TypeError:  # a warning class built otherwise: as raised
+                    message = w.message
+            warnings.warn_explicit(message, w.category, w.filename, w.lineno)
