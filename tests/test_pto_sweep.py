@@ -261,6 +261,19 @@ def test_cli_sweep_prints_the_best_damping_and_report_shows_it(folder):
     assert "Best single damping for the site: 3e+03 N s/m, 10.75 W" in html
 
 
+def _refused_in_one_line(folder, text: str, message: str) -> None:
+    """The study ``text`` is refused by ``cummins batch`` with exit status 2 and one line
+    holding ``message``, before any case runs."""
+    (folder / "bad.yaml").write_text(text, encoding="utf-8")
+    result = CliRunner().invoke(
+        main, ["batch", str(folder / "bad.yaml"), "-o", str(folder / "bad.nc")]
+    )
+    assert result.exit_code == 2, result.output
+    lines = [line for line in result.output.splitlines() if line.strip()]
+    assert len(lines) == 1 and message in lines[0], result.output
+    assert not (folder / "bad.nc.parts").exists()
+
+
 @pytest.mark.parametrize(
     ("sweep", "system", "message"),
     [
@@ -285,14 +298,7 @@ def test_bad_sweeps_are_refused_in_one_line_naming_the_key(folder, sweep, system
     if system is not None:
         head, _, rest = text.partition("system:\n")
         text = head + system + "grid:" + rest.split("grid:", 1)[1]
-    (folder / "bad.yaml").write_text(text, encoding="utf-8")
-    result = CliRunner().invoke(
-        main, ["batch", str(folder / "bad.yaml"), "-o", str(folder / "bad.nc")]
-    )
-    assert result.exit_code == 2, result.output
-    lines = [line for line in result.output.splitlines() if line.strip()]
-    assert len(lines) == 1 and message in lines[0], result.output
-    assert not (folder / "bad.nc.parts").exists()
+    _refused_in_one_line(folder, text, message)
 
 
 def test_several_ptos_need_the_swept_one_named(corpus):
@@ -473,14 +479,7 @@ def test_bad_list_cases_are_refused_in_one_line_naming_the_case(folder, cases, s
     if system is not None:
         head, _, rest = text.partition("system:\n")
         text = head + system + "cases:" + rest.split("cases:", 1)[1]
-    (folder / "bad.yaml").write_text(text, encoding="utf-8")
-    result = CliRunner().invoke(
-        main, ["batch", str(folder / "bad.yaml"), "-o", str(folder / "bad.nc")]
-    )
-    assert result.exit_code == 2, result.output
-    lines = [line for line in result.output.splitlines() if line.strip()]
-    assert len(lines) == 1 and message in lines[0], result.output
-    assert not (folder / "bad.nc.parts").exists()
+    _refused_in_one_line(folder, text, message)
 
 
 def test_a_list_with_several_ptos_names_the_one_it_sets():
