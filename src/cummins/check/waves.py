@@ -90,7 +90,7 @@ def drift_mirror_note(ds: xr.Dataset) -> str | None:
 
 def mss_drift_fill(ds: xr.Dataset) -> list[Finding]:
     """The ``wave_parity`` warnings of an MSS struct's drift whose break is one of MSS's
-    fills of 190–350° (:data:`_MSS_FILL`) where the first-order tables mirror: what
+    fills of 190–350° (:data:`MSS_FILL`) where the first-order tables mirror: what
     :func:`cummins.io.mss.reader.mirrored_mss_drift` mends."""
     if ds.attrs.get("source_format") != "mss" or "drift_force" not in ds:
         return []
@@ -98,7 +98,7 @@ def mss_drift_fill(ds: xr.Dataset) -> list[Finding]:
         f
         for f in _check_wave_parity(ds)
         if f.severity == "warning"
-        and (f.details or {}).get("pattern") in _MSS_FILL
+        and (f.details or {}).get("pattern") in MSS_FILL
         and f.details.get("first_order_mismatch") is not None
         and f.details.get("headings_deg")
     ]
@@ -205,7 +205,7 @@ def _parity_finding(
 
 
 #: What MSS does to fill 190–350° from the 0–180° it computes, per pattern of the break.
-_MSS_FILL = {
+MSS_FILL = {
     "shifted": "MSS's wamit2vessel.m copies driftfrc's 10–170° to 190–350° in the same "
     "order (its first-order tables it mirrors)",
     "sign_kept": "MSS's read_veres_WD.m mirrors the yaw drift (its third column) with heave's sign",
@@ -218,7 +218,7 @@ def _parity_advice(sub: xr.Dataset, name: str, pattern: str | None) -> str:
     """What to do about a table that does not mirror: MSS's fill named when recognised."""
     if sub.attrs.get("source_format") == "mss" and name == "drift_force" and pattern:
         return (
-            f"{_MSS_FILL[pattern]}; cummins.read mirrors the solver's 0–180° there by "
+            f"{MSS_FILL[pattern]}; cummins.read mirrors the solver's 0–180° there by "
             "default, these values were kept (read(..., drift_as_stored=True); "
             "docs/guide/mss.md)"
         )

@@ -136,32 +136,26 @@ def mirrored_mss_drift(ds: xr.Dataset) -> xr.Dataset:
     tanker's surge drift at 190° pushed the ship forward in nearly head seas, the S-175's
     yaw drift moment at 225° had the wrong sign.
     """
-    from cummins.check.parity import degree_ranges, mirror_pairs
-    from cummins.check.waves import _MSS_FILL, mss_drift_fill
-    from cummins.seakeeping.excitation import MIRROR_SIGNS
+    from cummins.check.parity import degree_ranges
+    from cummins.check.waves import MSS_FILL, mss_drift_fill
+    from cummins.seakeeping.headings import mirror_headings
 
     found = mss_drift_fill(ds)
     if not found:
         return ds
     beta = np.mod(ds.wave_direction.values, 2 * np.pi)
-    source, target = [], []
-    for k, m in mirror_pairs(beta):
-        if k != m:
-            low, high = (k, m) if beta[k] < np.pi else (m, k)
-            source.append(low)
-            target.append(high)
-    labels = [str(d) for d in ds.influenced_dof.values]
-    signs = xr.DataArray(
-        [MIRROR_SIGNS[DOF_NAMES.index(d)] if d in DOF_NAMES else 1.0 for d in labels],
-        dims="influenced_dof",
-    )
-    drift = ds.drift_force.copy()
-    mirrored = ds.drift_force.isel(wave_direction=source) * signs
-    drift[{"wave_direction": target}] = mirrored.transpose(*drift.dims).values
+    solver = np.flatnonzero(beta <= np.pi + 1e-9)  # the half-plane the solver computed
+    mirrored, _ = mirror_headings(ds.isel(wave_direction=solver), mirror=True)
+    target = np.flatnonzero(beta > np.pi + 1e-9)
     out = ds.copy()
-    out["drift_force"] = drift
+    out["drift_force"] = ds.drift_force.copy()
+    out["drift_force"][{"wave_direction": target}] = (
+        mirrored.drift_force.sel(wave_direction=beta[target], method="nearest")
+        .transpose(*ds.drift_force.dims)
+        .values
+    )
     dofs = ", ".join(dict.fromkeys(str(f.where) for f in found))
-    fills = "; ".join(dict.fromkeys(_MSS_FILL[f.details["pattern"]] for f in found))
+    fills = "; ".join(dict.fromkeys(MSS_FILL[f.details["pattern"]] for f in found))
     headings = sorted({h for f in found for h in f.details["headings_deg"]})
     add_history(
         out,
