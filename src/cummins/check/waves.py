@@ -70,11 +70,7 @@ def drift_mirror_note(ds: xr.Dataset) -> str | None:
     """One line on a mean drift that breaks the port/starboard mirror where the first-order
     tables of the same headings keep it (the ``wave_parity`` warnings of the drift, MSS's
     own structs'), or None: the drift loads warn with it, as they use the data as given."""
-    found = [
-        f
-        for f in _check_wave_parity(ds)
-        if f.severity == "warning" and (f.details or {}).get("first_order_mismatch") is not None
-    ]
+    found = _drift_alone_breaks(ds)
     if not found:
         return None
     dofs = ", ".join(dict.fromkeys(str(f.where) for f in found))
@@ -96,11 +92,18 @@ def mss_drift_fill(ds: xr.Dataset) -> list[Finding]:
         return []
     return [
         f
+        for f in _drift_alone_breaks(ds)
+        if f.details.get("pattern") in MSS_FILL and f.details.get("headings_deg")
+    ]
+
+
+def _drift_alone_breaks(ds: xr.Dataset) -> list[Finding]:
+    """The ``wave_parity`` warnings of a table that breaks the mirror where the first-order
+    tables of the same headings keep it (only the drift's carry ``first_order_mismatch``)."""
+    return [
+        f
         for f in _check_wave_parity(ds)
-        if f.severity == "warning"
-        and (f.details or {}).get("pattern") in MSS_FILL
-        and f.details.get("first_order_mismatch") is not None
-        and f.details.get("headings_deg")
+        if f.severity == "warning" and (f.details or {}).get("first_order_mismatch") is not None
     ]
 
 
