@@ -161,7 +161,7 @@ def check(ds: xr.Dataset) -> CheckReport:
         _check_grid,
         _check_symmetry,
         partial(_check_reciprocity, judged=judged),
-        _check_forbidden_couplings,
+        partial(_check_forbidden_couplings, judged=judged),
         _check_damping,
         _check_added_mass_inf,
         _check_decay,
