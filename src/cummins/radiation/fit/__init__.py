@@ -64,6 +64,7 @@ import xarray as xr
 
 from cummins.errors import FitError
 from cummins.radiation.fit.blocks import fit_blocks
+from cummins.radiation.fit.causal_inf import with_causal_inf
 from cummins.radiation.fit.couplings import fit_coupling, fit_per_coupling
 from cummins.radiation.fit.data import (
     FitData,
@@ -207,6 +208,7 @@ def fit_radiation(
     inp = prepare_fit(ds, options, joined)
     if options.method == "vf":
         model = fit_blocks(inp, options, say)
+        model = with_causal_inf(inp, options, model, lambda *a: fit_blocks(*a, say))
     else:
         model = fit_per_coupling(inp, options, say)
     return replace(model, attrs={**model.attrs, "elapsed_s": time.perf_counter() - start})

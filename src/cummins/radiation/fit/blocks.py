@@ -15,6 +15,7 @@ import numpy as np
 
 from cummins.errors import FitError
 from cummins.radiation.fit import order_search, vector
+from cummins.radiation.fit.causal_inf import estimated_inf, noncausal_dofs
 from cummins.radiation.fit.data import FitInput, range_cut_failures
 from cummins.radiation.fit.metrics import coupling_metrics, pair_floor
 from cummins.radiation.fit.mimo import failure_targets, fit_failures, with_motion_note
@@ -116,7 +117,7 @@ def fit_blocks(
                 a_data,
                 b_data,
                 used,
-                added_mass_inf=None if a_inf is None else inf,
+                added_mass_inf=None if a_inf is None else estimated_inf(inf, inp.estimated_inf),
                 motion_weight=None if sensitivity is None else sensitivity.coupling_weight,
                 motion_tol=tol,
                 prior=prior,
@@ -262,6 +263,8 @@ def fit_blocks(
         tuple(blocks),
     )
     extra: dict = {}
+    if inp.estimated_inf:  # A∞ of these estimated, the data's row elsewhere (causal_inf)
+        extra["added_mass_inf_estimated"] = [labels[d] for d in inp.estimated_inf]
     if passive:
         report = passivity_test(model)
         extra["mimo_passive"] = bool(report.passive)
@@ -334,23 +337,3 @@ def shares_well(score, twin_score, r2: float, motion_aim) -> bool:
         return True
     near = order_search.distance(score, r2, motion_aim)
     return near <= order_search.distance(twin_score, r2, motion_aim) + order_search.NEAR
-
-
-#: A DOF whose A(ω) is further than this from the Kramers–Kronig transform of its B(ω)
-#: (relative, :func:`cummins.radiation.retardation.kramers_kronig_error`, with the model's
-#: A∞) cannot be followed by a causal model: a motion error there is the data's.
-NONCAUSAL = 0.5
-
-
-def noncausal_dofs(inp: FitInput, model: RadiationModel, missed) -> list[str]:
-    """The DOFs among ``missed`` (a mask) whose data are not causal with the model's A∞
-    (:data:`NONCAUSAL`), as ``"body2__Pitch (98 %)"``."""
-    from cummins.radiation.retardation import kramers_kronig_error
-
-    inf = np.asarray(model.added_mass_inf, dtype=float)
-    error = np.diag(kramers_kronig_error(inp.data, added_mass_inf=0.5 * (inf + inf.T)).values)
-    return [
-        f"{label} ({100 * error[d]:.3g} %)"
-        for d, label in enumerate(inp.labels)
-        if missed[d] and error[d] > NONCAUSAL
-    ]

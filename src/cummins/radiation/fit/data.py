@@ -140,6 +140,9 @@ class FitInput:
         motions depend on it (a piston or gap mode: :func:`cummins.repair.suspects_by_dof`);
         a block of theirs that misses its targets is fitted again with poles as lightly
         damped as :data:`cummins.radiation.fit.vector.RESONANCE_MIN_DAMPING`.
+    estimated_inf
+        Indices of the DOFs whose A∞ the blocks estimate though ``a_inf`` is the data's
+        row (:mod:`cummins.radiation.fit.causal_inf`).
     """
 
     ds: xr.Dataset
@@ -163,6 +166,7 @@ class FitInput:
     beyond_range: BeyondRange | None = None
     reciprocity: Reciprocity = field(default_factory=Reciprocity)
     resonant_dofs: tuple[int, ...] = ()
+    estimated_inf: tuple[int, ...] = ()
 
     @property
     def as_given(self) -> frozenset[tuple[int, int]]:

@@ -441,18 +441,19 @@ def _floor_clause(model: RadiationModel) -> str:
     floor, error = model.attrs.get("motion_error_floor"), model.attrs.get("motion_error")
     noncausal = list(model.attrs.get("noncausal_dofs", []) or [])
     if noncausal:
-        source = (
-            "the data's ω = ∞ row"
-            if model.attrs.get("added_mass_inf_method") == "data"
-            else "the fitted A∞"
-        )
+        estimated = model.attrs.get("added_mass_inf_estimated") or []
+        row = model.attrs.get("added_mass_inf_method") == "data"
+        source = "the data's ω = ∞ row" if row else "the fitted A∞"
+        if row and estimated:
+            source = f"the model's A∞ (estimated for {', '.join(estimated)}, else the data's row)"
+
         return (
             f"the data limit it: the added mass of {', '.join(noncausal)} is that far "
             f"from the Kramers–Kronig transform of its damping with {source} (cummins "
             "check: retardation), which no causal model follows"
             + (
                 "; added_mass_inf='fit' (--added-mass-inf fit) lets the model choose A∞"
-                if model.attrs.get("added_mass_inf_method") == "data"
+                if row and not estimated
                 else ""
             )
         )

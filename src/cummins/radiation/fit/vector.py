@@ -290,7 +290,10 @@ def block_data(
     :class:`cummins.radiation.fit.motion.MotionSensitivity` or None; ``prior``: (guess,
     spread) matrices of A∞ when it is estimated (symmetric); ``antisymmetric_inf``: the
     antisymmetric part of A∞ of the pairs fitted as given (their A at ω → 0, where
-    passivity pins it: :mod:`cummins.radiation.fit.reciprocity`); ``tail_weight``: a
+    passivity pins it: :mod:`cummins.radiation.fit.reciprocity`); ``added_mass_inf``:
+    the A∞ matrix when it is given, NaN where an element estimates it
+    (:mod:`cummins.radiation.fit.causal_inf`), None when every element does;
+    ``tail_weight``: a
     factor on the weight of the damping tail beyond the data
     (:func:`cummins.radiation.fit.tail.tail_equations`); ``time``, ``kernel``: the data's
     K(t) (time, n, n), for the R² of K(t) of the diagonal elements; ``min_damping``: the
@@ -353,7 +356,7 @@ def block_data(
         offset = 0.0
         if i > j:
             offset = antisymmetric_inf[i, j]
-        elif added_mass_inf is not None:
+        elif added_mass_inf is not None and np.isfinite(added_mass_inf[i, j]):
             offset = added_mass_inf[i, j]
         # beyond the data: the data's damping tail, weighed as the data it stands for
         b_tail, weight, element_tail = beyond.get(e, (np.zeros(tail.size), 0.0, None))
@@ -373,7 +376,7 @@ def block_data(
                 for i, j in elements
             ]
         )
-    if added_mass_inf is None and prior is not None:
+    if prior is not None and (added_mass_inf is None or np.isnan(added_mass_inf).any()):
         guess = np.array([prior[0][i, j] if i <= j else 0.0 for i, j in elements])
         spread = np.array([prior[1][i, j] if i <= j else 0.0 for i, j in elements])
     return BlockData(
