@@ -96,8 +96,9 @@ from cummins.files import write_text
     type=click.Choice(["auto", "data", "fit", "ogilvie"]),
     default="auto",
     show_default=True,
-    help="A-infinity: the data row (auto when present), a joint estimate (fit), or "
-    "Ogilvie's relation.",
+    help="A-infinity: the data row (auto when present; estimated for the DOFs whose "
+    "added mass is far from causal with it when their motions miss the target), the data "
+    "row everywhere (data), a joint estimate (fit), or Ogilvie's relation.",
 )
 @click.option(
     "--omega-min", type=non_negative("rad/s"), default=None, metavar="RAD/S", help="Fitting range."

@@ -72,8 +72,11 @@ class FitOptions(Mapping):
     threshold
         Couplings below this fraction of the diagonal terms are left out.
     added_mass_inf
-        ``"auto"`` (the data's ω = ∞ row when present and consistent, else estimated),
-        ``"data"``, ``"fit"`` (joint estimate, frequency domain) or ``"ogilvie"``.
+        ``"auto"`` (the data's ω = ∞ row when present and consistent, else estimated;
+        estimated for the DOFs whose added mass is far from causal with the row when
+        their motions miss the target: :mod:`cummins.radiation.fit.causal_inf`),
+        ``"data"`` (the row everywhere), ``"fit"`` (joint estimate, frequency domain) or
+        ``"ogilvie"``.
     omega_min, omega_max
         Fitting range, rad/s.
     exclude_suspect
