@@ -272,6 +272,9 @@ def test_oswec_hinge(corpus):
     ds, system = oswec_flap(corpus)
     assembly = assemble(ds, system)
     assert assembly.dofs == ("body1__Surge", "body1__Pitch") and assembly.basis.shape == (2, 1)
+    # its one coordinate is the hinge's angle, the flap's pitch (rad), not the swing of
+    # its reference point
+    assert assembly.coordinates == ("body1__Pitch",) and assembly.basis[1, 0] == 1.0
     # by hand: a rotation θ about y through the hinge moves o = (0, 0, −3.9) by θ × (o − h)
     np.testing.assert_allclose(assembly.basis[:, 0] / assembly.basis[1, 0], [5.0, 1.0])
     vessel = vessel_from_hydrodb(ds, system=system)

@@ -2,8 +2,9 @@
 
 The columns of T span the null space of G (every motion the joints allow, and no other).
 T is built by generalized coordinate partitioning (Wehage & Haug (1982)): a QR
-factorisation of G with column pivoting picks r = rank G dependent DOFs (the pivots),
-the others are the independent coordinates q, and
+factorisation of G with column pivoting picks r = rank G dependent DOFs (the pivots,
+translations before rotations: a hinge's coordinate is its angle), the others are the
+independent coordinates q, and
 
     ξ_dep = −G_dep⁺ G_ind ξ_ind,   T = [I on the independent DOFs; −G_dep⁺ G_ind],
 
@@ -26,11 +27,16 @@ import numpy as np
 import scipy.linalg
 from numpy.typing import NDArray
 
+from cummins.dofs import is_rotation
 from cummins.errors import ArgumentError
 
 #: Relative size below which a pivot of G's QR factorisation (G's columns scaled to unit
 #: norm) counts as zero: the rank decision.
 RANK_TOLERANCE = 1e-9
+#: The weight of a rotation's column of G in the pivoting (translations 1): below 1, a
+#: rotation is kept as an independent coordinate where a translation can be eliminated
+#: instead (the pivots are the largest columns).
+ROTATION_WEIGHT = 0.5
 #: A row of T smaller than this (relative to T's largest entry) is a DOF held at zero.
 HELD_TOLERANCE = 1e-9
 #: The constrained inertia TᵀM_RB T (scaled by its diagonal) must have eigenvalues above
@@ -55,7 +61,11 @@ def null_space_basis(
     if g.shape[0] == 0 or not np.any(g):
         return np.eye(n), tuple(labels)
     scale = np.linalg.norm(g, axis=0)
-    scaled = g / np.where(scale > 0, scale, 1.0)
+    # a rotation is the coordinate where it can be: the pivots (the dependent DOFs) are
+    # taken among the translations first, so that a hinge's coordinate is its angle, not
+    # the swing of the body's reference point (rad, its generalized force in N·m)
+    prefer = np.array([ROTATION_WEIGHT if is_rotation(x) else 1.0 for x in labels])
+    scaled = g / np.where(scale > 0, scale, 1.0) * prefer
     _, r, pivots = scipy.linalg.qr(scaled, mode="economic", pivoting=True)
     diagonal = np.abs(np.diag(r))
     rank = int(np.sum(diagonal > RANK_TOLERANCE * max(float(diagonal.max()), 1e-300)))
