@@ -346,14 +346,8 @@ def vessel_from_hydrodb(
             b_v = b_v + _constant_part(ds, "additional_damping", dofs, given=b_v, said=sources)
             sources.append("database additional_damping (frequency-independent entries)")
     if model is None:
-        joined = None
-        if assembly is not None and (assembly.is_constrained or assembly.ptos):
-            # the fit aims at the motions of the joined system, not of free bodies
-            from cummins.radiation.fit.motion import JoinedMotion
-
-            joined = JoinedMotion(
-                assembly.basis if assembly.is_constrained else None, *assembly.pto_matrices()
-            )
+        # the fit aims at the motions of the joined system, not of free bodies
+        joined = None if assembly is None else assembly.joined_motion()
         model = fit_radiation(ds, joined=joined, **fit_options)
     else:
         check_model_data(model, ds, allow_other_data=allow_other_data)

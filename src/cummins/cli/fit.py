@@ -28,12 +28,13 @@ from cummins.cli.common import (
     speed_option,
     stage_progress,
 )
-from cummins.cli.option_rules import Command, refuse_repeated
+from cummins.cli.option_rules import refuse_repeated
+from cummins.cli.system_options import SystemCommand, system_from_options, system_options
 from cummins.dofs import split_dof
 from cummins.files import write_text
 
 
-@click.command(name="fit", cls=Command)
+@click.command(name="fit", cls=SystemCommand)
 @click.argument("path", type=click.Path(exists=True))
 @read_options
 @click.option(
@@ -170,6 +171,15 @@ from cummins.files import write_text
     default=None,
     help="Of several bodies, fit only this one (1-based number or name), e.g. for --mss.",
 )
+@click.option(
+    "--dof",
+    "dofs",
+    multiple=True,
+    metavar="DOF",
+    help="Fit only the DOFs that move (repeatable), the others held at zero, e.g. --dof "
+    "body1__Heave --dof body2__Heave; with joints, the motions the fit aims at.",
+)
+@system_options
 @force_option()
 @reports_errors
 def fit_command(
@@ -198,6 +208,8 @@ def fit_command(
     passive,
     reciprocity,
     body,
+    dofs,
+    system_options,
     force,
 ):
     """Identify stable, passive state-space models of the fluid memory, every coupling.
@@ -220,6 +232,14 @@ def fit_command(
       cummins fit tanker.1 -o tanker_model.nc --json fit.json --plot fit-plots
       cummins fit input.re7 -o supply_model.nc --method realization --max-order 12
       cummins fit tanker.1 -o model.nc --order Heave Pitch 4 --openfast tanker.ss
+
+    \b
+    Bodies joined (--joint, --pto, --dof, --no-body-coupling, as simulate and rao take
+    them): the model holds the DOFs that move and aims at the motions of the joined
+    system; give simulate the model file with the same options, e.g.
+      cummins fit oswec.out --rho 1000 --mass 127000 --mass 999 ... --joint fixed body2
+        ground --joint revolute body1 body2 --axis 0 1 0 --point 0 0 -8.9
+        --pto-damping 1.2e5 --no-body-coupling -o flap_model.nc
     """
     from cummins.radiation.fit import fit_radiation
 
@@ -235,6 +255,7 @@ def fit_command(
     ds = select_speed(read_hydrodb(path, format_, rho, g, ulen), speed)
     if body is not None:
         ds = select_body(ds, body)
+    ds, joined = joined_data(ds, system_from_options(system_options, dofs), dofs)
     labels = [str(d) for d in ds.influenced_dof.values]
     check_model_outputs(labels, mss_path=mss_path, openfast=openfast)
     fixed = {}
@@ -265,6 +286,7 @@ def fit_command(
             passivity="mimo" if passive else "diagonal",
             reciprocity=reciprocity,
             progress=progress,
+            joined=joined,
         )
     elapsed = time.perf_counter() - start
     console.print(fit_table(model))
@@ -385,6 +407,35 @@ def check_model_outputs(labels, *, mss_path=None, openfast=None) -> None:
             f"HydroDyn needs all six DOFs of each body; the data have {n} DOFs",
             param_hint="--openfast",
         )
+
+
+def joined_data(ds, system, dofs):
+    """The data of the DOFs that move and the mechanics the fit aims at
+    (:class:`~cummins.radiation.fit.motion.JoinedMotion`, None for free bodies): the
+    ``--dof`` selection, or the system of ``--joint``/``--pto``/``--no-body-coupling``
+    applied (:func:`cummins.mechanics.assemble`, printed)."""
+    labels = [str(d) for d in ds.influenced_dof.values]
+    unknown = [d for d in dofs if d not in labels]
+    if unknown:
+        raise click.BadParameter(
+            f"unknown DOF {unknown[0]!r}; the data have {', '.join(labels)}", param_hint="--dof"
+        )
+    if system is None:
+        if not dofs:
+            return ds, None
+        from cummins.hydrodb import select_dofs
+
+        return select_dofs(ds, list(dofs)), None
+    if float(ds.coords.get("forward_speed", 0.0)):
+        raise click.UsageError(
+            "joints, PTOs and --no-body-coupling are for bodies at zero speed: leave --speed out"
+        )
+    from cummins.cli.system_options import print_system
+    from cummins.mechanics import assemble
+
+    assembly = assemble(ds, system)
+    print_system(assembly)
+    return assembly.ds, assembly.joined_motion()
 
 
 def fit_summary(model, elapsed: float) -> dict:

@@ -1,6 +1,6 @@
 """The command-line options of a multi-body system: joints, PTOs, body coupling.
 
-``rao`` and ``simulate`` take::
+``rao``, ``simulate`` and ``fit`` take::
 
     --joint KIND BODY BODY     fixed | translational | revolute | planar, BODY a body of the
                                data (body1, its name in the file, its number) or ground
@@ -307,9 +307,15 @@ def print_system(assembly) -> None:
                 )
             )
     if not several and not system.body_coupling:
+        held_bodies = {split_dof(d)[0] for d in assembly.held} - set(bodies(assembly.ds))
+        why = (
+            f"only one body moves ({', '.join(sorted(map(str, held_bodies)))} held at zero)"
+            if held_bodies - {None}
+            else "the data hold one body"
+        )
         console.print(
-            "note: --no-body-coupling changes nothing: the data hold one body, no coupling "
-            "between bodies to leave out"
+            f"note: --no-body-coupling changes nothing: {why}, no coupling between moving "
+            "bodies to leave out"
         )
         if not system.joints and not system.ptos and not assembly.held:
             return

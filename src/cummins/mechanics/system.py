@@ -159,6 +159,16 @@ class Assembly:
         """(stiffness, damping) the PTOs add, n × n."""
         return pto_matrices(self.ptos, len(self.dofs))
 
+    def joined_motion(self):
+        """The mechanics a radiation fit aims at
+        (:class:`~cummins.radiation.fit.motion.JoinedMotion`: T and the PTOs' stiffness
+        and damping), None when the bodies are neither constrained nor joined by a PTO."""
+        if not (self.is_constrained or self.ptos):
+            return None
+        from cummins.radiation.fit.motion import JoinedMotion
+
+        return JoinedMotion(self.basis if self.is_constrained else None, *self.pto_matrices())
+
     def attrs(self) -> dict[str, str]:
         """Attributes for results: ``body_coupling`` (on/off), ``system`` (JSON),
         ``constrained_coordinates``, ``held_dofs``, ``ptos`` (one line each)."""
