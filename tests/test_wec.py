@@ -290,10 +290,13 @@ def test_oswec_hinge(corpus):
     assert abs(power / (AMPLITUDE**2 * pto.pto_power.values[0, 0, 0]) - 1) < 2 * TOLERANCE
 
 
-OSWEC_ARGS = [
+OSWEC_INERTIA = [
     "--rho", "1000", "--mass", "127000", "--mass", "999",
     "--center-of-gravity", "0", "0", "-3.9", "--center-of-gravity", "0", "0", "-10.9",
     "--radii-of-gyration", "3.817", "3.817", "3.817", "--radii-of-gyration", "1", "1", "1",
+]  # fmt: skip
+OSWEC_ARGS = [
+    *OSWEC_INERTIA,
     "--joint", "fixed", "body2", "ground", "--joint", "revolute", "body1", "body2",
     "--axis", "0", "1", "0", "--point", "0", "0", "-8.9", "--pto-damping", "1.2e5",
 ]  # fmt: skip
@@ -335,6 +338,12 @@ def test_fit_takes_the_system_and_simulate_its_model(corpus, tmp_path):
         power = float(run.pto_power.values[last, 0].mean())
         expected = float(run.pto_mean_power_frequency_domain.values[0])
     assert abs(power / expected - 1) < 0.01
+    # without the options the model's two DOFs are not the data's twelve: said how to mend
+    result = CliRunner().invoke(
+        main, ["simulate", str(model_path), *OSWEC_INERTIA, *sea, "-o", str(tmp_path / "y.nc")]
+    )
+    assert result.exit_code != 0 and "fitted for joined bodies" in result.output
+    assert "--joint, --pto and --no-body-coupling options as its fit" in result.output
     result = CliRunner().invoke(
         main, ["fit", data, "--dof", "body3__Heave", "-o", str(tmp_path / "x.nc")]
     )

@@ -354,9 +354,8 @@ def vessel_from_hydrodb(
     if tuple(model.dofs) != dofs:
         raise SimulationError(
             f"the radiation model's DOFs {model.dofs} differ from the data's {dofs}",
-            hint=None
-            if assembly is None
-            else "with joints, fit the model on the DOFs that can move, or give the data",
+            hint="fit the model with the same DOFs (cummins fit takes the same --dof, "
+            "--joint, --pto and --no-body-coupling options), or give the data",
         )
     attrs = {
         "source_file": str(ds.attrs.get("source_file", "")),

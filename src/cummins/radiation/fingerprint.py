@@ -208,12 +208,19 @@ def check_model_data(
     if allow_other_data and not dofs_differ:
         warnings.warn(CumminsWarning(text + " (used anyway: --allow-other-data)"), stacklevel=2)
         return
-    raise HydroDataError(
-        text,
-        path=where,
-        hint="give the data it was fitted to, fit the model to these data, or say "
-        "--allow-other-data (allow_other_data=True) if the pairing is meant",
+    hint = (
+        "give the data it was fitted to, fit the model to these data, or say "
+        "--allow-other-data (allow_other_data=True) if the pairing is meant"
     )
+    if dofs_differ:  # never allowed: the model's DOFs are not the data's
+        hint = "give the data it was fitted to, or fit the model to these data"
+        if model.attrs.get("motions_of"):
+            hint = (
+                f"it was fitted for joined bodies ({model.attrs['motions_of']}): give the "
+                "same --dof, --joint, --pto and --no-body-coupling options as its fit "
+                "(system= in Python), or fit the model to these data"
+            )
+    raise HydroDataError(text, path=where, hint=hint)
 
 
 __all__ = ["check_model_data", "data_fingerprint", "model_data_differences"]
