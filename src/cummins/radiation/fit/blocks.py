@@ -18,6 +18,7 @@ from cummins.radiation.fit import order_search, vector
 from cummins.radiation.fit.data import FitInput, range_cut_failures
 from cummins.radiation.fit.metrics import coupling_metrics, pair_floor
 from cummins.radiation.fit.mimo import failure_targets, fit_failures, with_motion_note
+from cummins.radiation.fit.motion import BlockMotionError
 from cummins.radiation.fit.options import MOTION_AIM, MOTION_TOL, FitOptions
 from cummins.radiation.fit.tail import fine_kernel_metrics, fine_time_grid
 from cummins.radiation.model import MemoryBlock, RadiationModel, modal_form
@@ -55,6 +56,7 @@ def fit_blocks(
         k_data = measured.damping[rows] + 1j * wk[:, None, None] * (
             measured.added_mass[rows] + antisymmetric
         )
+        block_motion = BlockMotionError(sensitivity, k_data)
     motion_aim = MOTION_AIM * motion_tol if sensitivity is not None else None
     blocks, notes, tail_failures = [], [], []
     done: list = []  # (name, dofs, elements, poles, score, pole floor) of each block fitted
@@ -72,7 +74,6 @@ def fit_blocks(
         def motion(block, dofs=dofs):
             if k_data is None:
                 return 0.0
-            k = k_data.copy()
             local = block.response(wk)
             a_block = np.zeros((len(dofs), len(dofs)))
             for (i, j), value in block.pair_values(block.added_mass_inf).items():
@@ -81,10 +82,7 @@ def fit_blocks(
                 if i <= j and (j, i) not in block.elements:  # one value for both
                     a_block[jj, ii] = value
             a_block += antisymmetric[np.ix_(dofs, dofs)]
-            k[:, np.asarray(dofs)[:, None], np.asarray(dofs)[None, :]] = (
-                local + 1j * wk[:, None, None] * a_block
-            )
-            return sensitivity.error_of(k, np.zeros((n, n)))[0]
+            return block_motion(dofs, local + 1j * wk[:, None, None] * a_block)
 
         fixed = [
             (orders or {}).get((i, j), (orders or {}).get((j, i)))

@@ -130,12 +130,14 @@ class Poles:
         n = self.count
         lam, b = np.zeros((n, n)), np.zeros(n)
         nr = self.real.size
-        lam[:nr, :nr] = np.diag(self.real)
+        index = np.arange(nr)
+        lam[index, index] = self.real
         b[:nr] = 1.0
-        for k, p in enumerate(self.pairs):
-            i = nr + 2 * k
-            lam[i : i + 2, i : i + 2] = [[p.real, p.imag], [-p.imag, p.real]]
-            b[i] = 2.0
+        top = nr + 2 * np.arange(self.pairs.size)  # the first row of each pair's 2 × 2
+        lam[top, top] = lam[top + 1, top + 1] = self.pairs.real
+        lam[top, top + 1] = self.pairs.imag
+        lam[top + 1, top] = -self.pairs.imag
+        b[top] = 2.0
         return lam, b
 
     def residue_sum(self) -> NDArray[np.float64]:
@@ -238,6 +240,11 @@ class BlockData:
     def kernel_zero_equations(self) -> tuple[tuple[float, float] | None, ...]:
         """:func:`~cummins.radiation.fit.tail.kernel_zero_equation` of each element."""
         return tuple(kernel_zero_equation(self, e) for e in range(len(self.elements)))
+
+    @functools.cached_property
+    def scores(self) -> dict:
+        """The data's side of the R² of each pair, filled by the order search's scores."""
+        return {}
 
     @functools.cached_property
     def relocation_data(self) -> BlockData:
@@ -418,9 +425,10 @@ def relocate(data: BlockData, poles: Poles) -> Poles:
     ones = np.ones((s.size, 1))
     sigma = np.hstack([phi, ones])
     scale, groups = data.relocation_rows
-    blocks: list = [None] * len(data.elements)
     # one QR per element, stacked: [own, −f σ] weighted, real rows over imaginary rows
-    # (own: the element's basis, with a constant when its A∞ is estimated)
+    # (own: the element's basis, with a constant when its A∞ is estimated); the trailing
+    # blocks of their R, written in place, then the normalisation row
+    lhs = np.empty((len(data.elements) * (n + 1) + 1, n + 1))
     n_w = s.size
     for estimated, (rows, minus_f, wre, wie) in zip((False, True), groups, strict=True):
         if not rows.size:
@@ -430,20 +438,19 @@ def relocate(data: BlockData, poles: Poles) -> Poles:
         fs = minus_f * sigma.T[None]
         # each element's matrix in column-major order (LAPACK's, factored in place)
         stack = np.empty((rows.size, k + n + 1, 2 * n_w))
-        stack[:, :k, :n_w] = wre * own.real.T[None]
-        stack[:, :k, n_w:] = wie * own.imag.T[None]
-        stack[:, k:, :n_w] = wre * fs.real
-        stack[:, k:, n_w:] = wie * fs.imag
-        for e, matrix in zip(rows, stack, strict=True):
-            blocks[e] = _r_factor(matrix.T, k)
-    norm = scale * np.real(sigma.sum(axis=0))
-    lhs = np.vstack([*blocks, norm[None, :]])
+        np.multiply(wre, own.real.T[None], out=stack[:, :k, :n_w])
+        np.multiply(wie, own.imag.T[None], out=stack[:, :k, n_w:])
+        np.multiply(wre, fs.real, out=stack[:, k:, :n_w])
+        np.multiply(wie, fs.imag, out=stack[:, k:, n_w:])
+        for e, matrix in zip(rows.tolist(), stack, strict=True):
+            _r_factor(matrix.T, k, lhs[e * (n + 1) : (e + 1) * (n + 1)])
+    lhs[-1] = scale * np.real(sigma.sum(axis=0))
     rhs = np.zeros(lhs.shape[0])
     rhs[-1] = scale * s.size
     x, *_ = np.linalg.lstsq(lhs, rhs, rcond=None)
     c, d = x[:n], x[n]
     if abs(d) < 1e-8 * max(1.0, float(np.abs(c).max())):  # relaxation failed: σ(∞) = 1
-        stack = np.vstack(blocks)
+        stack = lhs[:-1]
         c, *_ = np.linalg.lstsq(stack[:, :n], -stack[:, n], rcond=None)
         d = 1.0
     lam, b = poles.state_form()
@@ -451,18 +458,25 @@ def relocate(data: BlockData, poles: Poles) -> Poles:
     return _poles_from(np.linalg.eigvals(lam - np.outer(b, c) / d), limit, data.min_damping)
 
 
-def _r_factor(matrix: NDArray, start: int = 0) -> NDArray:
+def _r_factor(matrix: NDArray, start: int, out: NDArray) -> None:
     """The trailing block R[start:, start:] of the triangular factor R of the Householder
-    QR of a Fortran-ordered ``matrix`` (rows ≥ columns), factored in place: LAPACK's dgeqrf
-    with its optimal workspace, as ``numpy.linalg.qr(mode="r")`` calls it (the same R, bit
-    for bit), without the copies."""
+    QR of a Fortran-ordered ``matrix`` (rows ≥ columns), factored in place, written to
+    ``out``: LAPACK's dgeqrf with its optimal workspace, as ``numpy.linalg.qr(mode="r")``
+    calls it (the same R, bit for bit), without the copies."""
     rows, columns = matrix.shape
     qr, _, _, info = scipy.linalg.lapack.dgeqrf(
         matrix, lwork=_qr_workspace(rows, columns), overwrite_a=1
     )
     if info:
         raise np.linalg.LinAlgError(f"QR factorisation failed (LAPACK info {info})")
-    return np.triu(qr[start:columns, start:])
+    out[...] = qr[start:columns, start:]
+    out[_strictly_lower(columns - start)] = 0.0
+
+
+@functools.lru_cache(maxsize=64)
+def _strictly_lower(size: int) -> tuple[NDArray, NDArray]:
+    """The indices below the diagonal of a square matrix of ``size``."""
+    return np.tril_indices(size, -1)
 
 
 @functools.lru_cache(maxsize=256)
