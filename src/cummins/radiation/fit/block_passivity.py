@@ -263,7 +263,7 @@ def enforce_passivity(
 
     w = data.omega[: data.n_data]
     s = 1j * data.omega
-    basis_s = block.poles.basis(s)
+    basis_s = block.poles.kept_basis(s)
     nulls = element_null_spaces(block.elements, block.poles)
     sizes = [null.shape[1] for null in nulls]
     offsets = np.r_[0, np.cumsum(sizes)]

@@ -202,7 +202,6 @@ def fit_blocks(
                                 labels=labels,
                             )
                         )
-        plain_block = vector.fit_residues_at(data, fitted.poles) if passive else None
         a, b, c = fitted.realization()
         for (i, j), value in fitted.pair_values(fitted.added_mass_inf).items():
             inf[i, j] = value  # a pair fitted as given: each direction its own
@@ -211,9 +210,12 @@ def fit_blocks(
         note = "; ".join(block_notes)
         block = MemoryBlock(dofs, a, b, c, "vf", {}, note)
         metrics = {}
-        before = None
-        if plain_block is not None:
-            before = order_search.score_block(plain_block, data, r2=r2, r2_coupling=r2_coupling)
+        before = None  # the R² of the fit before passivity (the order search's, or again)
+        if passive:
+            plain = data.plain_fits.get(fitted.poles.count, (None, None))
+            if plain[0] is None or plain[0].poles is not fitted.poles:
+                plain = (None, score_before(data, fitted.poles, r2, r2_coupling))
+            before = plain[1]
         modal = modal_form(block.a)  # shared by its pairs' metrics
         ordered = [(i, j) for i, j in elements if i <= j]
         ordered += [(i, j) for j, i in ordered if (j, i) in inp.as_given]
@@ -352,3 +354,9 @@ def noncausal_dofs(inp: FitInput, model: RadiationModel, missed) -> list[str]:
         for d, label in enumerate(inp.labels)
         if missed[d] and error[d] > NONCAUSAL
     ]
+
+
+def score_before(data, poles, r2: float, r2_coupling: float):
+    """The score (R²) of the block's fit at ``poles`` before passivity."""
+    plain_block = vector.fit_residues_at(data, poles)
+    return order_search.score_block(plain_block, data, r2=r2, r2_coupling=r2_coupling)

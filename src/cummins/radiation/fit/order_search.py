@@ -16,7 +16,7 @@ close as the best is kept.
 
 from __future__ import annotations
 
-from dataclasses import dataclass, field
+from dataclasses import dataclass, field, replace
 
 import numpy as np
 from numpy.typing import NDArray
@@ -236,12 +236,14 @@ def identify_block(
                 tail=True,
             )
 
+        last: list = [None, None]  # the iterate give_up scored last, and its score
         if passive:
             give_up = None
             if np.isfinite(bound):
 
                 def give_up(block: PoleResidueBlock) -> bool:
-                    return distance(scored(block), r2, motion_aim) > bound
+                    last[:] = block, scored(block)
+                    return distance(last[1], r2, motion_aim) > bound
 
             block, is_passive, _ = enforce_passivity(
                 fitted,
@@ -251,7 +253,10 @@ def identify_block(
             )
         else:
             block, is_passive = fitted, True
-        score = scored(block, is_passive)
+        if block is last[0]:  # the enforcement ended on the iterate give_up scored
+            score = replace(last[1], passive=is_passive)
+        else:
+            score = scored(block, is_passive)
         tried[count] = (closeness(score, r2, motion_aim), block, score)
         return is_passive and score.meets(motion_aim)
 
@@ -270,6 +275,7 @@ def identify_block(
         )
         bad = distance(plain, r2, motion_aim)
         plain_fits.append((bad, count, fitted))
+        data.plain_fits[count] = (fitted, plain)
         if bad < (1 - IMPROVEMENT) * best_plain or bad == 0:
             best_plain, stalled = min(bad, best_plain), 0
         else:

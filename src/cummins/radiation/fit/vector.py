@@ -125,6 +125,19 @@ class Poles:
             cols.append(pair)
         return np.hstack(cols)
 
+    def kept_basis(self, s: NDArray) -> NDArray[np.complex128]:
+        """:meth:`basis`, kept (read-only) for the next call at the same ``s``: a fit's
+        scores and its passivity enforcement evaluate it at the data's frequencies again."""
+        s = np.asarray(s, dtype=complex)
+        kept = self.__dict__.setdefault("_kept", {})
+        key = s.tobytes()
+        if key not in kept:
+            if len(kept) > 2:  # the last few frequencies only
+                kept.clear()
+            kept[key] = self.basis(s)
+            kept[key].flags.writeable = False
+        return kept[key]
+
     def state_form(self) -> tuple[NDArray, NDArray]:
         """(Λ, b) with basis(s) = (sI − Λ)⁻¹ b written in the same real coordinates."""
         n = self.count
@@ -154,8 +167,11 @@ def _poles_from(values: NDArray, limit: float = np.inf, min_damping: float = MIN
     ``min_damping`` of critical (:data:`MIN_DAMPING`)."""
     values = np.asarray(values, dtype=complex)
     size = np.abs(values)
-    values = np.where(size > limit, values * limit / np.where(size > 0, size, 1.0), values)
-    scale = np.abs(values) + np.finfo(float).tiny
+    beyond = size > limit
+    if beyond.any():
+        values = np.where(beyond, values * limit / np.where(size > 0, size, 1.0), values)
+        size = np.abs(values)
+    scale = size + np.finfo(float).tiny
     is_real = np.abs(values.imag) <= 1e-9 * scale
     real = -np.abs(values[is_real].real)
     pairs = values[~is_real & (values.imag > 0)]
@@ -244,6 +260,11 @@ class BlockData:
     @functools.cached_property
     def scores(self) -> dict:
         """The data's side of the R² of each pair, filled by the order search's scores."""
+        return {}
+
+    @functools.cached_property
+    def plain_fits(self) -> dict:
+        """The order search's fits before passivity and their scores, by count."""
         return {}
 
     @functools.cached_property
@@ -613,7 +634,7 @@ class PoleResidueBlock:
     def element_response(self, omega: NDArray) -> NDArray[np.complex128]:
         """K of each element, (n_omega, n_elements)."""
         w = np.asarray(omega, dtype=float)
-        return 1j * w[:, None] * (self.poles.basis(1j * w) @ self.coefficients.T)
+        return 1j * w[:, None] * (self.poles.kept_basis(1j * w) @ self.coefficients.T)
 
     def element_impulse(self, t: NDArray) -> NDArray[np.float64]:
         """K(t) of each element, (n_t, n_elements): K(s) = Σ x p/(s − p) over the real
