@@ -579,11 +579,12 @@ def fit_residues(data: BlockData, poles: Poles) -> tuple[NDArray, NDArray]:
     """Coefficients (n_elements, count) with Σ R_k = 0 (and the antisymmetric parts'
     constraints), and A∞ per element."""
     s = 1j * data.omega
-    phi = poles.basis(s)
+    phi = poles.kept_basis(s)
     free = data.free_inf
     x = np.zeros((len(data.elements), poles.count))
     inf = np.zeros(len(data.elements)) if data.fixed_inf is None else data.fixed_inf.copy()
     columns: dict = {}
+    n_s = s.size
     for e, (f, wr, wi, null) in enumerate(
         zip(
             data.values,
@@ -598,22 +599,25 @@ def fit_residues(data: BlockData, poles: Poles) -> tuple[NDArray, NDArray]:
             m = phi @ null
             columns[key] = np.hstack([m, np.ones((s.size, 1))]) if free[e] else m
         m = columns[key]
-        rows = _stacked(m, wr, wi)
-        rhs = np.concatenate([wr * f.real, wi * f.imag])
-        if free[e] and data.inf_guess is not None and data.inf_spread[e] > 0:
+        prior = free[e] and data.inf_guess is not None and data.inf_spread[e] > 0
+        zero = data.kernel_zero_equations[e]
+        # the weighted equations, real rows over imaginary, then the prior and K(0)
+        rows = np.zeros((2 * n_s + int(prior) + (zero is not None), m.shape[1]))
+        rhs = np.empty(rows.shape[0])
+        np.multiply(wr[:, None], m.real, out=rows[:n_s])
+        np.multiply(wi[:, None], m.imag, out=rows[n_s : 2 * n_s])
+        np.multiply(wr, f.real, out=rhs[:n_s])
+        np.multiply(wi, f.imag, out=rhs[n_s : 2 * n_s])
+        if prior:
             # the prior: weighs like all the added-mass equations together (their
             # weights are 1/spread of A over √n each)
             weight = 1.0 / data.inf_spread[e]
-            prior_row = np.zeros(m.shape[1])
-            prior_row[-1] = weight
-            rows = np.vstack([rows, prior_row])
-            rhs = np.r_[rhs, weight * data.inf_guess[e]]
-        zero = data.kernel_zero_equations[e]
+            rows[2 * n_s, -1] = weight
+            rhs[2 * n_s] = weight * data.inf_guess[e]
         if zero is not None:  # K(0): the damping beyond the data is data too
             form = np.zeros(m.shape[1])
             form[: null.shape[1]] = kernel_zero_form(poles) @ null
-            rows = np.vstack([rows, zero[0] * form])
-            rhs = np.r_[rhs, zero[0] * zero[1]]
+            rows[-1], rhs[-1] = zero[0] * form, zero[0] * zero[1]
         z, *_ = np.linalg.lstsq(rows, rhs, rcond=None)
         x[e] = null @ z[: null.shape[1]]
         if free[e]:
