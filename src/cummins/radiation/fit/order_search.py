@@ -141,13 +141,13 @@ def score_block(
 
 def _pair_data(data: BlockData, i: int, j: int) -> tuple:
     """The data's side of the R² of the pair (i, j) (each direction of a pair fitted as
-    given), the same for every fit of the block and computed once (``data.scores``):
+    given), the same for every fit of the block and computed once (``data.cache``):
     (frequencies kept, their ω, A and B there, Σ(y − ȳ)² of A and B, at least n × the
     pair's variance floor when it is fitted as given: :func:`~cummins.radiation.fit.
     frequency.r_squared`)."""
     from cummins.radiation.fit.metrics import pair_floor
 
-    found = data.scores.get((i, j))
+    found = data.cache.get(("pair", i, j))
     if found is None:
         e = data.elements.index((min(i, j), max(i, j)))
         use = data.used[:, e]
@@ -161,7 +161,7 @@ def _pair_data(data: BlockData, i: int, j: int) -> tuple:
             for y, f in ((a_data, floor[0]), (b_data, floor[1]))
         ]
         found = (use, data.omega[: data.n_data][use], a_data, b_data, *totals)
-        data.scores[(i, j)] = found
+        data.cache[("pair", i, j)] = found
     return found
 
 

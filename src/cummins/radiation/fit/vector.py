@@ -258,8 +258,8 @@ class BlockData:
         return tuple(kernel_zero_equation(self, e) for e in range(len(self.elements)))
 
     @functools.cached_property
-    def scores(self) -> dict:
-        """The data's side of the R² of each pair, filled by the order search's scores."""
+    def cache(self) -> dict:
+        """What the scores of every fit share (the data's side), filled as they ask."""
         return {}
 
     @functools.cached_property
