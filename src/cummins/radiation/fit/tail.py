@@ -389,12 +389,12 @@ class TailBounds:
                 continue
             unit = np.zeros(len(block.dofs))
             unit[where[i]] = 1.0
-            edges = np.flatnonzero(np.diff(np.r_[False, broken, False].astype(int)))
+            edges = np.flatnonzero(np.diff(np.concatenate([[0], broken, [0]]).astype(int)))
             for first, stop in zip(edges[::2], edges[1::2], strict=True):
                 # the worst point and five across the band
                 band = np.arange(first, stop)
                 spread = band[np.linspace(0, band.size - 1, 5).astype(int)]
-                for k in np.unique(np.r_[band[np.argmin(room[band])], spread]):
+                for k in np.unique(np.concatenate([[band[np.argmin(room[band])]], spread])):
                     out.append((-forms[k], float(room[k]), unit, peak))
         return out
 
