@@ -143,14 +143,12 @@ class Poles:
         n = self.count
         lam, b = np.zeros((n, n)), np.zeros(n)
         nr = self.real.size
-        index = np.arange(nr)
-        lam[index, index] = self.real
+        lam[:nr, :nr] = np.diag(self.real)
         b[:nr] = 1.0
-        top = nr + 2 * np.arange(self.pairs.size)  # the first row of each pair's 2 × 2
-        lam[top, top] = lam[top + 1, top + 1] = self.pairs.real
-        lam[top, top + 1] = self.pairs.imag
-        lam[top + 1, top] = -self.pairs.imag
-        b[top] = 2.0
+        for k, p in enumerate(self.pairs):
+            i = nr + 2 * k
+            lam[i : i + 2, i : i + 2] = [[p.real, p.imag], [-p.imag, p.real]]
+            b[i] = 2.0
         return lam, b
 
     def residue_sum(self) -> NDArray[np.float64]:
