@@ -283,6 +283,12 @@ def fit_blocks(
     return replace(model, attrs={**model.attrs, "failures": failures})
 
 
+def score_before(data, poles, r2: float, r2_coupling: float):
+    """The score (R²) of the block's fit at ``poles`` before passivity."""
+    plain_block = vector.fit_residues_at(data, poles)
+    return order_search.score_block(plain_block, data, r2=r2, r2_coupling=r2_coupling)
+
+
 #: A block whose DOFs' diagonal A and B are within SHARED_POLES (the largest difference
 #: over the frequencies, relative to the larger of the two's largest value) of those of a
 #: block fitted before it, with as many DOFs and pairs, takes that block's common poles and
@@ -354,9 +360,3 @@ def noncausal_dofs(inp: FitInput, model: RadiationModel, missed) -> list[str]:
         for d, label in enumerate(inp.labels)
         if missed[d] and error[d] > NONCAUSAL
     ]
-
-
-def score_before(data, poles, r2: float, r2_coupling: float):
-    """The score (R²) of the block's fit at ``poles`` before passivity."""
-    plain_block = vector.fit_residues_at(data, poles)
-    return order_search.score_block(plain_block, data, r2=r2, r2_coupling=r2_coupling)
