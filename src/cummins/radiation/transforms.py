@@ -283,12 +283,6 @@ def _segments_complex(x: NDArray, f: NDArray):
     return m, h, f_mean, f_half, f.shape[1:]
 
 
-def _log_abs(z: NDArray) -> NDArray:
-    """ln|z| with ln 0 := 0 (the principal-value cancellation, see module docstring)."""
-    a = np.abs(z)
-    return np.log(np.where(a > 0, a, 1.0))
-
-
 def hilbert_pv(x: ArrayLike, f: ArrayLike, y: ArrayLike) -> NDArray[np.float64]:
     """Principal value PV ∫_{x₀}^{x_N} f(x) / (x² − y²) dx for piecewise-linear f.
 
@@ -332,10 +326,19 @@ def _pv_kernels(x: NDArray, y: NDArray) -> tuple[NDArray, NDArray]:
     each: ln|(b − y)/(a − y)| − ln|(b + y)/(a + y)| and y × their sum, per segment [a, b]."""
     a, b = x[:-1], x[1:]  # the grid points themselves: y == x_k must give exactly 0
     yy = y[:, None]
-    logs = _log_abs(x[None, :] - yy)  # ln|x_k − y| once for both ends of each segment
+    # ln|x_k − y| once for both ends of each segment, ln 0 := 0 (the principal-value
+    # cancellation, module docstring), in place: no temporaries (5 MB each at 800 points)
+    logs = np.subtract(x[None, :], yy)
+    np.abs(logs, out=logs)
+    np.copyto(logs, 1.0, where=~(logs > 0))
+    np.log(logs, out=logs)
     log_minus = logs[:, 1:] - logs[:, :-1]  # (M, K)
-    log_plus = np.log((b[None, :] + yy) / (a[None, :] + yy))
-    return log_minus - log_plus, (log_minus + log_plus) * yy
+    log_plus = np.add(b[None, :], yy)  # ln((b + y)/(a + y)), a + y where logs was
+    np.divide(log_plus, np.add(a[None, :], yy, out=logs[:, :-1]), out=log_plus)
+    np.log(log_plus, out=log_plus)
+    difference = log_minus - log_plus
+    np.add(log_minus, log_plus, out=log_minus)
+    return difference, np.multiply(log_minus, yy, out=log_minus)
 
 
 #: Within :func:`shared_kernels`, :func:`hilbert_pv` keeps the logarithms of the grids

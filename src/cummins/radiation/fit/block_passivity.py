@@ -134,7 +134,7 @@ def passivity_violations(
         b, c = b * dof_scale[None, :], dof_scale[:, None] * c  # S K S: well conditioned
         # every point once: the grid, five inside each band between crossings, its midpoint
         edges, extra = band_points(a, b, c, grid)
-        points = np.r_[grid, extra]
+        points = np.concatenate([grid, extra])
         order = np.argsort(points)
         points = points[order]
         k_all = np.concatenate([k_grid, block.hermitian_part(extra)])[order]
@@ -146,7 +146,7 @@ def passivity_violations(
     if not exact:
         negative = low_all < 0
         change = np.flatnonzero(negative[1:] != negative[:-1])
-        edges = np.r_[0.0, np.sqrt(grid[change] * grid[change + 1]), np.inf]
+        edges = np.concatenate([[0.0], np.sqrt(grid[change] * grid[change + 1]), [np.inf]])
     out, chosen = [], []
     # between consecutive crossings the sign of λ_min is constant
     starts = np.searchsorted(points, edges, side="right")
@@ -154,7 +154,8 @@ def passivity_violations(
     firsts, lasts = starts[:-1], stops[1:]
     firsts, lasts = firsts[lasts > firsts], lasts[lasts > firsts]
     # the local minima of λ_min inside the bands (beyond a band's ends: +∞)
-    before, after = np.r_[np.inf, low_all[:-1]], np.r_[low_all[1:], np.inf]
+    before = np.concatenate([[np.inf], low_all[:-1]])
+    after = np.concatenate([low_all[1:], [np.inf]])
     before[firsts], after[lasts - 1] = np.inf, np.inf
     minimum = (low_all < -VIOLATION) & (low_all <= before) & (low_all <= after)
     for first, last in zip(firsts.tolist(), lasts.tolist(), strict=True):
@@ -165,7 +166,8 @@ def passivity_violations(
         minima = np.flatnonzero(minimum[first:last])
         spread = np.arange(5) * (last - first - 1) // 4  # 5 across, as linspace truncated
         chosen.append(
-            first + np.unique(np.r_[worst, minima[np.argsort(low[minima])][:MINIMA], spread])
+            first
+            + np.unique(np.concatenate([[worst], minima[np.argsort(low[minima])][:MINIMA], spread]))
         )
     if chosen:
         at = np.concatenate(chosen)
@@ -263,7 +265,7 @@ def enforce_passivity(
 
     w = data.omega[: data.n_data]
     s = 1j * data.omega
-    basis_s = block.poles.basis(s)
+    basis_s = block.poles.kept_basis(s)
     nulls = element_null_spaces(block.elements, block.poles)
     sizes = [null.shape[1] for null in nulls]
     offsets = np.r_[0, np.cumsum(sizes)]
@@ -315,7 +317,7 @@ def enforce_passivity(
         # once the programme is large, a constraint that has never bound is left out of
         # the next ones (were it violated again, the next sweep finds it); one that has
         # bound is kept, or the iteration goes round in circles
-        bound = np.r_[bound, np.zeros(len(rows) - bound.size, dtype=bool)] | active
+        bound = np.concatenate([bound, np.zeros(len(rows) - bound.size, dtype=bool)]) | active
         if len(rows) > PRUNE_ROWS * delta.size:
             rows = [r for r, a in zip(rows, bound, strict=True) if a]
             rhs = [h for h, a in zip(rhs, bound, strict=True) if a]

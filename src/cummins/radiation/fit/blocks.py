@@ -19,6 +19,7 @@ from cummins.radiation.fit.causal_inf import estimated_inf, noncausal_dofs
 from cummins.radiation.fit.data import FitInput, range_cut_failures
 from cummins.radiation.fit.metrics import coupling_metrics, pair_floor
 from cummins.radiation.fit.mimo import failure_targets, fit_failures, with_motion_note
+from cummins.radiation.fit.motion import BlockMotionError
 from cummins.radiation.fit.options import MOTION_AIM, MOTION_TOL, FitOptions
 from cummins.radiation.fit.tail import fine_kernel_metrics, fine_time_grid
 from cummins.radiation.model import MemoryBlock, RadiationModel, modal_form
@@ -56,6 +57,7 @@ def fit_blocks(
         k_data = measured.damping[rows] + 1j * wk[:, None, None] * (
             measured.added_mass[rows] + antisymmetric
         )
+        block_motion = BlockMotionError(sensitivity, k_data)
     motion_aim = MOTION_AIM * motion_tol if sensitivity is not None else None
     blocks, notes, tail_failures = [], [], []
     done: list = []  # (name, dofs, elements, poles, score, pole floor) of each block fitted
@@ -73,7 +75,6 @@ def fit_blocks(
         def motion(block, dofs=dofs):
             if k_data is None:
                 return 0.0
-            k = k_data.copy()
             local = block.response(wk)
             a_block = np.zeros((len(dofs), len(dofs)))
             for (i, j), value in block.pair_values(block.added_mass_inf).items():
@@ -82,10 +83,7 @@ def fit_blocks(
                 if i <= j and (j, i) not in block.elements:  # one value for both
                     a_block[jj, ii] = value
             a_block += antisymmetric[np.ix_(dofs, dofs)]
-            k[:, np.asarray(dofs)[:, None], np.asarray(dofs)[None, :]] = (
-                local + 1j * wk[:, None, None] * a_block
-            )
-            return sensitivity.error_of(k, np.zeros((n, n)))[0]
+            return block_motion(dofs, local + 1j * wk[:, None, None] * a_block)
 
         fixed = [
             (orders or {}).get((i, j), (orders or {}).get((j, i)))
@@ -205,7 +203,6 @@ def fit_blocks(
                                 labels=labels,
                             )
                         )
-        plain_block = vector.fit_residues_at(data, fitted.poles) if passive else None
         a, b, c = fitted.realization()
         for (i, j), value in fitted.pair_values(fitted.added_mass_inf).items():
             inf[i, j] = value  # a pair fitted as given: each direction its own
@@ -214,9 +211,12 @@ def fit_blocks(
         note = "; ".join(block_notes)
         block = MemoryBlock(dofs, a, b, c, "vf", {}, note)
         metrics = {}
-        before = None
-        if plain_block is not None:
-            before = order_search.score_block(plain_block, data, r2=r2, r2_coupling=r2_coupling)
+        before = None  # the R² of the fit before passivity (the order search's, or again)
+        if passive:
+            plain = data.plain_fits.get(fitted.poles.count, (None, None))
+            if plain[0] is None or plain[0].poles is not fitted.poles:
+                plain = (None, score_before(data, fitted.poles, r2, r2_coupling))
+            before = plain[1]
         modal = modal_form(block.a)  # shared by its pairs' metrics
         ordered = [(i, j) for i, j in elements if i <= j]
         ordered += [(i, j) for j, i in ordered if (j, i) in inp.as_given]
@@ -284,6 +284,12 @@ def fit_blocks(
     failures += range_cut_failures(model, inp, options.r2)
     failures += tail_failures  # the model's damping beyond the data (fit/tail.py)
     return replace(model, attrs={**model.attrs, "failures": failures})
+
+
+def score_before(data, poles, r2: float, r2_coupling: float):
+    """The score (R²) of the block's fit at ``poles`` before passivity."""
+    plain_block = vector.fit_residues_at(data, poles)
+    return order_search.score_block(plain_block, data, r2=r2, r2_coupling=r2_coupling)
 
 
 #: A block whose DOFs' diagonal A and B are within SHARED_POLES (the largest difference

@@ -16,9 +16,10 @@ close as the best is kept.
 
 from __future__ import annotations
 
-from dataclasses import dataclass, field
+from dataclasses import dataclass, field, replace
 
 import numpy as np
+from numpy.typing import NDArray
 
 from cummins.errors import FitError
 from cummins.radiation.fit.block_passivity import enforce_passivity
@@ -105,29 +106,16 @@ def score_block(
     block → relative motion error), the motion error; with ``r2_kernel`` (and the data's
     K(t) in ``data``) the R² of K(t) of each diagonal element, and with ``tail`` the
     model's damping beyond the data."""
-    from cummins.radiation.fit.frequency import r_squared
-    from cummins.radiation.fit.metrics import pair_floor
-
     w = data.omega[: data.n_data]
     k = block.element_response(w)
     responses = block.pair_values(k.T)
     infs = block.pair_values(block.added_mass_inf)
-    used = {}
-    for e, (i, j) in enumerate(block.elements):
-        if i <= j:
-            used[(i, j)] = used[(j, i)] = data.used[:, e]
     scores, shortfall = {}, 0.0
     for (i, j), response in responses.items():
-        use = used[(i, j)]
-        a_model = infs[(i, j)] + response[use].imag / w[use]
+        use, w_use, a_data, b_data, total_a, total_b = _pair_data(data, i, j)
+        a_model = infs[(i, j)] + response[use].imag / w_use
         b_model = response[use].real
-        floor = (0.0, 0.0)
-        if (max(i, j), min(i, j)) in block.elements:  # fitted as given: the pair's spread
-            floor = pair_floor(data.added_mass[use], data.damping[use], i, j)
-        pair = (
-            r_squared(data.added_mass[use, i, j], a_model, floor[0]),
-            r_squared(data.damping[use, i, j], b_model, floor[1]),
-        )
+        pair = (_r_squared(a_data, a_model, total_a), _r_squared(b_data, b_model, total_b))
         scores[(i, j)] = pair
         target = r2 if i == j else r2_coupling
         shortfall = max(shortfall, target - min(pair))
@@ -149,6 +137,41 @@ def score_block(
     return BlockScore(
         scores, shortfall, error, passive, kernel, kernel_shortfall, beyond, tail_excess
     )
+
+
+def _pair_data(data: BlockData, i: int, j: int) -> tuple:
+    """The data's side of the R² of the pair (i, j) (each direction of a pair fitted as
+    given), the same for every fit of the block and computed once (``data.cache``):
+    (frequencies kept, their ω, A and B there, Σ(y − ȳ)² of A and B, at least n × the
+    pair's variance floor when it is fitted as given: :func:`~cummins.radiation.fit.
+    frequency.r_squared`)."""
+    from cummins.radiation.fit.metrics import pair_floor
+
+    found = data.cache.get(("pair", i, j))
+    if found is None:
+        e = data.elements.index((min(i, j), max(i, j)))
+        use = data.used[:, e]
+        floor = (0.0, 0.0)
+        if (max(i, j), min(i, j)) in data.elements:  # fitted as given: the pair's spread
+            floor = pair_floor(data.added_mass[use], data.damping[use], i, j)
+        a_data = np.asarray(data.added_mass[use, i, j], dtype=float)
+        b_data = np.asarray(data.damping[use, i, j], dtype=float)
+        totals = [
+            max(float(np.sum((y - y.mean()) ** 2)), y.size * f)
+            for y, f in ((a_data, floor[0]), (b_data, floor[1]))
+        ]
+        found = (use, data.omega[: data.n_data][use], a_data, b_data, *totals)
+        data.cache[("pair", i, j)] = found
+    return found
+
+
+def _r_squared(y: NDArray, y_model: NDArray, total: float) -> float:
+    """:func:`~cummins.radiation.fit.frequency.r_squared` with Σ(y − ȳ)² (``total``,
+    floored) given."""
+    y_model = np.asarray(y_model, dtype=float)
+    if total == 0:
+        return 1.0 if np.allclose(y, y_model) else 0.0
+    return float(1.0 - np.sum((y - y_model) ** 2) / total)
 
 
 #: Near-ties in the order search are decided by this margin, not by rounding.
@@ -213,12 +236,14 @@ def identify_block(
                 tail=True,
             )
 
+        last: list = [None, None]  # the iterate give_up scored last, and its score
         if passive:
             give_up = None
             if np.isfinite(bound):
 
                 def give_up(block: PoleResidueBlock) -> bool:
-                    return distance(scored(block), r2, motion_aim) > bound
+                    last[:] = block, scored(block)
+                    return distance(last[1], r2, motion_aim) > bound
 
             block, is_passive, _ = enforce_passivity(
                 fitted,
@@ -228,7 +253,10 @@ def identify_block(
             )
         else:
             block, is_passive = fitted, True
-        score = scored(block, is_passive)
+        if block is last[0]:  # the enforcement ended on the iterate give_up scored
+            score = replace(last[1], passive=is_passive)
+        else:
+            score = scored(block, is_passive)
         tried[count] = (closeness(score, r2, motion_aim), block, score)
         return is_passive and score.meets(motion_aim)
 
@@ -247,6 +275,7 @@ def identify_block(
         )
         bad = distance(plain, r2, motion_aim)
         plain_fits.append((bad, count, fitted))
+        data.plain_fits[count] = (fitted, plain)
         if bad < (1 - IMPROVEMENT) * best_plain or bad == 0:
             best_plain, stalled = min(bad, best_plain), 0
         else:

@@ -277,17 +277,19 @@ def damping_beyond_data(
     omega: ArrayLike,
     data_peak: float,
     tail: DampingTail | None = None,
+    limit: NDArray | None = None,
 ) -> BeyondData:
     """How the model's damping ``b_model`` at ``omega`` (beyond the data, increasing,
     from ω_N: :func:`check_frequencies`) compares with the data's peak ``data_peak`` and
-    with the :func:`envelope` of the data's damping ``tail`` (optional)."""
+    with the :func:`envelope` of the data's damping ``tail`` (optional; ``limit``: that
+    envelope at ``omega``, when known)."""
     b = np.asarray(b_model, dtype=float)
     w = np.asarray(omega, dtype=float)
     scale = float(data_peak) if data_peak > 0 else 1.0
     top = int(np.argmax(b))
     excess, excess_omega = 0.0, float("nan")
     if tail is not None:
-        over = b - envelope(tail, w, scale)
+        over = b - (envelope(tail, w, scale) if limit is None else limit)
         k = int(np.argmax(over))
         if over[k] > 0:
             excess, excess_omega = float(over[k] / scale), float(w[k])
@@ -308,16 +310,34 @@ def block_beyond_data(block, data) -> dict[int, BeyondData]:
     """:func:`damping_beyond_data` of each diagonal element of a fitted block
     (:class:`~cummins.radiation.fit.vector.PoleResidueBlock`) against its data
     (:class:`~cummins.radiation.fit.vector.BlockData`), keyed by DOF (model index)."""
-    grid = check_frequencies(float(data.omega[data.n_data - 1]))
+    grid, limits = beyond_limits(data)
     k = block.element_response(grid).real
     out = {}
     for e, (i, j) in enumerate(block.elements):
         if i != j:
             continue
-        peak = float(np.abs(data.damping[data.used[:, e], i, i]).max(initial=0.0))
+        peak, limit = limits[e]
         tail = None if data.tails is None else data.tails[e]
-        out[i] = damping_beyond_data(k[:, e], grid, peak, tail)
+        out[i] = damping_beyond_data(k[:, e], grid, peak, tail, limit)
     return out
+
+
+def beyond_limits(data) -> tuple[NDArray, dict]:
+    """The check frequencies beyond a block's data and, per diagonal element, the data's
+    peak damping and the :func:`envelope` of its tail there (None without tails), the same
+    for every fit of the block: computed once (``data.cache``)."""
+    found = data.cache.get("beyond")
+    if found is None:
+        grid = check_frequencies(float(data.omega[data.n_data - 1]))
+        limits = {}
+        for e, (i, j) in enumerate(data.elements):
+            if i == j:
+                peak = float(np.abs(data.damping[data.used[:, e], i, i]).max(initial=0.0))
+                scale = peak if peak > 0 else 1.0
+                tail = None if data.tails is None else data.tails[e]
+                limits[e] = (peak, None if tail is None else envelope(tail, grid, scale))
+        found = data.cache["beyond"] = (grid, limits)
+    return found
 
 
 #: The bound the passivity step puts on the damping beyond the data: the
@@ -343,17 +363,15 @@ class TailBounds:
         self._caps: tuple = ()
 
     def _prepare(self, block) -> tuple:
-        data = self.data
-        grid = check_frequencies(float(data.omega[data.n_data - 1]))
-        forms = np.real(1j * grid[:, None] * block.poles.basis(1j * grid))
+        grid, limits = beyond_limits(self.data)
+        forms = np.real(1j * grid[:, None] * block.poles.kept_basis(1j * grid))
         caps = []
         for e, (i, j) in enumerate(block.elements):
             if i != j:
                 continue
-            peak = float(np.abs(data.damping[data.used[:, e], i, i]).max(initial=0.0))
+            peak, limit = limits[e]
             if peak > 0:
-                cap = envelope(data.tails[e], grid, peak) + BOUND_TOLERANCE * peak
-                caps.append((e, i, peak, cap))
+                caps.append((e, i, peak, limit + BOUND_TOLERANCE * peak))
         return forms, caps
 
     def __call__(self, block) -> list[tuple[NDArray, float, NDArray, float]]:
@@ -371,12 +389,12 @@ class TailBounds:
                 continue
             unit = np.zeros(len(block.dofs))
             unit[where[i]] = 1.0
-            edges = np.flatnonzero(np.diff(np.r_[False, broken, False].astype(int)))
+            edges = np.flatnonzero(np.diff(np.concatenate([[0], broken, [0]]).astype(int)))
             for first, stop in zip(edges[::2], edges[1::2], strict=True):
                 # the worst point and five across the band
                 band = np.arange(first, stop)
                 spread = band[np.linspace(0, band.size - 1, 5).astype(int)]
-                for k in np.unique(np.r_[band[np.argmin(room[band])], spread]):
+                for k in np.unique(np.concatenate([[band[np.argmin(room[band])]], spread])):
                     out.append((-forms[k], float(room[k]), unit, peak))
         return out
 

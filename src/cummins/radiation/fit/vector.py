@@ -125,6 +125,19 @@ class Poles:
             cols.append(pair)
         return np.hstack(cols)
 
+    def kept_basis(self, s: NDArray) -> NDArray[np.complex128]:
+        """:meth:`basis`, kept (read-only) for the next call at the same ``s``: a fit's
+        scores and its passivity enforcement evaluate it at the data's frequencies again."""
+        s = np.asarray(s, dtype=complex)
+        kept = self.__dict__.setdefault("_kept", {})
+        key = s.tobytes()
+        if key not in kept:
+            if len(kept) > 2:  # the last few frequencies only
+                kept.clear()
+            kept[key] = self.basis(s)
+            kept[key].flags.writeable = False
+        return kept[key]
+
     def state_form(self) -> tuple[NDArray, NDArray]:
         """(Λ, b) with basis(s) = (sI − Λ)⁻¹ b written in the same real coordinates."""
         n = self.count
@@ -152,8 +165,11 @@ def _poles_from(values: NDArray, limit: float = np.inf, min_damping: float = MIN
     ``min_damping`` of critical (:data:`MIN_DAMPING`)."""
     values = np.asarray(values, dtype=complex)
     size = np.abs(values)
-    values = np.where(size > limit, values * limit / np.where(size > 0, size, 1.0), values)
-    scale = np.abs(values) + np.finfo(float).tiny
+    beyond = size > limit
+    if beyond.any():
+        values = np.where(beyond, values * limit / np.where(size > 0, size, 1.0), values)
+        size = np.abs(values)
+    scale = size + np.finfo(float).tiny
     is_real = np.abs(values.imag) <= 1e-9 * scale
     real = -np.abs(values[is_real].real)
     pairs = values[~is_real & (values.imag > 0)]
@@ -238,6 +254,16 @@ class BlockData:
     def kernel_zero_equations(self) -> tuple[tuple[float, float] | None, ...]:
         """:func:`~cummins.radiation.fit.tail.kernel_zero_equation` of each element."""
         return tuple(kernel_zero_equation(self, e) for e in range(len(self.elements)))
+
+    @functools.cached_property
+    def cache(self) -> dict:
+        """What the scores of every fit share (the data's side), filled as they ask."""
+        return {}
+
+    @functools.cached_property
+    def plain_fits(self) -> dict:
+        """The order search's fits before passivity and their scores, by count."""
+        return {}
 
     @functools.cached_property
     def relocation_data(self) -> BlockData:
@@ -421,9 +447,10 @@ def relocate(data: BlockData, poles: Poles) -> Poles:
     ones = np.ones((s.size, 1))
     sigma = np.hstack([phi, ones])
     scale, groups = data.relocation_rows
-    blocks: list = [None] * len(data.elements)
     # one QR per element, stacked: [own, −f σ] weighted, real rows over imaginary rows
-    # (own: the element's basis, with a constant when its A∞ is estimated)
+    # (own: the element's basis, with a constant when its A∞ is estimated); the trailing
+    # blocks of their R, written in place, then the normalisation row
+    lhs = np.empty((len(data.elements) * (n + 1) + 1, n + 1))
     n_w = s.size
     for estimated, (rows, minus_f, wre, wie) in zip((False, True), groups, strict=True):
         if not rows.size:
@@ -433,20 +460,19 @@ def relocate(data: BlockData, poles: Poles) -> Poles:
         fs = minus_f * sigma.T[None]
         # each element's matrix in column-major order (LAPACK's, factored in place)
         stack = np.empty((rows.size, k + n + 1, 2 * n_w))
-        stack[:, :k, :n_w] = wre * own.real.T[None]
-        stack[:, :k, n_w:] = wie * own.imag.T[None]
-        stack[:, k:, :n_w] = wre * fs.real
-        stack[:, k:, n_w:] = wie * fs.imag
-        for e, matrix in zip(rows, stack, strict=True):
-            blocks[e] = _r_factor(matrix.T, k)
-    norm = scale * np.real(sigma.sum(axis=0))
-    lhs = np.vstack([*blocks, norm[None, :]])
+        np.multiply(wre, own.real.T[None], out=stack[:, :k, :n_w])
+        np.multiply(wie, own.imag.T[None], out=stack[:, :k, n_w:])
+        np.multiply(wre, fs.real, out=stack[:, k:, :n_w])
+        np.multiply(wie, fs.imag, out=stack[:, k:, n_w:])
+        for e, matrix in zip(rows.tolist(), stack, strict=True):
+            _r_factor(matrix.T, k, lhs[e * (n + 1) : (e + 1) * (n + 1)])
+    lhs[-1] = scale * np.real(sigma.sum(axis=0))
     rhs = np.zeros(lhs.shape[0])
     rhs[-1] = scale * s.size
     x, *_ = np.linalg.lstsq(lhs, rhs, rcond=None)
     c, d = x[:n], x[n]
     if abs(d) < 1e-8 * max(1.0, float(np.abs(c).max())):  # relaxation failed: σ(∞) = 1
-        stack = np.vstack(blocks)
+        stack = lhs[:-1]
         c, *_ = np.linalg.lstsq(stack[:, :n], -stack[:, n], rcond=None)
         d = 1.0
     lam, b = poles.state_form()
@@ -454,18 +480,25 @@ def relocate(data: BlockData, poles: Poles) -> Poles:
     return _poles_from(np.linalg.eigvals(lam - np.outer(b, c) / d), limit, data.min_damping)
 
 
-def _r_factor(matrix: NDArray, start: int = 0) -> NDArray:
+def _r_factor(matrix: NDArray, start: int, out: NDArray) -> None:
     """The trailing block R[start:, start:] of the triangular factor R of the Householder
-    QR of a Fortran-ordered ``matrix`` (rows ≥ columns), factored in place: LAPACK's dgeqrf
-    with its optimal workspace, as ``numpy.linalg.qr(mode="r")`` calls it (the same R, bit
-    for bit), without the copies."""
+    QR of a Fortran-ordered ``matrix`` (rows ≥ columns), factored in place, written to
+    ``out``: LAPACK's dgeqrf with its optimal workspace, as ``numpy.linalg.qr(mode="r")``
+    calls it (the same R, bit for bit), without the copies."""
     rows, columns = matrix.shape
     qr, _, _, info = scipy.linalg.lapack.dgeqrf(
         matrix, lwork=_qr_workspace(rows, columns), overwrite_a=1
     )
     if info:
         raise np.linalg.LinAlgError(f"QR factorisation failed (LAPACK info {info})")
-    return np.triu(qr[start:columns, start:])
+    out[...] = qr[start:columns, start:]
+    out[_strictly_lower(columns - start)] = 0.0
+
+
+@functools.lru_cache(maxsize=64)
+def _strictly_lower(size: int) -> tuple[NDArray, NDArray]:
+    """The indices below the diagonal of a square matrix of ``size``."""
+    return np.tril_indices(size, -1)
 
 
 @functools.lru_cache(maxsize=256)
@@ -547,11 +580,12 @@ def fit_residues(data: BlockData, poles: Poles) -> tuple[NDArray, NDArray]:
     """Coefficients (n_elements, count) with Σ R_k = 0 (and the antisymmetric parts'
     constraints), and A∞ per element."""
     s = 1j * data.omega
-    phi = poles.basis(s)
+    phi = poles.kept_basis(s)
     free = data.free_inf
     x = np.zeros((len(data.elements), poles.count))
     inf = np.zeros(len(data.elements)) if data.fixed_inf is None else data.fixed_inf.copy()
     columns: dict = {}
+    n_s = s.size
     for e, (f, wr, wi, null) in enumerate(
         zip(
             data.values,
@@ -566,22 +600,25 @@ def fit_residues(data: BlockData, poles: Poles) -> tuple[NDArray, NDArray]:
             m = phi @ null
             columns[key] = np.hstack([m, np.ones((s.size, 1))]) if free[e] else m
         m = columns[key]
-        rows = _stacked(m, wr, wi)
-        rhs = np.concatenate([wr * f.real, wi * f.imag])
-        if free[e] and data.inf_guess is not None and data.inf_spread[e] > 0:
+        prior = free[e] and data.inf_guess is not None and data.inf_spread[e] > 0
+        zero = data.kernel_zero_equations[e]
+        # the weighted equations, real rows over imaginary, then the prior and K(0)
+        rows = np.zeros((2 * n_s + int(prior) + (zero is not None), m.shape[1]))
+        rhs = np.empty(rows.shape[0])
+        np.multiply(wr[:, None], m.real, out=rows[:n_s])
+        np.multiply(wi[:, None], m.imag, out=rows[n_s : 2 * n_s])
+        np.multiply(wr, f.real, out=rhs[:n_s])
+        np.multiply(wi, f.imag, out=rhs[n_s : 2 * n_s])
+        if prior:
             # the prior: weighs like all the added-mass equations together (their
             # weights are 1/spread of A over √n each)
             weight = 1.0 / data.inf_spread[e]
-            prior_row = np.zeros(m.shape[1])
-            prior_row[-1] = weight
-            rows = np.vstack([rows, prior_row])
-            rhs = np.r_[rhs, weight * data.inf_guess[e]]
-        zero = data.kernel_zero_equations[e]
+            rows[2 * n_s, -1] = weight
+            rhs[2 * n_s] = weight * data.inf_guess[e]
         if zero is not None:  # K(0): the damping beyond the data is data too
             form = np.zeros(m.shape[1])
             form[: null.shape[1]] = kernel_zero_form(poles) @ null
-            rows = np.vstack([rows, zero[0] * form])
-            rhs = np.r_[rhs, zero[0] * zero[1]]
+            rows[-1], rhs[-1] = zero[0] * form, zero[0] * zero[1]
         z, *_ = np.linalg.lstsq(rows, rhs, rcond=None)
         x[e] = null @ z[: null.shape[1]]
         if free[e]:
@@ -602,7 +639,7 @@ class PoleResidueBlock:
     def element_response(self, omega: NDArray) -> NDArray[np.complex128]:
         """K of each element, (n_omega, n_elements)."""
         w = np.asarray(omega, dtype=float)
-        return 1j * w[:, None] * (self.poles.basis(1j * w) @ self.coefficients.T)
+        return 1j * w[:, None] * (self.poles.kept_basis(1j * w) @ self.coefficients.T)
 
     def element_impulse(self, t: NDArray) -> NDArray[np.float64]:
         """K(t) of each element, (n_t, n_elements): K(s) = Σ x p/(s − p) over the real

@@ -351,12 +351,12 @@ def band_points(
     (0 and ∞ included), and the frequencies to test besides ``grid``: each band's
     midpoint and five points across each finite band, those not already in ``grid``."""
     crossings = imaginary_axis_zeros(a, b, c) if np.size(a) else np.zeros(0)
-    edges = np.unique(np.r_[0.0, crossings, np.inf])
+    edges = np.unique(np.concatenate([[0.0], crossings, [np.inf]]))
     middle = [midpoint(lo, hi, grid) for lo, hi in itertools.pairwise(edges)]
     lo, hi = edges[:-1], edges[1:]
     finite = (lo > 0) & np.isfinite(hi)
     across = lo[finite, None] * (hi[finite] / lo[finite])[:, None] ** (np.arange(1, 6) / 6.0)
-    return edges, np.setdiff1d(np.r_[middle, across.ravel()], grid)
+    return edges, np.setdiff1d(np.concatenate([middle, across.ravel()]), grid)
 
 
 def _refine_minimum(lam_min, lo: float, hi: float, w0: float, v0: float) -> tuple[float, float]:
