@@ -96,8 +96,18 @@ def r_squared(y: ArrayLike, y_model: ArrayLike, floor: float = 0.0) -> float:
     with ``floor``, the variance of y is taken as at least ``floor`` (a direction of a pair
     fitted as given that is small beside the other is judged at the pair's spread)."""
     y = np.asarray(y, dtype=float)
+    return r_squared_of(y, y_model, total_variation(y, floor))
+
+
+def total_variation(y: NDArray, floor: float = 0.0) -> float:
+    """Σ(y − ȳ)², at least n × ``floor``: the denominator of :func:`r_squared`."""
+    return max(float(np.sum((y - y.mean()) ** 2)), y.size * floor)
+
+
+def r_squared_of(y: NDArray, y_model: ArrayLike, total: float) -> float:
+    """:func:`r_squared` with its denominator ``total`` (:func:`total_variation`) given:
+    the same for every model of the same data."""
     y_model = np.asarray(y_model, dtype=float)
-    total = max(float(np.sum((y - y.mean()) ** 2)), y.size * floor)
     if total == 0:
         return 1.0 if np.allclose(y, y_model) else 0.0
     return float(1.0 - np.sum((y - y_model) ** 2) / total)

@@ -19,10 +19,10 @@ from __future__ import annotations
 from dataclasses import dataclass, field, replace
 
 import numpy as np
-from numpy.typing import NDArray
 
 from cummins.errors import FitError
 from cummins.radiation.fit.block_passivity import enforce_passivity
+from cummins.radiation.fit.frequency import r_squared_of, total_variation
 from cummins.radiation.fit.tail import (
     PEAK_TOLERANCE,
     BeyondData,
@@ -115,7 +115,7 @@ def score_block(
         use, w_use, a_data, b_data, total_a, total_b = _pair_data(data, i, j)
         a_model = infs[(i, j)] + response[use].imag / w_use
         b_model = response[use].real
-        pair = (_r_squared(a_data, a_model, total_a), _r_squared(b_data, b_model, total_b))
+        pair = (r_squared_of(a_data, a_model, total_a), r_squared_of(b_data, b_model, total_b))
         scores[(i, j)] = pair
         target = r2 if i == j else r2_coupling
         shortfall = max(shortfall, target - min(pair))
@@ -156,22 +156,10 @@ def _pair_data(data: BlockData, i: int, j: int) -> tuple:
             floor = pair_floor(data.added_mass[use], data.damping[use], i, j)
         a_data = np.asarray(data.added_mass[use, i, j], dtype=float)
         b_data = np.asarray(data.damping[use, i, j], dtype=float)
-        totals = [
-            max(float(np.sum((y - y.mean()) ** 2)), y.size * f)
-            for y, f in ((a_data, floor[0]), (b_data, floor[1]))
-        ]
+        totals = [total_variation(a_data, floor[0]), total_variation(b_data, floor[1])]
         found = (use, data.omega[: data.n_data][use], a_data, b_data, *totals)
         data.cache[("pair", i, j)] = found
     return found
-
-
-def _r_squared(y: NDArray, y_model: NDArray, total: float) -> float:
-    """:func:`~cummins.radiation.fit.frequency.r_squared` with Σ(y − ȳ)² (``total``,
-    floored) given."""
-    y_model = np.asarray(y_model, dtype=float)
-    if total == 0:
-        return 1.0 if np.allclose(y, y_model) else 0.0
-    return float(1.0 - np.sum((y - y_model) ** 2) / total)
 
 
 #: Near-ties in the order search are decided by this margin, not by rounding.
