@@ -329,6 +329,16 @@ def viscous_damping_option(func):
     )(func)
 
 
+def check_dof_selection(ds, dofs) -> None:
+    """Refuse a ``--dof`` the data do not have (naming the DOFs they have)."""
+    labels = [str(d) for d in ds.influenced_dof.values]
+    unknown = [d for d in dofs if d not in labels]
+    if unknown:
+        raise click.BadParameter(
+            f"unknown DOF {unknown[0]!r}; the data have {', '.join(labels)}", param_hint="--dof"
+        )
+
+
 def viscous_damping_values(
     pairs, labels, option: str = "--viscous-damping"
 ) -> dict[str, float] | None:

@@ -14,6 +14,7 @@ from rich.table import Table
 
 from cummins.cli.common import (
     Number,
+    check_dof_selection,
     console,
     counted_progress,
     force_option,
@@ -414,12 +415,7 @@ def joined_data(ds, system, dofs):
     (:class:`~cummins.radiation.fit.motion.JoinedMotion`, None for free bodies): the
     ``--dof`` selection, or the system of ``--joint``/``--pto``/``--no-body-coupling``
     applied (:func:`cummins.mechanics.assemble`, printed)."""
-    labels = [str(d) for d in ds.influenced_dof.values]
-    unknown = [d for d in dofs if d not in labels]
-    if unknown:
-        raise click.BadParameter(
-            f"unknown DOF {unknown[0]!r}; the data have {', '.join(labels)}", param_hint="--dof"
-        )
+    check_dof_selection(ds, dofs)
     if system is None:
         if not dofs:
             return ds, None

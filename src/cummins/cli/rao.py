@@ -9,6 +9,7 @@ import numpy as np
 from rich.table import Table
 
 from cummins.cli.common import (
+    check_dof_selection,
     console,
     force_option,
     headings_list,
@@ -219,11 +220,7 @@ def rao_command(
             )
     beta = np.radians(parse_headings(headings)) if headings else None
     labels = [str(d) for d in ds.influenced_dof.values]
-    unknown = [d for d in dofs if d not in labels]
-    if unknown:
-        raise click.BadParameter(
-            f"unknown DOF {unknown[0]!r}; the data have {', '.join(labels)}", param_hint="--dof"
-        )
+    check_dof_selection(ds, dofs)
     system = system_from_options(system_options, dofs)
     if system is None and (dofs or len(bodies(ds)) > 1):
         from cummins.mechanics import MechanicalSystem

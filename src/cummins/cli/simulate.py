@@ -13,6 +13,7 @@ from rich.markup import escape
 from cummins.cli.common import (
     Number,
     allow_other_data_option,
+    check_dof_selection,
     console,
     force_option,
     heading_degrees,
@@ -342,13 +343,7 @@ def simulate_command(
     if dofs:
         from cummins.hydrodb import select_dofs
 
-        unknown = [d for d in dofs if d not in [str(x) for x in data.influenced_dof.values]]
-        if unknown:
-            raise click.BadParameter(
-                f"unknown DOF {unknown[0]!r}; the data have "
-                + ", ".join(str(x) for x in data.influenced_dof.values),
-                param_hint="--dof",
-            )
+        check_dof_selection(data, dofs)
         if system is None:  # with joints the selection is part of the system
             data = select_dofs(data, list(dofs))
     ds = select_speed(data, speed)
