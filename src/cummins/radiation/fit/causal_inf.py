@@ -53,10 +53,11 @@ def kramers_kronig_misfit(inp, model: RadiationModel) -> NDArray[np.float64]:
     return np.diag(kramers_kronig_error(inp.data, added_mass_inf=0.5 * (inf + inf.T)).values)
 
 
-def noncausal_indices(inp, model: RadiationModel, missed) -> list[int]:
+def noncausal_indices(inp, model: RadiationModel, missed, error=None) -> list[int]:
     """The DOFs among ``missed`` (a mask) whose data are not causal with the model's A∞
-    (:data:`NONCAUSAL`)."""
-    error = kramers_kronig_misfit(inp, model)
+    (:data:`NONCAUSAL`; ``error``: :func:`kramers_kronig_misfit`, when known)."""
+    if error is None:
+        error = kramers_kronig_misfit(inp, model)
     return [d for d in range(len(inp.labels)) if missed[d] and error[d] > NONCAUSAL]
 
 
@@ -64,7 +65,8 @@ def noncausal_dofs(inp, model: RadiationModel, missed) -> list[str]:
     """:func:`noncausal_indices` as ``"body2__Pitch (98 %)"``."""
     error = kramers_kronig_misfit(inp, model)
     return [
-        f"{inp.labels[d]} ({100 * error[d]:.3g} %)" for d in noncausal_indices(inp, model, missed)
+        f"{inp.labels[d]} ({100 * error[d]:.3g} %)"
+        for d in noncausal_indices(inp, model, missed, error)
     ]
 
 
@@ -97,16 +99,16 @@ def with_causal_inf(
     refit = fit(replace(inp, estimated_inf=tuple(dofs)), options)
     error_refit = refit.attrs.get("motion_error")
     names = ", ".join(inp.labels[d] for d in dofs)
-    if error_refit is None or error_refit >= error:
+    if error_refit is None:
+        return model
+    if error_refit >= error:
         note = (
             f"A∞ of {names} estimated with the model instead of the data's ω = ∞ row (their "
             f"added mass is far from the Kramers–Kronig transform of their damping with it) "
             f"did not bring the motions nearer the data ({100 * error_refit:.3g} % against "
             f"{100 * error:.3g} %): the data's row kept"
-            if error_refit is not None
-            else ""
         )
-        notes = [*model.attrs.get("data_notes", []), *filter(None, [note])]
+        notes = [*model.attrs.get("data_notes", []), note]
         return replace(model, attrs={**model.attrs, "data_notes": notes})
     note = (
         f"A∞ of {names} estimated with the model, the data's ω = ∞ row kept for the other "
