@@ -261,6 +261,21 @@ def enforce_passivity(
     same programme meets: the damping beyond the data held under the data's tail
     (:class:`cummins.radiation.fit.tail.TailBounds`), so that the passivity
     step does not raise it there."""
+    steps = enforcement_steps(block, data, bounds=bounds)
+    try:
+        while True:
+            current, iterations = next(steps)
+            if give_up is not None and give_up(current):
+                return current, False, iterations
+    except StopIteration as end:
+        return end.value
+
+
+def enforcement_steps(block: PoleResidueBlock, data: BlockData, *, bounds=None):
+    """:func:`enforce_passivity` one stretch at a time: a generator that yields (iterate,
+    iterations) every :data:`GIVE_UP_EVERY` iterations and returns (block, passive,
+    iterations), so that a caller can run several enforcements side by side and stop
+    each where it would not keep it (the same iterates as one run to the end)."""
     from cummins.radiation.passivity.enforcement import factored_misfit, least_distance
 
     w = data.omega[: data.n_data]
@@ -332,9 +347,8 @@ def enforce_passivity(
         current = PoleResidueBlock(
             block.dofs, block.elements, block.poles, start + change, block.added_mass_inf
         )
-        check = give_up is not None and iteration % GIVE_UP_EVERY == GIVE_UP_EVERY - 1
-        if check and give_up(current):
-            return current, False, iteration + 1
+        if iteration % GIVE_UP_EVERY == GIVE_UP_EVERY - 1:
+            yield current, iteration + 1
     found, _ = passivity_violations(current, lo, hi, sweep=sweep)
     return current, not found, PASSIVITY_ITERATIONS
 
