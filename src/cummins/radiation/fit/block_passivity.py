@@ -16,6 +16,8 @@ poles do not move, so the model stays stable.
 
 from __future__ import annotations
 
+from collections.abc import Generator
+
 import numpy as np
 from numpy.typing import NDArray
 
@@ -51,7 +53,8 @@ CHECK_SPAN = 1e3
 CHECK_POINTS = 1500
 #: At most this many local minima of λ_min per violation band give constraints at once.
 MINIMA = 8
-#: How often (iterations) :func:`enforce_passivity` asks its ``give_up``.
+#: How often (iterations) :func:`enforce_passivity` asks its ``give_up`` (and
+#: :func:`enforcement_steps` yields its iterate).
 GIVE_UP_EVERY = 3
 #: λ_min on the check grid: a point is positive definite, its eigenvalues not computed,
 #: where the Cholesky factorisation of its matrix M less POSITIVE_SHIFT × tr M runs to
@@ -271,7 +274,9 @@ def enforce_passivity(
         return end.value
 
 
-def enforcement_steps(block: PoleResidueBlock, data: BlockData, *, bounds=None):
+def enforcement_steps(
+    block: PoleResidueBlock, data: BlockData, *, bounds=None
+) -> Generator[tuple[PoleResidueBlock, int], None, tuple[PoleResidueBlock, bool, int]]:
     """:func:`enforce_passivity` one stretch at a time: a generator that yields (iterate,
     iterations) every :data:`GIVE_UP_EVERY` iterations and returns (block, passive,
     iterations), so that a caller can run several enforcements side by side and stop
