@@ -34,9 +34,15 @@ def barge_blocks(corpus):
     and the sweeps whose grid saw nothing, with what the exact sweep found there."""
     calls, blind = [], []
     enforce, sweep = order_search.enforce_passivity, block_passivity.passivity_violations
+    steps = order_search.enforcement_steps
 
     def recording_enforce(block, data, **options):
         out = enforce(block, data, **options)
+        calls.append((block, out[0], out[1]))
+        return out
+
+    def recording_steps(block, data, **options):  # the finalists', run side by side
+        out = yield from steps(block, data, **options)
         calls.append((block, out[0], out[1]))
         return out
 
@@ -48,6 +54,7 @@ def barge_blocks(corpus):
 
     with pytest.MonkeyPatch.context() as mp:
         mp.setattr(order_search, "enforce_passivity", recording_enforce)
+        mp.setattr(order_search, "enforcement_steps", recording_steps)
         mp.setattr(block_passivity, "passivity_violations", recording_sweep)
         ds = cummins.read(corpus / "ROSCO" / "wamit_ITI_barge_5MW_Baseline" / "Barge.1")
         with warnings.catch_warnings():

@@ -16,6 +16,8 @@ poles do not move, so the model stays stable.
 
 from __future__ import annotations
 
+from collections.abc import Generator
+
 import numpy as np
 from numpy.typing import NDArray
 
@@ -51,7 +53,8 @@ CHECK_SPAN = 1e3
 CHECK_POINTS = 1500
 #: At most this many local minima of λ_min per violation band give constraints at once.
 MINIMA = 8
-#: How often (iterations) :func:`enforce_passivity` asks its ``give_up``.
+#: How often (iterations) :func:`enforce_passivity` asks its ``give_up`` (and
+#: :func:`enforcement_steps` yields its iterate).
 GIVE_UP_EVERY = 3
 #: λ_min on the check grid: a point is positive definite, its eigenvalues not computed,
 #: where the Cholesky factorisation of its matrix M less POSITIVE_SHIFT × tr M runs to
@@ -261,6 +264,23 @@ def enforce_passivity(
     same programme meets: the damping beyond the data held under the data's tail
     (:class:`cummins.radiation.fit.tail.TailBounds`), so that the passivity
     step does not raise it there."""
+    steps = enforcement_steps(block, data, bounds=bounds)
+    try:
+        while True:
+            current, iterations = next(steps)
+            if give_up is not None and give_up(current):
+                return current, False, iterations
+    except StopIteration as end:
+        return end.value
+
+
+def enforcement_steps(
+    block: PoleResidueBlock, data: BlockData, *, bounds=None
+) -> Generator[tuple[PoleResidueBlock, int], None, tuple[PoleResidueBlock, bool, int]]:
+    """:func:`enforce_passivity` one stretch at a time: a generator that yields (iterate,
+    iterations) every :data:`GIVE_UP_EVERY` iterations and returns (block, passive,
+    iterations), so that a caller can run several enforcements side by side and stop
+    each where it would not keep it (the same iterates as one run to the end)."""
     from cummins.radiation.passivity.enforcement import factored_misfit, least_distance
 
     w = data.omega[: data.n_data]
@@ -332,9 +352,8 @@ def enforce_passivity(
         current = PoleResidueBlock(
             block.dofs, block.elements, block.poles, start + change, block.added_mass_inf
         )
-        check = give_up is not None and iteration % GIVE_UP_EVERY == GIVE_UP_EVERY - 1
-        if check and give_up(current):
-            return current, False, iteration + 1
+        if iteration % GIVE_UP_EVERY == GIVE_UP_EVERY - 1:
+            yield current, iteration + 1
     found, _ = passivity_violations(current, lo, hi, sweep=sweep)
     return current, not found, PASSIVITY_ITERATIONS
 
