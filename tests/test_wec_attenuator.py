@@ -179,3 +179,46 @@ def test_cli_says_the_slips_in_one_line(tmp_path):
     assert result.exit_code == 0, result.output
     line = next(x for x in result.output.splitlines() if "holds body1__Heave" in x)
     assert line.startswith("warning: the DOF selection (--dof)")
+
+
+def test_a_model_fitted_without_body_coupling_is_refused_with_it(attenuator, tmp_path):
+    """``fit --no-body-coupling`` records it in the model (and ``info`` says it);
+    ``simulate`` of that model without the option would keep the cross-body radiation
+    in its equations but not in the model's memory (the hinged boxes' power 18 % off the
+    frequency domain): refused in one line naming the option. With the option it runs;
+    a model of one body's DOFs has no coupling to miss and is taken either way."""
+    from click.testing import CliRunner
+
+    from cummins.cli import main
+    from cummins.radiation.model import RadiationModel
+
+    model_path = tmp_path / "model.nc"
+    dofs = [f"--dof={body}__{name}" for body in CENTRES for name in ("Heave", "Pitch")]
+    hinges = [
+        *("--joint", "revolute", "body1", "body2", "--axis", "0", "1", "0"),
+        *("--point", "-5.5", "0", "-1", "--pto-damping", "1e6"),
+        *("--joint", "revolute", "body3", "body2", "--axis", "0", "1", "0"),
+        *("--point", "5.5", "0", "-1", "--pto-damping", "1e6"),
+    ]
+    runner = CliRunner()
+    result = runner.invoke(
+        main, ["fit", str(DATA), *dofs, *hinges, "--no-body-coupling", "-o", str(model_path)]
+    )
+    assert result.exit_code in (0, 3), result.output
+    assert RadiationModel.load(model_path).attrs["body_coupling"] == "off"
+    info = runner.invoke(main, ["info", str(model_path)])
+    assert "body_coupling" in info.output and "off" in info.output
+    sea = ["--regular", "--wave-period", "4.5", "--wave-amplitude", "0.5", "--heading", "0"]
+    run = ["simulate", str(model_path), *dofs, *hinges, *sea, "--duration", "20"]
+    result = runner.invoke(main, [*run, "-o", str(tmp_path / "a.nc")])
+    assert result.exit_code == 2, result.output
+    line = next(x for x in result.output.splitlines() if x.startswith("error:"))
+    assert "fitted with the body coupling off (--no-body-coupling" in line
+    result = runner.invoke(main, [*run, "--no-body-coupling", "-o", str(tmp_path / "b.nc")])
+    assert result.exit_code == 0, result.output
+    one_body = MechanicalSystem(dofs=("body1__Heave", "body1__Pitch"), body_coupling=False)
+    with warnings.catch_warnings():
+        warnings.simplefilter("ignore")
+        model = vessel_from_hydrodb(attenuator, system=one_body).radiation
+        assert model.attrs["body_coupling"] == "off"
+        vessel_from_hydrodb(attenuator, model, system=MechanicalSystem(dofs=one_body.dofs))
