@@ -222,3 +222,20 @@ def test_a_model_fitted_without_body_coupling_is_refused_with_it(attenuator, tmp
         model = vessel_from_hydrodb(attenuator, system=one_body).radiation
         assert model.attrs["body_coupling"] == "off"
         vessel_from_hydrodb(attenuator, model, system=MechanicalSystem(dofs=one_body.dofs))
+
+
+def test_a_model_of_the_free_bodies_used_with_joints_says_to_fit_with_them(attenuator):
+    """A model fitted without the system holds DOFs the joints hold at zero: refused, as
+    before, but saying so and how to mend it (fit with the same options), not that it
+    was "fitted to other data" — the data are the same."""
+    from cummins.errors import HydroDataError
+
+    free = MechanicalSystem(dofs=("body1__Heave", "body1__Pitch"))
+    with warnings.catch_warnings():
+        warnings.simplefilter("ignore")
+        model = vessel_from_hydrodb(attenuator, system=free).radiation
+    with pytest.raises(HydroDataError) as error:
+        vessel_from_hydrodb(attenuator, model, system=MechanicalSystem(dofs=("body1__Heave",)))
+    text = str(error.value)
+    assert "other data" not in text and "let only body1__Heave move" in text
+    assert "same --dof, --joint, --pto and --no-body-coupling options" in text
