@@ -14,6 +14,7 @@ from pathlib import Path
 
 import numpy as np
 import pytest
+import xarray as xr
 
 import cummins
 from cummins.errors import AssumptionWarning
@@ -239,3 +240,36 @@ def test_a_model_of_the_free_bodies_used_with_joints_says_to_fit_with_them(atten
     text = str(error.value)
     assert "other data" not in text and "let only body1__Heave move" in text
     assert "same --dof, --joint, --pto and --no-body-coupling options" in text
+
+
+def test_the_joint_pre_load_is_said_where_the_system_is(attenuator, tmp_path):
+    """The fore box ballasted to half its displacement and hinged to the ground 2 m below
+    its centre carries F = ½ρ∇g up through the hinge: the pre-load stiffness F (z_o − z_h)
+    = 2F about it (docs/wec.md) is printed under the system by rao (and simulate, fit)
+    and recorded in the RAO file (attribute joint_preload), not only in the history."""
+    from click.testing import CliRunner
+
+    from cummins.cli import main
+    from cummins.mass_properties import with_inertia
+
+    rho, g, volume = 1025.0, 9.81, 80.0
+    ds = with_inertia(
+        attenuator,
+        mass=[0.5 * rho * volume, rho * volume, rho * volume],
+        center_of_gravity=list(CENTRES.values()),
+        radii_of_gyration=[[1.3, 2.9, 3.1]] * 3,
+    )
+    force = 0.5 * rho * volume * g
+    hinge = Joint("revolute", "body1", "ground", axis=(0, 1, 0), point=(-11.0, 0.0, -3.0))
+    assembly = assemble(ds, MechanicalSystem(joints=(hinge,)))
+    assert f"{2 * force:+.4g} N·m/rad on body1__Pitch" in assembly.preload
+    path = tmp_path / "ballasted.nc"
+    cummins.write(ds, path)
+    args = ["rao", str(path), "-o", str(tmp_path / "r.nc"), "--n-omega", "3", "--force"]
+    args += ["--omega-min", "0.5", "--omega-max", "1.5", "--joint", "revolute", "body1"]
+    args += ["ground", "--axis", "0", "1", "0", "--point", "-11", "0", "-3"]
+    result = CliRunner().invoke(main, args)
+    assert result.exit_code == 0, result.output
+    assert f"  joint pre-load: {2 * force:+.4g} N·m/rad on body1__Pitch" in result.output
+    with xr.open_dataset(tmp_path / "r.nc", engine="h5netcdf") as rao:
+        assert f"{2 * force:+.4g}" in rao.rao.attrs["joint_preload"]

@@ -340,6 +340,8 @@ def print_system(assembly) -> None:
                 f"stiffness {pto.stiffness:g}"
             )
         )
+    if assembly.preload:
+        console.print(escape(f"  {assembly.preload}"))
     if several:
         console.print(system.coupling_note())
 

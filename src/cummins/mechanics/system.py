@@ -141,6 +141,9 @@ class Assembly:
         The PTOs resolved on ``ds``'s DOFs.
     held
         The DOFs of the data that cannot move (dropped from ``ds``).
+    preload
+        One line: the stiffness the joints' pre-load adds to each coordinate
+        (:mod:`cummins.mechanics.preload`), empty when it adds none.
     """
 
     system: MechanicalSystem
@@ -149,6 +152,7 @@ class Assembly:
     coordinates: tuple[str, ...]
     ptos: tuple[PTOLine, ...]
     held: tuple[str, ...]
+    preload: str = ""
 
     @property
     def dofs(self) -> tuple[str, ...]:
@@ -177,8 +181,10 @@ class Assembly:
 
     def attrs(self) -> dict[str, str]:
         """Attributes for results: ``body_coupling`` (on/off), ``system`` (JSON),
-        ``constrained_coordinates``, ``held_dofs``, ``ptos`` (one line each)."""
+        ``constrained_coordinates``, ``held_dofs``, ``ptos`` (one line each) and
+        ``joint_preload`` when the joints' pre-load adds a stiffness."""
         return {
+            **({"joint_preload": self.preload} if self.preload else {}),
             "body_coupling": "on" if self.system.body_coupling else "off",
             "body_coupling_note": self.system.coupling_note(),
             "system": json.dumps(self.system.describe()),
@@ -273,8 +279,12 @@ def assemble(ds: xr.Dataset, system: MechanicalSystem) -> Assembly:
     if "inertia_matrix" in out:
         check_inertia(dof_matrix(out, "inertia_matrix"), basis, keep, "rigid-body inertia")
     preload = _joint_preload(ds, frame, system, g, t, coordinates)
+    note = ""
     if preload is not None:
         out = _with_preload(out, preload, [labels.index(k) for k in keep])
+        note = preload_note(preload, t, coordinates)
+    if out is ds:  # the caller's data keep their attributes
+        out = ds.copy()
     out.attrs["body_coupling"] = "on" if system.body_coupling else "off"
     if not system.is_plain or held.any():
         add_history(
@@ -283,7 +293,30 @@ def assemble(ds: xr.Dataset, system: MechanicalSystem) -> Assembly:
             f"coordinates {', '.join(coordinates)}"
             + (f"; held at zero: {', '.join(np.asarray(labels)[held])}" if held.any() else ""),
         )
-    return Assembly(system, out, basis, coordinates, ptos, tuple(np.asarray(labels)[held].tolist()))
+    held_labels = tuple(np.asarray(labels)[held].tolist())
+    return Assembly(system, out, basis, coordinates, ptos, held_labels, note)
+
+
+def preload_note(preload: Preload, t: NDArray[np.float64], coordinates: Sequence[str]) -> str:
+    """One line: the stiffness the joints' pre-load adds to each coordinate q, the
+    diagonal of Tᵀ K T (N/m, N·m/rad), and the static forces that cause it; empty when
+    it adds none."""
+    from cummins.dofs import is_rotation
+
+    added = np.diag(t.T @ preload.stiffness @ t)
+    scale = max(float(np.abs(preload.stiffness).max()), 1e-300)
+    terms = [
+        f"{value:+.4g} {'N·m/rad' if is_rotation(name) else 'N/m'} on {name}"
+        for name, value in zip(coordinates, added, strict=True)
+        if abs(value) > 1e-9 * scale
+    ]
+    if not terms:
+        return ""
+    forces = ", ".join(f"{f:.6g} N" for f in preload.forces)
+    return (
+        f"joint pre-load: {', '.join(terms)} (the bodies' net static forces (ρ∇ − m)g = "
+        f"{forces}, carried by the joints)"
+    )
 
 
 #: A joint's or a PTO's point farther than this many body lengths from the bodies it
