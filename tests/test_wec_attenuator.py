@@ -273,3 +273,40 @@ def test_the_joint_pre_load_is_said_where_the_system_is(attenuator, tmp_path):
     assert f"  joint pre-load: {2 * force:+.4g} N·m/rad on body1__Pitch" in result.output
     with xr.open_dataset(tmp_path / "r.nc", engine="h5netcdf") as rao:
         assert f"{2 * force:+.4g}" in rao.rao.attrs["joint_preload"]
+
+
+def test_a_study_shows_its_cases_warnings_once_each_in_one_line(attenuator, tmp_path):
+    """A PTO study of the hinged boxes whose data lack the displaced volumes (so every
+    case warns that the joints' pre-load is left out): the warning is one line of
+    ``batch``, once — the Dask workers printed it raw (the code's path and line, the
+    source line), once per case."""
+    import os
+    import subprocess
+    import sys
+
+    pytest.importorskip("distributed")
+    ds = attenuator.copy()
+    del ds.attrs["displaced_volume"]
+    cummins.write(ds, tmp_path / "boxes.nc")
+    (tmp_path / "study.yaml").write_text(
+        "data: boxes.nc\nanalysis: rao\n"
+        "grid: {heading: [0], hs: [1], tp: [5, 6, 7]}\n"
+        "system:\n  joints:\n"
+        "    - {kind: revolute, body: body1, base: body2, axis: [0, 1, 0],"
+        " point: [-5.5, 0, -1], pto: {damping: 1.0e+6}}\n",
+        encoding="utf-8",
+    )
+    env = {**os.environ, "OPENBLAS_NUM_THREADS": "1"}
+    result = subprocess.run(
+        [sys.executable, "-m", "cummins", "batch", "study.yaml", "-o", "r.nc", "--workers", "1"],
+        cwd=tmp_path,
+        env=env,
+        capture_output=True,
+        text=True,
+        timeout=300,
+    )
+    output = result.stdout + result.stderr
+    assert result.returncode == 0, output
+    lines = [x for x in output.splitlines() if "pre-load is not included" in x]
+    assert len(lines) == 1 and lines[0].startswith("warning: "), output
+    assert "AssumptionWarning" not in output and ".py:" not in output, output
