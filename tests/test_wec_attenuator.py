@@ -310,3 +310,35 @@ def test_a_study_shows_its_cases_warnings_once_each_in_one_line(attenuator, tmp_
     lines = [x for x in output.splitlines() if "pre-load is not included" in x]
     assert len(lines) == 1 and lines[0].startswith("warning: "), output
     assert "AssumptionWarning" not in output and ".py:" not in output, output
+
+
+def test_the_rao_report_gives_no_peak_where_the_waves_do_not_move_the_pto(tmp_path):
+    """The middle box on a hinge about y through its centre, to the ground: in beam seas
+    the row of boxes is symmetric fore and aft, its pitch is not excited and the power RAO
+    is rounding, ~1e-30 kW/m², whose "largest value" the report printed with an ω and a
+    period; it says 0 with no frequency now. Head seas keep theirs."""
+    import html
+    import re
+
+    from click.testing import CliRunner
+
+    from cummins.cli import main
+
+    rao = tmp_path / "rao.nc"
+    hinges = [
+        *("--joint", "revolute", "body2", "ground", "--axis", "0", "1", "0"),
+        *("--point", "0", "0", "-1", "--pto-damping", "1e6"),
+    ]
+    runner = CliRunner()
+    result = runner.invoke(main, ["rao", str(DATA), *hinges, "-o", str(rao)])
+    assert result.exit_code == 0, result.output
+    result = runner.invoke(main, ["report", str(rao), "-o", str(tmp_path / "r.html")])
+    assert result.exit_code == 0, result.output
+    page = (tmp_path / "r.html").read_text(encoding="utf-8")
+    rows = {}
+    for row in re.findall(r"<tr>(.*?)</tr>", page):
+        cells = [html.unescape(c) for c in re.findall(r"<td[^>]*>(.*?)</td>", row)]
+        if cells and cells[0] == "pto1":
+            rows[float(cells[1])] = cells
+    assert rows[90.0][2:] == ["0", "—", "—", "—", "—"]
+    assert float(rows[0.0][2]) > 1 and rows[0.0][3] != "—"
