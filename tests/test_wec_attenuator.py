@@ -342,3 +342,14 @@ def test_the_rao_report_gives_no_peak_where_the_waves_do_not_move_the_pto(tmp_pa
             rows[float(cells[1])] = cells
     assert rows[90.0][2:] == ["0", "—", "—", "—", "—"]
     assert float(rows[0.0][2]) > 1 and rows[0.0][3] != "—"
+
+
+def test_wecsims_rotational_constraint_is_the_revolute_joint(attenuator):
+    """WEC-Sim calls a hinge a "Rotational" constraint: ``--joint rotational`` (any case)
+    is the revolute joint, and an unknown kind's message gives WEC-Sim's names."""
+    from cummins.errors import ArgumentError
+
+    joint = Joint("Rotational", "body1", "body2", axis=(0, 1, 0), point=HINGES["body1"])
+    assert joint.kind == "revolute"
+    with pytest.raises(ArgumentError, match="WEC-Sim's Rotational is revolute"):
+        Joint("floating", "body1", "ground")
