@@ -353,3 +353,21 @@ def test_wecsims_rotational_constraint_is_the_revolute_joint(attenuator):
     assert joint.kind == "revolute"
     with pytest.raises(ArgumentError, match="WEC-Sim's Rotational is revolute"):
         Joint("floating", "body1", "ground")
+
+
+def test_a_dof_named_with_the_files_body_name_says_its_label(tmp_path):
+    """Capytaine names the DOFs with the bodies' names (fore__Pitch), cummins with their
+    numbers (body1__Pitch), while --joint takes either body name: a --dof or a PTO's DOF
+    written the file's way is refused, as before, saying which label it is."""
+    from click.testing import CliRunner
+
+    from cummins.cli import main
+
+    base = ["rao", str(DATA), "-o", str(tmp_path / "r.nc"), "--n-omega", "3"]
+    for extra, option in (
+        (["--dof", "fore__Pitch"], "--dof"),
+        (["--pto", "fore__Pitch", "mid__Pitch", "--pto-damping", "1e5"], "--pto fore__Pitch"),
+    ):
+        result = CliRunner().invoke(main, [*base, *extra])
+        assert result.exit_code == 2, result.output
+        assert option in result.output and "fore__Pitch is body1__Pitch here" in result.output
