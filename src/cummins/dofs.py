@@ -84,6 +84,24 @@ def body_names(ds: xr.Dataset) -> list[str]:
     return found
 
 
+def named_dof_hint(ds: xr.Dataset, label: str) -> str:
+    """For a DOF named with the file's name of its body (``flap__Pitch``, as Capytaine
+    names it) where the data say ``body1__Pitch``: "flap__Pitch is body1__Pitch here";
+    empty otherwise."""
+    body, name = split_dof(label)
+    names, prefixes = body_names(ds), bodies(ds)
+    if body is None or body not in names or len(names) != len(prefixes):
+        return ""
+    prefix = prefixes[names.index(body)]
+    meant = f"{prefix}__{name}" if prefix else name
+    labels = [str(d) for d in ds.influenced_dof.values]
+    return (
+        f"{label} is {meant} here (DOFs are named by the bodies' numbers)"
+        if meant in labels
+        else ""
+    )
+
+
 def split_dof(label: str) -> tuple[str | None, str]:
     """Split ``"body__Heave"`` into ``("body", "Heave")``; ``"Heave"`` into ``(None, "Heave")``."""
     body, sep, name = str(label).rpartition("__")

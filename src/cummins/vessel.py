@@ -351,6 +351,7 @@ def vessel_from_hydrodb(
         model = fit_radiation(ds, joined=joined, **fit_options)
     else:
         check_model_data(model, ds, allow_other_data=allow_other_data)
+        _check_model_coupling(model, assembly is None or assembly.system.body_coupling)
     if tuple(model.dofs) != dofs:
         raise SimulationError(
             f"the radiation model's DOFs {model.dofs} differ from the data's {dofs}",
@@ -382,6 +383,23 @@ def vessel_from_hydrodb(
         constraint=assembly.basis if assembly.is_constrained else None,
         ptos=assembly.ptos,
     )
+
+
+def _check_model_coupling(model: RadiationModel, body_coupling: bool) -> None:
+    """ArgumentError when the body coupling is kept but ``model`` was fitted without it
+    (``attrs["body_coupling"] == "off"``, ``cummins fit --no-body-coupling``): its memory
+    lacks the cross-body radiation the equations then count on, and its A∞ the cross-body
+    terms (the other way round, :func:`_check_no_body_coupling`). A model of one body's
+    DOFs has no coupling to miss."""
+    off = str(model.attrs.get("body_coupling", "")) == "off"
+    if body_coupling and off and cross_body_mask(model.dofs).any():
+        raise ArgumentError(
+            "the radiation model was fitted with the body coupling off (--no-body-coupling, "
+            "body_coupling=False), but the system keeps it: the run would leave out the "
+            "cross-body radiation memory",
+            hint="give --no-body-coupling (body_coupling=False) as at its fit, or fit the "
+            "model again with the coupling (without the option)",
+        )
 
 
 def _check_no_body_coupling(model: RadiationModel, ds: xr.Dataset) -> None:

@@ -331,11 +331,17 @@ def viscous_damping_option(func):
 
 def check_dof_selection(ds, dofs) -> None:
     """Refuse a ``--dof`` the data do not have (naming the DOFs they have)."""
+    from cummins.dofs import named_dof_hint
+
     labels = [str(d) for d in ds.influenced_dof.values]
     unknown = [d for d in dofs if d not in labels]
     if unknown:
+        meant = named_dof_hint(ds, unknown[0])
         raise click.BadParameter(
-            f"unknown DOF {unknown[0]!r}; the data have {', '.join(labels)}", param_hint="--dof"
+            f"unknown DOF {unknown[0]!r}; "
+            + (f"{meant}; " if meant else "")
+            + f"the data have {', '.join(labels)}",
+            param_hint="--dof",
         )
 
 

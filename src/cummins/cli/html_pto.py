@@ -70,6 +70,10 @@ def _description_note(coordinate: xr.DataArray) -> str:
 
 # --------------------------------------------------------------------------- RAO file
 
+#: A PTO's power RAO at a heading below this fraction of the file's largest is the
+#: rounding of a motion the waves do not excite (a hinge about y in beam seas): none.
+NO_POWER = 1e-9
+
 
 def pto_rao_sections(path: Path) -> list[Section]:
     """The PTOs of a ``cummins rao`` file (none without ``pto_*`` variables)."""
@@ -81,13 +85,17 @@ def pto_rao_sections(path: Path) -> list[Section]:
     pto = load_pto_rao(path)
     units = pto_units(pto.pto)
     w = pto.omega.values
-    factor, unit = power_unit(float(np.nanmax(np.abs(pto.pto_power.values), initial=0)))
+    largest = float(np.nanmax(np.abs(pto.pto_power.values), initial=0))
+    factor, unit = power_unit(largest)
     rows = []
     for name in (str(p) for p in pto.pto.values):
         one = pto.sel(pto=name)
         power = one.pto_power.transpose("omega", "wave_direction").values
         for j, beta in enumerate(pto.wave_direction.values):
             i = int(np.nanargmax(power[:, j]))
+            if not power[i, j] > NO_POWER * largest:  # rounding: the waves do not move it
+                rows.append([name, float(np.degrees(beta)), 0.0, "—", "—", "—", "—"])
+                continue
             force = one.pto_force.transpose("omega", "wave_direction").values[i, j]
             delta = one.pto_displacement.transpose("omega", "wave_direction").values[i, j]
             u = units[name]

@@ -197,6 +197,10 @@ def model_description(path) -> dict | None:
             "stable": summary["mimo_stable"],
             "passive": summary["mimo_passive"],
         }
+        if model.attrs.get("motions_of"):  # fitted for a mechanical system: say which
+            out["fitted_for"] = str(model.attrs["motions_of"])
+        if model.attrs.get("body_coupling"):
+            out["body_coupling"] = str(model.attrs["body_coupling"])
     elif kind == EXCITATION:
         import numpy as np
 

@@ -93,7 +93,8 @@ def system_options(func):
             metavar="KIND BODY BODY",
             help="A joint: KIND is "
             + ", ".join(JOINT_KINDS)
-            + "; the first BODY moves relative to the second (a body of the data: body1, "
+            + " (WEC-Sim's rotational: revolute); the first BODY moves relative to the "
+            "second (a body of the data: body1, "
             "its name in the file or its number; or ground), e.g. --joint translational "
             "body1 body2 --axis 0 0 1, --joint planar body2 ground (surge, heave, pitch "
             "free), --joint revolute body1 body2 --axis 0 1 0 --point 0 0 -8.9. "
@@ -340,6 +341,8 @@ def print_system(assembly) -> None:
                 f"stiffness {pto.stiffness:g}"
             )
         )
+    if assembly.preload:
+        console.print(escape(f"  {assembly.preload}"))
     if several:
         console.print(system.coupling_note())
 

@@ -21,7 +21,7 @@ from typing import TYPE_CHECKING
 import numpy as np
 from numpy.typing import ArrayLike, NDArray
 
-from cummins.dofs import DOF_NAMES, bodies, body_names
+from cummins.dofs import DOF_NAMES, bodies, body_names, split_dof
 from cummins.errors import ArgumentError, HydroDataError
 from cummins.kinematics import screw_transform
 
@@ -95,8 +95,15 @@ class BodyFrame:
         """The index of the DOF ``label``; ArgumentError naming ``where`` if it is absent."""
         if label in self.labels:
             return self.labels.index(label)
+        body, name = split_dof(label)
+        meant = ""
+        if body in self.names and self.prefixes[self.names.index(body)]:
+            candidate = f"{self.prefixes[self.names.index(body)]}__{name}"
+            if candidate in self.labels:
+                meant = f"{label} is {candidate} here (DOFs are named by the bodies' numbers); "
         raise ArgumentError(
-            f"{where}: the data have no DOF {label!r}", hint=f"DOFs: {', '.join(self.labels)}"
+            f"{where}: the data have no DOF {label!r}",
+            hint=f"{meant}DOFs: {', '.join(self.labels)}",
         )
 
     def dof_index(self, body: int, name: str) -> int | None:
@@ -147,3 +154,32 @@ def body_frame(ds: xr.Dataset) -> BodyFrame:
             hint="select the DOFs after applying joints (MechanicalSystem(dofs=...)), not before",
         )
     return BodyFrame(labels, prefixes, tuple(str(n) for n in names), points)
+
+
+def body_sizes(ds: xr.Dataset, frame: BodyFrame) -> NDArray[np.float64]:
+    """A length of each body, m: the larger of ∇^⅓ (the data's ``displaced_volume``) and
+    its largest radius of gyration about its reference point, √(I_ii / m) (the data's
+    ``inertia_matrix``); 0 for a body the data give neither for. A yardstick for points
+    given by the user (a hinge a thousand body lengths away is a unit slip), not a
+    dimension of the hull."""
+    count = len(frame.prefixes)
+    sizes = np.zeros(count)
+    volume = ds.attrs.get("displaced_volume")
+    if volume is not None:
+        volumes = np.atleast_1d(np.asarray(volume, dtype=float)).reshape(-1)
+        if volumes.size in (1, count):
+            volumes = np.broadcast_to(volumes, (count,))
+            sizes = np.where(np.isfinite(volumes) & (volumes > 0), np.abs(volumes) ** (1 / 3), 0)
+    if "inertia_matrix" in ds:
+        from cummins.hydrodb import dof_matrix
+
+        inertia = dof_matrix(ds, "inertia_matrix")
+        for b in range(count):
+            k = frame.dof_index(b, "Heave")
+            mass = inertia[k, k] if k is not None else 0.0
+            moments = [
+                inertia[i, i] for i in map(frame.dof_index, [b] * 3, DOF_NAMES[3:]) if i is not None
+            ]
+            if mass > 0 and moments:
+                sizes[b] = max(sizes[b], float(np.sqrt(max(max(moments), 0.0) / mass)))
+    return sizes

@@ -84,6 +84,52 @@ def null_space_basis(
     return t, tuple(labels[i] for i in independent)
 
 
+def selection_restrictions(
+    joint_rows: NDArray[np.float64], labels: Sequence[str], listed: Sequence[str]
+) -> tuple[int, int, tuple[str, ...]]:
+    """(kept, allowed, culprits): how a DOF selection restricts the motions the joints
+    leave to the DOFs it lists.
+
+    ``allowed`` is the number of independent motions of the ``listed`` DOFs under the
+    joints alone (rows ``joint_rows``), ``kept`` that number once every DOF not listed is
+    held at zero, and ``culprits`` the DOFs not listed whose holding takes a motion from
+    the listed ones: those the joints move with them (a hinged body's heave at its
+    reference point, that follows the pitch of the bodies it is hinged to). Holding a
+    DOF that moves only with others not listed (the surge of a whole chain) takes
+    nothing from the listed DOFs and is not a culprit.
+    """
+    labels = list(labels)
+    n = len(labels)
+    joints = np.asarray(joint_rows, dtype=float).reshape(-1, n)
+    listed_index = [labels.index(d) for d in listed if d in labels]
+    unlisted = [i for i, d in enumerate(labels) if d not in set(listed)]
+
+    def rank_of_listed(rows: NDArray[np.float64]) -> int:
+        t = null_space_basis(rows, labels)[0][listed_index]
+        norms = np.linalg.norm(t, axis=1)
+        t = t[norms > 0] / norms[norms > 0, None]
+        if t.size == 0:
+            return 0
+        s = np.linalg.svd(t, compute_uv=False)
+        return int(np.sum(s > 1e-8 * s[0]))
+
+    def holding(indices: Sequence[int]) -> NDArray[np.float64]:
+        held = np.zeros((len(indices), n))
+        held[np.arange(len(indices)), list(indices)] = 1.0
+        return np.vstack([joints, held])
+
+    allowed = rank_of_listed(joints)
+    kept = rank_of_listed(holding(unlisted))
+    if kept >= allowed:
+        return kept, allowed, ()
+    culprits = tuple(
+        labels[i]
+        for i in unlisted
+        if rank_of_listed(holding([j for j in unlisted if j != i])) > kept
+    )
+    return kept, allowed, culprits
+
+
 def held_dofs(t: NDArray[np.float64]) -> NDArray[np.bool_]:
     """True for the DOFs whose row of T is zero: they cannot move."""
     size = np.abs(t).max(axis=1)

@@ -45,6 +45,12 @@ JOINT_KINDS: dict[str, str] = {
     "planar": "the two translations in the plane normal to the axis and the rotation "
     "about it (default axis (0, 1, 0): surge, heave, pitch; WEC-Sim's Floating (3DOF))",
 }
+#: Other names of the joints: the textbooks' prismatic and hinge, WEC-Sim's Rotational.
+JOINT_ALIASES: dict[str, str] = {
+    "prismatic": "translational",
+    "hinge": "revolute",
+    "rotational": "revolute",
+}
 #: The default axis of each kind (the normal of the plane for a planar joint).
 DEFAULT_AXIS: dict[str, tuple[float, float, float]] = {
     "fixed": (0.0, 0.0, 1.0),
@@ -125,13 +131,12 @@ class Joint:
     def __post_init__(self) -> None:
         where = self.where
         kind = str(self.kind).lower()
-        if kind == "prismatic":
-            kind = "translational"
-        if kind == "hinge":
-            kind = "revolute"
+        kind = JOINT_ALIASES.get(kind, kind)
         if kind not in JOINT_KINDS:
             raise ArgumentError(
-                f"{where}: unknown joint {self.kind!r}", hint=f"joints: {', '.join(JOINT_KINDS)}"
+                f"{where}: unknown joint {self.kind!r}",
+                hint=f"joints: {', '.join(JOINT_KINDS)} (WEC-Sim's Rotational is revolute, "
+                "its Floating (3DOF) planar)",
             )
         object.__setattr__(self, "kind", kind)
         if str(self.body).strip().lower() == str(self.base).strip().lower():

@@ -43,8 +43,14 @@ from numpy.typing import NDArray
 
 from cummins.errors import ArgumentError, AssumptionWarning
 from cummins.hydrodb import add_history, dof_matrix, select_dofs
-from cummins.mechanics.bodies import body_frame
-from cummins.mechanics.constraints import check_inertia, held_dofs, is_locked, null_space_basis
+from cummins.mechanics.bodies import BodyFrame, body_frame, body_sizes
+from cummins.mechanics.constraints import (
+    check_inertia,
+    held_dofs,
+    is_locked,
+    null_space_basis,
+    selection_restrictions,
+)
 from cummins.mechanics.coupling import without_body_coupling
 from cummins.mechanics.joints import JOINT_KINDS, Joint, joint_rows
 from cummins.mechanics.preload import Preload, net_static_forces, preload_stiffness
@@ -135,6 +141,9 @@ class Assembly:
         The PTOs resolved on ``ds``'s DOFs.
     held
         The DOFs of the data that cannot move (dropped from ``ds``).
+    preload
+        One line: the stiffness the joints' pre-load adds to each coordinate
+        (:mod:`cummins.mechanics.preload`), empty when it adds none.
     """
 
     system: MechanicalSystem
@@ -143,6 +152,7 @@ class Assembly:
     coordinates: tuple[str, ...]
     ptos: tuple[PTOLine, ...]
     held: tuple[str, ...]
+    preload: str = ""
 
     @property
     def dofs(self) -> tuple[str, ...]:
@@ -171,8 +181,10 @@ class Assembly:
 
     def attrs(self) -> dict[str, str]:
         """Attributes for results: ``body_coupling`` (on/off), ``system`` (JSON),
-        ``constrained_coordinates``, ``held_dofs``, ``ptos`` (one line each)."""
+        ``constrained_coordinates``, ``held_dofs``, ``ptos`` (one line each) and
+        ``joint_preload`` when the joints' pre-load adds a stiffness."""
         return {
+            **({"joint_preload": self.preload} if self.preload else {}),
             "body_coupling": "on" if self.system.body_coupling else "off",
             "body_coupling_note": self.system.coupling_note(),
             "system": json.dumps(self.system.describe()),
@@ -236,6 +248,9 @@ def assemble(ds: xr.Dataset, system: MechanicalSystem) -> Assembly:
             f"{', '.join(free_dofs)} move",
             hint="keep DOFs the joints let move, or leave the DOF selection out",
         ) from None
+    if system.dofs is not None and system.joints:
+        _warn_selection(np.vstack(rows[: len(system.joints)]), labels, system.dofs)
+    _warn_far_points(ds, frame, system)
     selection = "the DOF selection" if system.dofs is not None else ""
     for joint, f in free:
         if is_locked(f, t):
@@ -264,8 +279,12 @@ def assemble(ds: xr.Dataset, system: MechanicalSystem) -> Assembly:
     if "inertia_matrix" in out:
         check_inertia(dof_matrix(out, "inertia_matrix"), basis, keep, "rigid-body inertia")
     preload = _joint_preload(ds, frame, system, g, t, coordinates)
+    note = ""
     if preload is not None:
         out = _with_preload(out, preload, [labels.index(k) for k in keep])
+        note = preload_note(preload, t, coordinates)
+    if out is ds:  # the caller's data keep their attributes
+        out = ds.copy()
     out.attrs["body_coupling"] = "on" if system.body_coupling else "off"
     if not system.is_plain or held.any():
         add_history(
@@ -274,7 +293,83 @@ def assemble(ds: xr.Dataset, system: MechanicalSystem) -> Assembly:
             f"coordinates {', '.join(coordinates)}"
             + (f"; held at zero: {', '.join(np.asarray(labels)[held])}" if held.any() else ""),
         )
-    return Assembly(system, out, basis, coordinates, ptos, tuple(np.asarray(labels)[held].tolist()))
+    held_labels = tuple(np.asarray(labels)[held].tolist())
+    return Assembly(system, out, basis, coordinates, ptos, held_labels, note)
+
+
+def preload_note(preload: Preload, t: NDArray[np.float64], coordinates: Sequence[str]) -> str:
+    """One line: the stiffness the joints' pre-load adds to each coordinate q, the
+    diagonal of Tᵀ K T (N/m, N·m/rad), and the static forces that cause it; empty when
+    it adds none."""
+    from cummins.dofs import is_rotation
+
+    added = np.diag(t.T @ preload.stiffness @ t)
+    scale = max(float(np.abs(preload.stiffness).max()), 1e-300)
+    terms = [
+        f"{value:+.4g} {'N·m/rad' if is_rotation(name) else 'N/m'} on {name}"
+        for name, value in zip(coordinates, added, strict=True)
+        if abs(value) > 1e-9 * scale
+    ]
+    if not terms:
+        return ""
+    forces = ", ".join(f"{f:.6g} N" for f in preload.forces)
+    return (
+        f"joint pre-load: {', '.join(terms)} (the bodies' net static forces (ρ∇ − m)g = "
+        f"{forces}, carried by the joints)"
+    )
+
+
+#: A joint's or a PTO's point farther than this many body lengths from the bodies it
+#: ties is taken for a slip of units or axes, and warned of.
+FAR_POINT = 10.0
+
+
+def _warn_selection(joint_rows: NDArray, labels: Sequence[str], listed: Sequence[str]) -> None:
+    """A warning when the DOF selection takes from the DOFs it lists motions the joints
+    give them (:func:`~cummins.mechanics.constraints.selection_restrictions`): every DOF
+    not listed is held at zero, even one the joints move with the DOFs listed."""
+    kept, allowed, culprits = selection_restrictions(joint_rows, labels, listed)
+    if kept >= allowed:
+        return
+    held = f"holds {', '.join(culprits)} at zero" if culprits else "holds DOFs at zero"
+    warnings.warn(
+        f"the DOF selection (--dof) {held}, which the joints move with the DOFs listed: "
+        f"they keep {kept} of the {allowed} independent motions the joints alone give "
+        "them. List those DOFs too if they should follow the joints, or hold what should "
+        "not move with a joint to the ground (--joint planar BODY ground: surge, heave, "
+        "pitch)",
+        AssumptionWarning,
+        stacklevel=4,
+    )
+
+
+def _warn_far_points(ds: xr.Dataset, frame: BodyFrame, system: MechanicalSystem) -> None:
+    """A warning for each revolute joint or PTO whose point lies more than
+    :data:`FAR_POINT` body lengths (:func:`~cummins.mechanics.bodies.body_sizes`, and the
+    distance between the two bodies) from the bodies it ties: a hinge given in mm, or in
+    other axes than the data's, turns the body about a far axis, a near translation."""
+    sizes = body_sizes(ds, frame)
+    items = [(j.where, j.body, j.base, j.point) for j in system.joints if j.kind == "revolute"]
+    items += [(p.where, p.body, p.base, p.point) for p in system.ptos if p.body is not None]
+    for where, body_name, base_name, point in items:
+        if point is None:
+            continue
+        body, base = frame.resolve(body_name, where), frame.resolve(base_name, where)
+        tied = [b for b in (body, base) if b is not None]
+        scale = max(float(sizes[b]) for b in tied)
+        if len(tied) == 2:
+            scale = max(scale, float(np.linalg.norm(frame.points[body] - frame.points[base])))
+        distance = min(float(np.linalg.norm(np.asarray(point) - frame.points[b])) for b in tied)
+        if scale > 0 and distance > FAR_POINT * scale:
+            nearest = min(tied, key=lambda b: np.linalg.norm(np.asarray(point) - frame.points[b]))
+            warnings.warn(
+                f"{where}: the point {list(point)} m is {distance:.4g} m from "
+                f"{frame.body_label(nearest)}'s reference point, {distance / scale:.0f} times "
+                f"the bodies' length scale ({scale:.3g} m: their size and spacing): check "
+                "its units (m) and axes (the data's, from the global origin)",
+                AssumptionWarning,
+                stacklevel=4,
+            )
 
 
 def _joint_preload(ds, frame, system, g, t, coordinates) -> Preload | None:

@@ -214,7 +214,19 @@ def check_model_data(
     )
     if dofs_differ:  # never allowed: the model's DOFs are not the data's
         hint = "give the data it was fitted to, or fit the model to these data"
-        if model.attrs.get("motions_of"):
+        moving = [str(d) for d in ds.influenced_dof.values]
+        if "body_coupling" in ds.attrs and set(moving) < set(model.dofs):
+            # data of a mechanical system (assemble): its joints hold DOFs the model has
+            text = (
+                f"{model_name} holds {len(model.dofs)} DOFs, fitted to data without these "
+                f"joints or DOF selection, which let only {', '.join(moving)} move"
+            )
+            hint = (
+                "fit the model with the same --dof, --joint, --pto and --no-body-coupling "
+                "options as here (system= in Python): it then holds the DOFs that move and "
+                "aims at the joined system's motions; or give the data to fit it"
+            )
+        elif model.attrs.get("motions_of"):
             hint = (
                 f"it was fitted for joined bodies ({model.attrs['motions_of']}): give the "
                 "same --dof, --joint, --pto and --no-body-coupling options as its fit "

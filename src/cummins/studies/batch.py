@@ -81,7 +81,13 @@ from cummins.studies.study import (
     load_study,
     parse_limit_value,
 )
-from cummins.studies.wording import study_warnings, study_wording
+from cummins.studies.wording import (
+    WARNINGS_KEY,
+    recorded_warnings,
+    reissue_warnings,
+    study_warnings,
+    study_wording,
+)
 from cummins.validation import check_memory, simulation_memory, time_steps
 
 __all__ = [
@@ -427,6 +433,14 @@ def _run_case(context: StudyContext, case: Case) -> dict[str, Any]:
         raise StudyError(f"case {case.label}: {study_wording(str(exc), source)}") from None
 
 
+def _worker_case(context: StudyContext, case: Case) -> dict[str, Any]:
+    """:func:`_run_case` in a worker process: its warnings return with its results
+    (:func:`~cummins.studies.wording.recorded_warnings`), shown once where the study runs."""
+    with recorded_warnings() as caught:
+        values = _run_case(context, case)
+    return {**values, WARNINGS_KEY: caught}
+
+
 # --------------------------------------------------------------------------- running
 
 
@@ -648,13 +662,14 @@ def _compute(
                 shared = client.scatter(context, broadcast=True)
                 token = uuid.uuid4().hex[:8]  # keys of this run only: a rerun is never confused
                 futures = {
-                    client.submit(_run_case, shared, case, key=f"cummins-{i}-{token}"): (i, case)
+                    client.submit(_worker_case, shared, case, key=f"cummins-{i}-{token}"): (i, case)
                     for i, case in todo
                 }
                 try:
                     for future in distributed.as_completed(futures):
                         case_id, case = futures[future]
                         values = future.result()
+                        reissue_warnings(values.pop(WARNINGS_KEY, []))
                         _save_part(folder, case_id, case, values)
                         done[case_id] = values
                         report(len(done), total)

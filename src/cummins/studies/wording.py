@@ -6,7 +6,8 @@ The library writes each such hint from one constant
 (:data:`cummins.io._common.CONSTANT_CHOICES`,
 :data:`cummins.seakeeping.headings.HEADING_CHOICE`); :func:`study_wording` replaces it,
 :func:`study_warnings` re-issues the warnings raised while a study is prepared or a case
-runs in those words.
+runs in those words. A case runs in a worker process: :func:`recorded_warnings` keeps its
+warnings with its results and :func:`reissue_warnings` shows them where the study runs.
 """
 
 from __future__ import annotations
@@ -62,3 +63,32 @@ def study_warnings(source: Path | None = None) -> Iterator[None]:
                 except TypeError:  # a warning class built otherwise: as raised
                     message = w.message
             warnings.warn_explicit(message, w.category, w.filename, w.lineno)
+
+
+#: The key of a case's results that carries its warnings from the worker.
+WARNINGS_KEY = "_warnings"
+
+
+@contextmanager
+def recorded_warnings() -> Iterator[list[tuple[type[Warning], str]]]:
+    """Record the warnings raised inside, each (category, text) once, instead of showing
+    them: a case's worker sends them with its results (:data:`WARNINGS_KEY`) for
+    :func:`reissue_warnings` to show where the study runs — the worker's own stderr
+    would print each raw, with the path and line of the code, once per case."""
+    out: list[tuple[type[Warning], str]] = []
+    with warnings.catch_warnings(record=True) as caught:
+        warnings.simplefilter("always")
+        try:
+            yield out
+        finally:
+            for w in caught:
+                item = (w.category, str(w.message))
+                if item not in out:
+                    out.append(item)
+
+
+def reissue_warnings(items: list[tuple[type[Warning], str]]) -> None:
+    """Issue again the warnings :func:`recorded_warnings` kept (the command line shows
+    each text once, as a one-line note)."""
+    for category, text in items:
+        warnings.warn(text, category, stacklevel=2)

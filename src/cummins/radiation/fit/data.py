@@ -392,6 +392,8 @@ def _prepare_fit(
         ]
     if joined is not None and reference is not None:
         attrs["motions_of"] = joined.describe()
+    if "body_coupling" in ds.attrs:  # data of a mechanical system (assemble): on or off
+        attrs["body_coupling"] = str(ds.attrs["body_coupling"])
     if reference is None:
         attrs["motions_unjudged"] = motions_unjudged(user, options.weighting)
     if reference is not None:
