@@ -13,6 +13,7 @@ import pytest
 import xarray as xr
 
 import cummins
+from _batch_run import run_batch_study
 from cummins.errors import ArgumentError
 from cummins.mass_properties import with_inertia
 from cummins.mechanics import PTO, Joint, MechanicalSystem, assemble, system_from_mapping
@@ -830,10 +831,6 @@ def test_a_failing_case_of_a_study_is_one_line_without_dask_logs(corpus, tmp_pat
     """A power-matrix study of Capytaine's OSWEC on its hinge whose spread sea (s = 4)
     leaves the data's headings: the case's error is one line, and the Dask worker's
     "Compute Failed" log (with its Traceback) no longer precedes it on the terminal."""
-    import os
-    import subprocess
-    import sys
-
     pytest.importorskip("distributed")
     data = corpus / "WEC-Sim/capytaine_OSWEC_flap/outputs/oswec_hydrodynamics.nc"
     flap = with_inertia(
@@ -843,23 +840,14 @@ def test_a_failing_case_of_a_study_is_one_line_without_dask_logs(corpus, tmp_pat
         radii_of_gyration=[[3.817] * 3, [1.0] * 3],
     )
     cummins.write(flap, tmp_path / "oswec.nc")
-    (tmp_path / "study.yaml").write_text(
+    result = run_batch_study(
+        tmp_path,
         "data: oswec.nc\nanalysis: rao\nspectrum: pm\n"
         "grid: {heading: [0], hs: [1], tp: [8], spreading: [4]}\n"
         "system:\n  body_coupling: false\n  joints:\n"
         "    - {kind: fixed, body: body2, base: ground}\n"
         "    - {kind: revolute, body: body1, base: body2, axis: [0, 1, 0],"
         " point: [0, 0, -8.9], pto: {damping: 1.2e7}}\n",
-        encoding="utf-8",
-    )
-    env = {**os.environ, "OPENBLAS_NUM_THREADS": "1"}
-    result = subprocess.run(
-        [sys.executable, "-m", "cummins", "batch", "study.yaml", "-o", "r.nc", "--workers", "1"],
-        cwd=tmp_path,
-        env=env,
-        capture_output=True,
-        text=True,
-        timeout=300,
     )
     output = result.stdout + result.stderr
     assert result.returncode == 2, output

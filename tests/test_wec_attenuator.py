@@ -17,6 +17,7 @@ import pytest
 import xarray as xr
 
 import cummins
+from _batch_run import run_batch_study
 from cummins.errors import AssumptionWarning
 from cummins.mechanics import PTO, Joint, MechanicalSystem, assemble
 from cummins.seakeeping.frequency_domain import motion_rao, pto_rao
@@ -280,30 +281,17 @@ def test_a_study_shows_its_cases_warnings_once_each_in_one_line(attenuator, tmp_
     case warns that the joints' pre-load is left out): the warning is one line of
     ``batch``, once — the Dask workers printed it raw (the code's path and line, the
     source line), once per case."""
-    import os
-    import subprocess
-    import sys
-
     pytest.importorskip("distributed")
     ds = attenuator.copy()
     del ds.attrs["displaced_volume"]
     cummins.write(ds, tmp_path / "boxes.nc")
-    (tmp_path / "study.yaml").write_text(
+    result = run_batch_study(
+        tmp_path,
         "data: boxes.nc\nanalysis: rao\n"
         "grid: {heading: [0], hs: [1], tp: [5, 6, 7]}\n"
         "system:\n  joints:\n"
         "    - {kind: revolute, body: body1, base: body2, axis: [0, 1, 0],"
         " point: [-5.5, 0, -1], pto: {damping: 1.0e+6}}\n",
-        encoding="utf-8",
-    )
-    env = {**os.environ, "OPENBLAS_NUM_THREADS": "1"}
-    result = subprocess.run(
-        [sys.executable, "-m", "cummins", "batch", "study.yaml", "-o", "r.nc", "--workers", "1"],
-        cwd=tmp_path,
-        env=env,
-        capture_output=True,
-        text=True,
-        timeout=300,
     )
     output = result.stdout + result.stderr
     assert result.returncode == 0, output
