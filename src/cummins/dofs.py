@@ -88,18 +88,24 @@ def named_dof_hint(ds: xr.Dataset, label: str) -> str:
     """For a DOF named with the file's name of its body (``flap__Pitch``, as Capytaine
     names it) where the data say ``body1__Pitch``: "flap__Pitch is body1__Pitch here";
     empty otherwise."""
-    body, name = split_dof(label)
     names, prefixes = body_names(ds), bodies(ds)
-    if body is None or body not in names or len(names) != len(prefixes):
+    if len(names) != len(prefixes):
         return ""
-    prefix = prefixes[names.index(body)]
-    meant = f"{prefix}__{name}" if prefix else name
     labels = [str(d) for d in ds.influenced_dof.values]
-    return (
-        f"{label} is {meant} here (DOFs are named by the bodies' numbers)"
-        if meant in labels
-        else ""
-    )
+    return numbered_dof_hint(label, names, prefixes, labels)
+
+
+def numbered_dof_hint(label: str, names, prefixes, labels) -> str:
+    """:func:`named_dof_hint` given the bodies' names in the file, their prefixes in the
+    data (by body) and the data's DOF labels."""
+    body, name = split_dof(label)
+    if body is None or body not in names:
+        return ""
+    prefix = prefixes[list(names).index(body)]
+    meant = f"{prefix}__{name}" if prefix else name
+    if meant not in labels:
+        return ""
+    return f"{label} is {meant} here (DOFs are named by the bodies' numbers)"
 
 
 def split_dof(label: str) -> tuple[str | None, str]:

@@ -21,7 +21,7 @@ from typing import TYPE_CHECKING
 import numpy as np
 from numpy.typing import ArrayLike, NDArray
 
-from cummins.dofs import DOF_NAMES, bodies, body_names, split_dof
+from cummins.dofs import DOF_NAMES, bodies, body_names, numbered_dof_hint
 from cummins.errors import ArgumentError, HydroDataError
 from cummins.kinematics import screw_transform
 
@@ -95,15 +95,10 @@ class BodyFrame:
         """The index of the DOF ``label``; ArgumentError naming ``where`` if it is absent."""
         if label in self.labels:
             return self.labels.index(label)
-        body, name = split_dof(label)
-        meant = ""
-        if body in self.names and self.prefixes[self.names.index(body)]:
-            candidate = f"{self.prefixes[self.names.index(body)]}__{name}"
-            if candidate in self.labels:
-                meant = f"{label} is {candidate} here (DOFs are named by the bodies' numbers); "
+        meant = numbered_dof_hint(label, self.names, self.prefixes, self.labels)
         raise ArgumentError(
             f"{where}: the data have no DOF {label!r}",
-            hint=f"{meant}DOFs: {', '.join(self.labels)}",
+            hint=(f"{meant}; " if meant else "") + f"DOFs: {', '.join(self.labels)}",
         )
 
     def dof_index(self, body: int, name: str) -> int | None:
