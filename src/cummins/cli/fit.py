@@ -306,6 +306,12 @@ def fit_command(
             + (f" (target {float(target):.2%})" if target is not None else "")
             + (f", on {model.attrs['motions_of']}" if model.attrs.get("motions_of") else "")
         )
+    coordinates = model.attrs.get("coordinate_r2")
+    if coordinates:  # what the joined system holds of the memory: Tᵀ K T
+        console.print(
+            "joined coordinates: "
+            + "; ".join(f"{q} R² of A {a:.4f}, of B {b:.4f}" for q, (a, b) in coordinates.items())
+        )
     for note in model.attrs.get("data_notes", []):
         console.print(f"[yellow]data:[/yellow] {escape(note)}")
     negligible = [c for c in model.attrs.get("negligible_couplings", []) if "-" in c]
@@ -468,6 +474,7 @@ def fit_summary(model, elapsed: float) -> dict:
         "mimo_stable": model.is_stable(),
         "mimo_passive": is_passive(model),
         "motion_error": model.attrs.get("motion_error"),
+        "coordinate_r2": model.attrs.get("coordinate_r2"),
         "failures": list(model.attrs.get("failures", [])),
         "elapsed_s": elapsed,
     }

@@ -18,8 +18,17 @@ from cummins.radiation.fit import order_search, vector
 from cummins.radiation.fit.causal_inf import estimated_inf, noncausal_dofs
 from cummins.radiation.fit.data import FitInput, range_cut_failures
 from cummins.radiation.fit.metrics import coupling_metrics, pair_floor
-from cummins.radiation.fit.mimo import failure_targets, fit_failures, with_motion_note
-from cummins.radiation.fit.motion import BlockMotionError
+from cummins.radiation.fit.mimo import (
+    coordinate_note,
+    failure_targets,
+    fit_failures,
+    with_motion_note,
+)
+from cummins.radiation.fit.motion import (
+    BlockMotionError,
+    coordinate_moves,
+    coordinate_r_squared,
+)
 from cummins.radiation.fit.options import MOTION_AIM, MOTION_TOL, FitOptions
 from cummins.radiation.fit.tail import fine_kernel_metrics, fine_time_grid
 from cummins.radiation.model import MemoryBlock, RadiationModel, modal_form
@@ -277,10 +286,25 @@ def fit_blocks(
         )
         if error > motion_tol:  # what the data's causality allows (the failure says it)
             extra["noncausal_dofs"] = noncausal_dofs(inp, model, per_dof > motion_tol)
+        if sensitivity.basis is not None:  # what the joined system holds: Tᵀ K T
+            extra["coordinate_r2"] = coordinate_r_squared(
+                omega, a_data, b_data, model, sensitivity.basis, labels
+            )
     model = replace(model, attrs={**model.attrs, **extra})
     if sensitivity is not None:
         model = with_motion_note(model, motion_tol)
-    failures = fit_failures(model, **failure_targets(options, sensitivity))
+    targets = failure_targets(options, sensitivity)
+    failures = fit_failures(model, **targets)
+    waived = [f for f in fit_failures(model, **targets, by_coordinates=False) if f not in failures]
+    if waived:  # the joined system holds Tᵀ K T, not its bodies' DOFs one by one
+        moves = coordinate_moves(sensitivity.basis, labels)
+        lines = [
+            f"{f}: not a failure, the joined system moves these DOFs only through its "
+            f"coordinates ({coordinate_note(model, moves)})"
+            for f in waived
+        ]
+        notes_now = [*model.attrs.get("data_notes", []), *lines]
+        model = replace(model, attrs={**model.attrs, "data_notes": notes_now})
     failures += range_cut_failures(model, inp, options.r2)
     failures += tail_failures  # the model's damping beyond the data (fit/tail.py)
     return replace(model, attrs={**model.attrs, "failures": failures})

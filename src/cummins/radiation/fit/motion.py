@@ -102,6 +102,60 @@ class JoinedMotion:
         return "the joined system's motions (" + ", ".join(parts or ["no joint"]) + ")"
 
 
+def coordinate_labels(basis: NDArray, labels) -> tuple[str, ...]:
+    """The label of each free coordinate of a constraint ``basis`` T (n, k): the DOF whose
+    row of T is that column's unit vector (:func:`cummins.mechanics.constraints.null_space_basis`
+    builds T so), else ``q1``, ``q2`` …"""
+    out = []
+    for c in range(basis.shape[1]):
+        unit = np.zeros(basis.shape[1])
+        unit[c] = 1.0
+        rows = [r for r in range(basis.shape[0]) if np.array_equal(basis[r], unit)]
+        out.append(str(labels[rows[0]]) if rows else f"q{c + 1}")
+    return tuple(out)
+
+
+def coordinate_moves(basis: NDArray, labels) -> dict[str, tuple[str, ...]]:
+    """The DOFs each free coordinate of a constraint ``basis`` moves besides its own."""
+    names = coordinate_labels(basis, labels)
+    return {
+        q: tuple(str(labels[r]) for r in np.flatnonzero(basis[:, c]) if str(labels[r]) != q)
+        for c, q in enumerate(names)
+    }
+
+
+def coordinate_r_squared(
+    omega: NDArray,
+    added_mass: NDArray,
+    damping: NDArray,
+    model,
+    basis: NDArray,
+    labels,
+) -> dict[str, tuple[float, float]]:
+    """R² of A and of B of each free coordinate q_c of a joined system: of its diagonal
+    t_cᵀ A(ω) t_c and t_cᵀ B(ω) t_c (t_c the column of T), the model's against the
+    data's (``added_mass``, ``damping`` (ω, n, n) at ``omega``). What the joined system's
+    equation of motion holds of the fluid memory is Tᵀ K T (Falnes (2002) eq. 5.8 with
+    X = T q): a body's DOF that moves only with others (a flap's surge and pitch about
+    its hinge) is not judged alone by it."""
+    from cummins.radiation.fit.frequency import r_squared
+
+    k = model.response(omega)
+    a_model = np.asarray(model.added_mass_inf)[None] + k.imag / omega[:, None, None]
+    out = {}
+    for c, name in enumerate(coordinate_labels(basis, labels)):
+        t = basis[:, c]
+
+        def along(values, t=t):
+            return np.einsum("i,wij,j->w", t, values, t)
+
+        out[name] = (
+            r_squared(along(added_mass), along(a_model)),
+            r_squared(along(damping), along(k.real)),
+        )
+    return out
+
+
 def transfer(z: NDArray, basis: NDArray | None) -> NDArray:
     """H = Z⁻¹, or T (Tᵀ Z T)⁻¹ Tᵀ with a constraint ``basis`` T, of Z (ω, n, n); the
     pseudo-inverse where Z (Tᵀ Z T) is singular."""
