@@ -202,7 +202,7 @@ def test_wecsim_rm3_planar_joint(rm3):
     ≤ 0.11 % and ≤ 0.21 % at 8–12 s: the fit aims at the planar system's motions), while
     surge and pitch differ by 0.5–1.5 %: the spar's surge and pitch added mass are 85 %
     and 98 % off the Kramers–Kronig transform of their damping, which no causal model
-    follows (the fit's failure names them; docs/wec.md)."""
+    follows (the fit's note names them; docs/wec.md)."""
     system = planar_rm3()
     vessel = vessel_from_hydrodb(rm3, system=system)
     assert set(vessel.dofs) == {
@@ -385,19 +385,20 @@ def test_fit_takes_the_system_and_simulate_its_model(corpus, tmp_path):
 def test_coordinates_named_from_the_basis_as_the_assembly_names_them(rm3):
     """The fit names a joined system's free coordinates from T alone (the DOF whose row
     of T is the column's unit vector): the names the assembly chose, on the RM3's two
-    WEC-Sim set-ups; and the DOFs each coordinate moves besides its own are those of its
-    column of T (the planar spar's pitch moves the float's surge and pitch)."""
-    from cummins.radiation.fit.motion import coordinate_labels, coordinate_moves
+    WEC-Sim set-ups; and the DOFs each coordinate moves are the rows of its column of T
+    not zero, its own first (the planar spar's pitch moves the float's surge and pitch)."""
+    from cummins.radiation.fit.motion import coordinate_dofs, coordinate_labels
 
     for system in (heave_rm3(), planar_rm3()):
         assembly = assemble(rm3, system)
         labels = list(assembly.dofs)
         assert coordinate_labels(assembly.basis, labels) == tuple(assembly.coordinates)
-        moves = coordinate_moves(assembly.basis, labels)
+        moved = coordinate_dofs(assembly.basis, labels)
         for c, q in enumerate(assembly.coordinates):
-            moved = {labels[r] for r in np.flatnonzero(assembly.basis[:, c])} - {q}
-            assert set(moves[q]) == moved
-    assert {"body1__Surge", "body1__Pitch"} <= set(moves["body2__Pitch"])
+            assert moved[q][0] == q
+            assert set(moved[q]) == {labels[r] for r in np.flatnonzero(assembly.basis[:, c])}
+    assert {"body1__Surge", "body1__Pitch"} <= set(moved["body2__Pitch"])
+    assert "body1__Pitch" not in moved["body2__Surge"]
 
 
 def test_rigid_joint_equals_one_body_at_a_common_point(rm3):

@@ -19,14 +19,14 @@ from cummins.radiation.fit.causal_inf import estimated_inf, noncausal_dofs
 from cummins.radiation.fit.data import FitInput, range_cut_failures
 from cummins.radiation.fit.metrics import coupling_metrics, pair_floor
 from cummins.radiation.fit.mimo import (
-    coordinate_note,
+    coordinate_notes,
     failure_targets,
     fit_failures,
     with_motion_note,
 )
 from cummins.radiation.fit.motion import (
     BlockMotionError,
-    coordinate_moves,
+    coordinate_dofs,
     coordinate_r_squared,
 )
 from cummins.radiation.fit.options import MOTION_AIM, MOTION_TOL, FitOptions
@@ -290,21 +290,15 @@ def fit_blocks(
             extra["coordinate_r2"] = coordinate_r_squared(
                 omega, a_data, b_data, model, sensitivity.basis, labels
             )
+            extra["coordinate_dofs"] = coordinate_dofs(sensitivity.basis, labels)
     model = replace(model, attrs={**model.attrs, **extra})
     if sensitivity is not None:
         model = with_motion_note(model, motion_tol)
-    targets = failure_targets(options, sensitivity)
-    failures = fit_failures(model, **targets)
-    waived = [f for f in fit_failures(model, **targets, by_coordinates=False) if f not in failures]
+    waived = coordinate_notes(model, r2, r2_coupling)
     if waived:  # the joined system holds Tᵀ K T, not its bodies' DOFs one by one
-        moves = coordinate_moves(sensitivity.basis, labels)
-        lines = [
-            f"{f}: not a failure, the joined system moves these DOFs only through its "
-            f"coordinates ({coordinate_note(model, moves)})"
-            for f in waived
-        ]
-        notes_now = [*model.attrs.get("data_notes", []), *lines]
+        notes_now = [*model.attrs.get("data_notes", []), *waived]
         model = replace(model, attrs={**model.attrs, "data_notes": notes_now})
+    failures = fit_failures(model, **failure_targets(options, sensitivity))
     failures += range_cut_failures(model, inp, options.r2)
     failures += tail_failures  # the model's damping beyond the data (fit/tail.py)
     return replace(model, attrs={**model.attrs, "failures": failures})

@@ -50,7 +50,6 @@ def fit_failures(
     passivity: str = "mimo",
     motion_tol: float | None = None,
     r2_kernel: float | None = None,
-    by_coordinates: bool = True,
 ) -> list[str]:
     """What makes a fit a failure, one message each (empty: success).
 
@@ -68,35 +67,22 @@ def fit_failures(
     Else a target that the identification itself did not reach is a note of the
     coupling, not a failure: the motions decide whether it matters (see the note).
 
-    A fit for bodies joined by joints (``attrs["coordinate_r2"]``, with
-    ``by_coordinates``) is judged by what the joined system holds of it, Tᵀ K T: when
-    every free coordinate meets ``r2`` in A and B (:func:`coordinates_meet`), a pair of
-    the bodies' DOFs that passivity took below its target is not a failure (the DOFs
-    move only together: a flap's surge and pitch about its hinge).
+    A fit for bodies joined by joints (``attrs["coordinate_r2"]``) is judged by what the
+    joined system holds of it, Tᵀ K T: a pair of the bodies' DOFs that passivity took
+    below its target is not a failure when every free coordinate that moves either DOF
+    meets ``r2`` in A and B (:func:`coordinates_meet`): the DOFs move only with their
+    coordinates (a flap's surge and pitch about its hinge); :func:`coordinate_notes`
+    says so.
     """
     out = []
-    joined_ok = by_coordinates and coordinates_meet(model, r2)
     if passivity == "mimo" and not model.attrs.get("mimo_passive", True):
         out.append("the MIMO model is not passive")
     for k in model.modelled:
         if k.influenced > k.radiating:
             continue
-        target = r2 if k.influenced == k.radiating else r2_coupling
         i, j = model.dofs[k.influenced], model.dofs[k.radiating]
-        name = i if i == j else f"{i}-{j}"
-        for what, key in (("A", "r2_added_mass"), ("B", "r2_damping")):
-            before = k.metrics.get(f"{key}_before")
-            after = k.metrics.get(key)
-            if before is None or after is None:
-                continue
-            if joined_ok:
-                continue
-            if after < min(target, before) - 1e-3 and (before >= target or after < before - 0.05):
-                step = "passivity" if k.method == "vf" else "MIMO passivity"
-                out.append(
-                    f"{name}: {step} took the R² of {what} from {before:.4f} to "
-                    f"{after:.4f} (target {target})"
-                )
+        if not coordinates_meet(model, {i, j}, r2):
+            out += passivity_losses(model, k, r2, r2_coupling)
         kernel = k.metrics.get("r2_kernel")
         if r2_kernel is not None and i == j and kernel is not None and kernel < r2_kernel:
             out.append(kernel_failure(i, k.metrics, r2_kernel))
@@ -121,22 +107,70 @@ def fit_failures(
     return out
 
 
-def coordinates_meet(model: RadiationModel, r2: float) -> bool:
-    """Whether the model holds the R² of A and of B of every free coordinate of its
-    joined system (``attrs["coordinate_r2"]``,
+def passivity_losses(model: RadiationModel, k: CouplingModel, r2: float, r2_coupling: float):
+    """The failures of coupling ``k`` that a later step (passivity) took below its R²
+    target, or lowered by more than 0.05 when it was already below."""
+    target = r2 if k.influenced == k.radiating else r2_coupling
+    i, j = model.dofs[k.influenced], model.dofs[k.radiating]
+    name = i if i == j else f"{i}-{j}"
+    out = []
+    for what, key in (("A", "r2_added_mass"), ("B", "r2_damping")):
+        before = k.metrics.get(f"{key}_before")
+        after = k.metrics.get(key)
+        if before is None or after is None:
+            continue
+        if after < min(target, before) - 1e-3 and (before >= target or after < before - 0.05):
+            step = "passivity" if k.method == "vf" else "MIMO passivity"
+            out.append(
+                f"{name}: {step} took the R² of {what} from {before:.4f} to "
+                f"{after:.4f} (target {target})"
+            )
+    return out
+
+
+def coordinate_notes(model: RadiationModel, r2: float, r2_coupling: float) -> list[str]:
+    """The passivity losses of the bodies' DOFs that :func:`fit_failures` does not count,
+    their coordinates meeting ``r2`` (a joined fit), one note each naming them."""
+    out = []
+    for k in model.modelled:
+        i, j = model.dofs[k.influenced], model.dofs[k.radiating]
+        if k.influenced > k.radiating or not coordinates_meet(model, {i, j}, r2):
+            continue
+        out += [
+            f"{loss}: not a failure, the joined system moves these DOFs only through its "
+            f"coordinates ({coordinate_note(model, {i, j})})"
+            for loss in passivity_losses(model, k, r2, r2_coupling)
+        ]
+    return out
+
+
+def judging_coordinates(model: RadiationModel, dofs) -> list[str]:
+    """The free coordinates of the model's joined system that move any of ``dofs``
+    (``attrs["coordinate_dofs"]``); empty for a fit of free bodies."""
+    moving = model.attrs.get("coordinate_dofs") or {}
+    return [q for q, moved in moving.items() if set(moved) & set(dofs)]
+
+
+def coordinates_meet(model: RadiationModel, dofs, r2: float) -> bool:
+    """Whether every free coordinate that moves any of ``dofs`` (:func:`judging_coordinates`)
+    holds the R² of A and of B (``attrs["coordinate_r2"]``,
     :func:`~cummins.radiation.fit.motion.coordinate_r_squared`) at ``r2``; False for a
     fit of free bodies."""
-    values = model.attrs.get("coordinate_r2")
-    return bool(values) and all(min(pair) >= r2 for pair in values.values())
-
-
-def coordinate_note(model: RadiationModel, moves: dict[str, tuple[str, ...]]) -> str:
-    """One line: the R² of A and B of each free coordinate of the joined system, and the
-    DOFs it ``moves`` besides its own (:func:`~cummins.radiation.fit.motion.coordinate_moves`)."""
     values = model.attrs.get("coordinate_r2") or {}
+    judging = judging_coordinates(model, dofs)
+    return bool(judging) and all(min(values[q]) >= r2 for q in judging)
+
+
+def coordinate_note(model: RadiationModel, dofs) -> str:
+    """The R² of A and B of each free coordinate that moves any of ``dofs``, and the DOFs
+    it moves besides its own."""
+    values = model.attrs.get("coordinate_r2") or {}
+    moving = model.attrs.get("coordinate_dofs") or {}
     parts = []
-    for q, (a, b) in values.items():
-        with_it = f" (moving {', '.join(moves[q])} with it)" if moves.get(q) else ""
+    for q in judging_coordinates(model, dofs):
+        others = list(moving[q])[1:]
+        with_it = f" (moving {', '.join(others)} with it)" if others else ""
+        a, b = values[q]
         parts.append(f"{q}{with_it}: R² of A {a:.4f}, of B {b:.4f}")
     return "; ".join(parts)
 

@@ -115,13 +115,15 @@ def coordinate_labels(basis: NDArray, labels) -> tuple[str, ...]:
     return tuple(out)
 
 
-def coordinate_moves(basis: NDArray, labels) -> dict[str, tuple[str, ...]]:
-    """The DOFs each free coordinate of a constraint ``basis`` moves besides its own."""
+def coordinate_dofs(basis: NDArray, labels) -> dict[str, tuple[str, ...]]:
+    """The DOFs each free coordinate of a constraint ``basis`` moves (its own first): the
+    rows of its column of T that are not zero."""
     names = coordinate_labels(basis, labels)
-    return {
-        q: tuple(str(labels[r]) for r in np.flatnonzero(basis[:, c]) if str(labels[r]) != q)
-        for c, q in enumerate(names)
-    }
+    out = {}
+    for c, q in enumerate(names):
+        moved = [str(labels[r]) for r in np.flatnonzero(basis[:, c])]
+        out[q] = (q, *(d for d in moved if d != q))
+    return out
 
 
 def coordinate_r_squared(
