@@ -129,6 +129,23 @@ def test_a_resonance_the_motions_do_not_depend_on_stays_out():
     assert np.isclose(model.attrs["excluded_frequencies"], feature.omega[0]).any()
 
 
+def test_a_resonance_at_the_data_end_is_said_to_be_left_out_for_that():
+    """The three-box attenuator's middle box (``tests/data/attenuator_capytaine.nc``): a
+    gap resonance in its surge at 2.4–3 rad/s, the data's last frequency 3 rad/s. The
+    motions depend on it (bridged, they move by 34 % of their peak), but a "peak" that
+    runs to the data's end is not kept: the note says that is why (it said "the motions
+    hardly depend on it (34.36 %)"), and ``check`` warns, advising data beyond it."""
+    ds = cummins.read(DATA / "attenuator_capytaine.nc")
+    (gap,) = suspects_by_dof(ds)["body2__Surge"].resonances
+    assert gap.at_end and not gap.kept and max(gap.omega) == ds.omega.values.max()
+    assert gap.motion_change > 0.1  # measured 0.344
+    text = gap.description("body2__Surge")
+    assert "runs to the data's last frequency" in text and "hardly depend" not in text
+    found = [f for f in _check_suspect_frequencies(ds) if f.where == "body2__Surge"]
+    assert [f.severity for f in found] == ["warning"]
+    assert "data beyond it" in found[0].advice
+
+
 @pytest.mark.parametrize(
     "case",
     ["ROSCO/wamit_ITI_barge_5MW_Baseline/Barge.1", "WEC-Sim/aqwa_19.1_PEND_hull/19_1.AH1"],

@@ -434,12 +434,15 @@ class SharpResonance:
         Whether the fit keeps its points (the motions depend on it; else it stays out
         of the fit, as a broadband model does not follow a peak of a few points, and
         in Ogilvie's A∞).
+    at_end
+        Whether it runs to the data's last frequency (then never kept).
     """
 
     omega: tuple[float, ...]
     damping_share: float
     motion_change: float | None
     kept: bool
+    at_end: bool = False
 
     def description(self, label: str) -> str:
         """One sentence: where it is, why it is physics, whether the fit keeps it."""
@@ -458,15 +461,18 @@ class SharpResonance:
                 f", kept: its damping peak is {self.damping_share:.2g} of the DOF's largest "
                 "(no inertia and restoring to judge the motions by)"
             )
-        if self.motion_change is not None:
-            return text + (
-                f"; the motions hardly depend on it ({self.motion_change:.2%} of their peak): "
-                "left out of the fit, kept for A∞'s estimate"
+        left = "left out of the fit, kept for A∞'s estimate"
+        change = self.motion_change
+        if self.at_end:  # its "peak" may be where the data end
+            moved = (
+                ""
+                if change is None
+                else f" (without it the motions move by {change:.1%} of their peak)"
             )
-        return text + (
-            f"; its damping peak is {self.damping_share:.2g} of the DOF's largest: left out "
-            "of the fit, kept for A∞'s estimate"
-        )
+            return text + f"; it runs to the data's last frequency: {left}{moved}"
+        if change is not None:
+            return text + f"; the motions hardly depend on it ({change:.2%} of their peak): {left}"
+        return text + f"; its damping peak is {self.damping_share:.2g} of the DOF's largest: {left}"
 
 
 @dataclass(frozen=True)
@@ -540,8 +546,9 @@ def suspects_by_dof(ds: xr.Dataset, judged: Judged = ()) -> dict[str, DofSuspect
             share = float(b[at, d].max() / b[:, d].max()) if b[:, d].max() > 0 else 0.0
             change = motions.get((label, k))
             kept = change > RESONANCE_MOTION if change is not None else share >= RESONANCE_PEAK
-            kept = kept and max(group) < w[-1]  # a resonance inside the data
-            resonances.append(SharpResonance(group, share, change, bool(kept)))
+            at_end = bool(max(group) >= w[-1])  # not a resonance inside the data
+            kept = kept and not at_end
+            resonances.append(SharpResonance(group, share, change, bool(kept), at_end))
         out[label] = DofSuspects(found[label], tuple(resonances))
     return out
 

@@ -16,6 +16,7 @@ from cummins.check.common import _labels, _speed_suffix, _speeds
 from cummins.check.report import Finding
 from cummins.dofs import split_dof
 from cummins.repair import (
+    RESONANCE_MOTION,
     Judged,
     find_suspect_frequencies,
     irregular_frequency_spans,
@@ -136,10 +137,12 @@ def _check_suspect_frequencies(ds: xr.Dataset, judged: Judged = ()) -> list[Find
             )
         for label, found in own.items():
             for resonance in found.resonances:
+                # one the motions depend on, left out as it runs to the data's end
+                missed = resonance.at_end and (resonance.motion_change or 0.0) > RESONANCE_MOTION
                 out.append(
                     Finding(
                         "suspect_frequencies",
-                        "info",
+                        "warning" if missed else "info",
                         resonance.description(label) + suffix,
                         where=label,
                         value=resonance.motion_change,
@@ -147,6 +150,9 @@ def _check_suspect_frequencies(ds: xr.Dataset, judged: Judged = ()) -> list[Find
                         "those the motions depend on, and every one for A∞); a finer "
                         "frequency grid there resolves the resonance"
                         if resonance.kept
+                        else "data beyond it (a higher last frequency) let the fit keep a "
+                        "resonance the motions depend on; its points stay for A∞"
+                        if resonance.at_end
                         else "keep its points (the fit leaves them out of the model, which "
                         "does not follow a peak of a few points the motions hardly depend "
                         "on, but keeps them for A∞); a finer frequency grid there resolves "
