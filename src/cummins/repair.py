@@ -768,24 +768,27 @@ def nearest_passive_damping(
     sub = np.ix_(dofs, dofs)
     inside = mask[sub]
     out = b.copy()
-    changed, left, worst, worst_omega = [], [], 0.0, float("nan")
+    changed, worst, worst_omega = [], 0.0, float("nan")
     matrices = b[:, dofs][:, :, dofs]
     finite = np.flatnonzero(np.all(np.isfinite(matrices), axis=(1, 2)))
     symmetric = np.where(inside, 0.5 * (matrices + np.swapaxes(matrices, 1, 2)), 0.0)
     values, vectors = np.zeros((0, dofs.size)), np.zeros((0, dofs.size, dofs.size))
     if finite.size:  # every frequency at once (LAPACK matrix by matrix all the same)
         values, vectors = np.linalg.eigh(symmetric[finite] * np.outer(scale, scale))
-    for at in np.flatnonzero(values[:, 0] < 0):
-        k, lam, vec = finite[at], values[at], vectors[at]
+    negative = np.flatnonzero(values[:, 0] < 0)
+    far = values[negative, 0] < -limit
+    left = [float(x) for x in w[finite[negative[far]]]]
+    near = negative[~far]  # every projected frequency at once: the numbers of one by one
+    if near.size:
+        k, lam, vec = finite[near], values[near], vectors[near]
         matrix = matrices[k]
-        if lam[0] < -limit:
-            left.append(float(w[k]))
-            continue
-        nearest = (vec * np.maximum(lam, 0.0)) @ vec.T / np.outer(scale, scale)
-        out[k][sub] = np.where(inside, nearest + 0.5 * (matrix - matrix.T), matrix)
-        changed.append(float(w[k]))
-        if lam[0] < worst:
-            worst, worst_omega = float(lam[0]), float(w[k])
+        nearest = (vec * np.maximum(lam, 0.0)[:, None, :]) @ np.swapaxes(vec, 1, 2)
+        nearest = nearest / np.outer(scale, scale)
+        at = np.ix_(k, dofs, dofs)
+        out[at] = np.where(inside, nearest + 0.5 * (matrix - np.swapaxes(matrix, 1, 2)), matrix)
+        changed = [float(x) for x in w[k]]
+        first = int(np.argmin(lam[:, 0]))  # the first of the worst, as a strict < kept it
+        worst, worst_omega = float(lam[first, 0]), float(w[k[first]])
     if not changed:
         return ds, PassiveDamping((), 0.0, float("nan"), tuple(left))
     projected = damping.transpose("omega", "influenced_dof", "radiating_dof").copy(data=out)
