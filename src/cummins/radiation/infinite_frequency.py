@@ -89,14 +89,15 @@ def bridged_couplings(
     kept = np.asarray(kept, dtype=bool)
     out = np.array(values, dtype=float, copy=True)
     start = [0.0] if from_zero else []
-    for i in range(out.shape[1]):
-        for j in range(out.shape[2]):
-            both = kept[:, i] & kept[:, j]
-            if both.all() or not both.any():
-                continue
-            out[~both, i, j] = np.interp(
-                w[~both], np.r_[start, w[both]], np.r_[start, out[both, i, j]]
-            )
+    both = kept[:, :, None] & kept[:, None, :]
+    grids: dict = {}  # the points both keep and those bridged, once for (i, j) and (j, i)
+    for i, j in zip(*np.nonzero(both.any(axis=0) & ~both.all(axis=0)), strict=True):
+        key = (min(i, j), max(i, j))
+        if key not in grids:
+            mask = both[:, i, j]
+            grids[key] = (mask, ~mask, w[~mask], np.r_[start, w[mask]])
+        mask, gap, at, points = grids[key]
+        out[gap, i, j] = np.interp(at, points, np.r_[start, out[mask, i, j]])
     return out
 
 

@@ -100,6 +100,9 @@ RANK_TOL = 0.0
 # ----------------------------------------------------------------------------- poles
 
 
+_TINY, _EPS = np.finfo(float).tiny, np.finfo(float).eps
+
+
 def _poles_from(values: NDArray, limit: float = np.inf, min_damping: float = MIN_DAMPING) -> Poles:
     """Sorted, stable, damped poles in real form from a set closed under conjugation, none
     beyond ``limit`` (rad/s) in magnitude (:data:`POLE_SPAN`), none damped less than
@@ -110,13 +113,13 @@ def _poles_from(values: NDArray, limit: float = np.inf, min_damping: float = MIN
     if beyond.any():
         values = np.where(beyond, values * limit / np.where(size > 0, size, 1.0), values)
         size = np.abs(values)
-    scale = size + np.finfo(float).tiny
+    scale = size + _TINY
     is_real = np.abs(values.imag) <= 1e-9 * scale
     real = -np.abs(values[is_real].real)
     pairs = values[~is_real & (values.imag > 0)]
     decay = np.maximum(np.abs(pairs.real), min_damping * np.abs(pairs))
     pairs = -decay + 1j * np.abs(pairs.imag)
-    real = np.where(real == 0, -np.finfo(float).eps, real)
+    real = np.where(real == 0, -_EPS, real)
     return Poles(np.sort(real)[::-1], pairs[np.argsort(pairs.imag)])
 
 
