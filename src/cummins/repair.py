@@ -38,7 +38,7 @@ from numpy.typing import ArrayLike, NDArray
 from cummins.errors import HydroDataError
 from cummins.hydrodb import add_history, dof_matrix, validate
 from cummins.radiation.damping_tail import kramers_kronig_integral
-from cummins.radiation.infinite_frequency import bridged_couplings
+from cummins.radiation.infinite_frequency import bridged_couplings, with_coupling_values
 from cummins.radiation.retardation import causal_limits
 
 #: Negative diagonal damping below this fraction of its peak makes a frequency suspect.
@@ -523,8 +523,9 @@ def suspects_by_dof(ds: xr.Dataset, judged: Judged = ()) -> dict[str, DofSuspect
     labels = [str(d) for d in ds.influenced_dof.values]
     found, groups = {}, {}
     curves = ds[["added_mass", "radiation_damping"]]  # all the tests read of each DOF
-    for label in labels:
-        one = curves.sel(influenced_dof=[label], radiating_dof=[label])
+    radiating = [str(d) for d in ds.radiating_dof.values]
+    for d, label in enumerate(labels):  # by position: sel's selection, a quarter the time
+        one = curves.isel(influenced_dof=[d], radiating_dof=[radiating.index(label)])
         found[label] = find_suspect_frequencies(one)
         groups[label] = sharp_resonances(one, found[label])
     if not any(groups.values()):
@@ -750,9 +751,8 @@ def nearest_passive_damping(
     (dataset, report)
         ``report`` is a :class:`PassiveDamping`.
     """
-    damping = ds["radiation_damping"]
-    dims = damping.dims
-    b = damping.transpose("omega", "influenced_dof", "radiating_dof").values
+    b = ds.variables["radiation_damping"].transpose("omega", "influenced_dof", "radiating_dof")
+    b = b.values
     w = ds.omega.values
     n = b.shape[1]
     mask = np.zeros((n, n), dtype=bool)
@@ -791,6 +791,5 @@ def nearest_passive_damping(
         worst, worst_omega = float(lam[first, 0]), float(w[k[first]])
     if not changed:
         return ds, PassiveDamping((), 0.0, float("nan"), tuple(left))
-    projected = damping.transpose("omega", "influenced_dof", "radiating_dof").copy(data=out)
-    result = ds.assign(radiation_damping=projected.transpose(*dims))
+    result = with_coupling_values(ds, "radiation_damping", out)  # an assign's, faster
     return result, PassiveDamping(tuple(changed), worst, worst_omega, tuple(left))
