@@ -55,15 +55,15 @@ class Poles:
 
     def state_form(self) -> tuple[NDArray, NDArray]:
         """(Λ, b) with basis(s) = (sI − Λ)⁻¹ b written in the same real coordinates."""
-        n, nr = self.count, self.real.size
+        n = self.count
         lam, b = np.zeros((n, n)), np.zeros(n)
-        diagonal = np.arange(nr)
-        lam[diagonal, diagonal] = self.real
+        nr = self.real.size
+        lam[:nr, :nr] = np.diag(self.real)
         b[:nr] = 1.0
-        i = nr + 2 * np.arange(self.pairs.size)
-        lam[i, i] = lam[i + 1, i + 1] = self.pairs.real
-        lam[i, i + 1], lam[i + 1, i] = self.pairs.imag, -self.pairs.imag
-        b[i] = 2.0
+        for k, p in enumerate(self.pairs):
+            i = nr + 2 * k
+            lam[i : i + 2, i : i + 2] = [[p.real, p.imag], [-p.imag, p.real]]
+            b[i] = 2.0
         return lam, b
 
     def residue_sum(self) -> NDArray[np.float64]:
