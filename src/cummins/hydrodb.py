@@ -47,8 +47,7 @@ and ``history`` (one line per conversion applied since the file was read); reade
 holds (``restoring_source``, ``restoring_weight_mass``, ``restoring_weight_center``:
 :mod:`cummins.restoring`).
 Positions (``reference_point``, ``center_of_gravity``, ``center_of_buoyancy``) are
-coordinates in the body axes of the dataset, from its coordinate origin.
-"""
+coordinates in the body axes of the dataset, from its coordinate origin."""
 
 from __future__ import annotations
 
@@ -194,8 +193,9 @@ def single_speed(ds: xr.Dataset) -> xr.Dataset:
 
 def dof_matrix(ds: xr.Dataset, name: str) -> NDArray[np.float64]:
     """``ds[name]`` as a float array (…, influenced_dof, radiating_dof): (n, n), or
-    (nω, n, n) for frequency-dependent variables. Always a copy."""
-    return np.array(ds[name].transpose(..., "influenced_dof", "radiating_dof").values, dtype=float)
+    (nω, n, n) for frequency-dependent variables. Always a copy (no DataArray is built)."""
+    var = ds.variables[name].transpose(..., "influenced_dof", "radiating_dof")
+    return np.array(var.values, dtype=float)
 
 
 # --------------------------------------------------------------------------- construction

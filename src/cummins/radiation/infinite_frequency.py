@@ -77,6 +77,17 @@ def trusted_frequencies(ds: xr.Dataset) -> NDArray[np.bool_]:
     return keep
 
 
+def with_coupling_values(ds: xr.Dataset, name: str, values: NDArray) -> xr.Dataset:
+    """``ds`` with the variable ``name`` (ω, influenced, radiating DOFs) holding ``values``
+    given in that order, in the variable's own order of axes: an assign's dataset, without
+    its merge (the other variables shared)."""
+    dims = ds[name].dims
+    order = [dims.index(d) for d in ("omega", "influenced_dof", "radiating_dof")]
+    data = {key: var.values for key, var in ds.data_vars.items()}
+    data[name] = np.transpose(values, np.argsort(order))
+    return ds.copy(data=data)
+
+
 def bridged_couplings(
     values: ArrayLike, omega: ArrayLike, kept: ArrayLike, *, from_zero: bool = False
 ) -> NDArray[np.float64]:
@@ -89,14 +100,15 @@ def bridged_couplings(
     kept = np.asarray(kept, dtype=bool)
     out = np.array(values, dtype=float, copy=True)
     start = [0.0] if from_zero else []
-    for i in range(out.shape[1]):
-        for j in range(out.shape[2]):
-            both = kept[:, i] & kept[:, j]
-            if both.all() or not both.any():
-                continue
-            out[~both, i, j] = np.interp(
-                w[~both], np.r_[start, w[both]], np.r_[start, out[both, i, j]]
-            )
+    both = kept[:, :, None] & kept[:, None, :]
+    grids: dict = {}  # the points both keep and those bridged, once for (i, j) and (j, i)
+    for i, j in zip(*np.nonzero(both.any(axis=0) & ~both.all(axis=0)), strict=True):
+        key = (min(i, j), max(i, j))
+        if key not in grids:
+            mask = both[:, i, j]
+            grids[key] = (mask, ~mask, w[~mask], np.r_[start, w[mask]])
+        mask, gap, at, points = grids[key]
+        out[gap, i, j] = np.interp(at, points, np.r_[start, out[mask, i, j]])
     return out
 
 
@@ -160,9 +172,9 @@ def added_mass_inf(
     else:
         if kept is not None:
             kept = np.asarray(kept, dtype=bool)
-            damping = ds.radiation_damping.transpose("omega", "influenced_dof", "radiating_dof")
-            bridged = bridged_couplings(damping.values, ds.omega.values, kept, from_zero=True)
-            ds = ds.assign(radiation_damping=damping.copy(data=bridged))
+            damping = dof_matrix(ds, "radiation_damping")  # (omega, i, j) when canonical
+            bridged = bridged_couplings(damping, ds.omega.values, kept, from_zero=True)
+            ds = with_coupling_values(ds, "radiation_damping", bridged)
         curve = added_mass_inf_per_frequency(ds, tail=tail).values
         keep = trusted_frequencies(ds)
         values = np.median(curve[keep], axis=0)

@@ -233,19 +233,22 @@ def fit_blocks(
             use = used[:, elements.index((min(i, j), max(i, j)))]
             view = replace(block.element(i, j), metrics={})
             as_given = (min(i, j), max(i, j)) in inp.as_given
+            # K(t) of a diagonal term at the data's full time resolution (the target, issue
+            # 31) stands for that on the default grid: that one only off the diagonal
+            coarse = i != j
             m = coupling_metrics(
                 view,
                 omega[use],
                 a_data[use, i, j],
                 b_data[use, i, j],
                 inf[i, j],
-                time=measured.time,
-                kernel=measured.kernel[:, i, j],
+                time=measured.time if coarse else None,
+                kernel=measured.kernel[:, i, j] if coarse else None,
                 floor=pair_floor(a_data[use], b_data[use], i, j) if as_given else (0.0, 0.0),
                 modal=modal,
             )
-            if i == j:  # K(t) at the data's full time resolution: the target (issue 31)
-                m.update(fine_kernel_metrics(fine_kernel[i], view, fine_time))
+            if i == j:  # r2_kernel, then kernel_zero(_data) after n_frequencies, as before
+                m.update(fine_kernel_metrics(fine_kernel[i], view, fine_time, modal))
             m["n_excluded_frequencies"] = int((~use).sum())
             m["common_poles"] = fitted.poles.count
             if as_given:

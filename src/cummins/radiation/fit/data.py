@@ -212,17 +212,17 @@ def _prepare_fit(
     # MIMO passivity step and the metrics after it (not extrapolated: the range ends
     # where the modelled DOFs stop keeping their points; a DOF without damping of its
     # own, not modelled, does not cut the others' range)
-    modelled = sorted(
-        {i for i, j in significant_couplings(_bridged_dataset(raw, keep_dof)) if i == j}
-    )
+    bridged = _bridged_dataset(raw, keep_dof)  # a new one (points bridged): kept if not cut
+    modelled = sorted({i for i, j in significant_couplings(bridged) if i == j})
     clean_rows = _common_frequencies(keep_dof)
     span = _common_frequencies(keep_dof[:, modelled]) if modelled else clean_rows
     inside = np.arange(span[0], span[-1] + 1)
     clean = raw.isel(omega=clean_rows)  # Ogilvie's A∞: where every DOF is sound
     data_notes += _range_cut_notes(raw, keep_dof, inside)
     beyond_range = _beyond_range(raw, keep_dof, inside)
+    whole = inside.size == raw.sizes["omega"] and bridged is not raw
     raw, keep_dof = raw.isel(omega=inside), keep_dof[inside]
-    data = _bridged_dataset(raw, keep_dof)
+    data = bridged if whole else _bridged_dataset(raw, keep_dof)
     if user is ds:
         user = data
     else:  # the user's own data at the same frequencies, bridged alike
@@ -529,12 +529,12 @@ class FitData:
 def fit_data(data: xr.Dataset, as_given=frozenset()) -> FitData:
     """:class:`FitData` of a ``HydroDB`` already restricted to the fitted frequencies: its
     reciprocal part, but for the pairs ``as_given`` (i, j), kept as they are."""
-    b = data.radiation_damping
-    swapped = b.rename(influenced_dof="radiating_dof", radiating_dof="influenced_dof")
-    damping = (0.5 * (b + swapped)).transpose(*b.dims)
-    if as_given:
-        order = b.transpose(..., "influenced_dof", "radiating_dof")
-        damping = order.copy(data=reciprocal_part(order.values, as_given)).transpose(*b.dims)
+    b = data.radiation_damping  # ½(B + Bᵀ) on the array: xarray's numbers, without its ops
+    order = b.transpose(..., "influenced_dof", "radiating_dof")
+    damping = order.copy(data=reciprocal_part(order.values, as_given)).transpose(*b.dims)
+    if not as_given and not np.array_equal(b.influenced_dof.values, b.radiating_dof.values):
+        swapped = b.rename(influenced_dof="radiating_dof", radiating_dof="influenced_dof")
+        damping = (0.5 * (b + swapped)).transpose(*b.dims)  # aligned by label
     # the segment form at every time: the order search follows these numbers (K(0) is
     # an equation of the fits) and, over many relocations, their last digits (the node
     # form's rounding moved the WAMIT OSWEC's R² of B from 0.277 to 0.281)

@@ -682,8 +682,8 @@ def minimum_real_part(poles: ArrayLike, residues: ArrayLike) -> tuple[float, flo
     best, where = float(values.min()), float(grid[np.argmin(values)])
     interior = np.flatnonzero((values[1:-1] <= values[:-2]) & (values[1:-1] <= values[2:])) + 1
 
-    def re_k_at(w):  # one frequency: the same sums, without the arrays' overhead
-        return np.real(np.sum(r / (1j * w - p)))
+    def re_k_at(w):  # one frequency: np.sum's reduction, without the arrays' overhead
+        return np.add.reduce(r / (1j * w - p), axis=None).real
 
     for k in interior[np.argsort(values[interior])[:20]]:
         res = minimize_scalar(

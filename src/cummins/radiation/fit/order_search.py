@@ -17,7 +17,7 @@ best is kept.
 
 from __future__ import annotations
 
-from collections.abc import Callable, Generator
+from collections.abc import Callable, Generator, Iterator, Mapping
 from dataclasses import dataclass, field, replace
 
 import numpy as np
@@ -70,7 +70,8 @@ class BlockScore:
     """How a fitted block meets its targets.
 
     ``kernel`` holds the R² of K(t) of the diagonal elements (when the data's K(t) is
-    known), ``kernel_shortfall`` the largest shortfall below its target in units of the
+    known; computed when first read, :class:`KernelR2`: only a kept block's note reads
+    them), ``kernel_shortfall`` the largest shortfall below its target in units of the
     allowed 1 − R²; ``beyond`` what the model's damping does beyond the data
     (:func:`cummins.radiation.fit.tail.block_beyond_data`, scored after the passivity
     step), ``tail_excess`` the largest breach of :data:`~cummins.radiation.fit.tail.PEAK_TOLERANCE`
@@ -80,10 +81,15 @@ class BlockScore:
     shortfall: float  # largest R² shortfall below target (0 when met)
     motion_error: float | None  # relative motion error with the block modelled
     passive: bool
-    kernel: dict[int, float] = field(default_factory=dict)
-    kernel_shortfall: float = 0.0
+    kernel: Mapping[int, float] = field(default_factory=dict)
     beyond: dict[int, BeyondData] = field(default_factory=dict)
     tail_excess: float = 0.0
+
+    @property
+    def kernel_shortfall(self) -> float:
+        """The largest shortfall of the R² of K(t) below its target (0 when met or not
+        judged), in units of the allowed 1 − R²."""
+        return self.kernel.shortfall() if isinstance(self.kernel, KernelR2) else 0.0
 
     def meets(self, motion_aim: float | None) -> bool:
         motion_ok = (
@@ -122,23 +128,50 @@ def score_block(
         target = r2 if i == j else r2_coupling
         shortfall = max(shortfall, target - min(pair))
     error = None if motion is None else float(motion(block))
-    kernel, kernel_shortfall = {}, 0.0
+    kernel: Mapping[int, float] = {}
     if r2_kernel is not None and data.kernel is not None:
-        diagonal = [e for e, (i, j) in enumerate(block.elements) if i == j]
-        fitted = block.element_impulse(data.time)
-        for e in diagonal:
-            i = block.elements[e][0]
-            kernel[i] = impulse_r2(data.kernel[e], fitted[:, e])
-            kernel_shortfall = max(kernel_shortfall, (r2_kernel - kernel[i]) / (1 - r2_kernel))
+        kernel = KernelR2(block, data, r2_kernel)
     beyond, tail_excess = {}, 0.0
     if tail:
         beyond = block_beyond_data(block, data)
         for found in beyond.values():
             breach = max(found.rise, found.excess) - PEAK_TOLERANCE
             tail_excess = max(tail_excess, breach / PEAK_TOLERANCE)
-    return BlockScore(
-        scores, shortfall, error, passive, kernel, kernel_shortfall, beyond, tail_excess
-    )
+    return BlockScore(scores, shortfall, error, passive, kernel, beyond, tail_excess)
+
+
+class KernelR2(Mapping):
+    """The R² of K(t) of a fitted block's diagonal elements against the data's, by DOF
+    (model index), computed when first read: the order search scores tens of fits and
+    iterates, and only the kept block's note reads them (the same numbers)."""
+
+    def __init__(self, block: PoleResidueBlock, data: BlockData, target: float):
+        self._block, self._data, self._target = block, data, target
+        self._values: dict[int, float] | None = None
+
+    def _computed(self) -> dict[int, float]:
+        if self._values is None:
+            fitted = self._block.element_impulse(self._data.time)
+            self._values = {
+                i: impulse_r2(self._data.kernel[e], fitted[:, e])
+                for e, (i, j) in enumerate(self._block.elements)
+                if i == j
+            }
+        return self._values
+
+    def __getitem__(self, dof: int) -> float:
+        return self._computed()[dof]
+
+    def __iter__(self) -> Iterator[int]:
+        return iter(self._computed())
+
+    def __len__(self) -> int:
+        return len(self._computed())
+
+    def shortfall(self) -> float:
+        """The largest shortfall below the target in units of the allowed 1 − R²."""
+        gaps = [(self._target - x) / (1 - self._target) for x in self._computed().values()]
+        return max([0.0, *gaps])
 
 
 def _pair_data(data: BlockData, i: int, j: int) -> tuple:

@@ -24,6 +24,7 @@ import numpy as np
 from numpy.typing import ArrayLike, NDArray
 
 from cummins.radiation.damping_tail import DampingTail, fit_damping_tail
+from cummins.radiation.model import siso_impulse_response
 
 #: The tail equations span ω_N … TAIL_SPAN ω_N (beyond, a rational model's damping
 #: decays as ω⁻², at the rate of the slowest tail admitted).
@@ -415,12 +416,13 @@ def fine_time_grid(time: ArrayLike, omega_max: float) -> NDArray[np.float64]:
     return np.arange(0.0, end + 0.5 * step, step)
 
 
-def fine_kernel_metrics(kernel: ArrayLike, model, time: ArrayLike) -> dict[str, float]:
+def fine_kernel_metrics(kernel: ArrayLike, model, time: ArrayLike, modal=None) -> dict[str, float]:
     """``r2_kernel``, ``kernel_zero`` and ``kernel_zero_data`` of a diagonal term: the
     data's K(t) ``kernel`` at ``time`` (:func:`fine_time_grid`) against the impulse
-    response of its ``model`` (a SISO view with ``impulse_response``)."""
+    response of its ``model`` (a SISO view: ``a``, ``b``, ``c``; ``modal``: the
+    :func:`~cummins.radiation.model.modal_form` of its ``a`` when known)."""
     kernel = np.asarray(kernel, dtype=float)
-    fitted = np.asarray(model.impulse_response(time), dtype=float)
+    fitted = np.asarray(siso_impulse_response(model.a, model.b, model.c, time, modal))
     return {
         "r2_kernel": impulse_r2(kernel, fitted),
         "kernel_zero": float(fitted[0]),

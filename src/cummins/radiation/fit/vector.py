@@ -59,6 +59,7 @@ import scipy.linalg.lapack
 from numpy.typing import NDArray
 
 from cummins.radiation.damping_tail import DampingTail
+from cummins.radiation.fit.poles import Poles
 from cummins.radiation.fit.tail import (
     block_tail_equations,
     kernel_zero_equation,
@@ -99,64 +100,7 @@ RANK_TOL = 0.0
 # ----------------------------------------------------------------------------- poles
 
 
-@dataclass(frozen=True)
-class Poles:
-    """Common poles in real form: ``real`` (negative) and ``pairs`` (Im > 0)."""
-
-    real: NDArray[np.float64]
-    pairs: NDArray[np.complex128]
-
-    @property
-    def count(self) -> int:
-        """Number of real parameters per coupling (a pair counts two)."""
-        return self.real.size + 2 * self.pairs.size
-
-    def basis(self, s: NDArray) -> NDArray[np.complex128]:
-        """Columns 1/(s − p) for real p; 1/(s − p) + 1/(s − p̄) and j/(s − p) − j/(s − p̄)
-        for a pair (coefficients a, b: residue a + jb at p)."""
-        s = np.asarray(s, dtype=complex)
-        cols = [1.0 / (s[:, None] - self.real[None, :])]
-        if self.pairs.size:
-            one = 1.0 / (s[:, None] - self.pairs[None, :])
-            two = 1.0 / (s[:, None] - np.conj(self.pairs)[None, :])
-            pair = np.empty((s.size, 2 * self.pairs.size), dtype=complex)
-            pair[:, 0::2] = one + two
-            pair[:, 1::2] = 1j * (one - two)
-            cols.append(pair)
-        return np.hstack(cols)
-
-    def kept_basis(self, s: NDArray) -> NDArray[np.complex128]:
-        """:meth:`basis`, kept (read-only) for the next call at the same ``s``: a fit's
-        scores and its passivity enforcement evaluate it at the data's frequencies again."""
-        s = np.asarray(s, dtype=complex)
-        kept = self.__dict__.setdefault("_kept", {})
-        key = s.tobytes()
-        if key not in kept:
-            if len(kept) > 2:  # the last few frequencies only
-                kept.clear()
-            kept[key] = self.basis(s)
-            kept[key].flags.writeable = False
-        return kept[key]
-
-    def state_form(self) -> tuple[NDArray, NDArray]:
-        """(Λ, b) with basis(s) = (sI − Λ)⁻¹ b written in the same real coordinates."""
-        n = self.count
-        lam, b = np.zeros((n, n)), np.zeros(n)
-        nr = self.real.size
-        lam[:nr, :nr] = np.diag(self.real)
-        b[:nr] = 1.0
-        for k, p in enumerate(self.pairs):
-            i = nr + 2 * k
-            lam[i : i + 2, i : i + 2] = [[p.real, p.imag], [-p.imag, p.real]]
-            b[i] = 2.0
-        return lam, b
-
-    def residue_sum(self) -> NDArray[np.float64]:
-        """The linear form of the coefficients giving Σ_k R_k (conjugates included)."""
-        v = np.zeros(self.count)
-        v[: self.real.size] = 1.0
-        v[self.real.size :: 2] = 2.0
-        return v
+_TINY, _EPS = np.finfo(float).tiny, np.finfo(float).eps
 
 
 def _poles_from(values: NDArray, limit: float = np.inf, min_damping: float = MIN_DAMPING) -> Poles:
@@ -169,13 +113,13 @@ def _poles_from(values: NDArray, limit: float = np.inf, min_damping: float = MIN
     if beyond.any():
         values = np.where(beyond, values * limit / np.where(size > 0, size, 1.0), values)
         size = np.abs(values)
-    scale = size + np.finfo(float).tiny
+    scale = size + _TINY
     is_real = np.abs(values.imag) <= 1e-9 * scale
     real = -np.abs(values[is_real].real)
     pairs = values[~is_real & (values.imag > 0)]
     decay = np.maximum(np.abs(pairs.real), min_damping * np.abs(pairs))
     pairs = -decay + 1j * np.abs(pairs.imag)
-    real = np.where(real == 0, -np.finfo(float).eps, real)
+    real = np.where(real == 0, -_EPS, real)
     return Poles(np.sort(real)[::-1], pairs[np.argsort(pairs.imag)])
 
 
@@ -442,10 +386,9 @@ def _stacked(m: NDArray, wr: NDArray, wi: NDArray) -> NDArray:
 def relocate(data: BlockData, poles: Poles) -> Poles:
     """One relaxed vector-fitting relocation of the common poles (fast QR)."""
     s = 1j * data.omega
-    phi = poles.basis(s)
-    n = phi.shape[1]
-    ones = np.ones((s.size, 1))
-    sigma = np.hstack([phi, ones])
+    sigma = poles.basis(s, constant=True)  # [phi, 1]
+    n = poles.count
+    phi = sigma[:, :n]
     scale, groups = data.relocation_rows
     # one QR per element, stacked: [own, −f σ] weighted, real rows over imaginary rows
     # (own: the element's basis, with a constant when its A∞ is estimated); the trailing
