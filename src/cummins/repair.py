@@ -548,8 +548,7 @@ def suspects_by_dof(ds: xr.Dataset, judged: Judged = ()) -> dict[str, DofSuspect
             change = motions.get((label, k))
             kept = change > RESONANCE_MOTION if change is not None else share >= RESONANCE_PEAK
             at_end = bool(max(group) >= w[-1])  # not a resonance inside the data
-            kept = kept and not at_end
-            resonances.append(SharpResonance(group, share, change, bool(kept), at_end))
+            resonances.append(SharpResonance(group, share, change, kept and not at_end, at_end))
         out[label] = DofSuspects(found[label], tuple(resonances))
     return out
 
@@ -758,8 +757,7 @@ def nearest_passive_damping(
     (dataset, report)
         ``report`` is a :class:`PassiveDamping`.
     """
-    b = ds.variables["radiation_damping"].transpose("omega", "influenced_dof", "radiating_dof")
-    b = b.values
+    b = dof_matrix(ds, "radiation_damping")
     w = ds.omega.values
     n = b.shape[1]
     mask = np.zeros((n, n), dtype=bool)
