@@ -104,6 +104,12 @@ class FitOptions(Mapping):
         Target R² of K(t) of each modelled diagonal term against the data's K(t) (with
         its damping tail beyond the last frequency: the model must decay as the data's
         tail); ``None``: not a target.
+    refine_motions
+        A block that misses its motion aim after the order search has its residues
+        refined on the motion RAOs themselves, passive at every step
+        (:mod:`cummins.radiation.fit.motion_refinement`), at its number of common poles
+        and at ``max_order``; the refined block is kept when its motion error is lower
+        and it is as near the R² and tail targets (``"vf"`` only).
     """
 
     method: str = "vf"
@@ -121,6 +127,7 @@ class FitOptions(Mapping):
     motion_tol: float = MOTION_TOL
     reciprocity: str = "auto"
     r2_kernel: float | None = R2_KERNEL
+    refine_motions: bool = False
 
     # ------------------------------------------------------------------ a mapping of
     # the fields set away from the defaults (``fit_radiation(ds, **preset)``)
