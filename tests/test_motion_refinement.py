@@ -5,7 +5,7 @@ motion RAOs by Gauss–Newton steps, passive at every step.
 References: the derivative of the motions by finite differences; the demo ship with a
 bump in its heave added mass that its damping does not have (not Kramers–Kronig
 consistent: no causal model follows both; measured 2.46 % → 1.14 %, 2026-12-06); WEC-Sim's
-RM3 from WAMIT (3.73 % → 0.96 % of the scoreboard, 20 common poles).
+RM3 from WAMIT (3.73 % → 0.39 % of the scoreboard, 20 common poles).
 """
 
 from __future__ import annotations
@@ -96,7 +96,7 @@ def test_a_fit_within_its_aim_is_not_refined():
 
 def test_rm3_refined_meets_the_motion_target(shared_data):
     """WEC-Sim's RM3 (issue 30): the default 3.7 % of the peak; refined on its motions
-    within the scoreboard's 1 % (0.96 % measured, 20 common poles), passive by the exact
+    within the scoreboard's 1 % (0.39 % measured, 20 common poles), passive by the exact
     test and stable, without the motion failure; its notes those of the refined fit."""
     with warnings.catch_warnings():
         warnings.simplefilter("ignore")
@@ -110,7 +110,7 @@ def test_rm3_refined_meets_the_motion_target(shared_data):
             radii_of_gyration=[[5.367, 5.418, 7.148], [10.319, 10.319, 5.674]],
         )
     model = _fit(ds, refine_motions=True)
-    assert motion_rao_error(ds, model).error <= 0.01
+    assert motion_rao_error(ds, model).error <= 0.006  # the aim, 0.8 %, with room
     assert np.all(np.linalg.eigvals(model.A).real < 0)
     assert passivity_test(model).passive
     assert not [f for f in model.attrs["failures"] if f.startswith("motion error")]

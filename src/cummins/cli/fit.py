@@ -172,7 +172,7 @@ from cummins.files import write_text
     default=False,
     help="A block whose motion RAOs miss the target after the order search has its "
     "residues refined on the motions themselves, passive at every step (vf; slower: "
-    "WEC-Sim's RM3 3.7 % -> 0.96 % of the peak, 2.4 -> 8.5 s).",
+    "WEC-Sim's RM3 3.7 % -> 0.4 % of the peak, 2.4 -> 7 s).",
 )
 @click.option(
     "--body",

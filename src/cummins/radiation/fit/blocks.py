@@ -66,6 +66,14 @@ def fit_blocks(
             measured.added_mass[rows] + antisymmetric
         )
         block_motion = BlockMotionError(sensitivity, k_data)
+    if k_data is not None and options.refine_motions:
+        # the refinement's: the couplings no block models as the model will have them
+        # and the user's motions, not the passive part's the fit aims at
+        judged = sensitivity if inp.reference is None else inp.reference
+        model_motion = BlockMotionError(
+            replace(sensitivity, motions=judged.motions, compared=judged.compared),
+            unmodelled_as_model(k_data, wk, inp.negligible, inf + antisymmetric),
+        )
     motion_aim = MOTION_AIM * motion_tol if sensitivity is not None else None
     blocks, notes, tail_failures = [], [], []
     done: list = []  # (name, dofs, elements, poles, score, pole floor) of each block fitted
@@ -85,8 +93,13 @@ def fit_blocks(
                 return 0.0
             return block_motion(dofs, model_k(block, dofs))
 
-        def linearised(block, dofs=dofs):
-            return block_motion.linearised(dofs, model_k(block, dofs))
+        def refined_motions(dofs=dofs):
+            """The block's motion error and its linearisation, every other coupling as
+            the model has it (:func:`unmodelled_as_model`)."""
+            return (
+                lambda fit: model_motion(dofs, model_k(fit, dofs)),
+                lambda fit: model_motion.linearised(dofs, model_k(fit, dofs)),
+            )
 
         def model_k(block, dofs=dofs):
             """K̂ + jω A∞ of the block at the compared frequencies (the motions' K)."""
@@ -234,7 +247,7 @@ def fit_blocks(
         if options.refine_motions and passive and motion_aim is not None:
             if not score.meets(motion_aim):  # the motions themselves fitted
                 counts = (fitted.poles.count, fixed_count or max_order)
-                refined = refined_block(data, score, counts, (motion, linearised), options)
+                refined = refined_block(data, fitted, score, counts, refined_motions(), options)
             if refined is not None:
                 fitted, score, block_notes = refined[0], refined[1], refined[2](block_notes, labels)
         a, b, c = fitted.realization()
@@ -318,6 +331,16 @@ def fit_blocks(
     failures += range_cut_failures(model, inp, options.r2)
     failures += tail_failures  # the model's damping beyond the data (fit/tail.py)
     return replace(model, attrs={**model.attrs, "failures": failures})
+
+
+def unmodelled_as_model(k_data, omega, negligible, added_mass_inf):
+    """The data's K(jω) + jω A(ω) at ``omega`` (ω, n, n) with the ``negligible`` pairs
+    (i ≤ j) as a model has them: K = 0, the added mass its A∞ (``added_mass_inf``)."""
+    out = k_data.copy()
+    for i, j in negligible:
+        out[:, i, j] = 1j * omega * added_mass_inf[i, j]
+        out[:, j, i] = 1j * omega * added_mass_inf[j, i]
+    return out
 
 
 def score_before(data, poles, r2: float, r2_coupling: float):

@@ -28,6 +28,13 @@ Usow (1968)): ℓ ← ℓ |r|, so that the least-squares steps aim at the larges
 what the scoreboard judges. After :data:`STEPS` steps the misfit is frozen and the
 iteration goes on as a passivity enforcement with that misfit until the exact test
 finds no violation: the result is passive and stable (the poles do not move).
+
+The motions aimed at are the user's data's (the scoreboard's: :mod:`cummins.radiation.
+fit.scorecard`), not those of the data's passive part the vector fit is made to, and the
+couplings no block models are taken as the model has them (K = 0, A∞):
+:func:`cummins.radiation.fit.blocks.unmodelled_as_model`. (Aimed at the passive part's
+motions, RM3's refined block was 0.40 % off those and 0.96 % off the user's; aimed at the
+user's, 0.39 %.)
 """
 
 from __future__ import annotations
@@ -58,7 +65,8 @@ from cummins.radiation.passivity.enforcement import FactoredMisfit, least_distan
 
 #: Gauss–Newton steps on the motion misfit (re-linearised, Lawson weights updated) before
 #: the misfit is frozen and the iteration finishes as a passivity enforcement. RM3 from
-#: WAMIT at 20 common poles: 2.39 % (the vector fit) → 0.50 % after 3 steps, 0.40 % after 5.
+#: WAMIT at 20 common poles: 2.39 % (the vector fit) → 0.50 % after 3 steps, 0.40 % after 5
+#: (the block's motion error against the data's passive part).
 STEPS = 5
 
 #: Linearised motions of a block: block → (ω, r, s) with r (ω, R) the relative motion
@@ -301,23 +309,25 @@ def _gauss_newton(
     return FactoredMisfit(factor, shift), lawson
 
 
-def refined_block(data: BlockData, score, counts, motions, options):
+def refined_block(data: BlockData, kept: PoleResidueBlock, score, counts, motions, options):
     """(block, score, notes) of a block that misses its motion aim after the order
-    search, refined on the motions (:func:`refine_block`) at each of ``counts`` common
-    poles in turn (the order search's kept number, then ``max_order``: the order
-    search's plain fit there, else a new one), the first whose motions meet their aim,
-    else the passive one with the smallest motion error; kept when that is below
-    ``score``'s and the block no further from the targets that are failures whatever
-    the motions (the R² of K(t), the damping beyond the data); else None. The R² of A
-    and B may fall: the motions judge them (:func:`~cummins.radiation.fit.mimo.fit_failures`).
-    ``motions``: the block's motion error and its linearisation (callables of a block);
-    ``notes``: a callable (the order search's notes, the DOF labels) → the block's
-    notes, the refinement said and the targets it misses named anew."""
+    search (``kept``: its fit, ``score`` its score), refined on the motions
+    (:func:`refine_block`) at each of ``counts`` common poles in turn (the order search's
+    kept number, then ``max_order``: the order search's plain fit there, else a new one),
+    the first whose motions meet their aim, else the passive one with the smallest motion
+    error; kept when that is below ``kept``'s and the block no further from the targets
+    that are failures whatever the motions (the R² of K(t), the damping beyond the data);
+    else None. The R² of A and B may fall: the motions judge them
+    (:func:`~cummins.radiation.fit.mimo.fit_failures`). ``motions``: the block's motion
+    error and its linearisation (callables of a block), every other coupling as the
+    model has it; ``notes``: a callable (the order search's notes, the DOF labels) → the
+    block's notes, the refinement said and the targets it misses named anew."""
     from cummins.radiation.fit import order_search, vector
     from cummins.radiation.fit.options import MOTION_AIM
 
     motion, linearised = motions
     aim = MOTION_AIM * options.motion_tol
+    before = motion(kept)
     targets = {"r2": options.r2, "r2_coupling": options.coupling_target}
     best = None
     for count in dict.fromkeys(counts):
@@ -346,7 +356,7 @@ def refined_block(data: BlockData, score, counts, motions, options):
             break
     if (
         best is None
-        or best[1].motion_error >= score.motion_error
+        or best[1].motion_error >= before
         or best[1].kernel_shortfall > max(score.kernel_shortfall, 0.0)
         or best[1].tail_excess > max(score.tail_excess, 0.0)
     ):
@@ -357,7 +367,7 @@ def refined_block(data: BlockData, score, counts, motions, options):
         kept = [n for n in searched if not n.startswith("targets not met")]
         kept.append(
             f"residues refined on the motions at {block.poles.count} common poles, passive "
-            f"(motion error {100 * score.motion_error:.3g} % → {100 * found.motion_error:.3g} %"
+            f"(motion error {100 * before:.3g} % → {100 * found.motion_error:.3g} %"
             "): the R² of A and B traded where the motions allow it"
         )
         if not found.meets(aim):
