@@ -114,6 +114,8 @@ def test_rm3_refined_meets_the_motion_target(shared_data):
     assert np.all(np.linalg.eigvals(model.A).real < 0)
     assert passivity_test(model).passive
     assert not [f for f in model.attrs["failures"] if f.startswith("motion error")]
+    # the float's pitch, refined without BeyondBounds, peaked beyond the data (28 %)
+    assert not [f for f in model.attrs["failures"] if "beyond the data" in f]
     notes = model.attrs["data_notes"]
     assert any(n.startswith("A∞ of") for n in notes)  # the refit's A∞, said once
     assert any("refined on the motions at 20 common poles" in n for n in notes)

@@ -334,11 +334,11 @@ def refined_block(data: BlockData, kept: PoleResidueBlock, score, counts, motion
         start = data.plain_fits.get(count, (None, None))[0]
         try:
             start = vector.vector_fit(data, count) if start is None else start
-        except np.linalg.LinAlgError:
+            block, passive = refine_block(
+                start, data, linearised, motion_tol=options.motion_tol, bounds=BeyondBounds(data)
+            )
+        except np.linalg.LinAlgError:  # a singular step: the search's block stays
             continue
-        block, passive = refine_block(
-            start, data, linearised, motion_tol=options.motion_tol, bounds=BeyondBounds(data)
-        )
         if not passive:
             continue
         found = order_search.score_block(
