@@ -108,8 +108,10 @@ class FitOptions(Mapping):
         A block that misses its motion aim after the order search has its residues
         refined on the motion RAOs themselves, passive at every step
         (:mod:`cummins.radiation.fit.motion_refinement`), at its number of common poles
-        and at ``max_order``; the refined block is kept when its motion error is lower
-        and it is as near the R² and tail targets (``"vf"`` only).
+        and at ``max_order``, aiming at the user's motions; kept when they are nearer
+        the data's and its R² of K(t) and damping beyond the data are no worse (its R² of
+        A and B may fall: the motions judge them; ``"vf"`` only). Slower: WEC-Sim's RM3
+        3.73 → 0.39 %, 2.4 → 7 s.
     """
 
     method: str = "vf"
