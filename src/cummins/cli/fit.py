@@ -167,6 +167,14 @@ from cummins.files import write_text
     "every pair that is not reciprocal (vf).",
 )
 @click.option(
+    "--refine-motions",
+    is_flag=True,
+    default=False,
+    help="A block whose motion RAOs miss the target after the order search has its "
+    "residues refined on the motions themselves, passive at every step (vf; slower: "
+    "WEC-Sim's RM3 3.7 % -> 0.4 % of the peak, 2.4 -> 7 s).",
+)
+@click.option(
     "--body",
     metavar="N|NAME",
     default=None,
@@ -208,6 +216,7 @@ def fit_command(
     speed,
     passive,
     reciprocity,
+    refine_motions,
     body,
     dofs,
     system_options,
@@ -286,6 +295,7 @@ def fit_command(
             exclude_suspect=not keep_suspect,
             passivity="mimo" if passive else "diagonal",
             reciprocity=reciprocity,
+            refine_motions=refine_motions,
             progress=progress,
             joined=joined,
         )

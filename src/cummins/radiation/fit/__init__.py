@@ -87,6 +87,7 @@ from cummins.radiation.fit.mimo import (
     with_motion_note,
 )
 from cummins.radiation.fit.motion import JoinedMotion
+from cummins.radiation.fit.motion_refinement import refined_on_motions
 from cummins.radiation.fit.options import (
     ADDED_MASS_INF,
     DEFAULT,
@@ -207,8 +208,12 @@ def fit_radiation(
     say = progress or (lambda message: None)
     inp = prepare_fit(ds, options, joined)
     if options.method == "vf":
-        model = fit_blocks(inp, options, say)
-        model = with_causal_inf(inp, options, model, lambda *a: fit_blocks(*a, say))
+        plain = options.with_changes(refine_motions=False)
+        first, again = {}, {}  # the order searches of the fit and of its refit
+        model = fit_blocks(inp, plain, say, first)
+        model = with_causal_inf(inp, plain, model, lambda *a: fit_blocks(*a, say, again))
+        searched = again if "added_mass_inf_estimated" in model.attrs else first
+        model = refined_on_motions(inp, options, model, lambda *a: fit_blocks(*a, say, searched))
     else:
         model = fit_per_coupling(inp, options, say)
     return replace(model, attrs={**model.attrs, "elapsed_s": time.perf_counter() - start})

@@ -29,6 +29,7 @@ from cummins.radiation.fit.motion import (
     coordinate_dofs,
     coordinate_r_squared,
 )
+from cummins.radiation.fit.motion_refinement import refined_block
 from cummins.radiation.fit.options import MOTION_AIM, MOTION_TOL, FitOptions
 from cummins.radiation.fit.tail import fine_kernel_metrics, fine_time_grid
 from cummins.radiation.model import MemoryBlock, RadiationModel, modal_form
@@ -37,10 +38,17 @@ from cummins.radiation.retardation import diagonal_retardation_functions
 
 
 def fit_blocks(
-    inp: FitInput, options: FitOptions, say: Callable[[str], None] = lambda message: None
+    inp: FitInput,
+    options: FitOptions,
+    say: Callable[[str], None] = lambda message: None,
+    searched: dict | None = None,
 ) -> RadiationModel:
     """Every block of coupled DOFs of the prepared data fitted with common poles (module
-    docstring); ``attrs`` hold ``mimo_passive``, the motion error and ``failures``."""
+    docstring); ``attrs`` hold ``mimo_passive``, the motion error and ``failures``.
+    ``searched``: each block's order search by its DOFs, filled by this call and taken
+    from it by the next (the same ``inp``): the motion refinement of the fit kept
+    (:func:`cummins.radiation.fit.motion_refinement.refined_on_motions`) does not search
+    again."""
     labels, w, keep_dof, pairs = inp.labels, inp.data.omega.values, inp.keep_dof, inp.pairs
     added_mass, damping, measured = inp.added_mass, inp.damping, inp.measured
     a_inf = None if inp.a_inf_mode == "fit" else inp.a_inf
@@ -67,6 +75,14 @@ def fit_blocks(
             measured.added_mass[rows] + antisymmetric
         )
         block_motion = BlockMotionError(sensitivity, k_data)
+    if k_data is not None and options.refine_motions:
+        # the refinement's: the couplings no block models as the model will have them
+        # and the user's motions, not the passive part's the fit aims at
+        judged = sensitivity if inp.reference is None else inp.reference
+        model_motion = BlockMotionError(
+            replace(sensitivity, motions=judged.motions, compared=judged.compared),
+            unmodelled_as_model(k_data, wk, inp.negligible, inf + antisymmetric),
+        )
     motion_aim = MOTION_AIM * motion_tol if sensitivity is not None else None
     blocks, notes, tail_failures = [], [], []
     done: list = []  # (name, dofs, elements, poles, score, pole floor) of each block fitted
@@ -84,6 +100,18 @@ def fit_blocks(
         def motion(block, dofs=dofs):
             if k_data is None:
                 return 0.0
+            return block_motion(dofs, model_k(block, dofs))
+
+        def refined_motions(dofs=dofs):
+            """The block's motion error and its linearisation, every other coupling as
+            the model has it (:func:`unmodelled_as_model`)."""
+            return (
+                lambda fit: model_motion(dofs, model_k(fit, dofs)),
+                lambda fit: model_motion.linearised(dofs, model_k(fit, dofs)),
+            )
+
+        def model_k(block, dofs=dofs):
+            """K̂ + jω A∞ of the block at the compared frequencies (the motions' K)."""
             local = block.response(wk)
             a_block = np.zeros((len(dofs), len(dofs)))
             for (i, j), value in block.pair_values(block.added_mass_inf).items():
@@ -92,7 +120,7 @@ def fit_blocks(
                 if i <= j and (j, i) not in block.elements:  # one value for both
                     a_block[jj, ii] = value
             a_block += antisymmetric[np.ix_(dofs, dofs)]
-            return block_motion(dofs, local + 1j * wk[:, None, None] * a_block)
+            return local + 1j * wk[:, None, None] * a_block
 
         fixed = [
             (orders or {}).get((i, j), (orders or {}).get((j, i)))
@@ -152,66 +180,85 @@ def fit_blocks(
                 raise FitError(f"{name}: {exc}") from None
             return data, *found
 
-        shared = None
-        twin = None if fixed_count else mirror_block(done, dofs, elements, a_data, b_data)
-        if twin is not None:  # the twin's poles, this block's residues
-            twin_name, twin_poles, twin_score, twin_floor, difference = twin
-            shared = identify(motion_tol, motion_aim, min_damping=twin_floor, poles=twin_poles)
-            if not shares_well(shared[2], twin_score, r2, motion_aim):
-                shared = None
-        if shared is not None:
-            data, fitted, score, block_notes = shared
-            floor = twin_floor
-            block_notes.append(
-                f"the {fitted.poles.count} common poles of the {twin_name} block, whose "
-                f"diagonal A and B differ from these by {difference:.2%} at most (as an "
-                "axisymmetric body's two horizontal blocks): residues fitted to these data"
-            )
+        if searched is not None and dofs in searched:  # this block's search, made before
+            data, fitted, score, block_notes, floor = searched[dofs]
+            block_notes = list(block_notes)
         else:
-            data, fitted, score, block_notes = identify(motion_tol, motion_aim)
-            floor = vector.MIN_DAMPING
-            if set(dofs) & set(inp.resonant_dofs) and not score.meets(motion_aim):
-                # a sharp resonance the motions depend on (a piston or gap mode) and the
-                # targets missed: poles as lightly damped as the resonance, when that brings
-                # the block closer to its targets
-                sharp = identify(motion_tol, motion_aim, min_damping=vector.RESONANCE_MIN_DAMPING)
-                if order_search.closeness(sharp[2], r2, motion_aim) < order_search.closeness(
-                    score, r2, motion_aim
-                ):
-                    data, fitted, score, block_notes = sharp
-                    floor = vector.RESONANCE_MIN_DAMPING
-                    block_notes.append(
-                        f"a sharp resonance kept: poles damped down to {floor:.0%} of critical "
-                        f"(else {vector.MIN_DAMPING:.0%})"
+            shared = None
+            twin = None if fixed_count else mirror_block(done, dofs, elements, a_data, b_data)
+            if twin is not None:  # the twin's poles, this block's residues
+                twin_name, twin_poles, twin_score, twin_floor, difference = twin
+                shared = identify(motion_tol, motion_aim, min_damping=twin_floor, poles=twin_poles)
+                if not shares_well(shared[2], twin_score, r2, motion_aim):
+                    shared = None
+            if shared is not None:
+                data, fitted, score, block_notes = shared
+                floor = twin_floor
+                block_notes.append(
+                    f"the {fitted.poles.count} common poles of the {twin_name} block, whose "
+                    f"diagonal A and B differ from these by {difference:.2%} at most (as an "
+                    "axisymmetric body's two horizontal blocks): residues fitted to these data"
+                )
+            else:
+                data, fitted, score, block_notes = identify(motion_tol, motion_aim)
+                floor = vector.MIN_DAMPING
+                if set(dofs) & set(inp.resonant_dofs) and not score.meets(motion_aim):
+                    # a sharp resonance the motions depend on (a piston or gap mode) and the
+                    # targets missed: poles as lightly damped as the resonance, when that brings
+                    # the block closer to its targets
+                    sharp = identify(
+                        motion_tol, motion_aim, min_damping=vector.RESONANCE_MIN_DAMPING
                     )
-            if motion_aim is not None and motion_tol < MOTION_TOL and not score.meets(motion_aim):
-                # a tighter motion target weighs the motions more, and passivity can then cost
-                # them more than it costs the default's fit (the supply vessel's heave-pitch
-                # block: 0.55 % at 10 common poles against the default's 0.29 % at 9): the
-                # tighter target never keeps a block further from it than the default's
-                default = identify(MOTION_TOL, MOTION_AIM * MOTION_TOL, min_damping=floor)
-                if order_search.closeness(default[2], r2, motion_aim) < order_search.closeness(
-                    score, r2, motion_aim
-                ):
-                    # its own notes (a miss of the default's targets among them), not those
-                    # of the fits set aside
-                    data, fitted, score, block_notes = default
-                    block_notes.append(
-                        f"the default's fit ({fitted.poles.count} common poles) is closer to the "
-                        "tighter motion target than the fits made for it: kept"
-                    )
-                    if score.meets(MOTION_AIM * MOTION_TOL) and not score.meets(motion_aim):
+                    if order_search.closeness(sharp[2], r2, motion_aim) < order_search.closeness(
+                        score, r2, motion_aim
+                    ):
+                        data, fitted, score, block_notes = sharp
+                        floor = vector.RESONANCE_MIN_DAMPING
                         block_notes.append(
-                            order_search.targets_not_met(
-                                fitted.poles.count,
-                                score,
-                                r2=r2,
-                                r2_coupling=r2_coupling,
-                                r2_kernel=options.r2_kernel,
-                                motion_aim=motion_aim,
-                                labels=labels,
-                            )
+                            f"a sharp resonance kept: poles damped down to {floor:.0%} of critical "
+                            f"(else {vector.MIN_DAMPING:.0%})"
                         )
+                if (
+                    motion_aim is not None
+                    and motion_tol < MOTION_TOL
+                    and not score.meets(motion_aim)
+                ):
+                    # a tighter motion target weighs the motions more, and passivity can then cost
+                    # them more than it costs the default's fit (the supply vessel's heave-pitch
+                    # block: 0.55 % at 10 common poles against the default's 0.29 % at 9): the
+                    # tighter target never keeps a block further from it than the default's
+                    default = identify(MOTION_TOL, MOTION_AIM * MOTION_TOL, min_damping=floor)
+                    if order_search.closeness(default[2], r2, motion_aim) < order_search.closeness(
+                        score, r2, motion_aim
+                    ):
+                        # its own notes (a miss of the default's targets among them), not those
+                        # of the fits set aside
+                        data, fitted, score, block_notes = default
+                        block_notes.append(
+                            f"the default's fit ({fitted.poles.count} common poles) is closer to "
+                            "the tighter motion target than the fits made for it: kept"
+                        )
+                        if score.meets(MOTION_AIM * MOTION_TOL) and not score.meets(motion_aim):
+                            block_notes.append(
+                                order_search.targets_not_met(
+                                    fitted.poles.count,
+                                    score,
+                                    r2=r2,
+                                    r2_coupling=r2_coupling,
+                                    r2_kernel=options.r2_kernel,
+                                    motion_aim=motion_aim,
+                                    labels=labels,
+                                )
+                            )
+            if searched is not None:
+                searched[dofs] = (data, fitted, score, list(block_notes), floor)
+        refined = None
+        if options.refine_motions and passive and motion_aim is not None:
+            if not score.meets(motion_aim):  # the motions themselves fitted
+                counts = (fitted.poles.count, fixed_count or max_order)
+                refined = refined_block(data, fitted, score, counts, refined_motions(), options)
+            if refined is not None:
+                fitted, score, block_notes = refined[0], refined[1], refined[2](block_notes, labels)
         a, b, c = fitted.realization()
         for (i, j), value in fitted.pair_values(fitted.added_mass_inf).items():
             inf[i, j] = value  # a pair fitted as given: each direction its own
@@ -221,7 +268,7 @@ def fit_blocks(
         block = MemoryBlock(dofs, a, b, c, "vf", {}, note)
         metrics = {}
         before = None  # the R² of the fit before passivity (the order search's, or again)
-        if passive:
+        if passive and refined is None:  # a refined block's R² is traded for the motions
             plain = data.plain_fits.get(fitted.poles.count, (None, None))
             if plain[0] is None or plain[0].poles is not fitted.poles:
                 plain = (None, score_before(data, fitted.poles, r2, r2_coupling))
@@ -305,6 +352,16 @@ def fit_blocks(
     failures += range_cut_failures(model, inp, options.r2)
     failures += tail_failures  # the model's damping beyond the data (fit/tail.py)
     return replace(model, attrs={**model.attrs, "failures": failures})
+
+
+def unmodelled_as_model(k_data, omega, negligible, added_mass_inf):
+    """The data's K(jω) + jω A(ω) at ``omega`` (ω, n, n) with the ``negligible`` pairs
+    (i ≤ j) as a model has them: K = 0, the added mass its A∞ (``added_mass_inf``)."""
+    out = k_data.copy()
+    for i, j in negligible:
+        out[:, i, j] = 1j * omega * added_mass_inf[i, j]
+        out[:, j, i] = 1j * omega * added_mass_inf[j, i]
+    return out
 
 
 def score_before(data, poles, r2: float, r2_coupling: float):

@@ -143,6 +143,9 @@ class FitInput:
     estimated_inf
         Indices of the DOFs whose A∞ the blocks estimate though ``a_inf`` is the data's
         row (:mod:`cummins.radiation.fit.causal_inf`).
+    reference
+        The motion sensitivity of the user's data (``sensitivity`` is the passive part's,
+        which the fit aims at): what the scoreboard and the motion refinement judge.
     """
 
     ds: xr.Dataset
@@ -167,6 +170,7 @@ class FitInput:
     reciprocity: Reciprocity = field(default_factory=Reciprocity)
     resonant_dofs: tuple[int, ...] = ()
     estimated_inf: tuple[int, ...] = ()
+    reference: MotionSensitivity | None = None
 
     @property
     def as_given(self) -> frozenset[tuple[int, int]]:
@@ -415,6 +419,7 @@ def _prepare_fit(
         ogilvie_spread=ogilvie_spread,
         weighting=weighting,
         sensitivity=sensitivity,
+        reference=reference,
         pairs=pairs,
         negligible=negligible,
         attrs=attrs,

@@ -522,21 +522,29 @@ def element_null_spaces(elements, poles: Poles) -> list[NDArray[np.float64]]:
 def fit_residues(data: BlockData, poles: Poles) -> tuple[NDArray, NDArray]:
     """Coefficients (n_elements, count) with Σ R_k = 0 (and the antisymmetric parts'
     constraints), and A∞ per element."""
-    s = 1j * data.omega
-    phi = poles.kept_basis(s)
     free = data.free_inf
     x = np.zeros((len(data.elements), poles.count))
     inf = np.zeros(len(data.elements)) if data.fixed_inf is None else data.fixed_inf.copy()
+    nulls = element_null_spaces(data.elements, poles)
+    for e, null, rows, rhs in residue_equations(data, poles, nulls):
+        z, *_ = np.linalg.lstsq(rows, rhs, rcond=None)
+        x[e] = null @ z[: null.shape[1]]
+        if free[e]:
+            inf[e] = z[-1]
+    return x, inf
+
+
+def residue_equations(data: BlockData, poles: Poles, nulls):
+    """Each element's weighted equations at ``poles`` (e, null space, rows, rhs) in its
+    coefficients in ``nulls[e]`` (:func:`element_null_spaces`), then A∞ when estimated:
+    real rows over imaginary, the prior of A∞, K(0) (:func:`fit_residues` solves them)."""
+    s = 1j * data.omega
+    phi = poles.kept_basis(s)
+    free = data.free_inf
     columns: dict = {}
     n_s = s.size
     for e, (f, wr, wi, null) in enumerate(
-        zip(
-            data.values,
-            data.weight_real,
-            data.weight_imag,
-            element_null_spaces(data.elements, poles),
-            strict=True,
-        )
+        zip(data.values, data.weight_real, data.weight_imag, nulls, strict=True)
     ):
         key = (id(null), bool(free[e]))
         if key not in columns:
@@ -545,7 +553,6 @@ def fit_residues(data: BlockData, poles: Poles) -> tuple[NDArray, NDArray]:
         m = columns[key]
         prior = free[e] and data.inf_guess is not None and data.inf_spread[e] > 0
         zero = data.kernel_zero_equations[e]
-        # the weighted equations, real rows over imaginary, then the prior and K(0)
         rows = np.zeros((2 * n_s + int(prior) + (zero is not None), m.shape[1]))
         rhs = np.empty(rows.shape[0])
         np.multiply(wr[:, None], m.real, out=rows[:n_s])
@@ -553,8 +560,7 @@ def fit_residues(data: BlockData, poles: Poles) -> tuple[NDArray, NDArray]:
         np.multiply(wr, f.real, out=rhs[:n_s])
         np.multiply(wi, f.imag, out=rhs[n_s : 2 * n_s])
         if prior:
-            # the prior: weighs like all the added-mass equations together (their
-            # weights are 1/spread of A over √n each)
+            # weighs as all the added-mass equations (each 1/spread of A over √n)
             weight = 1.0 / data.inf_spread[e]
             rows[2 * n_s, -1] = weight
             rhs[2 * n_s] = weight * data.inf_guess[e]
@@ -562,11 +568,7 @@ def fit_residues(data: BlockData, poles: Poles) -> tuple[NDArray, NDArray]:
             form = np.zeros(m.shape[1])
             form[: null.shape[1]] = kernel_zero_form(poles) @ null
             rows[-1], rhs[-1] = zero[0] * form, zero[0] * zero[1]
-        z, *_ = np.linalg.lstsq(rows, rhs, rcond=None)
-        x[e] = null @ z[: null.shape[1]]
-        if free[e]:
-            inf[e] = z[-1]
-    return x, inf
+        yield e, null, rows, rhs
 
 
 @dataclass(frozen=True)
