@@ -373,6 +373,13 @@ def fit_command(
             "cummins.radiation.speed.vessel_at_speed, fit_per_speed)",
             highlight=False,
         )
+    if any(f.startswith("motion error") for f in failures) and not refine_motions:
+        console.print(
+            "hint: --refine-motions refits the blocks that miss on the motion RAOs "
+            "themselves, passive at every step (slower; WEC-Sim's RM3 3.7 % -> 0.39 %, "
+            "2.4 -> 7 s); it keeps a refined block only where the motions come nearer",
+            highlight=False,
+        )
     if failures:
         sys.exit(FIT_FAILED)
 
