@@ -38,6 +38,8 @@ def failed(tmp_path_factory):
     result = _run("fit", SHARP, "-o", path, "--max-order", 4)
     assert result.exit_code == 3, result.output  # a failure: the premise of these tests
     assert cummins.RadiationModel.load(path).attrs["failures"]
+    # the motions fail: the option that fits them on the motions themselves is named
+    assert "hint: --refine-motions refits the blocks that miss" in result.output
     return path
 
 
