@@ -69,6 +69,8 @@ class BlockSweep:
     def __init__(self, block: PoleResidueBlock, omega_min: float, omega_max: float):
         self.grid = np.geomspace(omega_min / CHECK_SPAN, omega_max * CHECK_SPAN, CHECK_POINTS)
         self.basis = block.poles.basis(1j * self.grid)
+        self.basis_real = np.ascontiguousarray(self.basis.real)
+        self.basis_imag = np.ascontiguousarray(self.basis.imag)
         where = {d: k for k, d in enumerate(block.dofs)}
         self.size = len(block.dofs)
         self.rows = np.array([where[i] for i, _ in block.elements], dtype=int)
@@ -77,27 +79,44 @@ class BlockSweep:
 
     def hermitian_part(self, block: PoleResidueBlock) -> NDArray:
         """:meth:`PoleResidueBlock.hermitian_part` on the grid (the same numbers)."""
-        product = self.basis @ block.coefficients.T
-        # jω × product as numpy's complex product rounds it: (0 + jω)(x + jy) = (0x − ωy)
-        # + j(0y + ωx), without the complex temporaries
         omega = self.grid[:, None]
-        sym = ~self.anti
+        imag, real = self.product_parts(block.coefficients)
+        # jω × product as numpy's complex product rounds it: (0 + jω)(x + jy) = (0x − ωy)
+        # + j(0y + ωx), 0x and 0y zero
+        values = 0.0 - omega * imag
         if not self.anti.any():
-            values = 0.0 * product.real - omega * product.imag
             out = np.zeros((self.grid.size, self.size, self.size))
-        else:
-            real = 0.0 * product.real[:, sym] - omega * product.imag[:, sym]
-            imag = 0.0 * product.imag[:, self.anti] + omega * product.real[:, self.anti]
-            values = np.empty(product.shape, dtype=complex)
-            values[:, sym] = real + 0j
-            values[:, self.anti] = 1j * imag
-            out = np.zeros((self.grid.size, self.size, self.size), dtype=complex)
-        out[:, self.rows[sym], self.columns[sym]] = values[:, sym]
-        out[:, self.columns[sym], self.rows[sym]] = values[:, sym]
-        if self.anti.any():
-            out[:, self.rows[self.anti], self.columns[self.anti]] += values[:, self.anti]
-            out[:, self.columns[self.anti], self.rows[self.anti]] -= values[:, self.anti]
+            out[:, self.rows, self.columns] = values
+            out[:, self.columns, self.rows] = values
+            return out
+        anti = 0.0 + omega * real
+        out = np.zeros((self.grid.size, self.size, self.size), dtype=complex)
+        sym = ~self.anti
+        rows, columns = self.rows[sym], self.columns[sym]
+        out.real[:, rows, columns] = values
+        out.real[:, columns, rows] = values
+        rows, columns = self.rows[self.anti], self.columns[self.anti]
+        out.imag[:, rows, columns] = 0.0 + anti
+        out.imag[:, columns, rows] = 0.0 - anti
         return out
+
+    def product_parts(self, coefficients: NDArray) -> tuple[NDArray, NDArray]:
+        """(Im P of the symmetric elements, Re P of the antisymmetric ones), P = basis · xᵀ
+        on the grid: only those parts enter the Hermitian part. Each is the real product
+        of that part of the basis, which gives numpy's complex product's numbers at a
+        quarter of the work — not when a part is a single element (a matrix–vector
+        product, which rounds otherwise): the complex product then."""
+        sym = ~self.anti
+        counts = int(sym.sum()), int(self.anti.sum())
+        if min(counts) == 1 or counts == (1, 0):
+            product = self.basis @ coefficients.T
+            return product.imag[:, sym], product.real[:, self.anti]
+        if not counts[1]:
+            return self.basis_imag @ coefficients.T, np.zeros((self.grid.size, 0))
+        return (
+            self.basis_imag @ coefficients[sym].T,
+            self.basis_real @ coefficients[self.anti].T,
+        )
 
 
 def passivity_violations(
@@ -331,7 +350,9 @@ def enforcement_steps(
         # G R⁻¹ of the new rows only, the others kept
         transformed = np.concatenate([transformed, misfit.transformed_rows(new)])
         try:
-            delta, active = least_distance(misfit, np.array(rows), np.array(rhs), transformed)
+            # the rows themselves are read only while there is one (their G R⁻¹ is kept)
+            g = np.array(rows) if len(rows) == 1 else None
+            delta, active = least_distance(misfit, g, np.array(rhs), transformed)
         except FitError:
             return current, False, iteration
         # once the programme is large, a constraint that has never bound is left out of

@@ -502,7 +502,7 @@ def factored_misfit(misfit) -> FactoredMisfit:
 
 
 def least_distance(
-    misfit, g: NDArray, h: NDArray, transformed: NDArray | None = None
+    misfit, g: NDArray | None, h: NDArray, transformed: NDArray | None = None
 ) -> tuple[NDArray, NDArray[np.bool_]]:
     """:func:`constrained_least_squares`, and which constraints hold with equality at the
     solution (their NNLS multiplier u is positive): the others can be left out of the next
@@ -510,7 +510,8 @@ def least_distance(
     :func:`factored_misfit` (factored once for many programmes). ``transformed``: G R⁻¹
     when known (the rows kept from earlier programmes: :meth:`FactoredMisfit.transformed_rows`
     of each batch; the triangular solves of all rows at every programme were a tenth of
-    an enforcement's time)."""
+    an enforcement's time). ``g`` is not read when ``transformed`` holds more than one
+    row (it may be None then)."""
     factored = factored_misfit(misfit)
     shift = factored.shift
     if transformed is not None and len(transformed) > 1:
