@@ -76,6 +76,22 @@ class BlockSweep:
         self.rows = np.array([where[i] for i, _ in block.elements], dtype=int)
         self.columns = np.array([where[j] for _, j in block.elements], dtype=int)
         self.anti = np.array([is_antisymmetric(x) for x in block.elements], dtype=bool)
+        self._last: tuple | None = None  # (coefficients, scaled_grid's answer)
+
+    def scaled_grid(self, block: PoleResidueBlock) -> tuple[NDArray, NDArray, NDArray]:
+        """(S H S, its λ_min by :func:`lowest_eigenvalues`, the diagonal of S) on the grid
+        for the block (H its :meth:`hermitian_part`, S the DOF scaling of
+        :func:`passivity_violations`), kept for the last block asked: an enforcement
+        whose grid sweep finds nothing asks again for the same iterate, exactly."""
+        if self._last is not None and self._last[0] is block.coefficients:
+            return self._last[1]
+        k_grid = self.hermitian_part(block)
+        peak = np.abs(np.diagonal(k_grid, axis1=1, axis2=2)).max(axis=0)
+        dof_scale = np.where(peak > 0, 1.0 / np.sqrt(np.where(peak > 0, peak, 1.0)), 0.0)
+        scaled = k_grid * np.outer(dof_scale, dof_scale)[None]
+        found = (scaled, lowest_eigenvalues(scaled), dof_scale)
+        self._last = (block.coefficients, found)
+        return found
 
     def hermitian_part(self, block: PoleResidueBlock) -> NDArray:
         """:meth:`PoleResidueBlock.hermitian_part` on the grid (the same numbers)."""
@@ -148,23 +164,19 @@ def passivity_violations(
 
     sweep = sweep or BlockSweep(block, omega_min, omega_max)
     grid = sweep.grid
-    k_grid = sweep.hermitian_part(block)
-    peak = np.abs(np.diagonal(k_grid, axis1=1, axis2=2)).max(axis=0)
-    dof_scale = np.where(peak > 0, 1.0 / np.sqrt(np.where(peak > 0, peak, 1.0)), 0.0)
+    scaled, low_all, dof_scale = sweep.scaled_grid(block)
+    points = grid
     if exact:
         a, b, c = block.coordinate_realization()
         b, c = b * dof_scale[None, :], dof_scale[:, None] * c  # S K S: well conditioned
         # every point once: the grid, five inside each band between crossings, its midpoint
         edges, extra = band_points(a, b, c, grid)
-        points = np.concatenate([grid, extra])
-        order = np.argsort(points)
-        points = points[order]
-        k_all = np.concatenate([k_grid, block.hermitian_part(extra)])[order]
-    else:
-        points = grid
-        k_all = k_grid
-    scaled = k_all * np.outer(dof_scale, dof_scale)[None]
-    low_all = lowest_eigenvalues(scaled)  # the eigenvectors where constraints are asked
+        order = np.argsort(np.concatenate([grid, extra]))
+        points = np.concatenate([grid, extra])[order]
+        extra_scaled = block.hermitian_part(extra) * np.outer(dof_scale, dof_scale)[None]
+        # λ_min of each matrix alone (lowest_eigenvalues): the grid's kept
+        low_all = np.concatenate([low_all, lowest_eigenvalues(extra_scaled)])[order]
+        scaled = np.concatenate([scaled, extra_scaled])[order]
     if not exact:
         negative = low_all < 0
         change = np.flatnonzero(negative[1:] != negative[:-1])
