@@ -307,3 +307,36 @@ def test_the_sweeps_hermitian_part_is_the_complex_products(shape):
     assert np.array_equal(got, expected)
     own = block.hermitian_part(sweep.grid)
     np.testing.assert_allclose(got, own, rtol=0, atol=1e-12 * np.abs(own).max())
+
+
+@pytest.mark.parametrize("seed", range(6))
+def test_the_programme_on_a_working_set_is_the_whole_programme(seed):
+    """Solved on a working set of its rows (some that bind, some that do not, most left
+    out), then on those the solution violates, the least-distance programme has the
+    solution of scipy's NNLS on all rows (to rounding) and the same binding rows; an
+    infeasible programme is found infeasible from any working set."""
+    rng = np.random.default_rng(seed)
+    misfit = factored_misfit(
+        [(rng.standard_normal((30, 10)), rng.standard_normal(30)) for _ in range(2)]
+    )
+    g = rng.standard_normal((60, 20))
+    h = g @ (3.0 * rng.standard_normal(20)) - np.abs(rng.standard_normal(60))  # feasible
+    whole, active = least_distance(misfit, g, h)
+    assert active.any() and not active.all()
+    guesses = [
+        rng.random(60) < 0.2,
+        active & (rng.random(60) < 0.5),
+        np.zeros(60, dtype=bool),
+        np.ones(60, dtype=bool),
+    ]
+    for guess in guesses:
+        solved, bound = least_distance(misfit, g, h, start=guess)
+        np.testing.assert_allclose(solved, whole, rtol=1e-9, atol=1e-12 * np.abs(whole).max())
+        assert np.array_equal(bound, active)
+        assert np.all(g @ solved >= h - 1e-9 * np.abs(h).max())
+    # z·g ≥ 1 and z·g ≤ −1 (as −z·g ≥ 1) together: no z meets both
+    infeasible = np.vstack([g, g[:1], -g[:1]])
+    limits = np.concatenate([h, [1.0, 1.0]])
+    for guess in (None, np.zeros(62, dtype=bool), np.r_[np.zeros(61, bool), True]):
+        with pytest.raises(cummins.errors.FitError, match="infeasible"):
+            least_distance(misfit, infeasible, limits, start=guess)

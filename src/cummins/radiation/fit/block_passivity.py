@@ -340,6 +340,7 @@ def enforcement_steps(
     rows, rhs = [], []
     transformed = np.zeros((0, offsets[-1]))
     bound = np.zeros(0, dtype=bool)
+    active = np.zeros(0, dtype=bool)
     start = block.coefficients
     delta = np.zeros(offsets[-1])
     current = block
@@ -356,6 +357,9 @@ def enforcement_steps(
         if not found:
             return current, True, iteration
         new = constraint_rows(found)
+        # the programme is solved on the rows that bound in the last one and the new ones,
+        # then on any of the others that the solution violates
+        guess = np.concatenate([active, np.ones(len(new), dtype=bool)])
         for row, (_, lam, _, local) in zip(new, found, strict=True):
             rows.append(row)
             rhs.append(MARGIN * local - lam + row @ delta)
@@ -364,7 +368,7 @@ def enforcement_steps(
         try:
             # the rows themselves are read only while there is one (their G R⁻¹ is kept)
             g = np.array(rows) if len(rows) == 1 else None
-            delta, active = least_distance(misfit, g, np.array(rhs), transformed)
+            delta, active = least_distance(misfit, g, np.array(rhs), transformed, start=guess)
         except FitError:
             return current, False, iteration
         # once the programme is large, a constraint that has never bound is left out of
@@ -375,6 +379,7 @@ def enforcement_steps(
             rows = [r for r, a in zip(rows, bound, strict=True) if a]
             rhs = [h for h, a in zip(rhs, bound, strict=True) if a]
             transformed = transformed[bound]
+            active = active[bound]
             bound = bound[bound]
         if block.symmetric:  # one null space: one product
             change = (nulls[0] @ delta.reshape(len(nulls), sizes[0]).T).T
