@@ -224,7 +224,8 @@ def test_a_constraint_row_is_the_derivative_of_the_eigenvalue(complex_vector):
 def test_rows_transformed_in_batches_solve_the_same_programme():
     """The passivity programme keeps G R⁻¹ of each batch of rows (a single row solved
     as two): the least-distance solution from those equals the one from all rows
-    transformed at once (to rounding), and meets every constraint G z ≥ h."""
+    transformed at once (to rounding), without the rows themselves, and meets every
+    constraint G z ≥ h."""
     rng = np.random.default_rng(11)
     misfit = factored_misfit(
         [(rng.standard_normal((40, 12)), rng.standard_normal(40)) for _ in range(3)]
@@ -236,6 +237,106 @@ def test_rows_transformed_in_batches_solve_the_same_programme():
     kept = np.concatenate([kept, misfit.transformed_rows(g[3:])])
     np.testing.assert_allclose(kept, misfit.transformed(g), rtol=0, atol=1e-12)
     batched, active_b = least_distance(misfit, g, h, kept)
+    unread, _ = least_distance(misfit, None, h, kept)  # the rows are not read then
+    assert np.array_equal(unread, batched)
     np.testing.assert_allclose(batched, once, rtol=1e-10, atol=1e-12)
     assert np.array_equal(active, active_b) and active.any()
     assert np.all(g @ once >= h - 1e-9 * np.abs(h).max())
+
+
+def _complex_product_hermitian(sweep, block):
+    """The sweep's Hermitian part from the complex product basis · xᵀ, as it was built
+    before the real products (the numbers the order search has always branched on)."""
+    product = sweep.basis @ block.coefficients.T
+    omega = sweep.grid[:, None]
+    anti = sweep.anti
+    values = np.where(
+        anti[None, :],
+        1j * (0.0 * product.imag + omega * product.real),
+        (0.0 * product.real - omega * product.imag) + 0j,
+    )
+    out = np.zeros((sweep.grid.size, sweep.size, sweep.size), dtype=complex)
+    out[:, sweep.rows[~anti], sweep.columns[~anti]] = values[:, ~anti]
+    out[:, sweep.columns[~anti], sweep.rows[~anti]] = values[:, ~anti]
+    out[:, sweep.rows[anti], sweep.columns[anti]] += values[:, anti]
+    out[:, sweep.columns[anti], sweep.rows[anti]] -= values[:, anti]
+    return out if anti.any() else out.real
+
+
+def _blocks_of_every_shape():
+    """The as-given block with a second antisymmetric part; the as-given block (one
+    antisymmetric part: a single column, the complex product there); its symmetric part
+    alone; one element; a symmetric and an antisymmetric element."""
+    given = _as_given_block()
+    rng = np.random.default_rng(5)
+    two = PoleResidueBlock(
+        given.dofs,
+        (*given.elements, (2, 0)),
+        given.poles,
+        np.vstack([given.coefficients, rng.standard_normal(given.poles.count)]),
+        np.zeros(len(given.elements) + 1),
+    )
+    keep = [e for e, (i, j) in enumerate(given.elements) if i <= j]
+    symmetric = PoleResidueBlock(
+        given.dofs,
+        tuple(given.elements[e] for e in keep),
+        given.poles,
+        given.coefficients[keep],
+        given.added_mass_inf[keep],
+    )
+    single = PoleResidueBlock(
+        (0,), ((0, 0),), given.poles, given.coefficients[:1], given.added_mass_inf[:1]
+    )
+    pair = PoleResidueBlock(
+        (0, 1), ((0, 1), (1, 0)), given.poles, given.coefficients[:2], np.zeros(2)
+    )
+    return [two, given, symmetric, single, pair]
+
+
+@pytest.mark.parametrize("shape", range(5))
+def test_the_sweeps_hermitian_part_is_the_complex_products(shape):
+    """:meth:`BlockSweep.hermitian_part` builds Re K_s + j Im K_a from real products of
+    the basis's imaginary and real parts: the same numbers, bit for bit, as the complex
+    product of the basis and the coefficients, and the block's own Hermitian part on the
+    grid (to rounding)."""
+    block = _blocks_of_every_shape()[shape]
+    sweep = block_passivity.BlockSweep(block, 0.2, 5.0)
+    got = sweep.hermitian_part(block)
+    expected = _complex_product_hermitian(sweep, block)
+    assert got.dtype == expected.dtype
+    assert np.array_equal(got, expected)
+    own = block.hermitian_part(sweep.grid)
+    np.testing.assert_allclose(got, own, rtol=0, atol=1e-12 * np.abs(own).max())
+
+
+@pytest.mark.parametrize("seed", range(6))
+def test_the_programme_on_a_working_set_is_the_whole_programme(seed):
+    """Solved on a working set of its rows (some that bind, some that do not, most left
+    out), then on those the solution violates, the least-distance programme has the
+    solution of scipy's NNLS on all rows (to rounding) and the same binding rows; an
+    infeasible programme is found infeasible from any working set."""
+    rng = np.random.default_rng(seed)
+    misfit = factored_misfit(
+        [(rng.standard_normal((30, 10)), rng.standard_normal(30)) for _ in range(2)]
+    )
+    g = rng.standard_normal((60, 20))
+    h = g @ (3.0 * rng.standard_normal(20)) - np.abs(rng.standard_normal(60))  # feasible
+    whole, active = least_distance(misfit, g, h)
+    assert active.any() and not active.all()
+    guesses = [
+        rng.random(60) < 0.2,
+        active & (rng.random(60) < 0.5),
+        np.zeros(60, dtype=bool),
+        np.ones(60, dtype=bool),
+    ]
+    for guess in guesses:
+        solved, bound = least_distance(misfit, g, h, start=guess)
+        np.testing.assert_allclose(solved, whole, rtol=1e-9, atol=1e-12 * np.abs(whole).max())
+        assert np.array_equal(bound, active)
+        assert np.all(g @ solved >= h - 1e-9 * np.abs(h).max())
+    # z·g ≥ 1 and z·g ≤ −1 (as −z·g ≥ 1) together: no z meets both
+    infeasible = np.vstack([g, g[:1], -g[:1]])
+    limits = np.concatenate([h, [1.0, 1.0]])
+    for guess in (None, np.zeros(62, dtype=bool), np.r_[np.zeros(61, bool), True]):
+        with pytest.raises(cummins.errors.FitError, match="infeasible"):
+            least_distance(misfit, infeasible, limits, start=guess)

@@ -69,35 +69,70 @@ class BlockSweep:
     def __init__(self, block: PoleResidueBlock, omega_min: float, omega_max: float):
         self.grid = np.geomspace(omega_min / CHECK_SPAN, omega_max * CHECK_SPAN, CHECK_POINTS)
         self.basis = block.poles.basis(1j * self.grid)
+        self.basis_real = np.ascontiguousarray(self.basis.real)
+        self.basis_imag = np.ascontiguousarray(self.basis.imag)
         where = {d: k for k, d in enumerate(block.dofs)}
         self.size = len(block.dofs)
         self.rows = np.array([where[i] for i, _ in block.elements], dtype=int)
         self.columns = np.array([where[j] for _, j in block.elements], dtype=int)
         self.anti = np.array([is_antisymmetric(x) for x in block.elements], dtype=bool)
+        self._last: tuple | None = None  # (coefficients, scaled_grid's answer)
+
+    def scaled_grid(self, block: PoleResidueBlock) -> tuple[NDArray, NDArray, NDArray]:
+        """(S H S, its λ_min by :func:`lowest_eigenvalues`, the diagonal of S) on the grid
+        for the block (H its :meth:`hermitian_part`, S the DOF scaling of
+        :func:`passivity_violations`), kept for the last block asked: an enforcement
+        whose grid sweep finds nothing asks again for the same iterate, exactly."""
+        if self._last is not None and self._last[0] is block.coefficients:
+            return self._last[1]
+        k_grid = self.hermitian_part(block)
+        peak = np.abs(np.diagonal(k_grid, axis1=1, axis2=2)).max(axis=0)
+        dof_scale = np.where(peak > 0, 1.0 / np.sqrt(np.where(peak > 0, peak, 1.0)), 0.0)
+        scaled = k_grid * np.outer(dof_scale, dof_scale)[None]
+        found = (scaled, lowest_eigenvalues(scaled), dof_scale)
+        self._last = (block.coefficients, found)
+        return found
 
     def hermitian_part(self, block: PoleResidueBlock) -> NDArray:
         """:meth:`PoleResidueBlock.hermitian_part` on the grid (the same numbers)."""
-        product = self.basis @ block.coefficients.T
-        # jω × product as numpy's complex product rounds it: (0 + jω)(x + jy) = (0x − ωy)
-        # + j(0y + ωx), without the complex temporaries
         omega = self.grid[:, None]
-        sym = ~self.anti
+        imag, real = self.product_parts(block.coefficients)
+        # jω × product as numpy's complex product rounds it: (0 + jω)(x + jy) = (0x − ωy)
+        # + j(0y + ωx), 0x and 0y zero
+        values = 0.0 - omega * imag
         if not self.anti.any():
-            values = 0.0 * product.real - omega * product.imag
             out = np.zeros((self.grid.size, self.size, self.size))
-        else:
-            real = 0.0 * product.real[:, sym] - omega * product.imag[:, sym]
-            imag = 0.0 * product.imag[:, self.anti] + omega * product.real[:, self.anti]
-            values = np.empty(product.shape, dtype=complex)
-            values[:, sym] = real + 0j
-            values[:, self.anti] = 1j * imag
-            out = np.zeros((self.grid.size, self.size, self.size), dtype=complex)
-        out[:, self.rows[sym], self.columns[sym]] = values[:, sym]
-        out[:, self.columns[sym], self.rows[sym]] = values[:, sym]
-        if self.anti.any():
-            out[:, self.rows[self.anti], self.columns[self.anti]] += values[:, self.anti]
-            out[:, self.columns[self.anti], self.rows[self.anti]] -= values[:, self.anti]
+            out[:, self.rows, self.columns] = values
+            out[:, self.columns, self.rows] = values
+            return out
+        anti = 0.0 + omega * real
+        out = np.zeros((self.grid.size, self.size, self.size), dtype=complex)
+        sym = ~self.anti
+        rows, columns = self.rows[sym], self.columns[sym]
+        out.real[:, rows, columns] = values
+        out.real[:, columns, rows] = values
+        rows, columns = self.rows[self.anti], self.columns[self.anti]
+        out.imag[:, rows, columns] = 0.0 + anti
+        out.imag[:, columns, rows] = 0.0 - anti
         return out
+
+    def product_parts(self, coefficients: NDArray) -> tuple[NDArray, NDArray]:
+        """(Im P of the symmetric elements, Re P of the antisymmetric ones), P = basis · xᵀ
+        on the grid: only those parts enter the Hermitian part. Each is the real product
+        of that part of the basis, which gives numpy's complex product's numbers at a
+        quarter of the work — not when a part is a single element (a matrix–vector
+        product, which rounds otherwise): the complex product then."""
+        sym = ~self.anti
+        counts = int(sym.sum()), int(self.anti.sum())
+        if min(counts) == 1 or counts == (1, 0):
+            product = self.basis @ coefficients.T
+            return product.imag[:, sym], product.real[:, self.anti]
+        if not counts[1]:
+            return self.basis_imag @ coefficients.T, np.zeros((self.grid.size, 0))
+        return (
+            self.basis_imag @ coefficients[sym].T,
+            self.basis_real @ coefficients[self.anti].T,
+        )
 
 
 def passivity_violations(
@@ -129,23 +164,19 @@ def passivity_violations(
 
     sweep = sweep or BlockSweep(block, omega_min, omega_max)
     grid = sweep.grid
-    k_grid = sweep.hermitian_part(block)
-    peak = np.abs(np.diagonal(k_grid, axis1=1, axis2=2)).max(axis=0)
-    dof_scale = np.where(peak > 0, 1.0 / np.sqrt(np.where(peak > 0, peak, 1.0)), 0.0)
+    scaled, low_all, dof_scale = sweep.scaled_grid(block)
+    points = grid
     if exact:
         a, b, c = block.coordinate_realization()
         b, c = b * dof_scale[None, :], dof_scale[:, None] * c  # S K S: well conditioned
         # every point once: the grid, five inside each band between crossings, its midpoint
         edges, extra = band_points(a, b, c, grid)
-        points = np.concatenate([grid, extra])
-        order = np.argsort(points)
-        points = points[order]
-        k_all = np.concatenate([k_grid, block.hermitian_part(extra)])[order]
-    else:
-        points = grid
-        k_all = k_grid
-    scaled = k_all * np.outer(dof_scale, dof_scale)[None]
-    low_all = lowest_eigenvalues(scaled)  # the eigenvectors where constraints are asked
+        order = np.argsort(np.concatenate([grid, extra]))
+        points = np.concatenate([grid, extra])[order]
+        extra_scaled = block.hermitian_part(extra) * np.outer(dof_scale, dof_scale)[None]
+        # λ_min of each matrix alone (lowest_eigenvalues): the grid's kept
+        low_all = np.concatenate([low_all, lowest_eigenvalues(extra_scaled)])[order]
+        scaled = np.concatenate([scaled, extra_scaled])[order]
     if not exact:
         negative = low_all < 0
         change = np.flatnonzero(negative[1:] != negative[:-1])
@@ -309,6 +340,7 @@ def enforcement_steps(
     rows, rhs = [], []
     transformed = np.zeros((0, offsets[-1]))
     bound = np.zeros(0, dtype=bool)
+    active = np.zeros(0, dtype=bool)
     start = block.coefficients
     delta = np.zeros(offsets[-1])
     current = block
@@ -325,13 +357,18 @@ def enforcement_steps(
         if not found:
             return current, True, iteration
         new = constraint_rows(found)
+        # the programme is solved on the rows that bound in the last one and the new ones,
+        # then on any of the others that the solution violates
+        guess = np.concatenate([active, np.ones(len(new), dtype=bool)])
         for row, (_, lam, _, local) in zip(new, found, strict=True):
             rows.append(row)
             rhs.append(MARGIN * local - lam + row @ delta)
         # G R⁻¹ of the new rows only, the others kept
         transformed = np.concatenate([transformed, misfit.transformed_rows(new)])
         try:
-            delta, active = least_distance(misfit, np.array(rows), np.array(rhs), transformed)
+            # the rows themselves are read only while there is one (their G R⁻¹ is kept)
+            g = np.array(rows) if len(rows) == 1 else None
+            delta, active = least_distance(misfit, g, np.array(rhs), transformed, start=guess)
         except FitError:
             return current, False, iteration
         # once the programme is large, a constraint that has never bound is left out of
@@ -342,6 +379,7 @@ def enforcement_steps(
             rows = [r for r, a in zip(rows, bound, strict=True) if a]
             rhs = [h for h, a in zip(rhs, bound, strict=True) if a]
             transformed = transformed[bound]
+            active = active[bound]
             bound = bound[bound]
         if block.symmetric:  # one null space: one product
             change = (nulls[0] @ delta.reshape(len(nulls), sizes[0]).T).T

@@ -502,7 +502,11 @@ def factored_misfit(misfit) -> FactoredMisfit:
 
 
 def least_distance(
-    misfit, g: NDArray, h: NDArray, transformed: NDArray | None = None
+    misfit,
+    g: NDArray | None,
+    h: NDArray,
+    transformed: NDArray | None = None,
+    start: NDArray | None = None,
 ) -> tuple[NDArray, NDArray[np.bool_]]:
     """:func:`constrained_least_squares`, and which constraints hold with equality at the
     solution (their NNLS multiplier u is positive): the others can be left out of the next
@@ -510,7 +514,11 @@ def least_distance(
     :func:`factored_misfit` (factored once for many programmes). ``transformed``: G R⁻¹
     when known (the rows kept from earlier programmes: :meth:`FactoredMisfit.transformed_rows`
     of each batch; the triangular solves of all rows at every programme were a tenth of
-    an enforcement's time)."""
+    an enforcement's time). ``g`` is not read when ``transformed`` holds more than one
+    row (it may be None then). ``start``: a boolean mask of the rows likely to bind
+    (those that bound in the last programme of an enforcement, and its new rows): the
+    NNLS is solved on those alone, then on those it violates too
+    (:func:`working_set_nnls`)."""
     factored = factored_misfit(misfit)
     shift = factored.shift
     if transformed is not None and len(transformed) > 1:
@@ -525,12 +533,49 @@ def least_distance(
     matrix = np.vstack([f.T, e[None, :]])
     target = np.zeros(n + 1)
     target[-1] = 1.0
-    u, _ = nnls(matrix, target, maxiter=50 * matrix.shape[1])
+    if start is None:
+        u, _ = nnls(matrix, target, maxiter=50 * matrix.shape[1])
+    else:
+        u = working_set_nnls(matrix, target, start)
     residual = matrix @ u - target
     if abs(residual[-1]) < 1e-12:
         raise FitError("passivity enforcement: the linearised constraints are infeasible")
     x = -residual[:n] / residual[-1]
     return factored.solve(x - shift), u > 0
+
+
+#: :func:`working_set_nnls`: a column left out is optimal at zero while its gradient
+#: component is below WORKING_SET_TOLERANCE × its norm × the target's norm.
+WORKING_SET_TOLERANCE = 1e-12
+
+
+def working_set_nnls(matrix: NDArray, target: NDArray, working: NDArray) -> NDArray:
+    """u ≥ 0 minimising ‖E u − f‖ (E ``matrix``, f ``target``), solved on the columns of
+    the boolean mask ``working`` alone, then with the columns left out whose gradient
+    component Eⱼᵀ(f − E u) is positive added, until there is none: u is then optimal for
+    all columns (the Karush–Kuhn–Tucker conditions of NNLS, Lawson & Hanson (1974) ch. 23
+    Thm 23.4, hold for the whole E). In a least-distance programme (:func:`least_distance`)
+    a column is a constraint and a positive gradient component a violated one, so this is
+    the programme solved on the constraints likely to bind, the others checked after.
+
+    Each solve is scipy's :func:`scipy.optimize.nnls` (Lawson & Hanson's algorithm), whose
+    cost grows with the columns: an enforcement's programme holds a few hundred, of which
+    a few dozen bind.
+    """
+    working = np.asarray(working, dtype=bool).copy()
+    norms = np.linalg.norm(matrix, axis=0)
+    tolerance = WORKING_SET_TOLERANCE * norms * float(np.linalg.norm(target))
+    u = np.zeros(matrix.shape[1])
+    while True:
+        columns = np.flatnonzero(working)
+        u[:] = 0.0
+        if columns.size:
+            u[columns], _ = nnls(matrix[:, columns], target, maxiter=50 * columns.size)
+        gradient = matrix.T @ (target - matrix @ u)
+        violated = ~working & (gradient > tolerance)
+        if not violated.any():
+            return u
+        working |= violated
 
 
 def _apply_step(model, groups, bases, step) -> RadiationModel:
