@@ -296,15 +296,16 @@ def _blocks_of_every_shape():
 @pytest.mark.parametrize("shape", range(5))
 def test_the_sweeps_hermitian_part_is_the_complex_products(shape):
     """:meth:`BlockSweep.hermitian_part` builds Re K_s + j Im K_a from real products of
-    the basis's imaginary and real parts: the same numbers, bit for bit, as the complex
-    product of the basis and the coefficients, and the block's own Hermitian part on the
-    grid (to rounding)."""
+    the basis's imaginary and real parts: the numbers of the complex product of the basis
+    and the coefficients (bit for bit with OpenBLAS here; asserted to rounding, as another
+    BLAS may round the real and the complex products apart), and the block's own
+    Hermitian part on the grid (to rounding)."""
     block = _blocks_of_every_shape()[shape]
     sweep = block_passivity.BlockSweep(block, 0.2, 5.0)
     got = sweep.hermitian_part(block)
     expected = _complex_product_hermitian(sweep, block)
     assert got.dtype == expected.dtype
-    assert np.array_equal(got, expected)
+    np.testing.assert_allclose(got, expected, rtol=0, atol=1e-13 * np.abs(expected).max())
     own = block.hermitian_part(sweep.grid)
     np.testing.assert_allclose(got, own, rtol=0, atol=1e-12 * np.abs(own).max())
 
@@ -332,7 +333,10 @@ def test_the_programme_on_a_working_set_is_the_whole_programme(seed):
     for guess in guesses:
         solved, bound = least_distance(misfit, g, h, start=guess)
         np.testing.assert_allclose(solved, whole, rtol=1e-9, atol=1e-12 * np.abs(whole).max())
-        assert np.array_equal(bound, active)
+        # the same binding rows, but for a row at its limit whose multiplier is zero to
+        # rounding (either answer is right there)
+        differ = bound ^ active
+        assert np.all(np.abs(g[differ] @ solved - h[differ]) <= 1e-9 * np.abs(h).max())
         assert np.all(g @ solved >= h - 1e-9 * np.abs(h).max())
     # z·g ≥ 1 and z·g ≤ −1 (as −z·g ≥ 1) together: no z meets both
     infeasible = np.vstack([g, g[:1], -g[:1]])
