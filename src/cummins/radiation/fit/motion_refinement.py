@@ -241,6 +241,7 @@ def refine_block(
     z = coords.pack(block)
     rows, rhs = np.zeros((0, z.size)), np.zeros(0)
     bound = np.zeros(0, dtype=bool)
+    last = np.zeros(0, dtype=bool)  # the rows that bound in the last programme, and new ones
     lawson = None
     misfit, transformed = None, np.zeros((0, z.size))
     current, exact = block, False
@@ -258,6 +259,7 @@ def refine_block(
             rows = np.vstack([rows, new])
             rhs = np.r_[rhs, [MARGIN * local - lam for _, lam, _, local in found] + new @ z]
             bound = np.r_[bound, np.zeros(len(found), dtype=bool)]
+            last = np.r_[last, np.ones(len(found), dtype=bool)]
         if iteration < steps:  # re-linearised: a Gauss–Newton step, every row transformed
             misfit, lawson = _gauss_newton(
                 current, coords, z, linearised, normal_fit, rhs_fit, lawson, motion_tol
@@ -270,15 +272,17 @@ def refine_block(
             current = coords.unpack(z, block)
             continue
         try:
-            z, active = least_distance(misfit, rows, rhs, transformed)
+            z, active = least_distance(misfit, rows, rhs, transformed, start=last)
         except FitError:
             return current, False
         bound |= active
+        last = active
         if rhs.size > z.size:  # as the enforcement prunes its programme
-            rows, rhs, transformed, bound = (
+            rows, rhs, transformed, last, bound = (
                 rows[bound],
                 rhs[bound],
                 transformed[bound],
+                last[bound],
                 bound[bound],
             )
         current = coords.unpack(z, block)
