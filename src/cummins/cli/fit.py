@@ -172,7 +172,7 @@ from cummins.files import write_text
     default=False,
     help="A block whose motion RAOs miss the target after the order search has its "
     "residues refined on the motions themselves, passive at every step (vf; slower: "
-    "WEC-Sim's RM3 3.7 % -> 0.4 % of the peak, 2.4 -> 7 s).",
+    "WEC-Sim's RM3 3.7 % -> 0.4 % of the peak, 2.4 -> 5 s).",
 )
 @click.option(
     "--body",
@@ -377,7 +377,7 @@ def fit_command(
         console.print(
             "hint: --refine-motions refits the blocks that miss on the motion RAOs "
             "themselves, passive at every step (slower; WEC-Sim's RM3 3.7 % -> 0.39 %, "
-            "2.4 -> 7 s); it keeps a refined block only where the motions come nearer",
+            "2.4 -> 5 s); it keeps a refined block only where the motions come nearer",
             highlight=False,
         )
     if failures:

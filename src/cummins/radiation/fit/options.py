@@ -111,7 +111,7 @@ class FitOptions(Mapping):
         and at ``max_order``, aiming at the user's motions; kept when they are nearer
         the data's and its R² of K(t) and damping beyond the data are no worse (its R² of
         A and B may fall: the motions judge them; ``"vf"`` only). Slower: WEC-Sim's RM3
-        3.73 → 0.39 %, 2.4 → 7 s.
+        3.73 → 0.39 %, 2.4 → 5 s.
     """
 
     method: str = "vf"
