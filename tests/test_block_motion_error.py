@@ -4,23 +4,14 @@ BlockMotionError) is the error MotionSensitivity.error_of gives with the whole K
 import numpy as np
 import pytest
 
-import cummins
-from cummins.hydrodb import dof_matrix
-from cummins.radiation.fit.motion import BlockMotionError, motion_sensitivity
+from _synthetic import demo_block_motion_error
 
 
 @pytest.mark.parametrize("dofs", [(2,), (0, 4), (1, 3, 5)])
 def test_block_error_is_the_whole_error(dofs):
     """K of the block's DOFs changed by up to 20 % (a poor fit) and by 0.1 % (a good one):
     the same relative motion error as the n × n solve, to rounding."""
-    ds = cummins.demo_dataset()
-    sensitivity = motion_sensitivity(ds)
-    rows = sensitivity.compared_frequencies()
-    w = sensitivity.omega[rows]
-    a = dof_matrix(ds, "added_mass")[rows]
-    b = dof_matrix(ds, "radiation_damping")[rows]
-    k_data = b + 1j * w[:, None, None] * a
-    errors = BlockMotionError(sensitivity, k_data)
+    sensitivity, k_data, w, errors = demo_block_motion_error()
     index = np.asarray(dofs)
     rng = np.random.default_rng(len(dofs))
     for size in (0.2, 1e-3):

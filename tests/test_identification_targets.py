@@ -66,6 +66,7 @@ import numpy as np
 import pytest
 
 import cummins
+from _synthetic import wecsim_rm3
 from cummins.errors import FitError
 from cummins.hydrodb import dof_matrix
 from cummins.radiation.fit import PREVIOUS_DEFAULT, fit_radiation
@@ -340,17 +341,9 @@ def test_the_fit_does_not_depend_on_blas_threads(shared_data, case):
 @pytest.fixture(scope="module")
 def rm3(shared_data):
     """WEC-Sim's RM3 (WAMIT ``.out``, ρ = 1000) with its mass properties, and its fit."""
+    ds = wecsim_rm3(shared_data)
     with warnings.catch_warnings():
         warnings.simplefilter("ignore")
-        ds = cummins.read(
-            shared_data / "corpus" / "WEC-Sim" / "wamit_RM3_2body" / "rm3.out", rho=1000
-        )
-        ds = cummins.with_inertia(
-            ds,
-            mass=[725833.0, 886687.0],
-            center_of_gravity=[[0.0, 0.0, -0.72], [0.0, 0.0, -21.29]],
-            radii_of_gyration=[[5.367, 5.418, 7.148], [10.319, 10.319, 5.674]],
-        )
         return ds, fit_radiation(ds)
 
 

@@ -16,9 +16,8 @@ import numpy as np
 import pytest
 
 import cummins
-from cummins.hydrodb import dof_matrix
+from _synthetic import demo_block_motion_error, wecsim_rm3
 from cummins.radiation.fit import fit_radiation
-from cummins.radiation.fit.motion import BlockMotionError, motion_sensitivity
 from cummins.radiation.fit.scorecard import motion_rao_error
 from cummins.radiation.passivity import passivity_test
 
@@ -34,14 +33,7 @@ def test_the_linearised_motions_are_their_derivative(dofs):
     """BlockMotionError.linearised: its residuals are the motion error of __call__ (the
     largest, to rounding) and its derivative predicts a small change of K̂ as finite
     differences do (δX = −Z⁻¹ jω δK̂ X)."""
-    ds = cummins.demo_dataset()
-    sensitivity = motion_sensitivity(ds)
-    rows = sensitivity.compared_frequencies()
-    w = sensitivity.omega[rows]
-    a = dof_matrix(ds, "added_mass")[rows]
-    b = dof_matrix(ds, "radiation_damping")[rows]
-    k_data = b + 1j * w[:, None, None] * a
-    errors = BlockMotionError(sensitivity, k_data)
+    _, k_data, w, errors = demo_block_motion_error()
     index = np.asarray(dofs)
     rng = np.random.default_rng(3)
     k_block = k_data[:, index[:, None], index[None, :]] * (
@@ -98,17 +90,7 @@ def test_rm3_refined_meets_the_motion_target(shared_data):
     """WEC-Sim's RM3 (issue 30): the default 3.7 % of the peak; refined on its motions
     within the scoreboard's 1 % (0.39 % measured, 20 common poles), passive by the exact
     test and stable, without the motion failure; its notes those of the refined fit."""
-    with warnings.catch_warnings():
-        warnings.simplefilter("ignore")
-        ds = cummins.read(
-            shared_data / "corpus" / "WEC-Sim" / "wamit_RM3_2body" / "rm3.out", rho=1000
-        )
-        ds = cummins.with_inertia(
-            ds,
-            mass=[725833.0, 886687.0],
-            center_of_gravity=[[0.0, 0.0, -0.72], [0.0, 0.0, -21.29]],
-            radii_of_gyration=[[5.367, 5.418, 7.148], [10.319, 10.319, 5.674]],
-        )
+    ds = wecsim_rm3(shared_data)
     model = _fit(ds, refine_motions=True)
     assert motion_rao_error(ds, model).error <= 0.006  # the aim, 0.8 %, with room
     assert np.all(np.linalg.eigvals(model.A).real < 0)
