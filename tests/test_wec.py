@@ -8,6 +8,7 @@ kinematics worked out by hand for a hinge.
 
 from __future__ import annotations
 
+import json
 import warnings
 
 import numpy as np
@@ -321,7 +322,9 @@ def test_fit_takes_the_system_and_simulate_its_model(corpus, tmp_path):
 
     data = str(corpus / "WEC-Sim" / "wamit_OSWEC_2015_with_bemio_h5" / "oswec.out")
     model_path, run_path = tmp_path / "flap_model.nc", tmp_path / "flap.nc"
+    summary_path = tmp_path / "fit.json"
     fit = ["fit", data, *OSWEC_ARGS, "--no-body-coupling", "-o", str(model_path)]
+    fit += ["--json", str(summary_path)]
     result = CliRunner().invoke(main, fit)
     # the flap's body-frame pitch loses R² of B to passivity (0.9968 -> 0.9831), but the
     # system moves surge and pitch only together about the hinge: judged by Tᵀ K T
@@ -354,6 +357,8 @@ def test_fit_takes_the_system_and_simulate_its_model(corpus, tmp_path):
     a_file, b_file = model.attrs["coordinate_r2"]["body1__Pitch"]
     assert a_r2 == pytest.approx(a_file, abs=1e-6) and b_r2 == pytest.approx(b_file, abs=1e-6)
     assert min(a_r2, b_r2) > 0.995
+    summary = json.loads(summary_path.read_text())
+    assert summary["coordinate_r2"]["body1__Pitch"] == pytest.approx([a_file, b_file])
     pitch = model.coupling("body1__Pitch", "body1__Pitch").metrics
     assert pitch["r2_damping"] < 0.99 < pitch["r2_damping_before"]  # the DOF alone
     sea = ["--regular", "--wave-period", "8", "--wave-amplitude", "1.25", "--duration", "160"]

@@ -491,9 +491,14 @@ def fit_summary(model, elapsed: float) -> dict:
         "mimo_stable": model.is_stable(),
         "mimo_passive": is_passive(model),
         "motion_error": model.attrs.get("motion_error"),
-        "coordinate_r2": model.attrs.get("coordinate_r2"),
         "failures": list(model.attrs.get("failures", [])),
         "elapsed_s": elapsed,
+        # a fit for joined bodies: the R² of A and B of each free coordinate (Tᵀ K T)
+        **(
+            {"coordinate_r2": model.attrs["coordinate_r2"]}
+            if model.attrs.get("coordinate_r2")
+            else {}
+        ),
     }
 
 

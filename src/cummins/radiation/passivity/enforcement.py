@@ -553,7 +553,7 @@ def working_set_nnls(matrix: NDArray, target: NDArray, working: NDArray) -> NDAr
     """u ≥ 0 minimising ‖E u − f‖ (E ``matrix``, f ``target``), solved on the columns of
     the boolean mask ``working`` alone, then with the columns left out whose gradient
     component Eⱼᵀ(f − E u) is positive added, until there is none: u is then optimal for
-    all columns (the Karush–Kuhn–Tucker conditions of NNLS, Lawson & Hanson (1974) ch. 23
+    all columns (the Karush–Kuhn–Tucker conditions of NNLS in Lawson & Hanson (1974) ch. 23
     Thm 23.4, hold for the whole E). In a least-distance programme (:func:`least_distance`)
     a column is a constraint and a positive gradient component a violated one, so this is
     the programme solved on the constraints likely to bind, the others checked after.
