@@ -440,6 +440,44 @@ def with_given_terms(
     return with_external_terms(ds, **terms) if terms else ds
 
 
+#: A body whose mass differs from its displaced mass ρ∇ by more than this fraction is
+#: not in static equilibrium floating freely (:func:`equilibrium_notes`).
+EQUILIBRIUM_TOLERANCE = 0.1
+
+
+def equilibrium_notes(ds: xr.Dataset) -> list[str]:
+    """One line per body whose mass (the inertia matrix's) differs from ρ∇ (the data's
+    displaced volume) by more than :data:`EQUILIBRIUM_TOLERANCE`: floating freely it is
+    not in static equilibrium, so a joint, a mooring or a DOF selection must hold it
+    (WEC-Sim's OSWEC base, 999 kg on a hinge to the seabed). Empty without the inertia
+    matrix or one displaced volume per body."""
+    volume = ds.attrs.get("displaced_volume")
+    if "inertia_matrix" not in ds or volume is None:
+        return []
+    labels = [str(d) for d in ds.influenced_dof.values]
+    groups = bodies(ds)
+    volumes = np.atleast_1d(np.asarray(volume, dtype=float))
+    if len(volumes) != len(groups):
+        return []
+    inertia = dof_matrix(ds, "inertia_matrix")
+    rho = float(ds.attrs["rho"])
+    out = []
+    for k, index in enumerate(_body_slices(labels, groups)):
+        surge = [i for i in index if split_dof(labels[i])[1] == "Surge"]
+        buoyancy = rho * volumes[k]
+        if not surge or not buoyancy > 0:
+            continue
+        mass = float(inertia[surge[0], surge[0]])
+        if abs(mass / buoyancy - 1.0) > EQUILIBRIUM_TOLERANCE:
+            out.append(
+                f"{groups[k] or 'the body'}: mass {mass:.4g} kg, {mass / buoyancy:.1%} of its "
+                f"displaced mass ρ∇ = {buoyancy:.4g} kg: floating freely it is not in static "
+                "equilibrium; a joint, a mooring or --dof must hold it (--joint KIND "
+                f"{groups[k] or 'body1'} ground, or a joint to a body that is held)"
+            )
+    return out
+
+
 def _vector(value: ArrayLike, name: str) -> NDArray[np.float64]:
     v = np.asarray(value, dtype=float).reshape(-1)
     if v.shape != (3,) or not np.all(np.isfinite(v)):

@@ -546,7 +546,13 @@ def read_hydrodb(
     if not options:
         return ds
     moving = tuple(context.params.get("dofs") or ()) if context is not None else ()
-    return complete_equation_of_motion(ds, **options, moving=moving)
+    ds = complete_equation_of_motion(ds, **options, moving=moving)
+    if options.get("mass") and not (moving or context.params.get("joints")):
+        from cummins.mass_properties import equilibrium_notes
+
+        for line in equilibrium_notes(ds):  # free bodies: a mass far from ρ∇ is held
+            console.print(f"note: {line}", highlight=False)
+    return ds
 
 
 def complete_equation_of_motion(
