@@ -106,7 +106,7 @@ def _diagonal_curves(ds: xr.Dataset) -> list[tuple[str, NDArray]]:
     curves = []
     labels = [str(d) for d in ds.influenced_dof.values]
     for name in ("added_mass", "radiation_damping"):
-        x = ds.variables[name].transpose("omega", "influenced_dof", "radiating_dof").values
+        x = dof_matrix(ds, name)
         diag = np.diagonal(x, axis1=1, axis2=2)
         size = np.abs(diag).max(axis=0)
         for i, label in enumerate(labels):

@@ -91,6 +91,74 @@ def fit_blocks(
     diagonal = sorted({i for i, j in pairs if i == j})  # the diagonal terms alone
     fine_values = diagonal_retardation_functions(inp.data, fine_time, diagonal)
     fine_kernel = dict(zip(diagonal, fine_values.T, strict=True))
+
+    def search(dofs, elements, fixed_count, identify):
+        """The block's order search: at the poles of a twin block fitted before
+        (:func:`mirror_block`) when it shares them well, else its own (with poles as
+        lightly damped as a sharp resonance the motions depend on, or the default
+        target's fit, when either is closer); (data, fit, score, notes, pole floor)."""
+        shared = None
+        twin = None if fixed_count else mirror_block(done, dofs, elements, a_data, b_data)
+        if twin is not None:  # the twin's poles, this block's residues
+            twin_name, twin_poles, twin_score, twin_floor, difference = twin
+            shared = identify(motion_tol, motion_aim, min_damping=twin_floor, poles=twin_poles)
+            if not shares_well(shared[2], twin_score, r2, motion_aim):
+                shared = None
+        if shared is not None:
+            data, fitted, score, block_notes = shared
+            floor = twin_floor
+            block_notes.append(
+                f"the {fitted.poles.count} common poles of the {twin_name} block, whose "
+                f"diagonal A and B differ from these by {difference:.2%} at most (as an "
+                "axisymmetric body's two horizontal blocks): residues fitted to these data"
+            )
+        else:
+            data, fitted, score, block_notes = identify(motion_tol, motion_aim)
+            floor = vector.MIN_DAMPING
+            if set(dofs) & set(inp.resonant_dofs) and not score.meets(motion_aim):
+                # a sharp resonance the motions depend on (a piston or gap mode) and the
+                # targets missed: poles as lightly damped as the resonance, when that brings
+                # the block closer to its targets
+                sharp = identify(motion_tol, motion_aim, min_damping=vector.RESONANCE_MIN_DAMPING)
+                if order_search.closeness(sharp[2], r2, motion_aim) < order_search.closeness(
+                    score, r2, motion_aim
+                ):
+                    data, fitted, score, block_notes = sharp
+                    floor = vector.RESONANCE_MIN_DAMPING
+                    block_notes.append(
+                        f"a sharp resonance kept: poles damped down to {floor:.0%} of critical "
+                        f"(else {vector.MIN_DAMPING:.0%})"
+                    )
+            if motion_aim is not None and motion_tol < MOTION_TOL and not score.meets(motion_aim):
+                # a tighter motion target weighs the motions more, and passivity can then cost
+                # them more than it costs the default's fit (the supply vessel's heave-pitch
+                # block: 0.55 % at 10 common poles against the default's 0.29 % at 9): the
+                # tighter target never keeps a block further from it than the default's
+                default = identify(MOTION_TOL, MOTION_AIM * MOTION_TOL, min_damping=floor)
+                if order_search.closeness(default[2], r2, motion_aim) < order_search.closeness(
+                    score, r2, motion_aim
+                ):
+                    # its own notes (a miss of the default's targets among them), not those
+                    # of the fits set aside
+                    data, fitted, score, block_notes = default
+                    block_notes.append(
+                        f"the default's fit ({fitted.poles.count} common poles) is closer to "
+                        "the tighter motion target than the fits made for it: kept"
+                    )
+                    if score.meets(MOTION_AIM * MOTION_TOL) and not score.meets(motion_aim):
+                        block_notes.append(
+                            order_search.targets_not_met(
+                                fitted.poles.count,
+                                score,
+                                r2=r2,
+                                r2_coupling=r2_coupling,
+                                r2_kernel=options.r2_kernel,
+                                motion_aim=motion_aim,
+                                labels=labels,
+                            )
+                        )
+        return data, fitted, score, block_notes, floor
+
     for dofs, elements in order_search.block_groups(n, pairs):
         say("block " + "-".join(labels[d] for d in dofs))
         # a pair fitted as given adds its antisymmetric part (j, i) after the others
@@ -184,72 +252,7 @@ def fit_blocks(
             data, fitted, score, block_notes, floor = searched[dofs]
             block_notes = list(block_notes)
         else:
-            shared = None
-            twin = None if fixed_count else mirror_block(done, dofs, elements, a_data, b_data)
-            if twin is not None:  # the twin's poles, this block's residues
-                twin_name, twin_poles, twin_score, twin_floor, difference = twin
-                shared = identify(motion_tol, motion_aim, min_damping=twin_floor, poles=twin_poles)
-                if not shares_well(shared[2], twin_score, r2, motion_aim):
-                    shared = None
-            if shared is not None:
-                data, fitted, score, block_notes = shared
-                floor = twin_floor
-                block_notes.append(
-                    f"the {fitted.poles.count} common poles of the {twin_name} block, whose "
-                    f"diagonal A and B differ from these by {difference:.2%} at most (as an "
-                    "axisymmetric body's two horizontal blocks): residues fitted to these data"
-                )
-            else:
-                data, fitted, score, block_notes = identify(motion_tol, motion_aim)
-                floor = vector.MIN_DAMPING
-                if set(dofs) & set(inp.resonant_dofs) and not score.meets(motion_aim):
-                    # a sharp resonance the motions depend on (a piston or gap mode) and the
-                    # targets missed: poles as lightly damped as the resonance, when that brings
-                    # the block closer to its targets
-                    sharp = identify(
-                        motion_tol, motion_aim, min_damping=vector.RESONANCE_MIN_DAMPING
-                    )
-                    if order_search.closeness(sharp[2], r2, motion_aim) < order_search.closeness(
-                        score, r2, motion_aim
-                    ):
-                        data, fitted, score, block_notes = sharp
-                        floor = vector.RESONANCE_MIN_DAMPING
-                        block_notes.append(
-                            f"a sharp resonance kept: poles damped down to {floor:.0%} of critical "
-                            f"(else {vector.MIN_DAMPING:.0%})"
-                        )
-                if (
-                    motion_aim is not None
-                    and motion_tol < MOTION_TOL
-                    and not score.meets(motion_aim)
-                ):
-                    # a tighter motion target weighs the motions more, and passivity can then cost
-                    # them more than it costs the default's fit (the supply vessel's heave-pitch
-                    # block: 0.55 % at 10 common poles against the default's 0.29 % at 9): the
-                    # tighter target never keeps a block further from it than the default's
-                    default = identify(MOTION_TOL, MOTION_AIM * MOTION_TOL, min_damping=floor)
-                    if order_search.closeness(default[2], r2, motion_aim) < order_search.closeness(
-                        score, r2, motion_aim
-                    ):
-                        # its own notes (a miss of the default's targets among them), not those
-                        # of the fits set aside
-                        data, fitted, score, block_notes = default
-                        block_notes.append(
-                            f"the default's fit ({fitted.poles.count} common poles) is closer to "
-                            "the tighter motion target than the fits made for it: kept"
-                        )
-                        if score.meets(MOTION_AIM * MOTION_TOL) and not score.meets(motion_aim):
-                            block_notes.append(
-                                order_search.targets_not_met(
-                                    fitted.poles.count,
-                                    score,
-                                    r2=r2,
-                                    r2_coupling=r2_coupling,
-                                    r2_kernel=options.r2_kernel,
-                                    motion_aim=motion_aim,
-                                    labels=labels,
-                                )
-                            )
+            data, fitted, score, block_notes, floor = search(dofs, elements, fixed_count, identify)
             if searched is not None:
                 searched[dofs] = (data, fitted, score, list(block_notes), floor)
         refined = None
