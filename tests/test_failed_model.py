@@ -39,7 +39,7 @@ def failed(tmp_path_factory):
     assert result.exit_code == 3, result.output  # a failure: the premise of these tests
     assert cummins.RadiationModel.load(path).attrs["failures"]
     # the motions fail: the option that fits them on the motions themselves is named
-    assert "hint: --refine-motions refits the blocks that miss" in result.output
+    assert "hint: --refine-motions refines the blocks that miss" in result.output
     return path
 
 
@@ -144,3 +144,11 @@ def test_a_failed_model_of_any_name_says_so(failed, tmp_path):
     result = _run("simulate", renamed, *WAVE, "-o", tmp_path / "run.nc")
     assert result.exit_code == 0, result.output
     assert _warnings(result.output)[0].startswith("warning: fit.model: this model missed")
+
+
+def test_the_refinement_can_be_turned_off(tmp_path):
+    """``--no-refine-motions``: the fit without the default's refinement, still a failure
+    (exit 3), and the hint names the option that refines to the end."""
+    result = _run("fit", SHARP, "-o", tmp_path / "m.nc", "--max-order", 4, "--no-refine-motions")
+    assert result.exit_code == 3, result.output
+    assert "hint: --refine-motions refines the blocks that miss" in result.output

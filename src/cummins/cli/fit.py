@@ -167,12 +167,14 @@ from cummins.files import write_text
     "every pair that is not reciprocal (vf).",
 )
 @click.option(
-    "--refine-motions",
-    is_flag=True,
-    default=False,
-    help="A block whose motion RAOs miss the target after the order search has its "
-    "residues refined on the motions themselves, passive at every step (vf; slower: "
-    "WEC-Sim's RM3 3.7 % -> 0.4 % of the peak, 2.4 -> 5 s).",
+    "--refine-motions/--no-refine-motions",
+    default=None,
+    help="A block whose motion RAOs miss their aim after the order search has its "
+    "residues refined on the motions themselves, passive at every step (vf). Default: "
+    "when the fit's motions miss the target, a number of poles that cannot reach it "
+    "given up early (WEC-Sim's RM3 3.7 % -> 0.4 % of the peak); --refine-motions: "
+    "whenever they miss the aim, every number of poles enforced to the end (slower); "
+    "--no-refine-motions: never.",
 )
 @click.option(
     "--body",
@@ -373,11 +375,13 @@ def fit_command(
             "cummins.radiation.speed.vessel_at_speed, fit_per_speed)",
             highlight=False,
         )
-    if any(f.startswith("motion error") for f in failures) and not refine_motions:
+    if any(f.startswith("motion error") for f in failures) and refine_motions is not True:
         console.print(
-            "hint: --refine-motions refits the blocks that miss on the motion RAOs "
-            "themselves, passive at every step (slower; WEC-Sim's RM3 3.7 % -> 0.39 %, "
-            "2.4 -> 5 s); it keeps a refined block only where the motions come nearer",
+            "hint: --refine-motions refines the blocks that miss on the motion RAOs "
+            "themselves at every number of poles to the end, passive at every step "
+            "(slower than the default's refinement, which gives up a number of poles "
+            "whose steps stay above the target; --no-refine-motions skips it); it keeps "
+            "a refined block only where the motions come nearer",
             highlight=False,
         )
     if failures:

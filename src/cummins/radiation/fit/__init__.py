@@ -87,7 +87,7 @@ from cummins.radiation.fit.mimo import (
     with_motion_note,
 )
 from cummins.radiation.fit.motion import JoinedMotion
-from cummins.radiation.fit.motion_refinement import refined_on_motions
+from cummins.radiation.fit.motion_refinement import refined_on_motions, refinement_wanted
 from cummins.radiation.fit.options import (
     ADDED_MASS_INF,
     DEFAULT,
@@ -211,9 +211,16 @@ def fit_radiation(
         plain = options.with_changes(refine_motions=False)
         first, again = {}, {}  # the order searches of the fit and of its refit
         model = fit_blocks(inp, plain, say, first)
-        model = with_causal_inf(inp, plain, model, lambda *a: fit_blocks(*a, say, again))
-        searched = again if "added_mass_inf_estimated" in model.attrs else first
-        model = refined_on_motions(inp, options, model, lambda *a: fit_blocks(*a, say, searched))
+        # motions that call for the refinement: made in the refit with A∞ estimated, when
+        # there is one (RM3: a whole fit of the blocks fewer)
+        causal = options if refinement_wanted(options, model) else plain
+        model = with_causal_inf(inp, causal, model, lambda *a: fit_blocks(*a, say, again))
+        estimated = "added_mass_inf_estimated" in model.attrs
+        if not (estimated and causal is options):
+            searched = again if estimated else first
+            model = refined_on_motions(
+                inp, options, model, lambda *a: fit_blocks(*a, say, searched, only_refined=True)
+            )
     else:
         model = fit_per_coupling(inp, options, say)
     return replace(model, attrs={**model.attrs, "elapsed_s": time.perf_counter() - start})

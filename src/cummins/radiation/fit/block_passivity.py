@@ -77,6 +77,16 @@ class BlockSweep:
         self.columns = np.array([where[j] for _, j in block.elements], dtype=int)
         self.anti = np.array([is_antisymmetric(x) for x in block.elements], dtype=bool)
         self._last: tuple | None = None  # (coefficients, scaled_grid's answer)
+        self.range = (omega_min, omega_max)
+        self.band_extra: NDArray | None = None  # the last exact test's points off the grid
+
+    def extend(self, block: PoleResidueBlock, points: NDArray) -> None:
+        """The grid with ``points`` added (the basis there computed)."""
+        self.grid = np.union1d(self.grid, points)
+        self.basis = block.poles.basis(1j * self.grid)
+        self.basis_real = np.ascontiguousarray(self.basis.real)
+        self.basis_imag = np.ascontiguousarray(self.basis.imag)
+        self._last = None
 
     def scaled_grid(self, block: PoleResidueBlock) -> tuple[NDArray, NDArray, NDArray]:
         """(S H S, its λ_min by :func:`lowest_eigenvalues`, the diagonal of S) on the grid
@@ -171,6 +181,7 @@ def passivity_violations(
         b, c = b * dof_scale[None, :], dof_scale[:, None] * c  # S K S: well conditioned
         # every point once: the grid, five inside each band between crossings, its midpoint
         edges, extra = band_points(a, b, c, grid)
+        sweep.band_extra = extra
         order = np.argsort(np.concatenate([grid, extra]))
         points = np.concatenate([grid, extra])[order]
         extra_scaled = block.hermitian_part(extra) * np.outer(dof_scale, dof_scale)[None]

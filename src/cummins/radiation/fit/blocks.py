@@ -42,13 +42,16 @@ def fit_blocks(
     options: FitOptions,
     say: Callable[[str], None] = lambda message: None,
     searched: dict | None = None,
-) -> RadiationModel:
+    only_refined: bool = False,
+) -> RadiationModel | None:
     """Every block of coupled DOFs of the prepared data fitted with common poles (module
     docstring); ``attrs`` hold ``mimo_passive``, the motion error and ``failures``.
-    ``searched``: each block's order search by its DOFs, filled by this call and taken
-    from it by the next (the same ``inp``): the motion refinement of the fit kept
+    ``searched``: each block's order search by its DOFs, and each block as made when not
+    refined (its metrics), filled by this call and taken from it by the next (the same
+    ``inp``): the motion refinement of the fit kept
     (:func:`cummins.radiation.fit.motion_refinement.refined_on_motions`) does not search
-    again."""
+    again, nor measure again a block it does not refine. ``only_refined``: None when no
+    block is refined (the model would be the last one's)."""
     labels, w, keep_dof, pairs = inp.labels, inp.data.omega.values, inp.keep_dof, inp.pairs
     added_mass, damping, measured = inp.added_mass, inp.damping, inp.measured
     a_inf = None if inp.a_inf_mode == "fit" else inp.a_inf
@@ -75,7 +78,7 @@ def fit_blocks(
             measured.added_mass[rows] + antisymmetric
         )
         block_motion = BlockMotionError(sensitivity, k_data)
-    if k_data is not None and options.refine_motions:
+    if k_data is not None and options.refine_motions is not False:
         # the refinement's: the couplings no block models as the model will have them
         # and the user's motions, not the passive part's the fit aims at
         judged = sensitivity if inp.reference is None else inp.reference
@@ -85,6 +88,7 @@ def fit_blocks(
         )
     motion_aim = MOTION_AIM * motion_tol if sensitivity is not None else None
     blocks, notes, tail_failures = [], [], []
+    any_refined = False
     done: list = []  # (name, dofs, elements, poles, score, pole floor) of each block fitted
     # K(t) of the data at the step of the default grid: the R² of K(t) the fit is judged by
     fine_time = fine_time_grid(measured.time, float(w.max()))
@@ -256,17 +260,31 @@ def fit_blocks(
             if searched is not None:
                 searched[dofs] = (data, fitted, score, list(block_notes), floor)
         refined = None
-        if options.refine_motions and passive and motion_aim is not None:
+        if options.refine_motions is not False and passive and motion_aim is not None:
             if not score.meets(motion_aim):  # the motions themselves fitted
                 counts = (fitted.poles.count, fixed_count or max_order)
                 refined = refined_block(data, fitted, score, counts, refined_motions(), options)
             if refined is not None:
                 fitted, score, block_notes = refined[0], refined[1], refined[2](block_notes, labels)
+        made = None if searched is None or refined is not None else searched.get(("made", dofs))
+        if made is not None:  # this block as the last fit made it: its metrics kept
+            block, inf_values, done_entry, block_notes, failed = made
+            for (i, j), value in inf_values:
+                inf[i, j] = value
+            blocks.append(block)
+            done.append(done_entry)
+            notes += [f"{name}: {x}" for x in block_notes]
+            tail_failures += failed
+            continue
+        any_refined |= refined is not None
         a, b, c = fitted.realization()
+        inf_values = []
         for (i, j), value in fitted.pair_values(fitted.added_mass_inf).items():
-            inf[i, j] = value  # a pair fitted as given: each direction its own
+            inf_values.append(((i, j), value))  # a pair fitted as given: each its own
             if i <= j and (j, i) not in fitted.elements:
-                inf[j, i] = value
+                inf_values.append(((j, i), value))
+        for (i, j), value in inf_values:
+            inf[i, j] = value
         note = "; ".join(block_notes)
         block = MemoryBlock(dofs, a, b, c, "vf", {}, note)
         metrics = {}
@@ -312,11 +330,16 @@ def fit_blocks(
         blocks.append(replace(block, metrics=metrics))
         done.append((name, dofs, elements, fitted.poles, score, floor))
         notes += [f"{name}: {x}" for x in block_notes]
-        tail_failures += [
+        failed = [
             found.describe(labels[i], float(omega[-1]))
             for i, found in score.beyond.items()
             if not found.ok()
         ]
+        tail_failures += failed
+        if searched is not None and refined is None:
+            searched[("made", dofs)] = (blocks[-1], inf_values, done[-1], block_notes, failed)
+    if only_refined and not any_refined:
+        return None
     model = RadiationModel(
         tuple(labels),
         (),

@@ -105,13 +105,19 @@ class FitOptions(Mapping):
         its damping tail beyond the last frequency: the model must decay as the data's
         tail); ``None``: not a target.
     refine_motions
-        A block that misses its motion aim after the order search has its residues
-        refined on the motion RAOs themselves, passive at every step
+        ``None`` (default): when the fit's motions miss their target ``motion_tol``, each
+        block that misses its motion aim after the order search has its residues refined
+        on the motion RAOs themselves, passive at every step
         (:mod:`cummins.radiation.fit.motion_refinement`), at its number of common poles
-        and at ``max_order``, aiming at the user's motions; kept when they are nearer
-        the data's and its R² of K(t) and damping beyond the data are no worse (its R² of
-        A and B may fall: the motions judge them; ``"vf"`` only). Slower: WEC-Sim's RM3
-        3.73 → 0.39 %, 2.4 → 5 s.
+        and at ``max_order``, aiming at the user's motions; a number of poles whose
+        Gauss–Newton steps leave the block above the target is given up before its
+        passivity enforcement (the enforcement only takes the motions further). A
+        refined block is kept when its motions are nearer the data's and its R² of K(t)
+        and damping beyond the data are no worse (its R² of A and B may fall: the
+        motions judge them; ``"vf"`` only). WEC-Sim's RM3 3.73 → 0.39 % of the peak.
+        ``True``: whenever the motions miss the aim (``MOTION_AIM × motion_tol``), and
+        every number of poles enforced to the end (the closest passive one kept);
+        ``False``: never.
     """
 
     method: str = "vf"
@@ -129,7 +135,7 @@ class FitOptions(Mapping):
     motion_tol: float = MOTION_TOL
     reciprocity: str = "auto"
     r2_kernel: float | None = R2_KERNEL
-    refine_motions: bool = False
+    refine_motions: bool | None = None
 
     # ------------------------------------------------------------------ a mapping of
     # the fields set away from the defaults (``fit_radiation(ds, **preset)``)
@@ -183,6 +189,11 @@ class FitOptions(Mapping):
         ):
             if value not in allowed:
                 raise FitError(f"unknown {name} {value!r}; use one of {', '.join(allowed)}")
+        if self.refine_motions not in (None, True, False):
+            raise FitError(
+                f"refine_motions is {self.refine_motions!r}: use None (when the motions "
+                "miss their target), True or False"
+            )
         if self.r2_kernel is not None and not 0.0 < self.r2_kernel < 1.0:
             raise FitError(f"r2_kernel is {self.r2_kernel}: use a value between 0 and 1, or None")
         max_order = MAX_ORDER[self.method] if self.max_order is None else self.max_order
