@@ -588,8 +588,9 @@ def _rm3_study(folder, data, model=None) -> str:
 
 
 def test_a_failed_model_is_said_in_one_line_and_recorded(two_workers, corpus, tmp_path):
-    """The RM3's fit misses its targets (its data are not causal: motion error 3.9 %,
-    exit 3 of `cummins fit`): `batch` with that model file, or fitting one itself, says
+    """The RM3's fit misses its targets (its data are not causal: the R² of K(t) of two
+    DOFs below 0.9 once its residues are refined on its motions, 0.40 %; exit 3 of
+    `cummins fit`): `batch` with that model file, or fitting one itself, says
     so in `simulate`'s one line, records the failures, order and motion error in the
     results, and ends as `simulate` does on such a model (exit 0, the cases run)."""
     from cummins.cli.failed_model import ATTRIBUTE, model_failures
@@ -604,7 +605,7 @@ def test_a_failed_model_is_said_in_one_line_and_recorded(two_workers, corpus, tm
     )
     model = cummins.fit_radiation(ds)
     failures = list(model.attrs["failures"])
-    assert any(f.startswith("motion error") for f in failures)  # the premise
+    assert failures  # the premise
     model.save(tmp_path / "rm3_model.nc")
     for study, kind in (
         (_rm3_study(tmp_path, data, "rm3_model.nc"), "this model missed its fit targets"),
@@ -619,7 +620,7 @@ def test_a_failed_model_is_said_in_one_line_and_recorded(two_workers, corpus, tm
         assert len(lines) == 1, result.output
         source = "rm3_model.nc" if "this model" in kind else "rm3.out"
         assert lines[0].startswith(f"warning: {source}: {kind}"), lines[0]
-        said = f"motion error {100 * model.attrs['motion_error']:.2f} %"  # 3.89 measured
+        said = failures[0].split(" (")[0]  # the R² of K(t) of the float's pitch measured
         assert said in lines[0] and "results inherit it" in lines[0]
         attrs = load_results(out).attrs
         assert attrs[ATTRIBUTE].splitlines() == failures  # as `simulate`'s run file

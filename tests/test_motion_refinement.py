@@ -130,3 +130,55 @@ def test_the_refinement_option_has_three_states():
     assert DEFAULT.refine_motions is None
     with pytest.raises(FitError, match="refine_motions"):
         DEFAULT.with_changes(refine_motions="yes").checked()
+
+
+def test_the_grouped_normal_equations_are_those_of_the_jacobian():
+    """motion_normal: Re JᴴJ and Re Jᴴy grouped by elements (the symmetries T_fe = T_efᵀ
+    and those of φ̄_a φ_b) are those of the explicit (ω·R) × z Jacobian, d r / d z of an
+    element (i, j) the sensitivity at (i, j) and (j, i) (an antisymmetric part (p, q):
+    + at (p, q), − at (q, p)) times jω basis(jω) N_e, and jω for a free A∞."""
+    from types import SimpleNamespace
+
+    from cummins.radiation.fit.motion_refinement import (
+        Coordinates,
+        element_maps,
+        element_sensitivities,
+        motion_normal,
+    )
+    from cummins.radiation.fit.poles import Poles
+    from cummins.radiation.fit.vector import PoleResidueBlock
+
+    rng = np.random.default_rng(5)
+    poles = Poles(np.array([-0.3, -2.0]), np.array([-0.1 + 0.8j, -0.4 + 1.7j]))
+    dofs, elements = (0, 2, 4), ((0, 0), (0, 2), (2, 2), (2, 4), (4, 4), (4, 2))
+    block = PoleResidueBlock(
+        dofs, elements, poles, np.zeros((len(elements), poles.count)), np.zeros(len(elements))
+    )
+    free = np.array([True, False, True, True, False, False])
+    coords = Coordinates.of(block, SimpleNamespace(free_inf=free))
+    omega = np.linspace(0.2, 3.0, 17)
+    sensitivity = rng.normal(size=(omega.size, 4, 3, 3)) + 1j * rng.normal(
+        size=(omega.size, 4, 3, 3)
+    )
+    weighted = element_sensitivities(block, sensitivity)
+    residual = rng.normal(size=(omega.size, 4)) + 1j * rng.normal(size=(omega.size, 4))
+    normal, rhs = motion_normal(block, coords, omega, weighted, residual)
+    # the explicit Jacobian, column by column
+    s = 1j * omega
+    phi = np.concatenate([s[:, None] * poles.basis(s), s[:, None]], axis=1)
+    maps, _ = element_maps(coords, poles.count)
+    jac = np.zeros((omega.size, 4, coords.size), dtype=complex)
+    where = {d: k for k, d in enumerate(dofs)}
+    for e, (i, j) in enumerate(elements):
+        a, b = where[i], where[j]
+        g = sensitivity[:, :, a, a] if i == j else sensitivity[:, :, a, b]
+        if i < j:
+            g = g + sensitivity[:, :, b, a]
+        elif i > j:
+            g = g - sensitivity[:, :, b, a]
+        start, stop = coords.offsets[e], coords.offsets[e + 1]
+        jac[:, :, start:stop] = g[:, :, None] * (phi @ maps[e])[:, None, : stop - start]
+    jac = jac.reshape(-1, coords.size)
+    expected = (np.conj(jac).T @ jac).real
+    assert np.allclose(normal, expected, rtol=1e-12, atol=1e-12 * np.abs(expected).max())
+    assert np.allclose(rhs, (np.conj(jac).T @ residual.reshape(-1)).real, rtol=1e-12)
