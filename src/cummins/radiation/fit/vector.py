@@ -412,15 +412,59 @@ def relocate(data: BlockData, poles: Poles) -> Poles:
     lhs[-1] = scale * np.real(sigma.sum(axis=0))
     rhs = np.zeros(lhs.shape[0])
     rhs[-1] = scale * s.size
-    x, *_ = np.linalg.lstsq(lhs, rhs, rcond=None)
+    x = _least_squares(lhs, rhs)
     c, d = x[:n], x[n]
     if abs(d) < 1e-8 * max(1.0, float(np.abs(c).max())):  # relaxation failed: σ(∞) = 1
         stack = lhs[:-1]
-        c, *_ = np.linalg.lstsq(stack[:, :n], -stack[:, n], rcond=None)
+        c = _least_squares(stack[:, :n], -stack[:, n])
         d = 1.0
     lam, b = poles.state_form()
     limit = POLE_SPAN * float(data.omega[: data.n_data].max())
-    return _poles_from(np.linalg.eigvals(lam - np.outer(b, c) / d), limit, data.min_damping)
+    return _poles_from(_eigenvalues(lam - np.outer(b, c) / d), limit, data.min_damping)
+
+
+def _eigenvalues(matrix: NDArray) -> NDArray[np.complex128]:
+    """The eigenvalues of a real square ``matrix``: LAPACK's dgeev without eigenvectors,
+    its workspace as ``numpy.linalg.eigvals`` asks for it (the same values), without that
+    wrapper's checks but the one for infinities and NaNs."""
+    if not np.isfinite(matrix).all():
+        raise np.linalg.LinAlgError("Array must not contain infs or NaNs")
+    wr, wi, _, _, info = scipy.linalg.lapack.dgeev(
+        matrix, compute_vl=0, compute_vr=0, lwork=_eig_workspace(matrix.shape[0])
+    )
+    if info:
+        raise np.linalg.LinAlgError(f"eigenvalues did not converge (LAPACK info {info})")
+    return wr + 1j * wi
+
+
+@functools.lru_cache(maxsize=64)
+def _eig_workspace(size: int) -> int:
+    """dgeev's optimal workspace for a size × size matrix without eigenvectors."""
+    return int(scipy.linalg.lapack.dgeev_lwork(size, compute_vl=0, compute_vr=0)[0])
+
+
+def _least_squares(matrix: NDArray, rhs: NDArray) -> NDArray:
+    """The minimum-norm least-squares solution of ``matrix`` x = ``rhs``: LAPACK's dgelsd
+    with the cut-off of ``numpy.linalg.lstsq(rcond=None)`` (machine ε × the larger
+    dimension), the same numbers without that wrapper's checks (the relocation solves one
+    per iteration, the residues one per element and order)."""
+    rows, columns = matrix.shape
+    if rows < columns:  # LAPACK's right-hand side holds the solution
+        rhs = np.concatenate([rhs, np.zeros(columns - rows)])
+    lwork, iwork = _lstsq_workspace(rows, columns)
+    x, _, _, info = scipy.linalg.lapack.dgelsd(
+        matrix, rhs, lwork=lwork, size_iwork=iwork, cond=_EPS * max(rows, columns)
+    )
+    if info:
+        raise np.linalg.LinAlgError(f"least squares failed (LAPACK info {info})")
+    return x[:columns]
+
+
+@functools.lru_cache(maxsize=256)
+def _lstsq_workspace(rows: int, columns: int) -> tuple[int, int]:
+    """dgelsd's optimal workspace and integer workspace for one right-hand side."""
+    lwork, iwork, _ = scipy.linalg.lapack.dgelsd_lwork(rows, columns, 1, -1)
+    return int(lwork), int(iwork)
 
 
 def _r_factor(matrix: NDArray, start: int, out: NDArray) -> None:
@@ -527,7 +571,7 @@ def fit_residues(data: BlockData, poles: Poles) -> tuple[NDArray, NDArray]:
     inf = np.zeros(len(data.elements)) if data.fixed_inf is None else data.fixed_inf.copy()
     nulls = element_null_spaces(data.elements, poles)
     for e, null, rows, rhs in residue_equations(data, poles, nulls):
-        z, *_ = np.linalg.lstsq(rows, rhs, rcond=None)
+        z = _least_squares(rows, rhs)
         x[e] = null @ z[: null.shape[1]]
         if free[e]:
             inf[e] = z[-1]
