@@ -467,9 +467,11 @@ class ConstraintRows:
             chosen = np.flatnonzero(complex_vector == kind)
             if chosen.size:
                 weights[chosen] = self.weights(np.array([found[k][2] for k in chosen]))
-        # g·N one form at a time (a matrix product of all of them rounds differently)
+        # g·N one form at a time (a matrix product of all of them rounds differently): a
+        # stack of one-row products, each the vector–matrix product of one form
+        forms = np.array([g for g, _, _, _ in found])
         projected = [
-            np.array([(np.imag(g) if anti else np.real(g)) @ null for g, _, _, _ in found])
+            ((forms.imag if anti else forms.real)[:, None, :] @ null)[:, 0, :]
             for anti, null in self.keys
         ]
         factors = np.concatenate([projected[k] for k in self.key_of], axis=1)
