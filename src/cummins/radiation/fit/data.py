@@ -38,6 +38,7 @@ from cummins.radiation.fit.motion import (
     MotionSensitivity,
     fitted_frequencies,
     motion_sensitivity,
+    statically_unstable,
 )
 from cummins.radiation.fit.options import FitOptions
 from cummins.radiation.fit.order_search import block_groups
@@ -404,6 +405,7 @@ def _prepare_fit(
         # the floor: what the model is fitted to (the data's passive part, reciprocal but
         # for the pairs fitted as given) against the user's motions
         attrs["motion_error_floor"] = motion_error_floor(reference, measured, antisymmetric)
+        attrs["statically_unstable"] = statically_unstable(user, joined)
     return FitInput(
         ds=ds,
         raw=raw,

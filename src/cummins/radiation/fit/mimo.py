@@ -500,9 +500,18 @@ def refreshed_coupling(
 
 
 def _floor_clause(model: RadiationModel) -> str:
-    """What limits the motion error: the data (their reciprocal part alone is as far
+    """What limits the motion error: the set-up (a statically unstable system,
+    ``attrs["statically_unstable"]``), the data (their reciprocal part alone is as far
     from their motions, ``attrs["motion_error_floor"]``) or the fit."""
     floor, error = model.attrs.get("motion_error_floor"), model.attrs.get("motion_error")
+    unstable = list(model.attrs.get("statically_unstable", []) or [])
+    if unstable:  # no steady state: what the motions are compared with is no system's
+        return (
+            "the set-up limits it: the system is statically unstable in "
+            f"{', '.join(unstable)}, a negative eigenvalue of its restoring (hydrostatics, "
+            "weight, moorings), so its motion RAOs are no steady state to judge a model "
+            "by; hold the body (a joint, a mooring, --dof) or check its centre of gravity"
+        )
     noncausal = list(model.attrs.get("noncausal_dofs", []) or [])
     if noncausal:
         estimated = model.attrs.get("added_mass_inf_estimated") or []

@@ -265,6 +265,25 @@ class MotionSensitivity:
         return float(np.max(np.sum(self.weight * np.abs(delta_k), axis=2)))
 
 
+def statically_unstable(data: xr.Dataset, joined: JoinedMotion | None = None) -> list[str]:
+    """The DOFs in which the system whose motions judge a fit is statically unstable,
+    as ``"body1__Pitch (C = -1.934e+06)"``: the negative eigenvalues of its restoring
+    (hydrostatics, weight, moorings; with ``joined``, the power take-offs' springs, on
+    the free coordinates: :func:`cummins.restoring.static_instability`). Such a system
+    has no equilibrium to oscillate about, so its motion RAOs are no steady state to
+    judge a model by (Capytaine's OSWEC flap floating freely: its pitch restoring is
+    −1.9·10⁶ N·m/rad without the hinge). Empty without the restoring."""
+    from cummins.restoring import restoring_matrix, static_instability
+
+    if "hydrostatic_stiffness" not in data:
+        return []
+    c, basis = restoring_matrix(data), None
+    if joined is not None:
+        c, basis = c + joined.stiffness, joined.basis
+    labels = [str(d) for d in data.influenced_dof.values]
+    return [f"{u.dof} (C = {u.stiffness:.4g})" for u in static_instability(c, labels, basis)]
+
+
 def motion_sensitivity(
     data: xr.Dataset,
     *,

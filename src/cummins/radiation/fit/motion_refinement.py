@@ -519,7 +519,8 @@ LINEAR_LIMIT = 1.0
 def refinement_wanted(options, model) -> bool:
     """Whether ``model``'s motions call for the refinement: ``refine_motions`` None (the
     default) when they miss their target ``motion_tol`` (and are within
-    :data:`LINEAR_LIMIT`), True when they miss the aim
+    :data:`LINEAR_LIMIT`, of a statically stable system: the RAOs of an unstable one are
+    no steady state, ``attrs["statically_unstable"]``), True when they miss the aim
     (:data:`~cummins.radiation.fit.options.MOTION_AIM` × ``motion_tol``), False never."""
     from cummins.radiation.fit.options import MOTION_AIM
 
@@ -527,7 +528,8 @@ def refinement_wanted(options, model) -> bool:
     if options.refine_motions is False or error is None:
         return False
     if options.refine_motions is None:
-        return options.motion_tol < error <= LINEAR_LIMIT
+        stable = not model.attrs.get("statically_unstable")
+        return stable and options.motion_tol < error <= LINEAR_LIMIT
     return error > MOTION_AIM * options.motion_tol
 
 
