@@ -154,17 +154,23 @@ def test_the_refinement_can_be_turned_off(tmp_path):
     assert "hint: --refine-motions refines the blocks that miss" in result.output
 
 
-def test_a_statically_unstable_system_is_what_the_motion_failure_names(corpus):
+def test_a_statically_unstable_system_is_what_the_motion_failure_names(corpus, tmp_path):
     """Capytaine's OSWEC (corpus) fitted floating freely, with the file's own inertia and
     hydrostatics: the flap's pitch restoring is negative (the hinge holds it in WEC-Sim),
     so its motion RAOs are no steady state. The motion failure names that instability,
-    not the data's causality it blamed before; a stable body's fit names none."""
+    not the data's causality it blamed before, and ``fit`` hints no refinement of such
+    motions; a stable body's fit names none."""
     from cummins.hydrodb import dof_matrix
 
-    ds = cummins.read(corpus / "WEC-Sim/capytaine_OSWEC_flap/outputs/oswec_hydrodynamics.nc")
+    data = corpus / "WEC-Sim/capytaine_OSWEC_flap/outputs/oswec_hydrodynamics.nc"
+    ds = cummins.read(data)
     pitch = list(ds.influenced_dof.values).index("body1__Pitch")
     assert dof_matrix(ds, "hydrostatic_stiffness")[pitch, pitch] < 0  # Capytaine's: the premise
-    model = cummins.fit_radiation(ds)
+    result = _run("fit", data, "-o", tmp_path / "oswec.nc")
+    assert result.exit_code == 3, result.output
+    assert "statically unstable in body1__Pitch" in result.output
+    assert "hint: --refine-motions" not in result.output
+    model = cummins.RadiationModel.load(tmp_path / "oswec.nc")
     (unstable,) = model.attrs["statically_unstable"]
     assert unstable.startswith("body1__Pitch (C = -")
     (failure,) = [f for f in model.attrs["failures"] if f.startswith("motion error")]

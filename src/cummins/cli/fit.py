@@ -375,7 +375,8 @@ def fit_command(
             "cummins.radiation.speed.vessel_at_speed, fit_per_speed)",
             highlight=False,
         )
-    if any(f.startswith("motion error") for f in failures) and refine_motions is not True:
+    missed = any(f.startswith("motion error") for f in failures)
+    if missed and refine_motions is not True and not model.attrs.get("statically_unstable"):
         console.print(
             "hint: --refine-motions refines the blocks that miss on the motion RAOs "
             "themselves at every number of poles to the end, passive at every step "
