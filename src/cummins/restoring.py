@@ -506,6 +506,10 @@ class StaticInstability:
     dof: str
     stiffness: float
 
+    def describe(self) -> str:
+        """``"body1__Pitch (C = -1.934e+06)"``: the DOF and its own restoring."""
+        return f"{self.dof} (C = {self.stiffness:.4g})"
+
 
 def static_instability(
     stiffness: ArrayLike, dofs: Sequence[str], basis: ArrayLike | None = None
@@ -567,7 +571,7 @@ def static_instability(
 def instability_message(unstable: Sequence[StaticInstability]) -> str:
     """The sentence :func:`cummins.motion_rao` warns with and the time domain refuses
     with."""
-    listed = ", ".join(f"{u.dof} (C = {u.stiffness:.4g})" for u in unstable)
+    listed = ", ".join(u.describe() for u in unstable)
     return (
         f"the body is statically unstable in {listed}: the restoring matrix (hydrostatics, "
         "weight, moorings, PTO springs) has a negative eigenvalue there, so the body has "

@@ -281,7 +281,7 @@ def statically_unstable(data: xr.Dataset, joined: JoinedMotion | None = None) ->
     if joined is not None:
         c, basis = c + joined.stiffness, joined.basis
     labels = [str(d) for d in data.influenced_dof.values]
-    return [f"{u.dof} (C = {u.stiffness:.4g})" for u in static_instability(c, labels, basis)]
+    return [u.describe() for u in static_instability(c, labels, basis)]
 
 
 def motion_sensitivity(
