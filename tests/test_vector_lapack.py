@@ -1,4 +1,4 @@
-"""The relocation's direct LAPACK calls (:mod:`cummins.radiation.fit.lapack`): the
+"""The relocation's direct LAPACK calls (:mod:`cummins.radiation.fit.vector`): the
 solutions numpy's ``lstsq`` and ``eigvals`` give, and their errors."""
 
 from __future__ import annotations
@@ -6,8 +6,7 @@ from __future__ import annotations
 import numpy as np
 import pytest
 
-from cummins.radiation.fit.lapack import eigenvalues as _eigenvalues
-from cummins.radiation.fit.lapack import least_squares as _least_squares
+from cummins.radiation.fit.vector import _eigenvalues, _least_squares
 
 
 @pytest.mark.parametrize("shape", [(40, 13), (1700, 20), (6, 1), (13, 13), (5, 9)])

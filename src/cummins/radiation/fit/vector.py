@@ -55,10 +55,10 @@ from dataclasses import dataclass, field
 
 import numpy as np
 import scipy.linalg
+import scipy.linalg.lapack
 from numpy.typing import NDArray
 
 from cummins.radiation.damping_tail import DampingTail
-from cummins.radiation.fit.lapack import eigenvalues, least_squares, r_factor
 from cummins.radiation.fit.poles import Poles
 from cummins.radiation.fit.tail import (
     block_tail_equations,
@@ -68,16 +68,9 @@ from cummins.radiation.fit.tail import (
 )
 
 #: Iterations of the pole relocation (at most; it stops when the poles move by less
-#: than CONVERGED, relative, or when the fit has SETTLED: :func:`relocation`).
+#: than CONVERGED, relative).
 ITERATIONS = 12
 CONVERGED = 1e-6
-#: A block's relocation also stops when what it would still change is below SETTLED of
-#: the fit's misfit (the weighted data that σ would re-weigh and the present poles cannot
-#: follow, against the part of the data they miss): poles that move without changing the
-#: fit (relaxed VF converges linearly, slowly where weakly determined poles drift) need no
-#: more relocations. 19 of the Capytaine COER run's 35 fits stop on it (394 → 296
-#: relocations); the 38 corpus models are main's (BENCHMARKS.md, twelfth session).
-SETTLED = 3e-2
 #: The pole relocation uses at most about this many data frequencies (every k-th).
 RELOCATION_POINTS = 300
 #: Smallest relative damping |Re p| / |p| of a complex pole (radiation memory is broadband:
@@ -392,16 +385,6 @@ def _stacked(m: NDArray, wr: NDArray, wi: NDArray) -> NDArray:
 
 def relocate(data: BlockData, poles: Poles) -> Poles:
     """One relaxed vector-fitting relocation of the common poles (fast QR)."""
-    return relocation(data, poles)[0]
-
-
-def relocation(data: BlockData, poles: Poles) -> tuple[Poles, float]:
-    """:func:`relocate`, and how much it changes the fit: ‖P⊥ f (σ − d)‖ / (|d| ‖P⊥ f‖),
-    summed over the elements, with P⊥ the projection out of the element's basis at the
-    present poles (weighted equations), σ(s) = d + Σ c_k φ_k(s) the relaxed weighting
-    function whose zeros are the new poles (Gustavsen (2006), the relaxed σ). At a fixed point
-    σ = d and the ratio is 0; its numerator and denominator are the trailing block R₂₂ of
-    each element's QR (Deschrijver et al. (2008)) times (c, 0) and its last column."""
     s = 1j * data.omega
     sigma = poles.basis(s, constant=True)  # [phi, 1]
     n = poles.count
@@ -425,22 +408,90 @@ def relocation(data: BlockData, poles: Poles) -> tuple[Poles, float]:
         np.multiply(wre, fs.real, out=stack[:, k:, :n_w])
         np.multiply(wie, fs.imag, out=stack[:, k:, n_w:])
         for e, matrix in zip(rows.tolist(), stack, strict=True):
-            r_factor(matrix.T, k, lhs[e * (n + 1) : (e + 1) * (n + 1)])
+            _r_factor(matrix.T, k, lhs[e * (n + 1) : (e + 1) * (n + 1)])
     lhs[-1] = scale * np.real(sigma.sum(axis=0))
     rhs = np.zeros(lhs.shape[0])
     rhs[-1] = scale * s.size
-    x = least_squares(lhs, rhs)
+    x = _least_squares(lhs, rhs)
     c, d = x[:n], x[n]
     if abs(d) < 1e-8 * max(1.0, float(np.abs(c).max())):  # relaxation failed: σ(∞) = 1
         stack = lhs[:-1]
-        c = least_squares(stack[:, :n], -stack[:, n])
+        c = _least_squares(stack[:, :n], -stack[:, n])
         d = 1.0
-    misfit = abs(d) * float(np.linalg.norm(lhs[:-1, n]))
-    change = float(np.linalg.norm(lhs[:-1, :n] @ c))
     lam, b = poles.state_form()
     limit = POLE_SPAN * float(data.omega[: data.n_data].max())
-    moved = _poles_from(eigenvalues(lam - np.outer(b, c) / d), limit, data.min_damping)
-    return moved, change / misfit if misfit > 0 else np.inf
+    return _poles_from(_eigenvalues(lam - np.outer(b, c) / d), limit, data.min_damping)
+
+
+def _eigenvalues(matrix: NDArray) -> NDArray[np.complex128]:
+    """The eigenvalues of a real square ``matrix``: LAPACK's dgeev without eigenvectors,
+    its workspace as ``numpy.linalg.eigvals`` asks for it (the same values), without that
+    wrapper's checks but the one for infinities and NaNs."""
+    if not np.isfinite(matrix).all():
+        raise np.linalg.LinAlgError("Array must not contain infs or NaNs")
+    wr, wi, _, _, info = scipy.linalg.lapack.dgeev(
+        matrix, compute_vl=0, compute_vr=0, lwork=_eig_workspace(matrix.shape[0])
+    )
+    if info:
+        raise np.linalg.LinAlgError(f"eigenvalues did not converge (LAPACK info {info})")
+    return wr + 1j * wi
+
+
+@functools.lru_cache(maxsize=64)
+def _eig_workspace(size: int) -> int:
+    """dgeev's optimal workspace for a size × size matrix without eigenvectors."""
+    return int(scipy.linalg.lapack.dgeev_lwork(size, compute_vl=0, compute_vr=0)[0])
+
+
+def _least_squares(matrix: NDArray, rhs: NDArray) -> NDArray:
+    """The minimum-norm least-squares solution of ``matrix`` x = ``rhs``: LAPACK's dgelsd
+    with the cut-off of ``numpy.linalg.lstsq(rcond=None)`` (machine ε × the larger
+    dimension), the same numbers without that wrapper's checks (the relocation solves one
+    per iteration, the residues one per element and order)."""
+    rows, columns = matrix.shape
+    if rows < columns:  # LAPACK's right-hand side holds the solution
+        rhs = np.concatenate([rhs, np.zeros(columns - rows)])
+    lwork, iwork = _lstsq_workspace(rows, columns)
+    x, _, _, info = scipy.linalg.lapack.dgelsd(
+        matrix, rhs, lwork=lwork, size_iwork=iwork, cond=_EPS * max(rows, columns)
+    )
+    if info:
+        raise np.linalg.LinAlgError(f"least squares failed (LAPACK info {info})")
+    return x[:columns]
+
+
+@functools.lru_cache(maxsize=256)
+def _lstsq_workspace(rows: int, columns: int) -> tuple[int, int]:
+    """dgelsd's optimal workspace and integer workspace for one right-hand side."""
+    lwork, iwork, _ = scipy.linalg.lapack.dgelsd_lwork(rows, columns, 1, -1)
+    return int(lwork), int(iwork)
+
+
+def _r_factor(matrix: NDArray, start: int, out: NDArray) -> None:
+    """The trailing block R[start:, start:] of the triangular factor R of the Householder
+    QR of a Fortran-ordered ``matrix`` (rows ≥ columns), factored in place, written to
+    ``out``: LAPACK's dgeqrf with its optimal workspace, as ``numpy.linalg.qr(mode="r")``
+    calls it (the same R, bit for bit), without the copies."""
+    rows, columns = matrix.shape
+    qr, _, _, info = scipy.linalg.lapack.dgeqrf(
+        matrix, lwork=_qr_workspace(rows, columns), overwrite_a=1
+    )
+    if info:
+        raise np.linalg.LinAlgError(f"QR factorisation failed (LAPACK info {info})")
+    out[...] = qr[start:columns, start:]
+    out[_strictly_lower(columns - start)] = 0.0
+
+
+@functools.lru_cache(maxsize=64)
+def _strictly_lower(size: int) -> tuple[NDArray, NDArray]:
+    """The indices below the diagonal of a square matrix of ``size``."""
+    return np.tril_indices(size, -1)
+
+
+@functools.lru_cache(maxsize=256)
+def _qr_workspace(rows: int, columns: int) -> int:
+    """dgeqrf's optimal workspace for a rows × columns matrix."""
+    return int(scipy.linalg.lapack.dgeqrf_lwork(rows, columns)[0])
 
 
 def _thinned(data: BlockData) -> BlockData:
@@ -520,7 +571,7 @@ def fit_residues(data: BlockData, poles: Poles) -> tuple[NDArray, NDArray]:
     inf = np.zeros(len(data.elements)) if data.fixed_inf is None else data.fixed_inf.copy()
     nulls = element_null_spaces(data.elements, poles)
     for e, null, rows, rhs in residue_equations(data, poles, nulls):
-        z = least_squares(rows, rhs)
+        z = _least_squares(rows, rhs)
         x[e] = null @ z[: null.shape[1]]
         if free[e]:
             inf[e] = z[-1]
@@ -702,8 +753,8 @@ def vector_fit(data: BlockData, count: int) -> PoleResidueBlock:
     poles = starting_poles(data.omega[: data.n_data], count)
     thinned = data.relocation_data
     for _ in range(ITERATIONS):
-        moved, change = relocation(thinned, poles)
-        converged = change <= SETTLED or _same_poles(moved, poles)
+        moved = relocate(thinned, poles)
+        converged = _same_poles(moved, poles)
         poles = moved
         if converged:
             break
