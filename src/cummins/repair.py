@@ -36,6 +36,7 @@ import xarray as xr
 from numpy.typing import ArrayLike, NDArray
 
 from cummins.errors import HydroDataError
+from cummins.frequencies import at_frequency
 from cummins.hydrodb import add_history, dof_matrix, validate
 from cummins.radiation.damping_tail import kramers_kronig_integral
 from cummins.radiation.infinite_frequency import bridged_couplings, with_coupling_values
@@ -337,10 +338,9 @@ def sharp_resonances(
     w = ds.omega.values
     if w.size < 6 or ds.sizes["influenced_dof"] != 1:
         return ()
-    suspect = np.zeros(w.size, dtype=bool)
-    spike = np.zeros(w.size, dtype=bool)
+    suspect, spike = np.zeros(w.size, dtype=bool), np.zeros(w.size, dtype=bool)
     for s in suspects:
-        at = np.isclose(w, s.omega, rtol=1e-12, atol=0.0)
+        at = at_frequency(w, s.omega)
         suspect |= at
         if not s.reason.startswith("negative"):
             spike |= at

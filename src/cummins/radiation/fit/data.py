@@ -30,6 +30,7 @@ from numpy.typing import NDArray
 
 from cummins.check import copied_dofs
 from cummins.errors import CumminsWarning, FitError, HydroDataError
+from cummins.frequencies import at_frequency
 from cummins.hydrodb import dof_matrix, single_speed
 from cummins.radiation.fingerprint import data_fingerprint
 from cummins.radiation.fit.frequency import r_squared
@@ -638,14 +639,14 @@ def _fit_data(
         for d, label in enumerate(labels):
             for s in own[label].suspects:  # a sharp resonance the motions depend on stays
                 if s.omega not in own[label].kept:
-                    keep[np.isclose(w, s.omega, rtol=1e-12, atol=0.0), d] = False
+                    keep[at_frequency(w, s.omega), d] = False
             for omega in own[label].features:
-                sound[np.isclose(w, omega, rtol=1e-12, atol=0.0), d] = True
+                sound[at_frequency(w, omega), d] = True
             if any(r.kept and r.motion_change is not None for r in own[label].resonances):
                 resonant.append(d)  # a resonance the motions depend on
             resonances += [r.description(label) for r in own[label].resonances]
         for s in find_suspect_frequencies(data):
-            if not keep[np.isclose(w, s.omega, rtol=1e-12, atol=0.0)].all():
+            if not keep[at_frequency(w, s.omega)].all():
                 notes.append(f"{s.omega:.4g} rad/s left out: {s.quantity}, {s.reason}")
         notes += resonances
         for span in irregular_frequency_spans(data, own):
