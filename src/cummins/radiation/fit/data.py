@@ -28,9 +28,9 @@ import numpy as np
 import xarray as xr
 from numpy.typing import NDArray
 
+from cummins.arrays import at_frequency
 from cummins.check import copied_dofs
 from cummins.errors import CumminsWarning, FitError, HydroDataError
-from cummins.frequencies import at_frequency
 from cummins.hydrodb import dof_matrix, single_speed
 from cummins.radiation.fingerprint import data_fingerprint
 from cummins.radiation.fit.frequency import r_squared

@@ -36,7 +36,7 @@ import numpy as np
 import xarray as xr
 from numpy.typing import NDArray
 
-from cummins.frequencies import at_frequency
+from cummins.arrays import at_frequency
 from cummins.hydrodb import dof_matrix
 
 #: A motion (DOF, load case) whose peak is below this fraction of the largest peak of
