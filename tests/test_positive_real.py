@@ -106,3 +106,13 @@ def test_a_negative_grid_value_decides_at_once(scale):
     poles = np.array([-0.1 + 1j, -0.1 - 1j])
     residues = scale * np.array([0.2, 0.2], dtype=complex)
     assert is_positive_real(poles, residues) == (scale > 0)
+
+
+def test_the_grid_response_by_blocks_is_the_whole_arrays():
+    from cummins.radiation.fit.frequency import RESPONSE_ROWS, _partial_fractions
+
+    rng = np.random.default_rng(11)
+    poles, residues = _random_model(rng, 40, 5)
+    grid = np.geomspace(1e-3, 1e3, 3 * RESPONSE_ROWS + 17)
+    whole = (residues / (1j * grid[:, None] - poles)).sum(axis=1)
+    np.testing.assert_allclose(_partial_fractions(residues, poles, grid), whole, rtol=1e-14)
