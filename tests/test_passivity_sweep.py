@@ -344,3 +344,21 @@ def test_the_programme_on_a_working_set_is_the_whole_programme(seed):
     for guess in (None, np.zeros(62, dtype=bool), np.r_[np.zeros(61, bool), True]):
         with pytest.raises(cummins.errors.FitError, match="infeasible"):
             least_distance(misfit, infeasible, limits, start=guess)
+
+
+def test_limit_forms_are_kept_with_the_poles():
+    block = _as_given_block()
+    first = block_passivity.limit_forms(block.poles)
+    assert block_passivity.limit_forms(block.poles) is first  # every sweep shares them
+    assert not first[0].flags.writeable and not first[1].flags.writeable
+    p = np.concatenate([block.poles.real, block.poles.pairs, block.poles.pairs.conj()])
+    x = np.random.default_rng(2).standard_normal(block.poles.count)
+    residues = np.concatenate(  # x as residues: real ones, a + jb at p and its conjugate
+        [
+            x[: block.poles.real.size],
+            x[block.poles.real.size :: 2] + 1j * x[block.poles.real.size + 1 :: 2],
+        ]
+    )
+    residues = np.concatenate([residues, residues[block.poles.real.size :].conj()])
+    np.testing.assert_allclose(first[0] @ x, -np.sum(residues * p**2).real, rtol=1e-10)
+    np.testing.assert_allclose(first[1] @ x, np.sum(residues / p**2).real, rtol=1e-10)

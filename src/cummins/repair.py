@@ -35,6 +35,7 @@ import numpy as np
 import xarray as xr
 from numpy.typing import ArrayLike, NDArray
 
+from cummins.arrays import at_frequency, column_medians
 from cummins.errors import HydroDataError
 from cummins.hydrodb import add_history, dof_matrix, validate
 from cummins.radiation.damping_tail import kramers_kronig_integral
@@ -163,16 +164,13 @@ def find_suspect_frequencies(
         # every curve at once: its worst point, then the worst curve (the first on a tie)
         x = values[idx]
         r = _leave_one_out_residual(w[idx], x)
-        spread = np.ptp(x, axis=0)
-        flat = spread == 0
-        mad = np.median(np.abs(r), axis=0)
+        spread = x.max(axis=0) - x.min(axis=0)  # np.ptp's numbers
+        flat, size, sign = spread == 0, np.abs(r), np.sign(r)
         with np.errstate(divide="ignore", invalid="ignore"):
-            rel = np.abs(r) / spread
-        rel[np.abs(r) <= mad_factor * mad] = 0.0
+            rel = size / spread
+        rel[size <= mad_factor * column_medians(size)] = 0.0
         isolated = np.ones(r.shape, dtype=bool)  # opposite to both neighbours' residuals
-        isolated[1:-1] = (np.sign(r[1:-1]) != np.sign(r[:-2])) & (
-            np.sign(r[1:-1]) != np.sign(r[2:])
-        )
+        isolated[1:-1] = (sign[1:-1] != sign[:-2]) & (sign[1:-1] != sign[2:])
         rel[~isolated] = 0.0
         rel[[0, -1]] = np.where(rel[[0, -1]] > 4 * spike_threshold, rel[[0, -1]], 0.0)
         rel[~_judged_points(w[idx])] = 0.0
@@ -337,10 +335,9 @@ def sharp_resonances(
     w = ds.omega.values
     if w.size < 6 or ds.sizes["influenced_dof"] != 1:
         return ()
-    suspect = np.zeros(w.size, dtype=bool)
-    spike = np.zeros(w.size, dtype=bool)
+    suspect, spike = np.zeros(w.size, dtype=bool), np.zeros(w.size, dtype=bool)
     for s in suspects:
-        at = np.isclose(w, s.omega, rtol=1e-12, atol=0.0)
+        at = at_frequency(w, s.omega)
         suspect |= at
         if not s.reason.startswith("negative"):
             spike |= at

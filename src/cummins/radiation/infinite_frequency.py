@@ -99,16 +99,16 @@ def bridged_couplings(
     w = np.asarray(omega, dtype=float)
     kept = np.asarray(kept, dtype=bool)
     out = np.array(values, dtype=float, copy=True)
-    start = [0.0] if from_zero else []
+    start = np.zeros(1 if from_zero else 0)
     both = kept[:, :, None] & kept[:, None, :]
     grids: dict = {}  # the points both keep and those bridged, once for (i, j) and (j, i)
     for i, j in zip(*np.nonzero(both.any(axis=0) & ~both.all(axis=0)), strict=True):
         key = (min(i, j), max(i, j))
         if key not in grids:
             mask = both[:, i, j]
-            grids[key] = (mask, ~mask, w[~mask], np.r_[start, w[mask]])
+            grids[key] = (mask, ~mask, w[~mask], np.concatenate([start, w[mask]]))
         mask, gap, at, points = grids[key]
-        out[gap, i, j] = np.interp(at, points, np.r_[start, out[mask, i, j]])
+        out[gap, i, j] = np.interp(at, points, np.concatenate([start, out[mask, i, j]]))
     return out
 
 

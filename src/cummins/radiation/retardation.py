@@ -92,21 +92,64 @@ def default_retardation_function(
 
 def _default_kernel(ds: xr.Dataset, threshold: float, max_points: int, node_form: bool = True):
     ds = single_speed(ds)
-    w = ds.omega.values
+    probe, dt, t_limit = _probe_times(ds.omega.values, max_points)
+    kernel = retardation_function(ds, probe, node_form=node_form)
+    stop = _kernel_stop(probe, kernel.values.reshape(probe.size, -1), threshold, dt, t_limit)
+    if stop is None:
+        return probe, kernel
+    return probe[:stop], kernel.isel(time=slice(0, stop))
+
+
+def _probe_times(w: NDArray, max_points: int) -> tuple[NDArray, float, float]:
+    """The times :func:`default_time_grid` looks at (up to 2π/ω₀), their step and end."""
     t_limit = 2 * np.pi / w[0]
     dt = max(np.pi / (4 * w[-1]), t_limit / max_points)
-    probe = np.arange(0.0, t_limit + 0.5 * dt, dt)
-    kernel = retardation_function(ds, probe, node_form=node_form)
-    k = kernel.values.reshape(probe.size, -1)
+    return np.arange(0.0, t_limit + 0.5 * dt, dt), dt, t_limit
+
+
+def _kernel_stop(probe: NDArray, k: NDArray, threshold: float, dt: float, t_limit: float):
+    """How many of the times ``probe`` :func:`default_time_grid` keeps for K(t) ``k``
+    (len(probe), P): 1.5 × the last time any coupling is above ``threshold`` of its
+    peak; None for a K(t) that is zero throughout (all of them)."""
     peak = np.abs(k).max(axis=0)
     keep = peak > 1e-9 * peak.max()
     if not keep.any():
-        return probe, kernel
+        return None
     active = np.abs(k[:, keep]) > threshold * peak[keep]
     last = probe[np.flatnonzero(active.any(axis=1))[-1]]
     t_max = min(t_limit, max(1.5 * last, 20 * dt))
-    stop = int(np.searchsorted(probe, t_max + 0.5 * dt))
-    return probe[:stop], kernel.isel(time=slice(0, stop))
+    return int(np.searchsorted(probe, t_max + 0.5 * dt))
+
+
+def default_kernel_values(
+    omega: ArrayLike,
+    damping: ArrayLike,
+    added_mass: ArrayLike,
+    *,
+    threshold: float = 0.01,
+    max_points: int = 20_000,
+    node_form: bool = False,
+) -> tuple[NDArray[np.float64], NDArray[np.float64]]:
+    """(times, K(t) (len(times), n, n)) of :func:`default_retardation_function` (default
+    tail and interpolation, B(0) = 0) from the arrays of one forward speed: ``omega``
+    (N,), ``damping`` and ``added_mass`` (N, n, n) — the same numbers, without the
+    datasets and the labels (the fit's data stage; ``node_form`` False by default, as
+    the fit takes it)."""
+    w = np.asarray(omega, dtype=float)
+    b = np.asarray(damping, dtype=float)
+    n = b.shape[1]
+    data = b.reshape(w.size, n * n)
+    added = np.asarray(added_mass, dtype=float).reshape(w.size, n * n)
+    probe, dt, t_limit = _probe_times(w, max_points)
+    tail_fit = fit_damping_tail(w, data, "auto", added_mass=added)
+    x, f = np.r_[0.0, w], np.vstack([np.zeros((1, n * n)), data])
+    k = cosine_transform(x, f, probe, node_form=node_form)
+    k = k + tail_fit.cosine(probe, None, node_form=node_form)
+    values = (2.0 / np.pi) * k.reshape(probe.size, n, n)
+    stop = _kernel_stop(probe, values.reshape(probe.size, -1), threshold, dt, t_limit)
+    if stop is None:
+        return probe, values
+    return probe[:stop], values[:stop]
 
 
 # --------------------------------------------------------------------------- K(t)

@@ -326,17 +326,21 @@ def _pv_kernels(x: NDArray, y: NDArray) -> tuple[NDArray, NDArray]:
     each: ln|(b − y)/(a − y)| − ln|(b + y)/(a + y)| and y × their sum, per segment [a, b]."""
     a, b = x[:-1], x[1:]  # the grid points themselves: y == x_k must give exactly 0
     yy = y[:, None]
+    size = (y.size, a.size)
     # ln|x_k − y| once for both ends of each segment, ln 0 := 0 (the principal-value
-    # cancellation, module docstring), in place: no temporaries (5 MB each at 800 points)
+    # cancellation, module docstring), in place: three arrays of 5 MB at 800 points, the
+    # two returned and one for the temporaries, each written contiguously
     logs = np.subtract(x[None, :], yy)
     np.abs(logs, out=logs)
     np.copyto(logs, 1.0, where=~(logs > 0))
     np.log(logs, out=logs)
-    log_minus = logs[:, 1:] - logs[:, :-1]  # (M, K)
-    log_plus = np.add(b[None, :], yy)  # ln((b + y)/(a + y)), a + y where logs was
-    np.divide(log_plus, np.add(a[None, :], yy, out=logs[:, :-1]), out=log_plus)
+    log_minus = np.subtract(logs[:, 1:], logs[:, :-1])  # (M, K)
+    log_plus = logs.reshape(-1)[: y.size * a.size].reshape(size)  # logs' memory, reused
+    np.add(b[None, :], yy, out=log_plus)  # ln((b + y)/(a + y))
+    difference = np.add(a[None, :], yy)  # a + y, then the difference itself
+    np.divide(log_plus, difference, out=log_plus)
     np.log(log_plus, out=log_plus)
-    difference = log_minus - log_plus
+    np.subtract(log_minus, log_plus, out=difference)
     np.add(log_minus, log_plus, out=log_minus)
     return difference, np.multiply(log_minus, yy, out=log_minus)
 

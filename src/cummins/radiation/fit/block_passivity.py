@@ -284,13 +284,23 @@ def lowest_eigenvalues(matrices: NDArray) -> NDArray:
 def limit_forms(poles: Poles) -> tuple[NDArray, NDArray]:
     """The linear forms g (one per coefficient) of the limits of Re K: L_∞ = lim ω² Re K
     (= −C A B = −Σ R_k p_k²) and L₀ = lim Re K / ω² (= C A⁻³ B = Σ R_k / p_k²), each
-    element of L being g · x_e."""
+    element of L being g · x_e; kept (read-only) with the poles, which every sweep of an
+    enforcement shares."""
+    kept = poles.__dict__.get("_limit_forms")
+    if kept is None:
+        kept = poles.__dict__["_limit_forms"] = _limit_forms(poles)
+    return kept
+
+
+def _limit_forms(poles: Poles) -> tuple[NDArray, NDArray]:
+    """:func:`limit_forms`, computed."""
     high, low = np.zeros(poles.count), np.zeros(poles.count)
     nr = poles.real.size
     high[:nr], low[:nr] = -(poles.real**2), 1.0 / poles.real**2
     squared, inverse = poles.pairs**2, 1.0 / poles.pairs**2
     high[nr::2], high[nr + 1 :: 2] = -2 * squared.real, 2 * squared.imag
     low[nr::2], low[nr + 1 :: 2] = 2 * inverse.real, -2 * inverse.imag
+    high.flags.writeable = low.flags.writeable = False
     return high, low
 
 

@@ -28,6 +28,7 @@ import numpy as np
 import xarray as xr
 from numpy.typing import NDArray
 
+from cummins.arrays import at_frequency
 from cummins.check import copied_dofs
 from cummins.errors import CumminsWarning, FitError, HydroDataError
 from cummins.hydrodb import dof_matrix, single_speed
@@ -59,6 +60,7 @@ from cummins.radiation.infinite_frequency import added_mass_inf as estimate_adde
 from cummins.radiation.infinite_frequency import bridged_couplings
 from cummins.radiation.model import RadiationModel
 from cummins.radiation.retardation import (
+    default_kernel_values,
     default_retardation_function,
     significant_couplings,
 )
@@ -536,26 +538,23 @@ class FitData:
 def fit_data(data: xr.Dataset, as_given=frozenset()) -> FitData:
     """:class:`FitData` of a ``HydroDB`` already restricted to the fitted frequencies: its
     reciprocal part, but for the pairs ``as_given`` (i, j), kept as they are."""
-    b = data.radiation_damping  # ½(B + Bᵀ) on the array: xarray's numbers, without its ops
-    order = b.transpose(..., "influenced_dof", "radiating_dof")
-    damping = order.copy(data=reciprocal_part(order.values, as_given)).transpose(*b.dims)
-    if not as_given and not np.array_equal(b.influenced_dof.values, b.radiating_dof.values):
-        swapped = b.rename(influenced_dof="radiating_dof", radiating_dof="influenced_dof")
-        damping = (0.5 * (b + swapped)).transpose(*b.dims)  # aligned by label
+    a_all, b_all = dof_matrix(data, "added_mass"), dof_matrix(data, "radiation_damping")
+    b, damping = data.radiation_damping, reciprocal_part(b_all, as_given)
     # the segment form at every time: the order search follows these numbers (K(0) is
     # an equation of the fits) and, over many relocations, their last digits (the node
-    # form's rounding moved the WAMIT OSWEC's R² of B from 0.277 to 0.281)
-    kernel = default_retardation_function(
-        data.assign(radiation_damping=damping), max_points=500, node_form=False
-    ).transpose("time", "influenced_dof", "radiating_dof")
-    a_all, b_all = dof_matrix(data, "added_mass"), dof_matrix(data, "radiation_damping")
-    return FitData(
-        data.omega.values,
-        reciprocal_part(a_all, as_given),
-        reciprocal_part(b_all, as_given),
-        kernel.time.values,
-        kernel.values,
-    )
+    # form's rounding moved the WAMIT OSWEC's R² of B from 0.277 to 0.281); ½(B + Bᵀ)
+    # on the arrays (the dataset's numbers) unless the labels need aligning
+    if as_given or np.array_equal(b.influenced_dof.values, b.radiating_dof.values):
+        time, kernel = default_kernel_values(data.omega.values, damping, a_all, max_points=500)
+    else:
+        swapped = b.rename(influenced_dof="radiating_dof", radiating_dof="influenced_dof")
+        found = default_retardation_function(
+            data.assign(radiation_damping=(0.5 * (b + swapped)).transpose(*b.dims)),
+            max_points=500,
+            node_form=False,
+        ).transpose("time", "influenced_dof", "radiating_dof")
+        time, kernel = found.time.values, found.values
+    return FitData(data.omega.values, reciprocal_part(a_all, as_given), damping, time, kernel)
 
 
 def model_fit_data(model: RadiationModel, ds: xr.Dataset) -> FitData:
@@ -640,14 +639,14 @@ def _fit_data(
         for d, label in enumerate(labels):
             for s in own[label].suspects:  # a sharp resonance the motions depend on stays
                 if s.omega not in own[label].kept:
-                    keep[np.isclose(w, s.omega, rtol=1e-12, atol=0.0), d] = False
+                    keep[at_frequency(w, s.omega), d] = False
             for omega in own[label].features:
-                sound[np.isclose(w, omega, rtol=1e-12, atol=0.0), d] = True
+                sound[at_frequency(w, omega), d] = True
             if any(r.kept and r.motion_change is not None for r in own[label].resonances):
                 resonant.append(d)  # a resonance the motions depend on
             resonances += [r.description(label) for r in own[label].resonances]
         for s in find_suspect_frequencies(data):
-            if not keep[np.isclose(w, s.omega, rtol=1e-12, atol=0.0)].all():
+            if not keep[at_frequency(w, s.omega)].all():
                 notes.append(f"{s.omega:.4g} rad/s left out: {s.quantity}, {s.reason}")
         notes += resonances
         for span in irregular_frequency_spans(data, own):

@@ -665,6 +665,14 @@ def minimum_real_part(poles: ArrayLike, residues: ArrayLike) -> tuple[float, flo
     then polished with a bounded scalar minimisation. Beyond the grid the asymptotes
     Re K ≈ c₀ ω² (ω → 0) and Re K ≈ c∞ / ω² (ω → ∞) decide, with c∞ = −Σ Re(r p).
     """
+    return _real_part_search(poles, residues, None)
+
+
+def _real_part_search(poles: ArrayLike, residues: ArrayLike, tolerance: float | None):
+    """:func:`minimum_real_part`; with ``tolerance``, only as far as the verdict
+    min Re K ≥ −tolerance · max|K| needs (:func:`is_positive_real`): the polish stops once
+    a value below that is found, and a local minimum is not polished where
+    :func:`_bracket_floor` proves the bracket stays above it — the same verdict."""
     p = np.asarray(poles, dtype=complex)
     r = np.asarray(residues, dtype=complex)
     if p.size == 0:
@@ -676,16 +684,24 @@ def minimum_real_part(poles: ArrayLike, residues: ArrayLike) -> tuple[float, flo
     resonances = [abs(q.imag) + abs(q.real) * np.linspace(-10, 10, 81) for q in p if q.imag > 0]
     grid = np.concatenate([np.geomspace(lo, hi, n), *resonances])
     grid = np.unique(grid[grid > 0])
-    response = (r / (1j * grid[:, None] - p)).sum(axis=1)  # K(jω) on the grid, once
+    response = _partial_fractions(r, p, grid)  # K(jω) on the grid, once
     values = np.real(response)
     k_max = float(np.abs(response).max())
     best, where = float(values.min()), float(grid[np.argmin(values)])
+    threshold = None if tolerance is None else -tolerance * max(k_max, np.finfo(float).tiny)
+    if threshold is not None and best < threshold:
+        return best, where, k_max  # the polish only lowers it
     interior = np.flatnonzero((values[1:-1] <= values[:-2]) & (values[1:-1] <= values[2:])) + 1
 
     def re_k_at(w):  # one frequency: np.sum's reduction, without the arrays' overhead
         return np.add.reduce(r / (1j * w - p), axis=None).real
 
     for k in interior[np.argsort(values[interior])[:20]]:
+        if (
+            threshold is not None
+            and _bracket_floor(grid[k - 1 : k + 2], values[k - 1 : k + 2], p, r) >= threshold
+        ):
+            continue  # its polish cannot reach below the verdict's threshold
         res = minimize_scalar(
             re_k_at,
             bounds=(grid[k - 1], grid[k + 1]),
@@ -694,10 +710,73 @@ def minimum_real_part(poles: ArrayLike, residues: ArrayLike) -> tuple[float, flo
         )
         if res.fun < best:
             best, where = float(res.fun), float(res.x)
+            if threshold is not None and best < threshold:
+                return best, where, k_max
     c_inf = float(-np.sum((r * p).real))
     if c_inf < 0:  # Re K ≈ c∞/ω² beyond the grid: negative there
         best, where = min(best, c_inf / hi**2), hi
     return best, where, k_max
+
+
+#: Rows of the grid :func:`_partial_fractions` sums at once: its terms stay in cache.
+RESPONSE_ROWS = 256
+
+
+def _partial_fractions(r: NDArray, p: NDArray, grid: NDArray) -> NDArray[np.complex128]:
+    """Σ_k r_k/(jω − p_k) at each ω of ``grid``, by blocks of :data:`RESPONSE_ROWS` rows:
+    the numbers of the whole (len(grid), len(p)) array's row sums (each row's own
+    pairwise sum), a third of the time for 90 poles on 1500 points (no page faults)."""
+    out = np.empty(grid.size, dtype=complex)
+    for start in range(0, grid.size, RESPONSE_ROWS):
+        rows = grid[start : start + RESPONSE_ROWS, None]
+        out[start : start + RESPONSE_ROWS] = (r / (1j * rows - p)).sum(axis=1)
+    return out
+
+
+#: :func:`_bracket_floor`'s allowance for rounding, in units of Σ |r| / dist(p, jω): the
+#: grid's values and the polish's each carry a few units of round-off of that sum.
+BRACKET_ROUNDING = 1e-9
+
+
+def _bracket_floor(x: NDArray, values: NDArray, p: NDArray, r: NDArray) -> float:
+    """A lower bound of f(ω) = Re K(jω), K(s) = Σ r/(s − p), over ω in [x₀, x₂] from its
+    values at the three points x₀ < x₁ < x₂, the larger of two, each less
+    :data:`BRACKET_ROUNDING` for the values' and the polish's rounding:
+
+    * the straight line through the values at the ends of [x₀, x₁] and of [x₁, x₂] less
+      its interpolation error |f″|/2 · (ω − a)(b − ω) ≤ Σ |r|/d³ · (b − a)²/4
+      (|f″| ≤ 2 Σ |r|/d³, d the distance of p from the segment j[x₀, x₂]);
+    * the least of the quadratic through the three on the bracket less its interpolation
+      error |f‴|/6 · |(ω − x₀)(ω − x₁)(ω − x₂)| ≤ Σ |r|/d⁴ · h³/4 (|f‴| ≤ 6 Σ |r|/d⁴,
+      h = x₂ − x₀), the rounding × its Lebesgue constant on the bracket, ≤ h/(x₁ − x₀) +
+      h/(x₂ − x₁) + h²/(4 (x₁ − x₀)(x₂ − x₁)).
+
+    −∞ where no bound is had."""
+    x0, x1, x2 = (float(v) for v in x)
+    v0, v1, v2 = (float(v) for v in values)
+    gap = np.maximum(np.maximum(x0 - p.imag, p.imag - x2), 0.0)
+    d2 = p.real**2 + gap**2
+    if not (np.all(d2 > 0) and np.isfinite(v0 + v1 + v2)):
+        return -np.inf
+    size = np.abs(r)
+    distance = np.sqrt(d2)
+    rounding = BRACKET_ROUNDING * float(np.sum(size / distance))
+    bend = float(np.sum(size / (d2 * distance))) / 4
+    lines = min(v0, v1) - bend * (x1 - x0) ** 2, min(v1, v2) - bend * (x2 - x1) ** 2
+    floor = min(lines) - 2.0 * rounding
+    h = x2 - x0
+    f01 = (v1 - v0) / (x1 - x0)
+    curvature = ((v2 - v1) / (x2 - x1) - f01) / h
+    low = min(v0, v1, v2)
+    if curvature > 0:
+        top = min(max(0.5 * (x0 + x1) - f01 / (2 * curvature), x0), x2)
+        low = min(low, v0 + f01 * (top - x0) + curvature * (top - x0) * (top - x1))
+    spread = h / (x1 - x0) + h / (x2 - x1) + h * h / (4 * (x1 - x0) * (x2 - x1))
+    cubic = float(np.sum(size / d2**2)) * h**3 / 4
+    quadratic = low - cubic - (2.0 + spread) * rounding
+    if np.isfinite(quadratic):
+        floor = max(floor, quadratic)
+    return floor
 
 
 def is_positive_real(poles: ArrayLike, residues: ArrayLike) -> bool:
@@ -708,5 +787,5 @@ def is_positive_real(poles: ArrayLike, residues: ArrayLike) -> bool:
     poles = np.asarray(poles, dtype=complex)
     if np.any(poles.real >= 0):
         return False
-    minimum, _, k_max = minimum_real_part(poles, residues)
+    minimum, _, k_max = _real_part_search(poles, residues, PR_TOLERANCE)
     return bool(minimum >= -PR_TOLERANCE * max(k_max, np.finfo(float).tiny))

@@ -36,6 +36,7 @@ import numpy as np
 import xarray as xr
 from numpy.typing import NDArray
 
+from cummins.arrays import at_frequency
 from cummins.hydrodb import dof_matrix
 
 #: A motion (DOF, load case) whose peak is below this fraction of the largest peak of
@@ -371,7 +372,7 @@ def fitted_frequencies(model, omega) -> NDArray[np.bool_]:
     if lo is not None and hi is not None:
         keep &= (w >= float(lo) * (1 - 1e-12)) & (w <= float(hi) * (1 + 1e-12))
     for excluded in model.attrs.get("excluded_frequencies", []) or []:
-        keep &= ~np.isclose(w, float(excluded), rtol=1e-12, atol=0.0)
+        keep &= ~at_frequency(w, float(excluded))
     return keep
 
 
