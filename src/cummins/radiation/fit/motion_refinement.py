@@ -297,7 +297,10 @@ def refine_block(
     squares step), so a block that misses it before does not meet it after. Each
     enforcement iteration checks on the grid (and the points of the bands the last
     exact test found), the exact test (:func:`~cummins.radiation.passivity.
-    imaginary_axis_zeros`) only when the grid sees nothing (:class:`BandSweep`)."""
+    imaginary_axis_zeros`) only when the grid sees nothing (:class:`BandSweep`). Once the
+    misfit is frozen each programme holds the last one's rows and more, with the same
+    right-hand sides: its NNLS is continued from the last one's multipliers
+    (:func:`~cummins.radiation.passivity.enforcement.warm_nnls`)."""
     first = linearised(block)
     if first is None:  # no Woodbury form of the motions (joined bodies)
         return block, False
