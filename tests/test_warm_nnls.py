@@ -101,3 +101,26 @@ def test_the_passive_cholesky_factor_follows_its_columns():
     rhs = rng.standard_normal(len(factor.order))
     np.testing.assert_allclose(sub.T @ sub @ factor.solve(rhs), rhs, atol=1e-10)
     assert not factor.add(factor.order[0])  # a column already in: dependent
+
+
+@pytest.mark.parametrize("fortran", [False, True])
+def test_the_triangular_solves_are_scipys(fortran):
+    """The passive set's solves call LAPACK's trtrs as scipy's solve_triangular does, for
+    a factor in either memory order (a fresh Cholesky factor is Fortran-ordered, an
+    updated one C-ordered): R⁻ᵀ y and R⁻¹ y, and a singular R raises."""
+    import scipy.linalg
+
+    from cummins.radiation.passivity.enforcement import _triangular
+
+    rng = np.random.default_rng(3)
+    x = rng.standard_normal((40, 25))
+    r = scipy.linalg.cholesky(x.T @ x, lower=False)
+    r = np.asfortranarray(r) if fortran else np.ascontiguousarray(r)
+    y = rng.standard_normal(25)
+    for transposed in (False, True):
+        expected = scipy.linalg.solve_triangular(r, y, trans="T" if transposed else "N")
+        np.testing.assert_allclose(_triangular(r, y, transposed), expected, rtol=1e-12)
+    singular = r.copy()
+    singular[5, 5] = 0.0
+    with pytest.raises(np.linalg.LinAlgError):
+        _triangular(singular, y, False)

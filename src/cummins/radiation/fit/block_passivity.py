@@ -180,7 +180,8 @@ def passivity_violations(
         a, b, c = block.coordinate_realization()
         b, c = b * dof_scale[None, :], dof_scale[:, None] * c  # S K S: well conditioned
         # every point once: the grid, five inside each band between crossings, its midpoint
-        edges, extra = band_points(a, b, c, grid)
+        poles = np.abs(np.concatenate([block.poles.real, block.poles.pairs]))
+        edges, extra = band_points(a, b, c, grid, poles.min() if poles.size else None)
         sweep.band_extra = extra
         order = np.argsort(np.concatenate([grid, extra]))
         points = np.concatenate([grid, extra])[order]
