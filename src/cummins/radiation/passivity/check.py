@@ -31,6 +31,7 @@ The enforcement that acts on this test's report is in
 from __future__ import annotations
 
 import itertools
+from collections.abc import Sequence
 from dataclasses import dataclass
 
 import numpy as np
@@ -244,8 +245,14 @@ def _pencil_zeros(a: NDArray, b: NDArray, c: NDArray, d: NDArray) -> NDArray:
     return alpha[finite] / beta[finite]
 
 
-def passivity_test(model: RadiationModel) -> PassivityReport:
+def passivity_test(
+    model: RadiationModel, *, known: tuple[Sequence[int], NDArray] | None = None
+) -> PassivityReport:
     """Exact passivity test of the MIMO model: crossings, bands, limits (module docstring).
+
+    ``known``: (DOF indices, crossings) of an exact test of the same K(s) over those DOFs
+    (another realization of it, its DOFs scaled otherwise: the crossings are the same),
+    used when the DOFs this test keeps are those; else the crossings are computed.
 
     Returns
     -------
@@ -275,7 +282,10 @@ def passivity_test(model: RadiationModel) -> PassivityReport:
     # A's eigenvalues: those of the model's couplings and blocks (kept by the response)
     poles = [m[2] for m in model._modal] + [m[0] for m in model._block_modal]
     poles = np.abs(np.concatenate(poles)) if poles else np.zeros(0)
-    crossings = imaginary_axis_zeros(a, b, c, slowest=poles.min() if poles.size else None)
+    if known is not None and sorted(known[0]) == keep.tolist():
+        crossings = np.asarray(known[1], dtype=float)
+    else:
+        crossings = imaginary_axis_zeros(a, b, c, slowest=poles.min() if poles.size else None)
     lam_sweep = _scaled_eigenvalues(model, sweep, scale, response)
     top = max(float(np.abs(lam_sweep).max()), np.finfo(float).tiny)
     low_sweep = lam_sweep[:, 0] / top
