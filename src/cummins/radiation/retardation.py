@@ -28,6 +28,8 @@ the dataset's DOF labels. Units: K in kg/s², kg·m/s², kg·m²/s² (as B divid
 
 from __future__ import annotations
 
+import hashlib
+
 import numpy as np
 import xarray as xr
 from numpy.typing import ArrayLike, NDArray
@@ -290,10 +292,35 @@ def diagonal_retardation_functions(ds: xr.Dataset, t: ArrayLike, dofs) -> NDArra
     """K_ii(t) of the DOFs ``dofs`` (indices) alone, shape (len(t), len(dofs)): the numbers
     of :func:`retardation_function` (default options) on its diagonal, without the
     transforms of the other couplings (their tails are fitted all the same: the grid of
-    the power-law tails is common to all)."""
+    the power-law tails is common to all).
+
+    Read-only: the last answer is kept, by the digest of the data, ``t`` and ``dofs`` (a
+    fit and its refit with A∞ estimated ask for the same)."""
+    global _last_diagonal
     ds, t = single_speed(ds), np.asarray(t, dtype=float).reshape(-1)
     columns = np.asarray(dofs, dtype=int) * (ds.sizes["influenced_dof"] + 1)
-    return (2.0 / np.pi) * _exact_kernel(ds, t, "auto", "linear", True, columns)[0]
+    digest = hashlib.sha256()
+    for x in (
+        np.asarray(ds.omega.values, dtype=float),
+        dof_matrix(ds, "radiation_damping"),
+        dof_matrix(ds, "added_mass"),
+        t,
+        columns,
+    ):
+        digest.update(f"{x.shape}{x.dtype}".encode())
+        digest.update(np.ascontiguousarray(x).tobytes())
+    key = digest.digest()
+    if _last_diagonal is not None and _last_diagonal[0] == key:
+        return _last_diagonal[1]
+    out = (2.0 / np.pi) * _exact_kernel(ds, t, "auto", "linear", True, columns)[0]
+    out.flags.writeable = False
+    _last_diagonal = (key, out)
+    return out
+
+
+#: The last answer of :func:`diagonal_retardation_functions`: (the digest of its
+#: arguments, K_ii(t)).
+_last_diagonal: tuple[bytes, NDArray] | None = None
 
 
 def retardation_function_from_added_mass(

@@ -15,6 +15,7 @@ import numpy as np
 
 from cummins.errors import FitError
 from cummins.radiation.fit import order_search, vector
+from cummins.radiation.fit.block_passivity import exact_crossings
 from cummins.radiation.fit.causal_inf import estimated_inf, noncausal_dofs
 from cummins.radiation.fit.data import FitInput, range_cut_failures
 from cummins.radiation.fit.metrics import coupling_metrics, pair_floor
@@ -88,6 +89,7 @@ def fit_blocks(
         )
     motion_aim = MOTION_AIM * motion_tol if sensitivity is not None else None
     blocks, notes, tail_failures = [], [], []
+    crossings = []  # per block, its last exact test's crossings when known (exact_crossings)
     any_refined = False
     done: list = []  # (name, dofs, elements, poles, score, pole floor) of each block fitted
     # K(t) of the data at the step of the default grid: the R² of K(t) the fit is judged by
@@ -272,6 +274,7 @@ def fit_blocks(
             for (i, j), value in inf_values:
                 inf[i, j] = value
             blocks.append(block)
+            crossings.append(None)
             done.append(done_entry)
             notes += [f"{name}: {x}" for x in block_notes]
             tail_failures += failed
@@ -328,6 +331,7 @@ def fit_blocks(
         for m in metrics.values():
             m["elapsed_s"] = elapsed
         blocks.append(replace(block, metrics=metrics))
+        crossings.append(exact_crossings(fitted))
         done.append((name, dofs, elements, fitted.poles, score, floor))
         notes += [f"{name}: {x}" for x in block_notes]
         failed = [
@@ -351,7 +355,12 @@ def fit_blocks(
     if inp.estimated_inf:  # A∞ of these estimated, the data's row elsewhere (causal_inf)
         extra["added_mass_inf_estimated"] = [labels[d] for d in inp.estimated_inf]
     if passive:
-        report = passivity_test(model)
+        # one block: the crossings of its last exact test are the model's (no second QZ)
+        dynamic = [k for k, b in enumerate(blocks) if b.order]
+        known = None
+        if len(dynamic) == 1 and crossings[dynamic[0]] is not None:
+            known = (blocks[dynamic[0]].dofs, crossings[dynamic[0]])
+        report = passivity_test(model, known=known)
         extra["mimo_passive"] = bool(report.passive)
     if sensitivity is not None:
         error, per_dof = sensitivity.model_error(model)

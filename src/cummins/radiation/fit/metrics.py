@@ -13,6 +13,7 @@ from numpy.typing import ArrayLike
 from cummins.radiation.fit.frequency import is_positive_real, r_squared
 from cummins.radiation.model import (
     CouplingModel,
+    ModalForm,
     modal_form,
     siso_frequency_response,
     siso_impulse_response,
@@ -84,7 +85,9 @@ def coupling_metrics(
         metrics["kernel_zero_data"] = float(np.asarray(kernel)[0])
     if model.influenced == model.radiating:
         lam, vec, _ = modal
-        residues = (model.c @ vec) * np.linalg.solve(vec, model.b)
+        b = np.asarray(model.b, dtype=float)
+        solved = modal.solved(b) if isinstance(modal, ModalForm) and b.ndim == 1 else None
+        residues = (model.c @ vec) * (np.linalg.solve(vec, model.b) if solved is None else solved)
         metrics["passive"] = bool(metrics["stable"]) and is_positive_real(lam, residues)
     return metrics
 

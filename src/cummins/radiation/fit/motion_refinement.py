@@ -70,7 +70,7 @@ from cummins.radiation.fit.vector import (
     element_null_spaces,
     residue_equations,
 )
-from cummins.radiation.passivity.enforcement import FactoredMisfit, least_distance
+from cummins.radiation.passivity.enforcement import FactoredMisfit, least_distance_multipliers
 
 #: Gauss–Newton steps on the motion misfit (re-linearised, Lawson weights updated) before
 #: the misfit is frozen and the iteration finishes as a passivity enforcement. RM3 from
@@ -297,7 +297,10 @@ def refine_block(
     squares step), so a block that misses it before does not meet it after. Each
     enforcement iteration checks on the grid (and the points of the bands the last
     exact test found), the exact test (:func:`~cummins.radiation.passivity.
-    imaginary_axis_zeros`) only when the grid sees nothing (:class:`BandSweep`)."""
+    imaginary_axis_zeros`) only when the grid sees nothing (:class:`BandSweep`). Once the
+    misfit is frozen each programme holds the last one's rows and more, with the same
+    right-hand sides: its NNLS is continued from the last one's multipliers
+    (:func:`~cummins.radiation.passivity.enforcement.warm_nnls`)."""
     first = linearised(block)
     if first is None:  # no Woodbury form of the motions (joined bodies)
         return block, False
@@ -314,6 +317,7 @@ def refine_block(
     bound = np.zeros(0, dtype=bool)
     last = np.zeros(0, dtype=bool)  # the rows that bound in the last programme, and new ones
     lawson, errors = None, []
+    u = np.zeros(0)  # the last programme's multipliers, one per row
     misfit, transformed = None, np.zeros((0, z.size))
     current, stepping = block, True
     for iteration in range(steps + PASSIVITY_ITERATIONS):
@@ -333,7 +337,8 @@ def refine_block(
             rhs = np.r_[rhs, [REFINE_MARGIN * local - lam for _, lam, _, local in found] + new @ z]
             bound = np.r_[bound, np.zeros(len(found), dtype=bool)]
             last = np.r_[last, np.ones(len(found), dtype=bool)]
-        if stepping or misfit is None:  # a Gauss–Newton step, every row transformed
+        stepped = stepping or misfit is None
+        if stepped:  # a Gauss–Newton step, every row transformed
             misfit, lawson = _gauss_newton(
                 current, coords, z, linear, normal_fit, rhs_fit, lawson, motion_tol
             )
@@ -345,17 +350,21 @@ def refine_block(
             current = coords.unpack(z, block)
             continue
         try:
-            z, active = least_distance(misfit, rows, rhs, transformed, start=last)
+            z, u = least_distance_multipliers(
+                misfit, rows, rhs, transformed, start=last, warm=None if stepped else u
+            )
         except FitError:
             return current, False
+        active = u > 0
         bound |= active
         last = active
         if rhs.size > z.size:  # as the enforcement prunes its programme
-            rows, rhs, transformed, last, bound = (
+            rows, rhs, transformed, last, u, bound = (
                 rows[bound],
                 rhs[bound],
                 transformed[bound],
                 last[bound],
+                u[bound],
                 bound[bound],
             )
         current = coords.unpack(z, block)

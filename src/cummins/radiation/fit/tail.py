@@ -18,6 +18,7 @@ same tail, so that the model and the data's K(t) agree on what lies beyond the d
 
 from __future__ import annotations
 
+import hashlib
 from dataclasses import dataclass
 
 import numpy as np
@@ -149,8 +150,37 @@ def block_tail_equations(
     geometric mean of its DOFs' tails, so that the tail of a passive damping matrix is
     passive too (each coupling's own fit, changing sign or not, could make it indefinite,
     which the passivity step then had to undo beyond the data); its weight is the
-    geometric mean of theirs. The tail object of a coupling is its own fit."""
+    geometric mean of theirs. The tail object of a coupling is its own fit.
+
+    The last block's answer is kept (its arrays read-only), by the digest of the
+    arguments: a fit and its refit with A∞ estimated (:mod:`~cummins.radiation.fit.
+    causal_inf`) ask for the same block's tails, which A∞ does not change."""
+    global _last_tails
     w = np.asarray(omega, dtype=float)
+    arrays = [np.asarray(x) for x in (w, added_mass, damping, used, tail_omega)]
+    digest = hashlib.sha256(repr([tuple(e) for e in elements]).encode())
+    for x in arrays:
+        digest.update(f"{x.shape}{x.dtype}".encode())
+        digest.update(np.ascontiguousarray(x).tobytes())
+    key = digest.digest()
+    if _last_tails is not None and _last_tails[0] == key:
+        return list(_last_tails[1])
+    out = _block_tail_equations(w, added_mass, damping, used, elements, tail_omega)
+    for b_tail, weight, _ in out:
+        for x in (b_tail, weight):
+            if isinstance(x, np.ndarray):
+                x.flags.writeable = False
+    _last_tails = (key, tuple(out))
+    return list(out)
+
+
+#: The last answer of :func:`block_tail_equations`: (the digest of its arguments, the
+#: tails).
+_last_tails: tuple[bytes, tuple] | None = None
+
+
+def _block_tail_equations(w, added_mass, damping, used, elements, tail_omega) -> list:
+    """:func:`block_tail_equations` computed."""
     out: list = [None] * len(elements)
     diagonal = {}
     for e, (i, j) in enumerate(elements):

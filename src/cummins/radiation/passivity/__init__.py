@@ -52,3 +52,6 @@ from cummins.radiation.passivity.enforcement import fit_range_grid as fit_range_
 from cummins.radiation.passivity.enforcement import (
     least_distance as least_distance,
 )
+from cummins.radiation.passivity.enforcement import (
+    least_distance_multipliers as least_distance_multipliers,
+)

@@ -31,6 +31,7 @@ The enforcement that acts on this test's report is in
 from __future__ import annotations
 
 import itertools
+from collections.abc import Sequence
 from dataclasses import dataclass
 
 import numpy as np
@@ -191,7 +192,12 @@ def passivity_sweep(model: RadiationModel, omega: ArrayLike | None = None) -> Pa
 
 
 def imaginary_axis_zeros(
-    a: ArrayLike, b: ArrayLike, c: ArrayLike, d: ArrayLike | None = None
+    a: ArrayLike,
+    b: ArrayLike,
+    c: ArrayLike,
+    d: ArrayLike | None = None,
+    *,
+    slowest: float | None = None,
 ) -> NDArray[np.float64]:
     """Frequencies ω > 0 (rad/s) where K(jω) + K(jω)ᴴ is singular, K(s) = C(sI − A)⁻¹B + D.
 
@@ -199,13 +205,30 @@ def imaginary_axis_zeros(
     its Rosenbrock pencil (module docstring): no inverse of D + Dᵀ is needed. Zeros within
     :data:`AXIS_TOLERANCE` (relative) of the axis are returned, sorted, the pair ±jω
     once (:data:`SAME_CROSSING`); s = 0 is left
-    out (a radiation model has K(0) = 0).
+    out (a radiation model has K(0) = 0). ``slowest``: the smallest |eigenvalue| of A,
+    when the caller knows the poles (else computed: an eigenproblem of A's size).
     """
     a, b, c = (np.atleast_2d(np.asarray(x, dtype=float)) for x in (a, b, c))
     n, m = a.shape[0], b.shape[1]
     if n == 0:
         return np.empty(0)
     d = np.zeros((m, m)) if d is None else np.asarray(d, dtype=float)
+    s = _pencil_zeros(a, b, c, d)
+    # the zeros at s = 0 (K(0) = 0) come out as a cluster of size ~ε^(1/multiplicity)
+    if slowest is None:
+        slowest = np.abs(np.linalg.eigvals(a)).min()
+    s = s[np.isfinite(s) & (np.abs(s) > ORIGIN_TOLERANCE * slowest)]
+    on_axis = np.abs(s.real) <= AXIS_TOLERANCE * np.abs(s)
+    crossings = np.sort(np.abs(s[on_axis].imag))
+    if crossings.size < 2:
+        return crossings
+    new = np.r_[True, np.diff(crossings) > SAME_CROSSING * crossings[1:]]
+    return crossings[new]
+
+
+def _pencil_zeros(a: NDArray, b: NDArray, c: NDArray, d: NDArray) -> NDArray:
+    """The finite eigenvalues of the Rosenbrock pencil of Φ (module docstring), by QZ."""
+    n, m = a.shape[0], b.shape[1]
     # [[A, 0, B], [0, −Aᵀ, Cᵀ], [C, −Bᵀ, D + Dᵀ]] and diag(I, I, 0), written in place
     pencil = np.zeros((2 * n + m, 2 * n + m))
     pencil[:n, :n] = a
@@ -219,20 +242,17 @@ def imaginary_axis_zeros(
     mass[np.arange(2 * n), np.arange(2 * n)] = 1.0
     alpha, beta = scipy.linalg.eig(pencil, mass, right=False, homogeneous_eigvals=True)
     finite = np.abs(beta) > 1e-9 * np.abs(alpha) + 1e-300
-    s = alpha[finite] / beta[finite]
-    # the zeros at s = 0 (K(0) = 0) come out as a cluster of size ~ε^(1/multiplicity)
-    slowest = np.abs(np.linalg.eigvals(a)).min()
-    s = s[np.isfinite(s) & (np.abs(s) > ORIGIN_TOLERANCE * slowest)]
-    on_axis = np.abs(s.real) <= AXIS_TOLERANCE * np.abs(s)
-    crossings = np.sort(np.abs(s[on_axis].imag))
-    if crossings.size < 2:
-        return crossings
-    new = np.r_[True, np.diff(crossings) > SAME_CROSSING * crossings[1:]]
-    return crossings[new]
+    return alpha[finite] / beta[finite]
 
 
-def passivity_test(model: RadiationModel) -> PassivityReport:
+def passivity_test(
+    model: RadiationModel, *, known: tuple[Sequence[int], NDArray] | None = None
+) -> PassivityReport:
     """Exact passivity test of the MIMO model: crossings, bands, limits (module docstring).
+
+    ``known``: (DOF indices, crossings) of an exact test of the same K(s) over those DOFs
+    (another realization of it, its DOFs scaled otherwise: the crossings are the same),
+    used when the DOFs this test keeps are those; else the crossings are computed.
 
     Returns
     -------
@@ -241,7 +261,9 @@ def passivity_test(model: RadiationModel) -> PassivityReport:
     guard_radiation_model(model)  # non-finite or absurd matrices: FitError naming the pair
     labels = tuple(model.dofs)
     sweep = default_sweep(model)
-    response = model.response(sweep)  # once, for the scaling and the sweep's eigenvalues
+    # once, for the scaling and the sweep's eigenvalues (by BLAS: the sweep of a large
+    # block is thousands of frequencies)
+    response = model.response(sweep, batched=True)
     scale = dof_scaling(model, sweep, response=response)
     diagonal = scale > 0
     touched = np.zeros(len(labels), dtype=bool)
@@ -257,7 +279,13 @@ def passivity_test(model: RadiationModel) -> PassivityReport:
     if keep.size == 0:
         return PassivityReport(True, 0.0, float("nan"), np.empty(0), (), np.nan, np.nan, tested)
     a, b, c = _scaled_mimo(model, scale, keep)
-    crossings = imaginary_axis_zeros(a, b, c)
+    # A's eigenvalues: those of the model's couplings and blocks (kept by the response)
+    poles = [m[2] for m in model._modal] + [m[0] for m in model._block_modal]
+    poles = np.abs(np.concatenate(poles)) if poles else np.zeros(0)
+    if known is not None and sorted(known[0]) == keep.tolist():
+        crossings = np.asarray(known[1], dtype=float)
+    else:
+        crossings = imaginary_axis_zeros(a, b, c, slowest=poles.min() if poles.size else None)
     lam_sweep = _scaled_eigenvalues(model, sweep, scale, response)
     top = max(float(np.abs(lam_sweep).max()), np.finfo(float).tiny)
     low_sweep = lam_sweep[:, 0] / top
@@ -345,12 +373,13 @@ def midpoint(lo: float, hi: float, sweep: NDArray) -> float:
 
 
 def band_points(
-    a: NDArray, b: NDArray, c: NDArray, grid: NDArray
+    a: NDArray, b: NDArray, c: NDArray, grid: NDArray, slowest: float | None = None
 ) -> tuple[NDArray[np.float64], NDArray[np.float64]]:
-    """The crossings of K(s) = C(sI − A)⁻¹B (:func:`imaginary_axis_zeros`) as band edges
-    (0 and ∞ included), and the frequencies to test besides ``grid``: each band's
-    midpoint and five points across each finite band, those not already in ``grid``."""
-    crossings = imaginary_axis_zeros(a, b, c) if np.size(a) else np.zeros(0)
+    """The crossings of K(s) = C(sI − A)⁻¹B (:func:`imaginary_axis_zeros`; ``slowest``
+    the smallest |eigenvalue| of A when known) as band edges (0 and ∞ included), and the
+    frequencies to test besides ``grid``: each band's midpoint and five points across
+    each finite band, those not already in ``grid``."""
+    crossings = imaginary_axis_zeros(a, b, c, slowest=slowest) if np.size(a) else np.zeros(0)
     edges = np.unique(np.concatenate([[0.0], crossings, [np.inf]]))
     middle = [midpoint(lo, hi, grid) for lo, hi in itertools.pairwise(edges)]
     lo, hi = edges[:-1], edges[1:]
