@@ -16,7 +16,7 @@ from cummins.radiation.retardation import kramers_kronig_added_mass
 
 def test_the_kramers_kronig_integral_is_kept_for_the_same_data():
     ds = cummins.demo_dataset()
-    infinite_frequency._last_integral = None
+    infinite_frequency._last_integral.clear()
     first = infinite_frequency._kramers_kronig_integral(ds, "auto")
     again = infinite_frequency._kramers_kronig_integral(ds.copy(deep=True), "auto")
     assert again is first
@@ -28,12 +28,12 @@ def test_the_kramers_kronig_integral_is_kept_for_the_same_data():
     changed["radiation_damping"] = 2.0 * changed["radiation_damping"]
     doubled = infinite_frequency._kramers_kronig_integral(changed, "auto")
     assert doubled is not first
-    infinite_frequency._last_integral = None
+    infinite_frequency._last_integral.clear()
     np.testing.assert_array_equal(
         doubled, infinite_frequency._kramers_kronig_integral(changed, "auto")
     )
     other = infinite_frequency._kramers_kronig_integral(ds, "none")
-    infinite_frequency._last_integral = None
+    infinite_frequency._last_integral.clear()
     np.testing.assert_array_equal(other, infinite_frequency._kramers_kronig_integral(ds, "none"))
     # the public answers with A∞ added are new arrays each time
     a_inf = np.zeros((ds.sizes["influenced_dof"],) * 2)
@@ -54,7 +54,7 @@ def _block_arrays(seed: int):
 
 def test_a_block_tails_are_kept_for_the_same_arguments():
     args = _block_arrays(1)
-    tail._last_tails = None
+    tail._last_tails.clear()
     first = tail.block_tail_equations(*args)
     again = tail.block_tail_equations(
         *(np.copy(x) if isinstance(x, np.ndarray) else x for x in args)
@@ -78,7 +78,7 @@ def test_the_diagonal_kernels_are_kept_for_the_same_arguments():
 
     ds = cummins.demo_dataset()
     t = np.linspace(0.0, 20.0, 201)
-    retardation._last_diagonal = None
+    retardation._last_diagonal.clear()
     first = retardation.diagonal_retardation_functions(ds, t, [0, 2])
     assert retardation.diagonal_retardation_functions(ds.copy(deep=True), t.copy(), [0, 2]) is first
     assert not first.flags.writeable
@@ -90,3 +90,23 @@ def test_the_diagonal_kernels_are_kept_for_the_same_arguments():
     np.testing.assert_allclose(other[:, 0], full[:, 1, 1], rtol=1e-10, atol=1e-12 * top)
     later = retardation.diagonal_retardation_functions(ds, t[:50], [0, 2])
     np.testing.assert_allclose(later, first[:50], rtol=1e-10, atol=1e-12 * top)
+
+
+def test_an_answer_kept_in_one_thread_is_not_another_threads():
+    import threading
+
+    from cummins.arrays import LastAnswer, digest
+
+    last = LastAnswer()
+    key = digest(np.arange(3.0), "auto")
+    assert digest(np.arange(3.0), "auto") == key
+    assert digest(np.arange(3), "auto") != key  # another dtype, another key
+    assert last.keep(key, "mine") == "mine" and last.get(key) == "mine"
+    seen = []
+    thread = threading.Thread(target=lambda: seen.append(last.get(key)))
+    thread.start()
+    thread.join()
+    assert seen == [None]
+    assert last.get(digest(np.arange(4.0), "auto")) is None
+    last.clear()
+    assert last.get(key) is None

@@ -12,12 +12,11 @@ inter-quartile range its spread. The names are importable from
 
 from __future__ import annotations
 
-import hashlib
-
 import numpy as np
 import xarray as xr
 from numpy.typing import ArrayLike, NDArray
 
+from cummins.arrays import LastAnswer, digest
 from cummins.errors import HydroDataError
 from cummins.hydrodb import dof_matrix, single_speed
 from cummins.radiation.damping_tail import kramers_kronig_integral
@@ -28,31 +27,26 @@ def coupling_coords(ds: xr.Dataset) -> dict:
     return {"influenced_dof": ds.influenced_dof.values, "radiating_dof": ds.radiating_dof.values}
 
 
-#: The last answer of :func:`_kramers_kronig_integral`: (the digest of its data, the
-#: integral, read-only). A fit asks for the same data's integral three times (Ogilvie's
-#: A∞, the causality of the data with the model's A∞ before and after its refit).
-_last_integral: tuple[bytes, NDArray] | None = None
+#: The last answer of :func:`_kramers_kronig_integral` (read-only). A fit asks for the
+#: same data's integral three times (Ogilvie's A∞, the causality of the data with the
+#: model's A∞ before and after its refit).
+_last_integral = LastAnswer()
 
 
 def _kramers_kronig_integral(ds: xr.Dataset, tail: str) -> NDArray:
     """(2/π) PV ∫₀^∞ B(ν)/(ν² − ω²) dν at the data frequencies, shape (nω, n, n),
     read-only (the last data's kept: the same numbers for the same bytes)."""
-    global _last_integral
     w = np.asarray(ds.omega.values, dtype=float)
     n = ds.sizes["influenced_dof"]
     b = dof_matrix(ds, "radiation_damping").reshape(w.size, n * n)
     a = dof_matrix(ds, "added_mass").reshape(w.size, n * n)
-    digest = hashlib.sha256(tail.encode())
-    for x in (w, b, a):
-        digest.update(str(x.shape).encode() + str(x.dtype).encode())
-        digest.update(np.ascontiguousarray(x).tobytes())
-    key = digest.digest()
-    if _last_integral is not None and _last_integral[0] == key:
-        return _last_integral[1]
+    key = digest(tail, w, b, a)
+    kept = _last_integral.get(key)
+    if kept is not None:
+        return kept
     integral = kramers_kronig_integral(w, b, a, tail).reshape(w.size, n, n)
     integral.flags.writeable = False
-    _last_integral = (key, integral)
-    return integral
+    return _last_integral.keep(key, integral)
 
 
 def added_mass_inf_per_frequency(ds: xr.Dataset, *, tail: str = "auto") -> xr.DataArray:

@@ -28,12 +28,11 @@ the dataset's DOF labels. Units: K in kg/s², kg·m/s², kg·m²/s² (as B divid
 
 from __future__ import annotations
 
-import hashlib
-
 import numpy as np
 import xarray as xr
 from numpy.typing import ArrayLike, NDArray
 
+from cummins.arrays import LastAnswer, digest
 from cummins.errors import HydroDataError
 from cummins.hydrodb import dof_matrix, is_rotation, single_speed
 from cummins.radiation.damping_tail import MIN_POWER as MIN_POWER  # re-exported
@@ -296,31 +295,25 @@ def diagonal_retardation_functions(ds: xr.Dataset, t: ArrayLike, dofs) -> NDArra
 
     Read-only: the last answer is kept, by the digest of the data, ``t`` and ``dofs`` (a
     fit and its refit with A∞ estimated ask for the same)."""
-    global _last_diagonal
     ds, t = single_speed(ds), np.asarray(t, dtype=float).reshape(-1)
     columns = np.asarray(dofs, dtype=int) * (ds.sizes["influenced_dof"] + 1)
-    digest = hashlib.sha256()
-    for x in (
+    key = digest(
         np.asarray(ds.omega.values, dtype=float),
         dof_matrix(ds, "radiation_damping"),
         dof_matrix(ds, "added_mass"),
         t,
         columns,
-    ):
-        digest.update(f"{x.shape}{x.dtype}".encode())
-        digest.update(np.ascontiguousarray(x).tobytes())
-    key = digest.digest()
-    if _last_diagonal is not None and _last_diagonal[0] == key:
-        return _last_diagonal[1]
+    )
+    kept = _last_diagonal.get(key)
+    if kept is not None:
+        return kept
     out = (2.0 / np.pi) * _exact_kernel(ds, t, "auto", "linear", True, columns)[0]
     out.flags.writeable = False
-    _last_diagonal = (key, out)
-    return out
+    return _last_diagonal.keep(key, out)
 
 
-#: The last answer of :func:`diagonal_retardation_functions`: (the digest of its
-#: arguments, K_ii(t)).
-_last_diagonal: tuple[bytes, NDArray] | None = None
+#: The last answer of :func:`diagonal_retardation_functions` (K_ii(t), read-only).
+_last_diagonal = LastAnswer()
 
 
 def retardation_function_from_added_mass(

@@ -16,6 +16,7 @@ poles do not move, so the model stays stable.
 
 from __future__ import annotations
 
+import threading
 import weakref
 from collections.abc import Generator
 
@@ -63,9 +64,9 @@ GIVE_UP_EVERY = 3
 POSITIVE_SHIFT = 1e-9
 
 
-#: The last exact test of :func:`passivity_violations`: (a weak reference to its block,
-#: the crossings found), for :func:`exact_crossings`.
-_last_exact: tuple[weakref.ref, NDArray] | None = None
+#: The last exact test of :func:`passivity_violations` in this thread (``.value``: a weak
+#: reference to its block, the crossings found), for :func:`exact_crossings`.
+_last_exact = threading.local()
 
 
 def exact_crossings(block: PoleResidueBlock) -> NDArray | None:
@@ -75,9 +76,10 @@ def exact_crossings(block: PoleResidueBlock) -> NDArray | None:
     model's test (:func:`~cummins.radiation.passivity.passivity_test`) need not repeat
     (its pencil's QZ: 0.12 s at 200 states). The crossings of S K S are those of K for
     any nonsingular S: the block's DOF scaling and the model's give the same."""
-    if _last_exact is None or _last_exact[0]() is not block:
+    last = getattr(_last_exact, "value", None)  # read once: this thread's last test
+    if last is None or last[0]() is not block:
         return None
-    return _last_exact[1]
+    return last[1]
 
 
 class BlockSweep:
@@ -200,8 +202,7 @@ def passivity_violations(
         # every point once: the grid, five inside each band between crossings, its midpoint
         poles = np.abs(np.concatenate([block.poles.real, block.poles.pairs]))
         edges, extra = band_points(a, b, c, grid, poles.min() if poles.size else None)
-        global _last_exact
-        _last_exact = (weakref.ref(block), edges[1:-1])
+        _last_exact.value = (weakref.ref(block), edges[1:-1])
         sweep.band_extra = extra
         order = np.argsort(np.concatenate([grid, extra]))
         points = np.concatenate([grid, extra])[order]

@@ -18,12 +18,12 @@ same tail, so that the model and the data's K(t) agree on what lies beyond the d
 
 from __future__ import annotations
 
-import hashlib
 from dataclasses import dataclass
 
 import numpy as np
 from numpy.typing import ArrayLike, NDArray
 
+from cummins.arrays import LastAnswer, digest
 from cummins.radiation.damping_tail import DampingTail, fit_damping_tail
 from cummins.radiation.model import siso_impulse_response
 
@@ -155,28 +155,24 @@ def block_tail_equations(
     The last block's answer is kept (its arrays read-only), by the digest of the
     arguments: a fit and its refit with A∞ estimated (:mod:`~cummins.radiation.fit.
     causal_inf`) ask for the same block's tails, which A∞ does not change."""
-    global _last_tails
     w = np.asarray(omega, dtype=float)
-    arrays = [np.asarray(x) for x in (w, added_mass, damping, used, tail_omega)]
-    digest = hashlib.sha256(repr([tuple(e) for e in elements]).encode())
-    for x in arrays:
-        digest.update(f"{x.shape}{x.dtype}".encode())
-        digest.update(np.ascontiguousarray(x).tobytes())
-    key = digest.digest()
-    if _last_tails is not None and _last_tails[0] == key:
-        return list(_last_tails[1])
+    key = digest(
+        [tuple(e) for e in elements],
+        *(np.asarray(x) for x in (w, added_mass, damping, used, tail_omega)),
+    )
+    kept = _last_tails.get(key)
+    if kept is not None:
+        return list(kept)
     out = _block_tail_equations(w, added_mass, damping, used, elements, tail_omega)
     for b_tail, weight, _ in out:
         for x in (b_tail, weight):
             if isinstance(x, np.ndarray):
                 x.flags.writeable = False
-    _last_tails = (key, tuple(out))
-    return list(out)
+    return list(_last_tails.keep(key, tuple(out)))
 
 
-#: The last answer of :func:`block_tail_equations`: (the digest of its arguments, the
-#: tails).
-_last_tails: tuple[bytes, tuple] | None = None
+#: The last answer of :func:`block_tail_equations` (the tails, read-only).
+_last_tails = LastAnswer()
 
 
 def _block_tail_equations(w, added_mass, damping, used, elements, tail_omega) -> list:
