@@ -362,3 +362,63 @@ def test_limit_forms_are_kept_with_the_poles():
     residues = np.concatenate([residues, residues[block.poles.real.size :].conj()])
     np.testing.assert_allclose(first[0] @ x, -np.sum(residues * p**2).real, rtol=1e-10)
     np.testing.assert_allclose(first[1] @ x, np.sum(residues / p**2).real, rtol=1e-10)
+
+
+def _band_choices(low):
+    """The grid-only band logic of ``passivity_violations`` on λ_min values ``low``: per
+    band (runs of one sign), its worst point, whether it is violated, its local minima."""
+    negative = low < 0
+    cuts = np.flatnonzero(negative[1:] != negative[:-1]) + 1
+    out = []
+    for band in np.split(np.arange(low.size), cuts):
+        values = low[band]
+        before = np.concatenate([[np.inf], values[:-1]])
+        after = np.concatenate([values[1:], [np.inf]])
+        minimum = (values < -block_passivity.VIOLATION) & (values <= before) & (values <= after)
+        minima = np.flatnonzero(minimum)
+        worst = int(np.argmin(values))
+        order = minima[np.argsort(values[minima])].tolist()
+        out.append((band[0], worst, bool(values[worst] < -block_passivity.VIOLATION), order))
+    return out
+
+
+@pytest.mark.parametrize("complex_values", [False, True])
+@pytest.mark.parametrize("n", [2, 5])
+def test_grid_lows_give_the_band_logic_eigvalsh_choices(n, complex_values):
+    """``GridLows.for_bands`` computes eigvalsh only where the band logic needs it, and
+    its stand-ins elsewhere give the same bands, worst points and ordered local minima
+    as eigvalsh's λ_min everywhere (a smooth family with several violated bands, a flat
+    stretch and each band's minima), with far fewer eigenvalue problems."""
+    rng = np.random.default_rng(n + 10 * complex_values)
+    t = np.linspace(0.0, 1.0, 1500)
+    lowest = 0.4 * np.sin(2 * np.pi * 3 * t) + 0.1 * np.sin(2 * np.pi * 11 * t) - 0.05
+    lowest[700:760] = lowest[700]  # a flat stretch: ties
+    lam = np.column_stack([lowest] + [1.0 + k + 0.3 * np.cos(5 * t + k) for k in range(n - 1)])
+    parts = [rng.standard_normal((n, n)) for _ in range(3)]
+    if complex_values:
+        parts = [p + 1j * rng.standard_normal((n, n)) for p in parts]
+    q = np.linalg.qr(parts[0] + t[:, None, None] * parts[1] + t[:, None, None] ** 2 * parts[2])[0]
+    stack = (q * lam[:, None, :]) @ q.conj().transpose(0, 2, 1)
+    stack = 0.5 * (stack + stack.conj().transpose(0, 2, 1))
+    exact = block_passivity.lowest_eigenvalues(stack)
+    lows = block_passivity.GridLows(stack)
+    banded = lows.for_bands()
+    assert _band_choices(banded) == _band_choices(exact)
+    assert np.array_equal(banded[lows.known], exact[lows.known])
+    assert np.all(banded[~lows.known] < exact[~lows.known])
+    assert lows.solved < 0.2 * np.count_nonzero(exact < 0)
+    assert np.array_equal(lows.exact(), exact)
+
+
+def test_the_grid_sweep_with_bounds_is_the_sweep_with_eigvalsh(monkeypatch):
+    """The grid-only sweep of a block violated across its grid gives the same violations
+    (forms, eigenvalues, vectors, scales) to the last bit with the bounds of
+    ``GridLows.for_bands`` as with eigvalsh's λ_min at every point."""
+    block = _as_given_block()
+    found = block_passivity.passivity_violations(block, 0.1, 5.0, exact=False)[0]
+    monkeypatch.setattr(block_passivity.GridLows, "for_bands", block_passivity.GridLows.exact)
+    reference = block_passivity.passivity_violations(block, 0.1, 5.0, exact=False)[0]
+    assert len(found) == len(reference) > 0
+    for got, want in zip(found, reference, strict=True):
+        for a, b in zip(got, want, strict=True):
+            assert np.asarray(a).tobytes() == np.asarray(b).tobytes()
