@@ -387,10 +387,8 @@ class GridLows:
         x = np.linalg.eigh(sub[samples])[1][:, :, 0]
         nearest = (np.arange(rest.size) + SAMPLE_EVERY // 2) // SAMPLE_EVERY
         x = x[np.minimum(nearest, samples.size - 1)]
-        quotient = (
-            np.einsum("ki,kij,kj->k", x.conj(), sub, x).real
-            / np.einsum("ki,ki->k", x.conj(), x).real
-        )
+        image = (sub @ x[:, :, None])[:, :, 0]
+        quotient = (x.conj() * image).sum(axis=1).real / (x.conj() * x).sum(axis=1).real
         upper[rest] = quotient + self.scale * norm[rest]
         return upper, norm
 
