@@ -383,7 +383,7 @@ def _band_choices(low):
 
 
 @pytest.mark.parametrize("complex_values", [False, True])
-@pytest.mark.parametrize("n", [2, 5])
+@pytest.mark.parametrize("n", [3, 5])
 def test_grid_lows_give_the_band_logic_eigvalsh_choices(n, complex_values):
     """``GridLows.for_bands`` computes eigvalsh only where the band logic needs it, and
     its stand-ins elsewhere give the same bands, worst points and ordered local minima
