@@ -110,3 +110,15 @@ def test_an_answer_kept_in_one_thread_is_not_another_threads():
     assert last.get(digest(np.arange(4.0), "auto")) is None
     last.clear()
     assert last.get(key) is None
+
+
+def test_forgetting_the_kept_answers_empties_every_one():
+    from cummins.arrays import forget_kept_answers
+
+    ds = cummins.demo_dataset()
+    first = infinite_frequency._kramers_kronig_integral(ds, "auto")
+    assert infinite_frequency._kramers_kronig_integral(ds, "auto") is first
+    forget_kept_answers()
+    again = infinite_frequency._kramers_kronig_integral(ds, "auto")
+    assert again is not first  # computed anew: the same numbers
+    np.testing.assert_array_equal(again, first)
