@@ -142,10 +142,8 @@ def default_kernel_values(
     data = b.reshape(w.size, n * n)
     added = np.asarray(added_mass, dtype=float).reshape(w.size, n * n)
     probe, dt, t_limit = _probe_times(w, max_points)
-    tail_fit = fit_damping_tail(w, data, "auto", added_mass=added)
-    x, f = np.r_[0.0, w], np.vstack([np.zeros((1, n * n)), data])
-    k = cosine_transform(x, f, probe, node_form=node_form)
-    k = k + tail_fit.cosine(probe, None, node_form=node_form)
+    grid = _interpolant_grid(w, data, "linear", True)
+    k, _ = _kernel_of_arrays(w, data, added, grid, probe, "auto", node_form=node_form)
     values = (2.0 / np.pi) * k.reshape(probe.size, n, n)
     stop = _kernel_stop(probe, values.reshape(probe.size, -1), threshold, dt, t_limit)
     if stop is None:
@@ -168,9 +166,16 @@ def _damping_grid(
     w = ds.omega.values
     n = ds.sizes["influenced_dof"]
     b = dof_matrix(ds, "radiation_damping").reshape(w.size, n * n)
+    return _interpolant_grid(w, b, interpolation, zero_frequency)
+
+
+def _interpolant_grid(
+    w: NDArray, b: NDArray, interpolation: str, zero_frequency: bool
+) -> tuple[NDArray, NDArray]:
+    """:func:`_damping_grid` of the arrays: frequencies ``w`` (N,), B ``b`` (N, P)."""
     if zero_frequency:
         w = np.r_[0.0, w]
-        b = np.vstack([np.zeros((1, n * n)), b])
+        b = np.vstack([np.zeros((1, b.shape[1])), b])
     if interpolation == "pchip" and w.size > 2:
         fine = np.unique(
             np.concatenate([np.linspace(w[k], w[k + 1], 5) for k in range(w.size - 1)])
@@ -280,7 +285,14 @@ def _exact_kernel(ds, t, tail, interpolation, zero_frequency, columns=None, node
     n, w, b = ds.sizes["influenced_dof"], *_damping_grid(ds, interpolation, zero_frequency)
     data = dof_matrix(ds, "radiation_damping").reshape(ds.sizes["omega"], n * n)
     added = dof_matrix(ds, "added_mass").reshape(ds.sizes["omega"], n * n)
-    tail_fit = fit_damping_tail(ds.omega.values, data, tail, added_mass=added)
+    return _kernel_of_arrays(ds.omega.values, data, added, (w, b), t, tail, columns, node_form)
+
+
+def _kernel_of_arrays(omega, data, added, grid, t, tail, columns=None, node_form=True):
+    """:func:`_exact_kernel` of the arrays: ``omega`` (N,), B ``data`` and A ``added``
+    (N, P), ``grid`` the interpolant's frequencies and B (:func:`_interpolant_grid`)."""
+    w, b = grid
+    tail_fit = fit_damping_tail(omega, data, tail, added_mass=added)
     if columns is not None:
         b = b[:, columns]
     k = cosine_transform(w, b, t, node_form=node_form)
