@@ -271,6 +271,14 @@ def modal_form(a: ArrayLike) -> tuple[NDArray, NDArray, bool]:
     return ModalForm(lam, v, bool(np.linalg.cond(v) < 1e10))
 
 
+def _as_modal_form(modal, a: NDArray) -> ModalForm:
+    """``modal`` as a :class:`ModalForm` (a plain (λ, V, usable) wrapped; None: that of
+    ``a``)."""
+    if modal is None:
+        return modal_form(a)
+    return modal if isinstance(modal, ModalForm) else ModalForm(*modal)
+
+
 def siso_frequency_response(
     a: ArrayLike, b: ArrayLike, c: ArrayLike, omega: ArrayLike, modal=None
 ) -> NDArray:
@@ -285,12 +293,10 @@ def siso_frequency_response(
     s = 1j * np.asarray(omega, dtype=float).reshape(-1)
     if a.size == 0:
         return np.zeros(s.size, dtype=complex)
-    modal = modal or modal_form(a)
+    modal = _as_modal_form(modal, a)
     lam, v, usable = modal
     if usable:
-        left = c @ v
-        right = modal.solved(b) if isinstance(modal, ModalForm) else np.linalg.solve(v, b)
-        return (left * right) @ (1.0 / (s[None, :] - lam[:, None]))
+        return ((c @ v) * modal.solved(b)) @ (1.0 / (s[None, :] - lam[:, None]))
     eye = np.eye(a.shape[0])
     return np.array([c @ np.linalg.solve(si * eye - a, b) for si in s])
 
@@ -307,14 +313,10 @@ def siso_impulse_response(
     t = np.asarray(t, dtype=float).reshape(-1)
     if a.size == 0:
         return np.zeros(t.size)
-    modal = modal or modal_form(a)
-    lam, v, usable = modal
-    if usable:
-        if isinstance(modal, ModalForm):  # V⁻¹ b and e^{λ t} shared by a block's pairs
-            weights = (c @ v) * modal.solved(b)
-            return np.real(modal.exponentials(grid) @ weights)
-        weights = (c @ v) * np.linalg.solve(v, b)
-        return np.real(np.exp(np.outer(t, lam)) @ weights)
+    modal = _as_modal_form(modal, a)
+    _, v, usable = modal
+    if usable:  # V⁻¹ b and e^{λ t} shared by a block's pairs
+        return np.real(modal.exponentials(grid) @ ((c @ v) * modal.solved(b)))
     from scipy.linalg import expm
 
     return np.array([c @ expm(a * ti) @ b for ti in t])

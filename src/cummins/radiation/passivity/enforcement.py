@@ -551,11 +551,9 @@ def least_distance_multipliers(
     target = np.zeros(n + 1)
     target[-1] = 1.0
     u = None if warm is None else warm_nnls(matrix, target, warm)
-    if u is not None:
-        pass
-    elif start is None:
+    if u is None and start is None:
         u, _ = nnls(matrix, target, maxiter=50 * matrix.shape[1])
-    else:
+    elif u is None:
         u = working_set_nnls(matrix, target, start)
     residual = matrix @ u - target
     if abs(residual[-1]) < 1e-12:
