@@ -271,9 +271,9 @@ def modal_form(a: ArrayLike) -> tuple[NDArray, NDArray, bool]:
     return ModalForm(lam, v, bool(np.linalg.cond(v) < 1e10))
 
 
-def _as_modal_form(modal, a: NDArray) -> ModalForm:
-    """``modal`` as a :class:`ModalForm` (a plain (λ, V, usable) wrapped; None: that of
-    ``a``)."""
+def as_modal_form(modal, a: ArrayLike) -> ModalForm:
+    """``modal`` as a :class:`ModalForm` (a plain (λ, V, usable) wrapped; None: the
+    :func:`modal_form` of ``a``)."""
     if modal is None:
         return modal_form(a)
     return modal if isinstance(modal, ModalForm) else ModalForm(*modal)
@@ -293,7 +293,7 @@ def siso_frequency_response(
     s = 1j * np.asarray(omega, dtype=float).reshape(-1)
     if a.size == 0:
         return np.zeros(s.size, dtype=complex)
-    modal = _as_modal_form(modal, a)
+    modal = as_modal_form(modal, a)
     lam, v, usable = modal
     if usable:
         return ((c @ v) * modal.solved(b)) @ (1.0 / (s[None, :] - lam[:, None]))
@@ -313,7 +313,7 @@ def siso_impulse_response(
     t = np.asarray(t, dtype=float).reshape(-1)
     if a.size == 0:
         return np.zeros(t.size)
-    modal = _as_modal_form(modal, a)
+    modal = as_modal_form(modal, a)
     _, v, usable = modal
     if usable:  # V⁻¹ b and e^{λ t} shared by a block's pairs
         return np.real(modal.exponentials(grid) @ ((c @ v) * modal.solved(b)))

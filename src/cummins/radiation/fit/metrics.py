@@ -13,8 +13,7 @@ from numpy.typing import ArrayLike
 from cummins.radiation.fit.frequency import is_positive_real, r_squared
 from cummins.radiation.model import (
     CouplingModel,
-    ModalForm,
-    modal_form,
+    as_modal_form,
     siso_frequency_response,
     siso_impulse_response,
 )
@@ -61,7 +60,7 @@ def coupling_metrics(
     w = np.asarray(omega, dtype=float)
     a = np.asarray(added_mass, dtype=float)
     b = np.asarray(damping, dtype=float)
-    modal = modal or modal_form(model.a)
+    modal = as_modal_form(modal, model.a)
     k_model = siso_frequency_response(model.a, model.b, model.c, w, modal)
     k_data = b + 1j * w * (a - added_mass_inf)
     error = np.abs(k_model - k_data)
@@ -74,7 +73,7 @@ def coupling_metrics(
         "r2_kernel": None,
         "hinf_error": float(error.max()),
         "hinf_relative": float(error.max() / scale),
-        "stable": _stable(model, modal),
+        "stable": bool(np.all(modal[0].real < 0)),  # the decision of model.is_stable()
         "passive": None,
         "n_frequencies": int(w.size),
     }
@@ -86,15 +85,9 @@ def coupling_metrics(
     if model.influenced == model.radiating:
         lam, vec, _ = modal
         b = np.asarray(model.b, dtype=float)
-        solved = modal.solved(b) if isinstance(modal, ModalForm) and b.ndim == 1 else None
-        residues = (model.c @ vec) * (np.linalg.solve(vec, model.b) if solved is None else solved)
+        residues = (model.c @ vec) * (modal.solved(b) if b.ndim == 1 else np.linalg.solve(vec, b))
         metrics["passive"] = bool(metrics["stable"]) and is_positive_real(lam, residues)
     return metrics
-
-
-def _stable(model: CouplingModel, modal) -> bool:
-    """:meth:`CouplingModel.is_stable` (its own eigenvalues: the decision is the same)."""
-    return model.is_stable() if modal is None else bool(np.all(modal[0].real < 0))
 
 
 def pair_floor(added_mass: ArrayLike, damping: ArrayLike, i: int, j: int) -> tuple[float, float]:
