@@ -12,7 +12,9 @@ and two limits. In one run of this script:
   variable, bitwise). The load average before each run is printed: on a 2-core machine
   any other work takes the second core and the ratio with it.
 
-Run: ``python benchmarks/bench_batch.py`` (needs ``pip install cummins[dask]``).
+Run: ``python benchmarks/bench_batch.py [seeds]`` (needs ``pip install cummins[dask]``;
+``seeds``, 4 by default, the number of seeds of each sea state: 1 runs 60 cases, the
+test suite's run of every script).
 """
 
 from __future__ import annotations
@@ -22,6 +24,7 @@ import os
 os.environ.setdefault("OPENBLAS_NUM_THREADS", "1")
 os.environ.setdefault("OMP_NUM_THREADS", "1")
 
+import sys
 import tempfile
 import time
 from pathlib import Path
@@ -58,7 +61,9 @@ def _run(study: Study, folder: Path, workers: int):
 
 
 def main() -> None:
-    study = Study(data=cummins.demo_files() / "tanker.1", **STUDY)
+    seeds = int(sys.argv[1]) if len(sys.argv) > 1 else len(STUDY["grid"]["seed"])
+    grid = {**STUDY["grid"], "seed": list(range(1, seeds + 1))}
+    study = Study(data=cummins.demo_files() / "tanker.1", **{**STUDY, "grid": grid})
     n = len(study.all_cases)
     with tempfile.TemporaryDirectory() as tmp:
         folder = Path(tmp)

@@ -19,8 +19,13 @@ BENCHMARKS = Path(__file__).resolve().parents[1] / "benchmarks"
 #: thousands of damaged files): run by hand, their results are in BENCHMARKS.md
 BY_HAND = {"bench_identification.py", "bench_fit_reference.py", "fuzz_readers.py"}
 #: What a run here needs of a script that repeats its timings (best of 5 or 7 by hand):
-#: one repeat runs every line of it (the CI's budget: bench_check_suspects took 118 s).
-ONE_REPEAT = {"bench_check_suspects.py": ["1"], "bench_read_out_once.py": ["1"]}
+#: one repeat runs every line of it (the CI's budget: bench_check_suspects took 118 s),
+#: and of the batch study one seed per sea state (60 cases, not 240: 127 s).
+ONE_REPEAT = {
+    "bench_check_suspects.py": ["1"],
+    "bench_read_out_once.py": ["1"],
+    "bench_batch.py": ["1"],
+}
 SCRIPTS = sorted(
     p.name for p in BENCHMARKS.glob("*.py") if not p.name.startswith("_") and p.name not in BY_HAND
 )
