@@ -388,23 +388,23 @@ def relocate(data: BlockData, poles: Poles) -> Poles:
     s = 1j * data.omega
     sigma = poles.basis(s, constant=True)  # [phi, 1]
     n = poles.count
-    phi = sigma[:, :n]
     scale, groups = data.relocation_rows
     # one QR per element, stacked: [own, −f σ] weighted, real rows over imaginary rows
     # (own: the element's basis, with a constant when its A∞ is estimated); the trailing
     # blocks of their R, written in place, then the normalisation row
     lhs = np.empty((len(data.elements) * (n + 1) + 1, n + 1))
     n_w = s.size
+    columns = np.ascontiguousarray(sigma.T)  # by column, frequency-contiguous
     for estimated, (rows, minus_f, wre, wie) in zip((False, True), groups, strict=True):
         if not rows.size:
             continue
-        own = sigma if estimated else phi
-        k = own.shape[1]
-        fs = minus_f * sigma.T[None]
+        own = columns if estimated else columns[:n]
+        k = own.shape[0]
+        fs = minus_f * columns[None]
         # each element's matrix in column-major order (LAPACK's, factored in place)
         stack = np.empty((rows.size, k + n + 1, 2 * n_w))
-        np.multiply(wre, own.real.T[None], out=stack[:, :k, :n_w])
-        np.multiply(wie, own.imag.T[None], out=stack[:, :k, n_w:])
+        np.multiply(wre, own.real[None], out=stack[:, :k, :n_w])
+        np.multiply(wie, own.imag[None], out=stack[:, :k, n_w:])
         np.multiply(wre, fs.real, out=stack[:, k:, :n_w])
         np.multiply(wie, fs.imag, out=stack[:, k:, n_w:])
         for e, matrix in zip(rows.tolist(), stack, strict=True):
