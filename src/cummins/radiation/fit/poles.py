@@ -42,11 +42,17 @@ class Poles:
 
     def kept_basis(self, s: NDArray) -> NDArray[np.complex128]:
         """:meth:`basis`, kept (read-only) for the next call at the same ``s``: a fit's
-        scores and its passivity enforcement evaluate it at the data's frequencies again."""
+        scores and its passivity enforcement evaluate it at the data's frequencies again.
+        At the leading frequencies of a kept ``s`` (the scores' data frequencies, the
+        residues' data and tail), the leading rows of its basis: each row is computed from
+        its own frequency alone, so they are the numbers :meth:`basis` would give."""
         s = np.asarray(s, dtype=complex)
         kept = self.__dict__.setdefault("_kept", {})
         key = s.tobytes()
         if key not in kept:
+            for other, values in kept.items():
+                if len(other) > len(key) and other.startswith(key):
+                    return values[: s.size]
             if len(kept) > 2:  # the last few frequencies only
                 kept.clear()
             kept[key] = self.basis(s)

@@ -109,18 +109,22 @@ def _poles_from(values: NDArray, limit: float = np.inf, min_damping: float = MIN
     ``min_damping`` of critical (:data:`MIN_DAMPING`)."""
     values = np.asarray(values, dtype=complex)
     size = np.abs(values)
-    beyond = size > limit
-    if beyond.any():
+    if size.max(initial=0.0) > limit:
+        beyond = size > limit
         values = np.where(beyond, values * limit / np.where(size > 0, size, 1.0), values)
         size = np.abs(values)
-    scale = size + _TINY
-    is_real = np.abs(values.imag) <= 1e-9 * scale
-    real = -np.abs(values[is_real].real)
-    pairs = values[~is_real & (values.imag > 0)]
-    decay = np.maximum(np.abs(pairs.real), min_damping * np.abs(pairs))
-    pairs = -decay + 1j * np.abs(pairs.imag)
-    real = np.where(real == 0, -_EPS, real)
-    return Poles(np.sort(real)[::-1], pairs[np.argsort(pairs.imag)])
+    imag = values.imag
+    is_real = np.abs(imag) <= 1e-9 * (size + _TINY)
+    real = -np.abs(values.real[is_real])
+    upper = ~is_real & (imag > 0)
+    pairs = values[upper]
+    # each pair written as −max(|Re p|, ζ|p|) + j|Im p|, in place
+    out = np.empty(pairs.size, dtype=complex)
+    out.real = -np.maximum(np.abs(pairs.real), min_damping * size[upper])
+    out.imag = np.abs(pairs.imag)
+    real[real == 0] = -_EPS
+    real.sort()
+    return Poles(real[::-1], out[np.argsort(out.imag)])
 
 
 def starting_poles(omega: NDArray, count: int) -> Poles:
@@ -388,23 +392,23 @@ def relocate(data: BlockData, poles: Poles) -> Poles:
     s = 1j * data.omega
     sigma = poles.basis(s, constant=True)  # [phi, 1]
     n = poles.count
-    phi = sigma[:, :n]
     scale, groups = data.relocation_rows
     # one QR per element, stacked: [own, −f σ] weighted, real rows over imaginary rows
     # (own: the element's basis, with a constant when its A∞ is estimated); the trailing
     # blocks of their R, written in place, then the normalisation row
     lhs = np.empty((len(data.elements) * (n + 1) + 1, n + 1))
     n_w = s.size
+    columns = np.ascontiguousarray(sigma.T)  # by column, frequency-contiguous
     for estimated, (rows, minus_f, wre, wie) in zip((False, True), groups, strict=True):
         if not rows.size:
             continue
-        own = sigma if estimated else phi
-        k = own.shape[1]
-        fs = minus_f * sigma.T[None]
+        own = columns if estimated else columns[:n]
+        k = own.shape[0]
+        fs = minus_f * columns[None]
         # each element's matrix in column-major order (LAPACK's, factored in place)
         stack = np.empty((rows.size, k + n + 1, 2 * n_w))
-        np.multiply(wre, own.real.T[None], out=stack[:, :k, :n_w])
-        np.multiply(wie, own.imag.T[None], out=stack[:, :k, n_w:])
+        np.multiply(wre, own.real[None], out=stack[:, :k, :n_w])
+        np.multiply(wie, own.imag[None], out=stack[:, :k, n_w:])
         np.multiply(wre, fs.real, out=stack[:, k:, :n_w])
         np.multiply(wie, fs.imag, out=stack[:, k:, n_w:])
         for e, matrix in zip(rows.tolist(), stack, strict=True):
