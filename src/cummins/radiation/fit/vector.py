@@ -104,9 +104,11 @@ _TINY, _EPS = np.finfo(float).tiny, np.finfo(float).eps
 
 
 def _poles_from(values: NDArray, limit: float = np.inf, min_damping: float = MIN_DAMPING) -> Poles:
-    """Sorted, stable, damped poles in real form from a set closed under conjugation, none
-    beyond ``limit`` (rad/s) in magnitude (:data:`POLE_SPAN`), none damped less than
-    ``min_damping`` of critical (:data:`MIN_DAMPING`)."""
+    """Sorted, stable, damped poles in real form from a set closed under conjugation: each
+    first drawn in to ``limit`` (rad/s) in magnitude (:data:`POLE_SPAN`), then a pair's
+    decay raised to at least ``min_damping`` (:data:`MIN_DAMPING`) × its magnitude, its
+    frequency kept — so a floored pair's damping ratio is ζ/√(1 + ζ²) (0.0499 for
+    ζ = 0.05), and its magnitude may exceed ``limit`` by that factor √(1 + ζ²)."""
     values = np.asarray(values, dtype=complex)
     size = np.abs(values)
     if size.max(initial=0.0) > limit:
