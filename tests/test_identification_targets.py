@@ -382,6 +382,8 @@ def test_rm3_couplings_are_fitted_each_as_given(rm3):
             assert r_squared(b[:, p, q], k[:, p, q].real) >= 0.67
     (failure,) = [f for f in model.attrs["failures"] if f.startswith("motion error")]
     assert "body2__Surge" in failure and "Kramers–Kronig" in failure
+    # a data limit that is not measured is not claimed as one
+    assert "the data may limit it" in failure and "not measured" in failure
     i, j = labels.index("body1__Surge"), labels.index("body2__Surge")
     average = 0.5 * (a[:, i, j] + a[:, j, i])
     assert min(r_squared(a[:, i, j], average), r_squared(a[:, j, i], average)) < 0.5
