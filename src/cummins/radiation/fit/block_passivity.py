@@ -48,7 +48,10 @@ PASSIVITY_ITERATIONS = 120
 #: non-passive data built 9 000 constraints on 275 unknowns: 300 s for the fit, now 43 s).
 PRUNE_ROWS = 1
 #: Regularisation of the residue change (× the norm of the misfit Jacobian): directions
-#: the data do not see stay put.
+#: the data do not see stay put. A compromise, not a gap in the spectrum (the Jacobian's
+#: singular values fall smoothly to 1e-5 of the largest): smaller ridges, or ridges
+#: relative to each column's norm, helped the HAMS cylinders and worsened the NEMOH two
+#: bodies on the 38 cases (BENCHMARKS.md, the ridge, 2026-12-06).
 RIDGE = 1e-3
 #: Frequencies of the passivity check: from CHECK_SPAN⁻¹ ω_min to CHECK_SPAN ω_max.
 CHECK_SPAN = 1e3
