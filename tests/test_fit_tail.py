@@ -27,7 +27,11 @@ from cummins.radiation.damping_tail import RISE_KNEES, DampingTail, fit_damping_
 from cummins.radiation.fit import fit_radiation
 from cummins.radiation.fit.order_search import BlockScore, targets_not_met
 from cummins.radiation.fit.scorecard import damping_beyond, kernel_r2, scorecard
-from cummins.radiation.fit.tail import PEAK_TOLERANCE
+from cummins.radiation.fit.tail import (
+    PEAK_TOLERANCE,
+    damping_beyond_data,
+    rise_after_top,
+)
 from cummins.radiation.transforms import cosine_transform
 
 # an analytic fluid memory: one damped mode, K(s) = c s / (s² + 2ζω₀s + ω₀²) — K(0) = 0,
@@ -271,3 +275,27 @@ def test_a_real_note_names_its_target():
     notes = [n for n in model.attrs["data_notes"] if "targets not met" in n]
     assert notes and all("R² of" in n or "motion error" in n for n in notes)
     assert any("R² of A of Heave" in n and "costs nothing the RAOs show" in n for n in notes)
+
+
+def test_the_rise_is_the_checks_and_names_its_lowest_point():
+    """:func:`rise_after_top`, the check's peak of its own (and the motion refinement's
+    bound on it): at each point after the largest value, b_k − min over top ≤ m ≤ k of
+    b_m (brute force), 0 before; ``low_at`` names the first m of that minimum (damping
+    rounded to whole numbers: ties); :func:`damping_beyond_data`'s ``rise`` is its
+    largest value over the data's peak, at that point's frequency."""
+    rng = np.random.default_rng(4)
+    w = np.geomspace(1.0, 10.0, 60)
+    for _ in range(30):
+        b = np.round(np.cumsum(rng.normal(size=60)) + 2 * rng.normal(size=60))
+        rise, low_at = rise_after_top(b)
+        top = int(np.argmax(b))
+        for k in range(60):
+            if k < top:
+                assert rise[k] == 0.0 and low_at[k] == k
+            else:
+                assert rise[k] == b[k] - b[top : k + 1].min()
+                assert low_at[k] == top + int(np.argmin(b[top : k + 1]))
+        found = damping_beyond_data(b, w, 2.0)
+        assert found.rise == rise.max() / 2.0
+        if rise.max() > 0:
+            assert found.peak_omega == w[int(np.argmax(rise))]

@@ -63,7 +63,12 @@ from cummins.radiation.fit.block_passivity import (
     ConstraintRows,
     passivity_violations,
 )
-from cummins.radiation.fit.tail import BOUND_TOLERANCE, TailBounds, beyond_limits
+from cummins.radiation.fit.tail import (
+    BOUND_TOLERANCE,
+    TailBounds,
+    beyond_limits,
+    rise_after_top,
+)
 from cummins.radiation.fit.vector import (
     BlockData,
     PoleResidueBlock,
@@ -255,20 +260,15 @@ class BeyondBounds:
         for e, (i, j) in enumerate(block.elements):
             if i != j or limits[e][0] <= 0:
                 continue
-            b = self._forms @ block.coefficients[e]
-            top = int(np.argmax(b))
-            after = b[top:]
-            low = np.minimum.accumulate(after)
-            peak_at = int(np.argmax(after - low))
-            rise = after[peak_at] - low[peak_at]
+            rise, low_at = rise_after_top(self._forms @ block.coefficients[e])
+            k = int(np.argmax(rise))
             cap = BOUND_TOLERANCE * limits[e][0]
-            if rise <= cap:
+            if rise[k] <= cap:
                 continue
-            low_at = top + int(np.argmin(after[: peak_at + 1]))
             unit = np.zeros(len(block.dofs))
             unit[where[i]] = 1.0
-            form = self._forms[low_at] - self._forms[top + peak_at]
-            out.append((form, float(cap - rise), unit, limits[e][0]))
+            form = self._forms[low_at[k]] - self._forms[k]
+            out.append((form, float(cap - rise[k]), unit, limits[e][0]))
         return out
 
 
