@@ -87,6 +87,7 @@ from cummins.check.common import (
     PARITY_TOL,
     SYMMETRY_TOL,
     TAIL_TOL,
+    PreparedFits,
     _speeds,
 )
 from cummins.check.forbidden_couplings import _check_forbidden_couplings
@@ -155,13 +156,14 @@ def check(ds: xr.Dataset) -> CheckReport:
         return CheckReport(source=str(source), findings=tuple(findings))
     # each speed's suspect frequencies, found once for the checks and the fit that use them
     judged = [(sub, suspects_by_dof(sub)) for sub in _speeds(ds)]
+    prepared = PreparedFits(judged)  # and the fit's preparation of each, once
     for part in (
         _check_read_warnings,
         plausibility_findings,
         _check_grid,
         _check_symmetry,
-        partial(_check_reciprocity, judged=judged),
-        partial(_check_forbidden_couplings, judged=judged),
+        partial(_check_reciprocity, judged=judged, prepared=prepared),
+        partial(_check_forbidden_couplings, judged=judged, prepared=prepared),
         _check_damping,
         _check_added_mass_inf,
         _check_decay,

@@ -7,8 +7,15 @@ forward speeds.
 
 from __future__ import annotations
 
+import warnings
+from typing import TYPE_CHECKING
+
 import numpy as np
 import xarray as xr
+
+if TYPE_CHECKING:
+    from cummins.radiation.fit.data import FitInput
+    from cummins.repair import Judged
 
 #: Relative tolerances of the checks.
 SYMMETRY_TOL = 0.02
@@ -48,3 +55,32 @@ def _speed_suffix(ds: xr.Dataset) -> str:
     if "forward_speed" in ds.coords and ds.forward_speed.ndim == 0 and float(ds.forward_speed):
         return f" at U = {float(ds.forward_speed):g} m/s"
     return ""
+
+
+class PreparedFits:
+    """:func:`cummins.radiation.fit.data.prepare_fit` of each forward speed's data with the
+    default options, once for every check that reads it (the reciprocity and the forbidden
+    couplings: twice 0.15 s on WEC-Sim's RM3, 12 DOFs), its warnings silenced; None where
+    the data cannot be fitted (other checks say why). ``judged``: each speed's suspect
+    frequencies, found once (:func:`cummins.repair.suspects_by_dof`)."""
+
+    def __init__(self, judged: Judged = ()):
+        self.judged = judged
+        self._done: list[tuple[xr.Dataset, FitInput | None]] = []
+
+    def __call__(self, ds: xr.Dataset) -> FitInput | None:
+        from cummins.errors import CumminsError
+        from cummins.radiation.fit.data import prepare_fit
+        from cummins.radiation.fit.options import DEFAULT
+
+        for data, found in self._done:
+            if data is ds or data.identical(ds):
+                return found
+        try:
+            with warnings.catch_warnings():
+                warnings.simplefilter("ignore")
+                found = prepare_fit(ds, DEFAULT.checked(), judged=self.judged)
+        except (CumminsError, ValueError, ArithmeticError):
+            found = None
+        self._done.append((ds, found))
+        return found

@@ -44,7 +44,7 @@ from typing import TYPE_CHECKING
 import numpy as np
 import xarray as xr
 
-from cummins.check.common import PARITY_TOL, _speed_suffix, _speeds
+from cummins.check.common import PARITY_TOL, PreparedFits, _speed_suffix, _speeds
 from cummins.check.parity import mirror_pairs
 from cummins.check.report import Finding
 from cummins.hydrodb import DOF_NAMES, bodies, split_dof
@@ -278,24 +278,22 @@ class ForbiddenCoupling:
         return self.fitted and self.size > EXPLAINED * self.explained
 
 
-def fitted_pairs(ds: xr.Dataset, judged: Judged = ()) -> list[tuple[int, int]]:
+def fitted_pairs(
+    ds: xr.Dataset, judged: Judged = (), prepared: PreparedFits | None = None
+) -> list[tuple[int, int]]:
     """The couplings (i ≤ j) ``cummins fit`` models with its default options, as its own
     preparation of the data decides (:func:`cummins.radiation.fit.data.prepare_fit`: the
     size above :data:`FIT_THRESHOLD`, X_ij deciding, or the pairs fitted as given);
     without a fit (the data cannot be fitted: other checks say why), the pairs whose
     size exceeds the threshold. ``judged``: data whose suspect frequencies were found
-    already (:func:`cummins.repair.suspects_by_dof`)."""
-    from cummins.errors import CumminsError
-    from cummins.radiation.fit.data import prepare_fit
-    from cummins.radiation.fit.options import DEFAULT
+    already (:func:`cummins.repair.suspects_by_dof`); ``prepared``: the preparations of
+    the data shared by the checks (made here when not given)."""
     from cummins.radiation.retardation import significant_couplings
 
-    try:
-        with warnings.catch_warnings():
-            warnings.simplefilter("ignore")
-            return list(prepare_fit(ds, DEFAULT.checked(), judged=judged).pairs)
-    except (CumminsError, ValueError, ArithmeticError):
+    inp = (prepared or PreparedFits(judged))(ds)
+    if inp is None:
         return significant_couplings(ds, FIT_THRESHOLD)
+    return list(inp.pairs)
 
 
 def forbidden_couplings(
@@ -401,11 +399,13 @@ def _joined_block(
     return names(block), "; ".join(names(d) for d in apart)
 
 
-def _check_forbidden_couplings(ds: xr.Dataset, judged: Judged = ()) -> list[Finding]:
+def _check_forbidden_couplings(
+    ds: xr.Dataset, judged: Judged = (), prepared: PreparedFits | None = None
+) -> list[Finding]:
     """Per body and forward speed: the radiation couplings its symmetry forbids (a
     warning where ``cummins fit`` would model them, an info where it would model them
-    but the body's asymmetry explains them, ok otherwise); ``judged`` as
-    :func:`fitted_pairs`."""
+    but the body's asymmetry explains them, ok otherwise); ``judged`` and ``prepared``
+    as :func:`fitted_pairs`."""
     out: list[Finding] = []
     for sub in _speeds(ds):
         found = [s for s in (body_symmetry(sub, body) for body in bodies(sub)) if s is not None]
@@ -418,7 +418,7 @@ def _check_forbidden_couplings(ds: xr.Dataset, judged: Judged = ()) -> list[Find
             for symmetry in found
             for c in forbidden_couplings(sub, symmetry, [])
         )
-        fitted = fitted_pairs(sub, judged) if large else []
+        fitted = fitted_pairs(sub, judged, prepared) if large else []
         out.extend(_body_finding(sub, symmetry, fitted) for symmetry in found)
     return out
 

@@ -11,34 +11,30 @@ couplings are fitted as given, K_ij and K_ji each, passive as K(jω) + K(jω)ᴴ
 
 from __future__ import annotations
 
-import warnings
 from typing import TYPE_CHECKING
 
 import xarray as xr
 
-from cummins.check.common import _speeds
+from cummins.check.common import PreparedFits, _speeds
 from cummins.check.report import Finding
-from cummins.errors import CumminsError
 
 if TYPE_CHECKING:
     from cummins.repair import Judged
 
 
-def _check_reciprocity(ds: xr.Dataset, judged: Judged = ()) -> list[Finding]:
+def _check_reciprocity(
+    ds: xr.Dataset, judged: Judged = (), prepared: PreparedFits | None = None
+) -> list[Finding]:
     """One finding at zero speed when some coupling is not reciprocal (none when every
     pair is, or the data cannot be fitted: other checks say why); ``judged``: data whose
-    suspect frequencies were found already (:func:`cummins.repair.suspects_by_dof`)."""
-    from cummins.radiation.fit.data import prepare_fit
-    from cummins.radiation.fit.options import DEFAULT
-
+    suspect frequencies were found already (:func:`cummins.repair.suspects_by_dof`);
+    ``prepared``: the preparations of the data shared by the checks (made here when not
+    given)."""
     zero = [sub for sub in _speeds(ds) if float(sub.coords.get("forward_speed", 0.0)) == 0.0]
     if not zero:
         return []
-    try:
-        with warnings.catch_warnings():
-            warnings.simplefilter("ignore")
-            inp = prepare_fit(zero[0], DEFAULT.checked(), judged=judged)
-    except (CumminsError, ValueError, ArithmeticError):
+    inp = (prepared or PreparedFits(judged))(zero[0])
+    if inp is None:
         return []
     found = inp.reciprocity
     if found.as_given:
