@@ -283,17 +283,7 @@ def lowest_eigenvalues(matrices: NDArray) -> NDArray:
     1.01 n (n + 1) u tr M, above σ/2 for n up to 1000. eigvalsh's own λ_min, within a
     small multiple of n u ‖M‖₂ of the true one, is then above zero too: a point whose
     sign is decided within rounding of zero goes to eigvalsh."""
-    count, n = matrices.shape[0], matrices.shape[-1]
-    if n == 1:  # eigvalsh's value: the element itself
-        return matrices[:, 0, 0].real.copy()
-    shift = POSITIVE_SHIFT * np.trace(matrices, axis1=1, axis2=2).real
-    positive = cholesky_passes(matrices, shift) & (shift > 0)  # False for NaN
-    out = np.empty(count)
-    out[positive] = 0.5 * shift[positive]
-    rest = ~positive
-    if rest.any():
-        out[rest] = np.linalg.eigvalsh(matrices[rest])[:, 0]
-    return out
+    return GridLows(matrices).exact()  # the proof at every point, eigvalsh at the rest
 
 
 def cholesky_passes(matrices: NDArray, shift: NDArray) -> NDArray:
@@ -354,12 +344,12 @@ class GridLows:
         self.values = np.full(count, np.nan)
         self.known = np.zeros(count, dtype=bool)
         self.solved = 0  # how many eigenvalue problems eigvalsh has solved
-        if n == 1:
+        if n == 1:  # eigvalsh's value: the element itself
             self.values[:] = matrices[:, 0, 0].real
             self.known[:] = True
             return
         shift = POSITIVE_SHIFT * np.trace(matrices, axis1=1, axis2=2).real
-        positive = cholesky_passes(matrices, shift) & (shift > 0)
+        positive = cholesky_passes(matrices, shift) & (shift > 0)  # False for NaN
         self.values[positive] = 0.5 * shift[positive]
         self.known[positive] = True
         self.scale = 2.0**-40 * n * n
