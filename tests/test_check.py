@@ -70,6 +70,24 @@ def test_indefinite_damping_without_negative_diagonal():
     assert len(matrix) == 1 and "Heave" in matrix[0].message and "Pitch" in matrix[0].message
 
 
+@pytest.mark.parametrize(
+    ("roll", "severity"),
+    [(-4e-8, "info"), (-1.34e-11, "info"), (-2e4, "warning"), (-1.0, "warning")],
+)
+def test_a_restoring_term_negative_by_round_off_is_zero(roll, severity):
+    """Capytaine writes a submerged body's C33 or C44 as −1e-11 (its quadrature's
+    round-off): zero, not a statically unstable body; a negative term above the round-off
+    (1 N·m/rad against a C55 of 3 MN·m/rad) is still one."""
+    ds = _clean_dataset()
+    ds["hydrostatic_stiffness"][3, 3] = roll
+    found = [f for f in cummins.check(ds).by_check("hydrostatics") if f.where == "Roll"]
+    assert [f.severity for f in found] == [severity], found
+    if severity == "warning":
+        assert "statically unstable" in found[0].message
+    else:
+        assert "is zero" in found[0].message
+
+
 def test_asymmetry_and_added_mass_inf_errors():
     ds = _clean_dataset()
     ds.added_mass.values[:, 1, 5] *= 1.5

@@ -7,7 +7,7 @@ import pytest
 
 import cummins
 from cummins import HydroDataError
-from cummins.hydrodb import dof_index, make_hydrodb, split_dof
+from cummins.hydrodb import describe, dof_index, make_hydrodb, split_dof
 from cummins.kinematics import (
     center_of_gravity_from_inertia,
     rigid_body_inertia,
@@ -177,3 +177,32 @@ def test_axis_change_of_models_matches_the_data_with_generalized_modes(corpus):
     assert list(t[6:]) == [1.0] * 4
     findings = [f for f in cummins.check(ds).findings if f.check == "inertia"]
     assert any("rigid body" in f.message for f in findings)
+
+
+def test_describe_gives_no_mass_for_rotations_alone():
+    """A flap whose one DOF is its hinge angle records a moment of inertia (kg·m²), not
+    a mass: ``cummins info`` says no mass; with translations, each body's first."""
+    w = np.linspace(0.2, 2.0, 4)
+    a = np.full((4, 1, 1), 1.2e7)
+    hinge = make_hydrodb(
+        w,
+        a,
+        0.1 * a,
+        rho=1025,
+        g=9.81,
+        source_format="arrays",
+        dofs=["Pitch"],
+        inertia_matrix=np.array([[2.47e6]]),
+    )
+    assert "mass_kg" not in describe(hinge)
+    heaves = make_hydrodb(
+        w,
+        np.tile(np.diag([3e5, 7e5, 4e6]), (4, 1, 1)),
+        np.zeros((4, 3, 3)),
+        rho=1025,
+        g=9.81,
+        source_format="arrays",
+        dofs=["b1__Heave", "b2__Heave", "b2__Pitch"],
+        inertia_matrix=np.diag([2.6e5, 3.4e5, 9e6]),
+    )
+    assert describe(heaves)["mass_kg"] == [2.6e5, 3.4e5]

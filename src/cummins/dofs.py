@@ -147,3 +147,18 @@ def bodies(ds: xr.Dataset) -> list[str | None]:
         if body not in seen:
             seen.append(body)
     return seen
+
+
+def mass_dofs(labels) -> list[int]:
+    """The DOFs whose inertia is a body's mass: the surges, else each body's first
+    translation (sway or heave); none for a file of rotations alone, whose inertia is a
+    moment of inertia (kg·m²), not a mass."""
+    names = [split_dof(d) for d in labels]
+    surge = [k for k, (_, name) in enumerate(names) if name == "Surge"]
+    if surge:
+        return surge
+    first: dict[str | None, int] = {}
+    for k, (body, name) in enumerate(names):
+        if name in ("Sway", "Heave"):
+            first.setdefault(body, k)
+    return list(first.values())

@@ -63,6 +63,7 @@ from cummins.dofs import (
     bodies,
     body_names,
     is_rigid_body_dof,
+    mass_dofs,
     split_dof,
 )
 from cummins.dofs import dof_index as dof_index
@@ -786,10 +787,9 @@ def describe(ds: xr.Dataset) -> dict[str, Any]:
     if "forward_speed" in ds.dims:  # mass and restoring: at the speed nearest zero
         ds = ds.isel(forward_speed=int(np.argmin(np.abs(ds.forward_speed.values))))
     if "inertia_matrix" in ds:
-        m = np.diag(dof_matrix(ds, "inertia_matrix"))
-        surge = [k for k, d in enumerate(ds.influenced_dof.values) if split_dof(d)[1] == "Surge"]
-        masses = [float(m[k]) for k in surge] or [float(m[0])]
-        info["mass_kg"] = masses[0] if len(masses) == 1 else masses
+        m = np.diag(dof_matrix(ds, "inertia_matrix"))  # rotations alone: no mass
+        if masses := [float(m[k]) for k in mass_dofs(ds.influenced_dof.values)]:
+            info["mass_kg"] = masses[0] if len(masses) == 1 else masses
     if "hydrostatic_stiffness" in ds:
         from cummins.restoring import describe_restoring
 

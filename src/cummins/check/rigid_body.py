@@ -43,10 +43,11 @@ def _check_rigid_body(ds: xr.Dataset) -> list[Finding]:
     if "hydrostatic_stiffness" in ds:
         c = dof_matrix(ds, "hydrostatic_stiffness")
         c = c.reshape(-1, c.shape[-2], c.shape[-1])[0]
+        zero = _round_off(ds, c)
         for k, label in enumerate(labels):
             name = label.rpartition("__")[2]
             if name in ("Heave", "Roll", "Pitch"):
-                if c[k, k] < 0:
+                if c[k, k] < -zero:
                     out.append(
                         Finding(
                             "hydrostatics",
@@ -69,7 +70,7 @@ def _check_rigid_body(ds: xr.Dataset) -> list[Finding]:
                             ),
                         )
                     )
-                elif c[k, k] == 0:
+                elif c[k, k] <= zero:
                     out.append(
                         Finding(
                             "hydrostatics",
@@ -84,6 +85,18 @@ def _check_rigid_body(ds: xr.Dataset) -> list[Finding]:
             )
         out.extend(_weight_consistency(ds, labels))
     return out
+
+
+def _round_off(ds: xr.Dataset, c: np.ndarray) -> float:
+    """The size below which a restoring term is zero up to the quadrature's round-off
+    (a submerged body's C33 = −1e-11 N/m of Capytaine): 1e-9 of the largest term, or of
+    ρ g ∇^(4/3) (the scale of a body's ρ g ∇ GM) when the displaced volume is known."""
+    scale = float(np.max(np.abs(c))) if c.size else 0.0
+    volume = np.asarray(ds.attrs.get("displaced_volume", np.nan), dtype=float)
+    if np.isfinite(volume).any():
+        rho, g = float(ds.attrs["rho"]), float(ds.attrs["g"])
+        scale = max(scale, rho * g * float(np.nanmax(volume)) ** (4 / 3))
+    return 1e-9 * scale
 
 
 def _weight_consistency(ds: xr.Dataset, labels: list[str]) -> list[Finding]:
