@@ -1,6 +1,7 @@
 """A model that missed its fit targets never flows on silently (issue 30, point 6):
-``simulate``, ``reduce`` and ``report`` given such a model, and ``simulate`` fitting one
-on the fly, say so in one line, and the run file and the reduced model record it.
+``simulate``, ``reduce``, ``report`` and ``convert --model`` given such a model, and
+``simulate`` fitting one on the fly, say so in one line, and the run file and the reduced
+model record it.
 
 The failed model is the identification of a moonpool's sharp piston mode
 (``tests/data/moonpool_sharp_capytaine.nc``, 5 % of critical damping) held to at most
@@ -80,6 +81,17 @@ def test_reduce_a_failed_model_says_so_and_the_reduced_model_keeps_it(failed, tm
     again = _run("report", reduced, "-o", tmp_path / "small.html")
     assert again.exit_code == 0, again.output
     assert _warnings(again.output)[0].startswith("warning: small.nc: this model missed")
+
+
+def test_convert_with_a_failed_model_says_so(tmp_path):
+    """The BEMIO .h5 WEC-Sim reads gets a failed model's state space: said in the line
+    (the semisubmersible held to 2 poles per block: motion error 12.6 %, exit 3)."""
+    data, model = DATA / "semisub_capytaine.nc", tmp_path / "semi.nc"
+    assert _run("fit", data, "-o", model, "--max-order", 2).exit_code == 3
+    result = _run("convert", data, tmp_path / "semi.h5", "--model", model)
+    assert result.exit_code == 0, result.output
+    (line,) = _warnings(result.output)
+    assert line.startswith("warning: semi.nc: this model missed its fit targets")
 
 
 def test_report_of_a_failed_model_and_of_its_run_say_so(failed, tmp_path):

@@ -163,6 +163,9 @@ def convert_command(
         return
     if model is not None:
         _check_model(model, ds, model_path)
+        from cummins.cli.failed_model import warn_failed_model
+
+        warn_failed_model(model.attrs, model_path)  # WEC-Sim would take it silently
     write(ds, destination, force=force, model=model)
     console.print(
         f"wrote {destination} ({ds.attrs.get('axis_convention')} axes, reference point "

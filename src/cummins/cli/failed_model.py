@@ -3,10 +3,11 @@ radiation model they use missed its fit targets, and what their result files rec
 
 ``cummins fit`` writes what makes a model a failure into the model file
 (``attrs["failures"]``: not passive, a coupling the passivity step took below its
-target, a motion error above twice its target; exit status 3). ``simulate``, ``reduce``
-and ``report`` given such a model, and ``simulate`` fitting one on the fly, say so in one
-line, and ``simulate``'s run file and the reduced model carry the failures
-(``model_failures``; the reduced model in its own ``failures``). ``cummins
+target, a motion error above twice its target; exit status 3). ``simulate``, ``reduce``,
+``report`` and ``convert --model`` (the BEMIO .h5 for WEC-Sim) given such a model, and
+``simulate`` fitting one on the fly, say so in one line, and ``simulate``'s run file and
+the reduced model carry the failures (``model_failures``; the reduced model in its own
+``failures``). ``cummins
 fit-excitation`` records its failures the same way (a DOF above its NRMSE target; exit
 status 3), and ``report`` of its model file says so in the same line.
 """
