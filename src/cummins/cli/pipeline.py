@@ -286,6 +286,7 @@ def reduce_stage(
     passive: bool = True,
     motion_tol: float | None = None,
     progress: Callable[[str], object] | None = None,
+    joined=None,
 ):
     """Reduce a radiation model and, by default, make the result passive as a MIMO model.
 
@@ -297,7 +298,8 @@ def reduce_stage(
     minimises the change against the same reference (:func:`cummins.radiation.passivity.
     enforce_passivity`) and each coupling it changed gets its R² before and after in its
     note. With ``motion_tol`` (and ``data``), the fewest states whose motion RAOs stay
-    within it (:func:`cummins.radiation.reduce.reduce_to_motion_tolerance`). Returns the
+    within it (:func:`cummins.radiation.reduce.reduce_to_motion_tolerance`; with
+    ``joined``, the joined system's motions a joined fit aimed at). Returns the
     reduced model, whether a passivity correction was made (None when ``passive`` is
     false) and the reference (:class:`cummins.radiation.fit.FitData`).
     """
@@ -308,7 +310,7 @@ def reduce_stage(
 
     if motion_tol is not None:
         reduced = reduce_to_motion_tolerance(
-            model, data, motion_tol, method=method, progress=progress
+            model, data, motion_tol, method=method, progress=progress, joined=joined
         )
     else:
         reduced = reduce_radiation_model(

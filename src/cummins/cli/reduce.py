@@ -24,11 +24,12 @@ from cummins.cli.common import (
     speed_option,
     stage_progress,
 )
-from cummins.cli.option_rules import Command, option_rules
+from cummins.cli.option_rules import option_rules
+from cummins.cli.system_options import SystemCommand, system_from_options, system_options
 from cummins.files import write_text
 
 
-@click.command(name="reduce", cls=Command)
+@click.command(name="reduce", cls=SystemCommand)
 @click.argument("model_path", metavar="MODEL", type=click.Path(exists=True, dir_okay=False))
 @click.option(
     "-o",
@@ -93,6 +94,14 @@ from cummins.files import write_text
     default=None,
     help="Write a summary as JSON.",
 )
+@click.option(
+    "--dof",
+    "dofs",
+    multiple=True,
+    metavar="DOF",
+    help="With --data: the DOFs that move (repeatable), as the model's fit took them.",
+)
+@system_options
 @allow_other_data_option
 @force_option()
 @option_rules(needs={"speed": "data_path"})
@@ -112,6 +121,8 @@ def reduce_command(
     speed,
     passive,
     json_path,
+    dofs,
+    system_options,
     allow_other_data,
     force,
 ):
@@ -133,6 +144,13 @@ def reduce_command(
       cummins reduce tanker_era.nc -o small.nc --tol 0.02 --method mixed --data tanker.1
       cummins reduce tanker_model.nc -o tanker_small.nc --tol 0.02 --data tanker.1
       cummins reduce tanker_model.nc -o tanker_1pc.nc --motion-tol 0.01 --data tanker.1
+
+    \b
+    A model fitted for joined bodies (fit --joint, --pto, --dof, --no-body-coupling) is
+    compared with --data given the same options, on the joined system's motions:
+      cummins reduce flap_model.nc -o flap_small.nc --motion-tol 0.01 --data oswec.out
+        --rho 1000 --mass 127000 --mass 999 ... --joint fixed body2 ground --joint
+        revolute body1 body2 --axis 0 1 0 --point 0 0 -8.9 --pto-damping 1.2e5
     """
     from cummins.cli.pipeline import reduce_stage
     from cummins.radiation.model import RadiationModel
@@ -144,16 +162,32 @@ def reduce_command(
             "--motion-tol compares the motions with the data's: give --data (the file the "
             "model was fitted to, with the inertia and restoring)"
         )
+    system = system_from_options(system_options, dofs)
+    if (system is not None or dofs) and data_path is None:
+        raise click.UsageError(
+            "--dof, --joint, --pto and --no-body-coupling describe the system of --data, as "
+            "the model's fit took them: give --data"
+        )
     prepare_outputs(output, json_path, force=force)
     model = RadiationModel.load(model_path)
     from cummins.cli.failed_model import warn_failed_model
 
     warn_failed_model(model.attrs, model_path)  # the reduced model keeps its failures
-    data = None
+    data = joined = None
     if data_path:
+        from cummins.cli.fit import joined_data
         from cummins.radiation.fingerprint import check_model_data
 
         data = select_speed(read_hydrodb(data_path, format_, rho, g, ulen), speed)
+        data, joined = joined_data(data, system, dofs)
+        aim = model.attrs.get("motions_of")
+        if aim and system is None and not dofs:
+            console.print(
+                f"[yellow]note:[/] {escape(Path(model_path).name)} was fitted for {escape(aim)}:"
+                " the motions compared are the free bodies' unless --data gets the same "
+                "--joint, --pto, --dof and --no-body-coupling options as its fit",
+                highlight=False,
+            )
         check_model_data(
             model, data, allow_other_data=allow_other_data, model_name=Path(model_path).name
         )
@@ -167,6 +201,7 @@ def reduce_command(
             passive=passive,
             motion_tol=motion_tol,
             progress=say,
+            joined=joined,
         )
     against = "the data" if data is not None else "the unreduced model"
     console.print(reduction_table(model, reduced, reference, against))

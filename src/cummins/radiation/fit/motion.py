@@ -376,12 +376,15 @@ def fitted_frequencies(model, omega) -> NDArray[np.bool_]:
     return keep
 
 
-def fit_motion_error(data: xr.Dataset, model) -> tuple[float, NDArray[np.float64]]:
+def fit_motion_error(
+    data: xr.Dataset, model, joined: JoinedMotion | None = None
+) -> tuple[float, NDArray[np.float64]]:
     """The motion error of ``model`` as its fit measured it (``attrs["motion_error"]``):
     :meth:`MotionSensitivity.model_error` on the data's frequencies the fit kept
     (:func:`fitted_frequencies`), the excitation at up to four headings, 2 % of critical
-    damping — so that a reduced model is judged by the measure its full model was. Returns
-    the error and its value per DOF.
+    damping — so that a reduced model is judged by the measure its full model was; with
+    ``joined``, on the motions of the joined system a joined fit aimed at (its
+    constraints and power take-offs). Returns the error and its value per DOF.
 
     Raises
     ------
@@ -397,7 +400,9 @@ def fit_motion_error(data: xr.Dataset, model) -> tuple[float, NDArray[np.float64
     sensitivity = None
     if keep.any():
         sensitivity = motion_sensitivity(
-            ds.isel(omega=np.flatnonzero(keep)), added_mass_inf=model.added_mass_inf
+            ds.isel(omega=np.flatnonzero(keep)),
+            added_mass_inf=model.added_mass_inf,
+            joined=joined,
         )
     if sensitivity is None:
         raise HydroDataError(

@@ -23,7 +23,7 @@ from dataclasses import replace
 import xarray as xr
 
 from cummins.errors import FitError
-from cummins.radiation.fit.motion import fit_motion_error
+from cummins.radiation.fit.motion import JoinedMotion, fit_motion_error
 from cummins.radiation.model import RadiationModel
 from cummins.radiation.reduce.radiation_model import reduce_radiation_model
 
@@ -38,6 +38,7 @@ def reduce_to_motion_tolerance(
     *,
     method: str = "lyapunov",
     progress: Callable[[str], object] | None = None,
+    joined: JoinedMotion | None = None,
 ) -> RadiationModel:
     """The reduced model with the fewest states whose motions are within ``motion_tol``.
 
@@ -53,6 +54,9 @@ def reduce_to_motion_tolerance(
         Balanced truncation method of the blocks.
     progress
         Called with a short message at each tolerance tried and each block reduced.
+    joined
+        The joined system a joined fit aimed at (``Assembly.joined_motion()``, with
+        ``data`` the assembly's): its motions are the ones compared.
 
     Returns
     -------
@@ -87,7 +91,7 @@ def reduce_to_motion_tolerance(
             "a motion tolerance reduces a model of common-pole blocks (the default fit)",
             hint="reduce a per-coupling model with tol or order, or refit with method='vf'",
         )
-    unreduced = fit_motion_error(data, model)[0]  # HydroDataError without the inertia
+    unreduced = fit_motion_error(data, model, joined)[0]  # HydroDataError without the inertia
     known = set(model.attrs.get("failures", []))
     base = {"motion_error_unreduced": unreduced, "motion_tol": motion_tol}
     if unreduced > motion_tol:
@@ -104,7 +108,7 @@ def reduce_to_motion_tolerance(
         reduced = reduce_radiation_model(model, tol=tol, method=method, data=data, progress=say)
         if set(reduced.attrs.get("failures", [])) - known:
             return None
-        error = fit_motion_error(data, reduced)[0]
+        error = fit_motion_error(data, reduced, joined)[0]
         if error > motion_tol:
             return None
         attrs = {**reduced.attrs, **base, "reduction_tol": tol, "motion_error": error}
