@@ -204,11 +204,13 @@ def pto_run_sections(run: xr.Dataset) -> list[Section]:
     count = int(min(10, np.floor((t[-1] - t[0]) / period + 1e-9))) if omega else 0
     units = pto_units(run.pto)
     reference = run.get("pto_mean_power_frequency_domain")
+    record = run.get("pto_mean_power_frequency_domain_record")  # irregular runs
     names = [str(p) for p in run.pto.values]
     powers = run.pto_power.values
     means = {name: float(powers[window, k].mean()) for k, name in enumerate(names)}
     energies = [float(np.trapezoid(powers[:, k], t)) for k in range(len(names))]
     shown = [*means.values(), *([] if reference is None else reference.values)]
+    shown += [] if record is None else list(record.values)
     mean_factor, mean_unit = power_unit(float(np.nanmax(np.abs(shown), initial=0)))
     peak_factor, peak_unit = power_unit(float(np.nanmax(np.abs(powers), initial=0)))
     damper = run.attrs.get("energy_pto")
@@ -223,6 +225,8 @@ def pto_run_sections(run: xr.Dataset) -> list[Section]:
         row = [name, means[name] / mean_factor]
         if reference is not None:
             row += [float(reference.values[k]) / mean_factor]
+        if record is not None:
+            row += [float(record.values[k]) / mean_factor]
         row += [energies[k] / energy_factor, float(powers[:, k].max() / peak_factor)]
         if omega:
             periods = max(count, 1)
@@ -244,7 +248,12 @@ def pto_run_sections(run: xr.Dataset) -> list[Section]:
             "as cummins simulate prints it; amplitudes fitted over them"
         )
     else:
-        where = f"over the whole run (t {t[0]:g} to {t[-1]:g} s, the start-up included)"
+        start = (
+            "started on the stationary solution"
+            if run.attrs.get("initial") == "steady"
+            else "the start-up included"
+        )
+        where = f"over the whole run (t {t[0]:g} to {t[-1]:g} s, {start})"
     notes = _note(
         f"Mean absorbed power {where}. Energy: ∫ pto_power dt over the run"
         + (
@@ -264,6 +273,14 @@ def pto_run_sections(run: xr.Dataset) -> list[Section]:
             "same equations for the run's wave components, Σ ½ c ω² |Δ̂|² a², as cummins "
             "simulate prints it" + ("." if left_out == "none" else f" (it leaves out {left_out}).")
         )
+    if record is not None:
+        header += [f"frequency domain, this record [{mean_unit}]"]
+        notes += _note(
+            "Frequency domain, this record: the mean power of the same solution over the "
+            "run's own waves, Re Σ Δ̂ a e^{i(ωt + φ)}, which the run follows to its radiation "
+            "model's error; components of different frequencies do not average out over a "
+            "finite record, and the frequency domain's mean differs from it by that alone."
+        )
     header += [f"energy [{energy_unit_text}]", f"max power [{peak_unit}]"]
     header += ["amplitude Δ", "force amplitude"] if omega else ["2σ of Δ", "2σ of the force"]
     header += ["max |force|"]
@@ -271,8 +288,8 @@ def pto_run_sections(run: xr.Dataset) -> list[Section]:
     for name in means:
         body += figure_html(
             plot_pto_time_series(run, name, window, units[name]),
-            f"{name}: force, relative velocity and absorbed power (last 600 s), and the "
-            "running mean power over the run",
+            f"{name}: force, relative velocity and absorbed power (last "
+            f"{min(600.0, float(t[-1] - t[0])):g} s), and the running mean power over the run",
         )
     return [Section("Power take-offs", body)]
 

@@ -387,7 +387,11 @@ def run_sections(path: Path) -> list[Section]:
         ),
         Section(
             "Time series",
-            figure_html(plot_time_series(run), "Wave elevation and motions (last 600 s)"),
+            figure_html(
+                plot_time_series(run),
+                "Wave elevation and motions (last "
+                f"{min(600.0, float(run.time[-1] - run.time[0])):g} s)",
+            ),
         ),
         Section(
             "Response spectra",

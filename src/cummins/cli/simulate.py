@@ -502,9 +502,20 @@ def simulate_command(
             )
             if given
         ]
-        reference = print_pto_run(
+        reference, record = print_pto_run(
             run, vessel, sea, ds, system, b_v, regular=regular, left_out=left_out
         )
+        if record is not None:  # the same solution on the run's own waves
+            run["pto_mean_power_frequency_domain_record"] = (
+                "pto",
+                np.asarray(record, dtype=float),
+                {
+                    "units": "W",
+                    "long_name": "mean absorbed power of the linear frequency-domain "
+                    "solution over the run's own record of its wave components",
+                    "left_out": ", ".join(left_out) or "none",
+                },
+            )
         if reference is not None:  # the report shows it beside the run's
             run["pto_mean_power_frequency_domain"] = (
                 "pto",
