@@ -322,3 +322,84 @@ def test_check_says_when_the_restoring_and_the_inertia_disagree(shared_data):
     [finding] = [f for f in cummins.check(hand).findings if "inertia matrix describes" in f.message]
     assert finding.severity == "warning"
     assert f"{mass * ds.attrs['g'] * 5.0:.4g}" in finding.message
+
+
+def _hinged_boxes():
+    """The attenuator's three boxes (``tests/data/attenuator_capytaine.nc``, each 82 t
+    of displacement) at 60 % of it, as buoyant flaps: the middle box fixed, the outer
+    ones hinged to it about y at (±5.5, 0, −1) with 1 MN·m·s/rad PTOs. The hinges carry
+    the net buoyancy (ρ∇ − m) g = 322 kN of each."""
+    from pathlib import Path
+
+    from cummins.mechanics import PTO, Joint, MechanicalSystem
+
+    ds = _read(Path(__file__).parent / "data" / "attenuator_capytaine.nc")
+    mass = 0.6 * RHO * np.asarray(ds.attrs["displaced_volume"], dtype=float)
+    ds = cummins.with_inertia(
+        ds,
+        mass=list(mass),
+        center_of_gravity=[[-11, 0, -1], [0, 0, -1], [11, 0, -1]],
+        radii_of_gyration=[[1.3, 3.0, 3.1]] * 3,
+    )
+    system = MechanicalSystem(
+        joints=(
+            Joint("fixed", "body2", "ground"),
+            Joint("revolute", "body1", "body2", axis=(0, 1, 0), point=(-5.5, 0, -1), name="h1"),
+            Joint("revolute", "body3", "body2", axis=(0, 1, 0), point=(5.5, 0, -1), name="h3"),
+        ),
+        ptos=(PTO(joint="h1", damping=1e6), PTO(joint="h3", damping=1e6)),
+    )
+    return ds, system
+
+
+def _pto_power(ds, system) -> np.ndarray:
+    from cummins.seakeeping.frequency_domain import motion_rao, pto_rao
+
+    omega = np.linspace(0.3, 2.5, 12)
+    with warnings.catch_warnings():
+        warnings.simplefilter("ignore")  # the boxes are not in equilibrium: the premise
+        rao = motion_rao(ds, omega, [0.0, np.pi / 4], system=system)
+        return pto_rao(rao, ds, system).pto_power.values
+
+
+def test_a_body_out_of_equilibrium_moves_its_restoring_with_its_static_load(tmp_path):
+    """Buoyant flaps on hinges: their power take-offs absorb the same about any reference
+    point. Moved 2 m down, the restoring (holding the weight of m = 0.6 ρ∇) gains
+    −(ρ∇ − m) g Δz in C44, C55, as the joints' pre-load F·(o − h) changes by as much; the
+    screw transform alone, as for a body in equilibrium, took the power 15 % off. The
+    BEMIO .h5, about each centre of gravity, read as WEC-Sim reads it (without cummins'
+    copy, the masses given again), gives the same power too."""
+    import shutil
+
+    import h5py
+
+    from cummins.io.bemio.files import COPY_GROUP
+
+    ds, system = _hinged_boxes()
+    reference = _pto_power(ds, system)
+    assert reference.max() > 0
+    moved = cummins.move_reference_point(ds, [[-11, 0, -3], [0, 0, -3], [11, 0, -3]])
+    step = moved.attrs["history"].splitlines()[-1]
+    assert "moved with its static load (rho V - m) g" in step
+    np.testing.assert_allclose(_pto_power(moved, system), reference, rtol=1e-9)
+    # the .h5 WEC-Sim reads: about the centres of gravity (here the boxes' centres)
+    shifted = cummins.with_inertia(
+        moved,
+        mass=list(0.6 * RHO * np.asarray(ds.attrs["displaced_volume"], dtype=float)),
+        center_of_gravity=[[-11, 0, -2], [0, 0, -2], [11, 0, -2]],
+        radii_of_gyration=[[1.3, 3.0, 3.1]] * 3,
+    )
+    path, bare = tmp_path / "boxes.h5", tmp_path / "bare.h5"
+    cummins.write(shifted, path)
+    shutil.copy(path, bare)
+    with h5py.File(bare, "a") as f:
+        del f[COPY_GROUP]
+    wecsim = cummins.with_inertia(
+        _read(bare),
+        mass=list(0.6 * RHO * np.asarray(ds.attrs["displaced_volume"], dtype=float)),
+        center_of_gravity=[[-11, 0, -2], [0, 0, -2], [11, 0, -2]],
+        radii_of_gyration=[[1.3, 3.0, 3.1]] * 3,
+    )
+    assert np.allclose(wecsim.attrs["reference_point"], [-11, 0, -2, 0, 0, -2, 11, 0, -2])
+    expected = _pto_power(shifted, system)
+    np.testing.assert_allclose(_pto_power(wecsim, system), expected, rtol=1e-6)

@@ -631,8 +631,8 @@ def move_reference_point(ds: xr.Dataset, point: ArrayLike) -> xr.Dataset:
     With r the vector from the new point O to the old point W, matrices become
     ``H(r)ᵀ M H(r)``, forces ``H(r)ᵀ F`` (Smogeli et al. (2004) eqs. 15, 38, 45) and motions
     ``H(−r) ξ`` (eq. 16 inverted). This is exact for added mass, damping, inertia and
-    wave forces, and for a restoring holding the weight of ρ∇ (in equilibrium); one of the
-    hydrostatics alone gets C₄₄, C₅₅ −ρg∇Δz … (:func:`cummins.restoring.moved_restoring`).
+    wave forces, and for a restoring holding the weight of ρ∇; one of a weight m ≠ ρ∇ (0: the
+    hydrostatics alone) gets C₄₄, C₅₅ −(ρ∇ − m)gΔz … (:func:`~cummins.restoring.moved_restoring`).
 
     Parameters
     ----------

@@ -324,21 +324,24 @@ def body_volumes(ds: xr.Dataset, count: int) -> NDArray[np.float64]:
 def moved_restoring(
     ds: xr.Dataset, old: NDArray[np.float64], new: NDArray[np.float64]
 ) -> tuple[xr.Dataset, str]:
-    """The correction the screw transform of the restoring misses when the restoring holds
-    the hydrostatics alone, for a move of the reference point from ``old`` to ``new``
-    (m, one row per body), applied to ``ds`` (whose matrices are already transformed).
+    """The correction the screw transform of the restoring misses when the body is not in
+    equilibrium in it — the restoring holds the hydrostatics alone, or the weight of a
+    mass m other than ρ∇ (a buoyant flap on its hinge) — for a move of the reference
+    point from ``old`` to ``new`` (m, one row per body), applied to ``ds`` (whose matrices
+    are already transformed).
 
     The restoring of buoyancy and weight together, in equilibrium (weight ρ∇ above the
     centre of buoyancy), has no static load and transforms as the other matrices,
     Hᵀ C H (Smogeli et al. (2004) eq. 38). The buoyancy's own part about O,
     ρ g (∫y² dA + ∇ (z_B − z_O)) in C₄₄, −ρ g ∇ (x_B − x_O) in C₄₆ … (WAMIT (2020)
-    §3.1), carries the static load ρ g ∇: since the weight's part W(m (G − O))
-    (:func:`weight_stiffness`) is unchanged by Hᵀ · H, it becomes
+    §3.1), carries the static load ρ g ∇, and the weight's part W(m (G − O))
+    (:func:`weight_stiffness`), which Hᵀ · H leaves unchanged, the load −m g: it becomes
 
-        C(O_new) = Hᵀ C(O_old) H + W(ρ∇ (O_new − O_old)),
+        C(O_new) = Hᵀ C(O_old) H + W((ρ∇ − m) (O_new − O_old)),
 
-    C₄₄ and C₅₅ −ρ g ∇ Δz. A restoring recorded to hold a weight (the body's own
-    ρ∇, or a given mass taken as in equilibrium) is left to the screw transform.
+    C₄₄ and C₅₅ −(ρ∇ − m) g Δz, with m = 0 for the hydrostatics alone. A restoring
+    recorded to hold the body's own weight (ρ∇), or a given mass when the displaced
+    volume is not known (taken as in equilibrium), is left to the screw transform.
 
     Returns
     -------
@@ -367,22 +370,31 @@ def moved_restoring(
     notes, unknown = [], []
     for k, body in enumerate(groups):
         step = shift[min(k, len(shift) - 1)]
-        if not np.any(step != 0) or (recorded is not None and recorded[k].mass != 0):
-            continue  # a weight held (NaN: the body's own): the screw transform
+        held = 0.0 if recorded is None else recorded[k].mass
+        if not np.any(step != 0) or np.isnan(held):
+            continue  # the body's own weight ρ∇ held, in equilibrium: the screw transform
         if not np.isfinite(volumes[k]):
-            unknown.append(body or "the body")
+            if held == 0:  # a given weight with no volume is taken as in equilibrium
+                unknown.append(body or "the body")
             continue
-        load = weight_stiffness(rho * volumes[k] * step, g, axes)
+        net = rho * volumes[k] - held  # kg: the static load (ρ∇ − m) g
+        if abs(net) <= 1e-9 * rho * volumes[k]:
+            continue
+        load = weight_stiffness(net * step, g, axes)
         index = _rigid_index(labels, body)
         for a, i in index.items():
             for b, j in index.items():
                 if i is not None and j is not None:
                     delta[i, j] += load[a, b]
-        notes.append(
-            f"{body + ': ' if body else ''}restoring of the hydrostatics alone"
+        what = (
+            "restoring of the hydrostatics alone"
             + (" (assumed: not recorded)" if recorded is None else "")
-            + f" moved with its static load rho g V (C44, C55 {load[3, 3]:+.6g})"
+            + " moved with its static load rho g V"
+            if held == 0
+            else f"restoring holding the weight of {held:.6g} kg, not rho V = "
+            f"{rho * volumes[k]:.6g} kg, moved with its static load (rho V - m) g"
         )
+        notes.append(f"{body + ': ' if body else ''}{what} (C44, C55 {load[3, 3]:+.6g})")
     if unknown:
         warnings.warn(
             AssumptionWarning(
