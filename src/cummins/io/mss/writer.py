@@ -233,11 +233,12 @@ def write_mss(ds: xr.Dataset, path: str | os.PathLike[str]) -> Path:
     data, not completed by symmetry), ``velocities``, ``forceRAO``, ``motionRAO`` (the
     solver's, else cummins', :func:`_with_motion_rao`) and ``driftfrc`` (surge, sway and yaw
     only: heave, roll and pitch drift are lost) when present, ``main`` (``name``, ``rho``,
-    ``g``, ``m``, ``nabla``, ``CG`` and ``CB`` as FSD vectors from CO, ``k44`` … (about CG), ``Lpp``, ``B``, ``T``, ``GM_T``, ``GM_L``, ``C_B``,
-    ``Lwl``, ``S`` when known: :func:`_stability_fields`; a warning names those the data
-    do not give, and data about a point other than CO or CG) and
-    ``hydrodynamic_axes = 'FSD'``, as current MSS does. ``vessel.cummins`` keeps the
-    history, the reference point and what MSS has no field for; MSS ignores it.
+    ``g``, ``m``, ``nabla``, ``CG`` and ``CB`` as FSD vectors from CO, ``k44`` … (about CG),
+    ``Lpp``, ``B``, ``T``, ``GM_T``, ``GM_L``, ``C_B``, ``Lwl``, ``S`` when known:
+    :func:`_stability_fields`; a warning names those the data do not give, and data about a
+    point other than CO or CG) and ``hydrodynamic_axes = 'FSD'``, as current MSS does.
+    ``vessel.cummins`` keeps the history, the reference point and what MSS has no field
+    for; MSS ignores it.
 
     Parameters
     ----------
