@@ -177,6 +177,16 @@ def test_qtfs_are_said_to_go_to_their_own_files(corpus, tmp_path):
     assert not (tmp_path / "s.12d").exists()
 
 
+def test_data_without_excitation_say_no_3_is_written(corpus, tmp_path):
+    """WEIS' OC4 semi (.1 .hst .12d .12s, its .3 missing): convert wrote s.1 and s.hst and
+    said nothing of the .3 HydroDyn reads with ExctnMod = 1; now it says so."""
+    text = _convert(corpus / "WEIS" / "ss_fitting_OC4_semi" / "marin_semi.1", tmp_path / "s.1")
+    assert "no s.3: the data hold no wave excitation" in text and "ExctnMod = 0" in text
+    assert not (tmp_path / "s.3").exists()
+    text = _convert(corpus / "WEIS" / "ss_fitting_OC3_spar" / "spar.1", tmp_path / "t.1")
+    assert "no t.3" not in text and (tmp_path / "t.3").exists()
+
+
 def test_main_help_lists_what_convert_writes():
     result = CliRunner().invoke(main, ["--help"])
     line = " ".join(result.output.split())
