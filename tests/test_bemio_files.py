@@ -204,3 +204,16 @@ def test_no_displaced_volume_warning_when_known(tmp_path):
     with warnings.catch_warnings():
         warnings.simplefilter("error", CumminsWarning)
         write_bemio(ds, tmp_path / "w.h5")
+
+
+def test_missing_excitation_names_the_file_to_read(corpus, tmp_path):
+    """WEIS' OC4 semi (its .3 missing): the refusal named an option convert does not have
+    (--stiffness) for a variable that was not missing; now it names the excitation file."""
+    from cummins.cli import main
+
+    source = corpus / "WEIS" / "ss_fitting_OC4_semi" / "marin_semi.1"
+    result = CliRunner().invoke(main, ["convert", str(source), str(tmp_path / "s.h5")])
+    text = " ".join(result.output.split())
+    assert result.exit_code == 1 and "needs excitation_force" in text
+    assert "WAMIT .3" in text and "--stiffness" not in text and "hydrostatic" not in text
+    assert not (tmp_path / "s.h5").exists()

@@ -177,6 +177,16 @@ def test_qtfs_are_said_to_go_to_their_own_files(corpus, tmp_path):
     assert not (tmp_path / "s.12d").exists()
 
 
+def test_data_without_excitation_say_no_3_is_written(corpus, tmp_path):
+    """WEIS' OC4 semi (.1 .hst .12d .12s, its .3 missing): convert wrote s.1 and s.hst and
+    said nothing of the .3 HydroDyn reads with ExctnMod = 1; now it says so."""
+    text = _convert(corpus / "WEIS" / "ss_fitting_OC4_semi" / "marin_semi.1", tmp_path / "s.1")
+    assert "no s.3: the data hold no wave excitation" in text and "ExctnMod = 0" in text
+    assert not (tmp_path / "s.3").exists()
+    text = _convert(corpus / "WEIS" / "ss_fitting_OC3_spar" / "spar.1", tmp_path / "t.1")
+    assert "no t.3" not in text and (tmp_path / "t.3").exists()
+
+
 def test_main_help_lists_what_convert_writes():
     result = CliRunner().invoke(main, ["--help"])
     line = " ".join(result.output.split())
@@ -203,3 +213,26 @@ def test_info_describes_openfast_state_space_files(corpus, case, kind, states):
     assert listed == states
     if kind == "radiation":  # line 4: the states of each DOF
         assert sum(int(x) for x in path.read_text().splitlines()[3].split()[:6]) == states
+
+
+def test_a_hydrodyn_input_file_names_the_wamit_files_it_reads(corpus, tmp_path):
+    """ROSCO's RM1 HydroDyn input (PotFile "MHK_RM1_Floating", WAMITULEN 1): cummins says
+    which files to read instead of "unrecognised file format", and those files read."""
+    dat = corpus / "ROSCO" / "wamit_MHK_RM1_floating" / "MHK_RM1_Floating_HydroDyn.dat"
+    result = CliRunner().invoke(main, ["info", str(dat)])
+    text = " ".join(result.output.split())
+    assert result.exit_code == 1 and "unrecognised" not in text
+    assert "HydroDyn input file" in text and "--ulen 1" in text
+    named = text.split("cummins info ")[-1].split()[0]
+    assert named == str(dat.parent / "MHK_RM1_Floating.1")
+    assert _read(named, ulen=1.0).sizes["omega"] == 420
+    # PotMod = 0: no potential-flow data to point at
+    lines = dat.read_text().splitlines()
+    lines = [
+        ("0   PotMod   - no potential flow" if "PotMod" in line.split()[1:2] else line)
+        for line in lines
+    ]
+    off = tmp_path / "off_HydroDyn.dat"
+    off.write_text("\n".join(lines) + "\n")
+    result = CliRunner().invoke(main, ["info", str(off)])
+    assert result.exit_code == 1 and "PotMod = 0" in " ".join(result.output.split())

@@ -241,6 +241,12 @@ def _write_for_hydrodyn(ds, destination, source, limit_rows, force) -> None:
     )
     for line in prepared.notes:
         console.print(line)
+    if "excitation_force" not in ds:
+        console.print(
+            f"no {Path(destination).with_suffix('.3').name}: the data hold no wave excitation "
+            "(read the solver's excitation file with the run); without it HydroDyn needs "
+            "ExctnMod = 0 (no wave excitation), its .3 being read for ExctnMod = 1"
+        )
     console.print("HydroDyn: " + "; ".join(prepared.settings))
     if np.any(point.reshape(-1, 3)[:, 2] != 0):
         console.print(

@@ -456,6 +456,8 @@ def simulate_command(
         first_order = "excitation_force" in ds or second is None
         if not first_order:
             console.print("note: the data have no first-order excitation: second-order force only")
+        if second is not None and second_order != "mean" and sea is not None:
+            _note_lightly_damped(vessel, sea)
         with progress_bar() as bar:
             task = bar.add_task(
                 f"simulating {duration:g} s, {title}, heading {heading:g}°", total=1.0
@@ -598,6 +600,31 @@ def _check_spread_directions(ds, vessel, sea, heading, spreading, directions) ->
             f"{heading:g}°, beyond the data's headings ({gap})",
             hint="give a larger s (a narrower spread), or data computed for more headings",
         ) from None
+
+
+def _note_lightly_damped(vessel, sea) -> None:
+    """Name the modes below the sea's peak frequency that the slowly varying force drives
+    at resonance with less than 1 % of critical damping (:mod:`cummins.timedomain.modes`)."""
+    from cummins.timedomain.modes import lightly_damped_modes
+
+    if np.isfinite(sea.tp) and sea.tp > 0:
+        peak = 2 * np.pi / float(sea.tp)
+    else:  # regular waves, a record's components: the largest
+        peak = float(np.asarray(sea.omega)[int(np.argmax(np.abs(sea.amplitude)))])
+    modes = lightly_damped_modes(vessel, below=peak)
+    if not modes:
+        return
+    listed = ", ".join(
+        f"{mode.dof} {mode.period:.3g} s ({100 * mode.zeta:.2g} % of critical)" for mode in modes
+    )
+    console.print(
+        f"[yellow]note:[/] {escape(f'lightly damped modes below the sea peak: {listed}')}: the "
+        "slowly varying force drives them at resonance, and only the damping given limits "
+        "their response (radiation damping vanishes at low frequency): give the moorings' "
+        "and the viscous damping (--external-damping, --viscous-damping, "
+        "--quadratic-damping)",
+        highlight=False,
+    )
 
 
 def _check_time_step(dt, ds, sea, state_matrix=None) -> None:

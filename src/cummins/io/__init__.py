@@ -179,6 +179,11 @@ def detect_format(path: str | os.PathLike[str]) -> tuple[str, Path]:
         raise HydroDataError("the file is empty", path=p)
     names = [name for name, fmt in FORMATS.items() if fmt.sniff(p)]
     if not names:
+        from cummins.io.hydrodyn_input import hydrodyn_hint
+
+        hydrodyn = hydrodyn_hint(p)
+        if hydrodyn is not None:
+            raise HydroDataError("not solver output", path=p, hint=hydrodyn)
         raise HydroDataError(
             "unrecognised file format",
             path=p,

@@ -110,9 +110,17 @@ def write_bemio(
         raise HydroDataError(
             f"WEC-Sim needs {' and '.join(missing)}, which the data do not hold",
             path=path,
-            hint="read the solver's excitation / hydrostatics files with the run, or "
-            "give the stiffness (--stiffness / cummins.with_external_terms is not it: "
-            "WEC-Sim wants the hydrostatic matrix)",
+            hint="read with the run "
+            + "; ".join(
+                {
+                    "excitation_force": "the excitation file beside it (WAMIT .3 or its "
+                    ".out, NEMOH ExcitationForce.tec, VERES .re8)",
+                    "hydrostatic_stiffness": "the hydrostatics (WAMIT .hst or its .out, "
+                    "NEMOH KH.dat): WEC-Sim wants the hydrostatic matrix, an external "
+                    "stiffness is not it",
+                }[v]
+                for v in missing
+            ),
         )
     modes = _modes_per_body(ds, path)
     copy = ds

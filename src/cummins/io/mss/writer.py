@@ -32,6 +32,61 @@ def _speed_slices(ds: xr.Dataset) -> tuple[list[xr.Dataset], NDArray]:
     return [ds], np.array([speed])
 
 
+def _with_motion_rao(ds: xr.Dataset, path: Path) -> xr.Dataset:
+    """The data with motion RAOs for ``vessel.motionRAO``: the solver's, else cummins'.
+
+    MSS's ``wamit2vessel`` fills ``motionRAO`` from WAMIT's ``.4`` and its VERES readers
+    from ``.re1``; data without them (WAMIT's ``.1 .3 .hst .frc``) get the RAOs of the
+    coupled equation of motion, [−ω²(M + A) + iω(B + B_add) + C + C_add] X = F
+    (:func:`cummins.seakeeping.frequency_domain.motion_rao`, de Haan (2022) eqs. 2.3–2.4),
+    as WAMIT computes its ``.4``; a warning says so, or why none are written."""
+    if "rao" in ds or "excitation_force" not in ds or "wave_direction" not in ds.dims:
+        return ds
+    missing = [v for v in ("inertia_matrix", "hydrostatic_stiffness") if v not in ds]
+    if "forward_speed" in ds.dims and ds.sizes["forward_speed"] > 1:
+        missing.append("one forward speed (the data hold several)")
+    if missing:
+        warnings.warn(
+            f"{path.name}: vessel.motionRAO not written: the data hold no motion RAOs, and "
+            f"lack {', '.join(missing)} to compute them (give the inertia: --mass, "
+            "--center-of-gravity, --radii-of-gyration)",
+            HydroDataWarning,
+            stacklevel=3,
+        )
+        return ds
+    from cummins.errors import AssumptionWarning
+    from cummins.seakeeping.frequency_domain import motion_rao
+
+    try:
+        with warnings.catch_warnings():
+            warnings.simplefilter("ignore")
+            rao = motion_rao(ds)
+    except (HydroDataError, ValueError, np.linalg.LinAlgError) as exc:
+        warnings.warn(
+            f"{path.name}: vessel.motionRAO not written: the data hold no motion RAOs and "
+            f"cummins' could not be computed ({exc})",
+            HydroDataWarning,
+            stacklevel=3,
+        )
+        return ds
+    out = ds.copy()
+    out["rao"] = rao.rename(dof="radiating_dof").transpose(
+        "omega", "wave_direction", "radiating_dof"
+    )
+    out["rao"].attrs = {
+        "description": "motion RAOs computed by cummins (motion_rao), not by the solver"
+    }
+    add_history(out, "motion RAOs computed by cummins.seakeeping.frequency_domain.motion_rao")
+    warnings.warn(
+        f"{path.name}: vessel.motionRAO computed by cummins (the data hold no solver RAOs): "
+        "the coupled equation of motion with the data's inertia, restoring and additional "
+        "damping (no viscous roll damping), as WAMIT's .4",
+        AssumptionWarning,
+        stacklevel=3,
+    )
+    return out
+
+
 def _matrix_stack(datasets: Sequence[xr.Dataset], name: str, with_limits: bool) -> NDArray:
     """6×6×N×S array of a (omega, i, j) variable, with the ω = 0 / ∞ entries if asked."""
     out = []
@@ -175,14 +230,15 @@ def write_mss(ds: xr.Dataset, path: str | os.PathLike[str]) -> Path:
     holds the finite grid only (the VERES layout) and the limits go to
     ``vessel.cummins``. Also written: ``MRB`` (zeros if unknown), ``C`` repeated per
     frequency, ``Bv`` (``additional_damping``, else zeros), ``headings`` (rad, as in the
-    data, not completed by symmetry), ``velocities``, ``forceRAO``, ``motionRAO`` and
-    ``driftfrc`` (surge, sway and yaw only: heave, roll and pitch drift are lost) when
-    present, ``main`` (``name``, ``rho``, ``g``, ``m``, ``nabla``, ``CG`` and ``CB`` as
-    FSD vectors from CO, ``k44`` … (about CG), ``Lpp``, ``B``, ``T``, ``GM_T``, ``GM_L``, ``C_B``,
-    ``Lwl``, ``S`` when known: :func:`_stability_fields`; a warning names those the data
-    do not give, and data about a point other than CO or CG) and
-    ``hydrodynamic_axes = 'FSD'``, as current MSS does. ``vessel.cummins`` keeps the
-    history, the reference point and what MSS has no field for; MSS ignores it.
+    data, not completed by symmetry), ``velocities``, ``forceRAO``, ``motionRAO`` (the
+    solver's, else cummins', :func:`_with_motion_rao`) and ``driftfrc`` (surge, sway and yaw
+    only: heave, roll and pitch drift are lost) when present, ``main`` (``name``, ``rho``,
+    ``g``, ``m``, ``nabla``, ``CG`` and ``CB`` as FSD vectors from CO, ``k44`` … (about CG),
+    ``Lpp``, ``B``, ``T``, ``GM_T``, ``GM_L``, ``C_B``, ``Lwl``, ``S`` when known:
+    :func:`_stability_fields`; a warning names those the data do not give, and data about a
+    point other than CO or CG) and ``hydrodynamic_axes = 'FSD'``, as current MSS does.
+    ``vessel.cummins`` keeps the history, the reference point and what MSS has no field
+    for; MSS ignores it.
 
     Parameters
     ----------
@@ -204,6 +260,7 @@ def write_mss(ds: xr.Dataset, path: str | os.PathLike[str]) -> Path:
             path=path,
             hint="select one body's six DOFs first",
         )
+    ds = _with_motion_rao(ds, path)
     if "wave_direction" in ds.dims:
         ds = ds.assign_coords(wave_direction=np.mod(ds.wave_direction.values, 2 * np.pi))
     out = change_axes(ds, "z-down")
