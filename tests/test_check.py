@@ -88,6 +88,29 @@ def test_a_restoring_term_negative_by_round_off_is_zero(roll, severity):
         assert "is zero" in found[0].message
 
 
+def test_damping_indefinite_within_the_noise_says_what_fit_does():
+    """B(ω) with a scaled eigenvalue of −5e-4 at one frequency (below the check's noise,
+    1e-3): ok, as before, but the line says that ``fit`` takes the nearest positive
+    semidefinite damping there (a two-body buoy: check "positive semidefinite", fit "not
+    positive semi-definite at 40 frequencies", and nothing tied the two)."""
+    from cummins.check.common import _diag_scale
+
+    ds = _clean_dataset()
+    b = ds.radiation_damping.values
+    s = _diag_scale(b)
+    k = 30
+    scaled = b[k] * s[:, None] * s[None, :]
+    lam, vec = np.linalg.eigh(scaled)
+    largest = np.linalg.eigvalsh(b * s[None, :, None] * s[None, None, :])[:, -1].max()
+    scaled += (-5e-4 * largest - lam[0]) * np.outer(vec[:, 0], vec[:, 0])
+    b[k] = scaled / (s[:, None] * s[None, :])
+    (found,) = cummins.check(ds).by_check("damping_positive")
+    assert found.severity == "ok" and found.value == pytest.approx(-5e-4, rel=1e-3)
+    assert "`cummins fit` takes the nearest positive semidefinite damping" in found.message
+    (clean,) = cummins.check(_clean_dataset()).by_check("damping_positive")
+    assert clean.value > 0 and "nearest" not in clean.message
+
+
 def test_asymmetry_and_added_mass_inf_errors():
     ds = _clean_dataset()
     ds.added_mass.values[:, 1, 5] *= 1.5

@@ -152,3 +152,17 @@ def test_negligible_series_by_kind():
     peaks = [1.0, 1e-7, 0.02, 1e-9, 0.5]
     rotations = [False, False, True, True, True]
     assert negligible_series(peaks, rotations).tolist() == [False, True, False, True, False]
+
+
+def test_the_peak_of_equal_headings_is_the_first():
+    """An axisymmetric buoy's PTO power is the same at 0, 30, 60 and 90° up to the
+    solver's rounding: the table named 60°, where the rounding put the largest; now the
+    first of the tied headings, and a real peak where it is."""
+    from cummins.display import peak_index
+
+    omega = np.linspace(0.5, 2.0, 7)
+    power = np.tile(np.exp(-((omega - 1.2) ** 2))[:, None], (1, 4))
+    power[:, 2] *= 1 + 3e-15  # the rounding
+    assert peak_index(power) == (3, 0)
+    power[:, 3] *= 1.01  # a heading that is larger
+    assert peak_index(power) == (3, 3)

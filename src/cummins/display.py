@@ -225,3 +225,14 @@ def _prefixed_unit(value: float, base: str) -> tuple[float, str]:
         if size >= factor:
             return factor, prefix + base
     return 1.0, base
+
+
+def peak_index(values: ArrayLike, rtol: float = 1e-9) -> tuple[int, int]:
+    """(frequency, heading) of the largest of ``values`` (omega, heading): among headings
+    whose peaks tie within ``rtol`` (an axisymmetric buoy's, the same at every heading up
+    to the solver's rounding) the first, so that a table does not name the heading the
+    rounding picked (60° of 0, 30, 60 and 90°) as if the peak were there."""
+    a = np.abs(np.nan_to_num(np.asarray(values, dtype=float)))
+    peaks = a.max(axis=0)
+    j = int(np.flatnonzero(peaks >= peaks.max() * (1.0 - rtol))[0])
+    return int(np.argmax(a[:, j])), j

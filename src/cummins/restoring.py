@@ -340,8 +340,10 @@ def moved_restoring(
         C(O_new) = Hᵀ C(O_old) H + W((ρ∇ − m) (O_new − O_old)),
 
     C₄₄ and C₅₅ −(ρ∇ − m) g Δz, with m = 0 for the hydrostatics alone. A restoring
-    recorded to hold the body's own weight (ρ∇), or a given mass when the displaced
-    volume is not known (taken as in equilibrium), is left to the screw transform.
+    recorded to hold the body's own weight (ρ∇), a mass within
+    :data:`~cummins.mechanics.preload.BALANCED` of it (the rounding, as the joints'
+    pre-load takes it) or a given mass when the displaced volume is not known (taken as
+    in equilibrium) is left to the screw transform.
 
     Returns
     -------
@@ -353,6 +355,8 @@ def moved_restoring(
     """
     if "hydrostatic_stiffness" not in ds:
         return ds, ""
+    from cummins.mechanics.preload import BALANCED
+
     groups = bodies(ds)
     shift = np.asarray(new, dtype=float).reshape(-1, 3) - np.asarray(old, dtype=float).reshape(
         -1, 3
@@ -378,8 +382,8 @@ def moved_restoring(
                 unknown.append(body or "the body")
             continue
         net = rho * volumes[k] - held  # kg: the static load (ρ∇ − m) g
-        if abs(net) <= 1e-9 * rho * volumes[k]:
-            continue
+        if abs(net) <= BALANCED * max(rho * volumes[k], abs(held)):
+            continue  # floating freely up to the rounding: no load, as the joints' pre-load
         load = weight_stiffness(net * step, g, axes)
         index = _rigid_index(labels, body)
         for a, i in index.items():

@@ -208,7 +208,14 @@ def _check_damping(ds: xr.Dataset) -> list[Finding]:
                     "damping_positive",
                     "ok",
                     f"B(ω) positive semidefinite at all {w.size} frequencies{suffix} "
-                    f"(smallest scaled eigenvalue {rel.min():.2g})",
+                    f"(smallest scaled eigenvalue {rel.min():.2g}"
+                    + (
+                        f", within the solver's noise {-NEGATIVE_DAMPING_TOL:g}: `cummins "
+                        "fit` takes the nearest positive semidefinite damping where it is "
+                        "below zero and says so)"
+                        if rel.min() < 0
+                        else ")"
+                    ),
                     value=float(rel.min()),
                 )
             )

@@ -52,6 +52,7 @@ from cummins.cli.html_page import Section as Section
 from cummins.cli.html_page import _note, failures_html, figure_html, table_html
 from cummins.cli.html_page import render_html as render_html
 from cummins.cli.html_pto import pto_batch_sections, pto_rao_sections, pto_run_sections
+from cummins.display import peak_index
 from cummins.errors import CumminsError, check_writable
 from cummins.files import files_read, fitted_data_file, refuse_overwriting_inputs, replacing
 from cummins.hydrodb import is_rotation
@@ -246,7 +247,7 @@ def rao_table_html(rao: xr.DataArray) -> str:
     rows = []
     for dof in rao.dof.values:
         amp = np.abs(rao.sel(dof=dof).transpose("omega", "wave_direction").values)
-        i, j = np.unravel_index(int(np.argmax(amp)), amp.shape)
+        i, j = peak_index(amp)
         rows.append(
             [
                 str(dof),

@@ -31,7 +31,7 @@ from cummins.cli.system_options import (
     system_from_options,
     system_options,
 )
-from cummins.display import power_text
+from cummins.display import peak_index, power_text
 from cummins.dofs import bodies, is_rotation
 
 #: Options that take a list of numbers: ``--headings 0 45 90`` (as well as repeated).
@@ -324,8 +324,8 @@ def pto_table(pto) -> Table:
         table.add_column(column, justify="right")
     w = pto.omega.values
     for name in pto.pto.values:
-        power = pto.pto_power.sel(pto=name).values
-        i, j = np.unravel_index(int(np.argmax(power)), power.shape)
+        power = pto.pto_power.sel(pto=name).transpose("omega", "wave_direction").values
+        i, j = peak_index(power)
         table.add_row(
             str(name),
             power_text(power[i, j], "/m²"),
@@ -346,8 +346,8 @@ def rao_table(rao) -> Table:
     for column in ("DOF", "max |RAO|", "unit", "at ω [rad/s]", "period [s]", "heading [deg]"):
         table.add_column(column, justify="right")
     for dof in rao.dof.values:
-        amp = np.abs(rao.sel(dof=dof).values)
-        i, j = np.unravel_index(int(np.argmax(amp)), amp.shape)
+        amp = np.abs(rao.sel(dof=dof).transpose("omega", "wave_direction").values)
+        i, j = peak_index(amp)
         rotation = is_rotation(dof)
         table.add_row(
             str(dof),

@@ -650,7 +650,8 @@ def _summary(run, regular: bool = False) -> None:
     columns = ("DOF", *(("mean",) if mean else ()), first, "max |ξ|", "unit")
     for column in columns:
         table.add_column(column, justify="right")
-    for row in motion_statistics(run, regular):
+    rows = motion_statistics(run, regular)
+    for row in rows:
         table.add_row(
             row.dof,
             *((f"{row.mean:.4g}",) if mean else ()),
@@ -659,6 +660,7 @@ def _summary(run, regular: bool = False) -> None:
             row.unit,
         )
     console.print(table)
+    _say_large_rotations(rows)
     pto = f", PTOs {run.attrs['energy_pto']:.4g} J" if run.attrs.get("energy_pto") else ""
     work = run.attrs.get("energy_nonlinear")
     nonlinear = f", nonlinear forces {work:.4g} J" if work else ""
@@ -667,4 +669,27 @@ def _summary(run, regular: bool = False) -> None:
         f"{run.attrs['energy_radiated']:.4g} J, viscous {run.attrs['energy_viscous']:.4g} J"
         f"{pto}, balance error "
         f"{run.attrs['energy_relative_residual']:.2g}"
+    )
+
+
+#: Degrees: a rotation beyond which the linear model's small-motion assumption is said to
+#: be far from holding (sin θ ≈ θ to 5 % at 30°).
+LARGE_ROTATION = 30.0
+
+
+def _say_large_rotations(rows) -> None:
+    """One note when a rotation of the run exceeds :data:`LARGE_ROTATION`: the equation
+    of motion, the restoring and the joints are linearised about the mean position
+    (small motions), and potential flow has no viscous damping."""
+    large = [r for r in rows if r.unit == "deg" and r.maximum > LARGE_ROTATION]
+    if not large:
+        return
+    worst = max(large, key=lambda r: r.maximum)
+    console.print(
+        f"[yellow]note:[/] {escape(worst.dof)} turns by up to {worst.maximum:.3g}° "
+        f"({np.radians(worst.maximum):.3g} rad): the model is linear (small motions: the "
+        "restoring, the wave loads and the joints about the mean position) and holds no "
+        "viscous damping unless given (--viscous-damping, --quadratic-damping); take "
+        "motions this large as a resonance to damp, not a prediction",
+        highlight=False,
     )
