@@ -90,6 +90,15 @@ from cummins.validation import check_simulation_size
     "water, with a warning.",
 )
 @click.option(
+    "--main-dimensions",
+    type=(positive("m"), positive("m"), positive("m")),
+    default=None,
+    metavar="LPP B T",
+    help="Length between perpendiculars, breadth and draught of the --data vessel in m, "
+    "when its files do not give them (WAMIT: MSS's tanker is 246 46 10); they size the "
+    "surge resistance, the cross-flow drag, the wind areas and the thrusters' positions.",
+)
+@click.option(
     "--yaw-setpoint",
     type=heading_degrees(),
     default=0.0,
@@ -115,6 +124,7 @@ from cummins.validation import check_simulation_size
         "current_from": ("current_speed", lambda v: v > 0, "above 0"),
         "wind_from": ("wind_speed", lambda v: v > 0, "above 0"),
         "water_depth": "data_path",
+        "main_dimensions": "data_path",
     }
 )
 @reports_errors
@@ -129,6 +139,7 @@ def dp_demo_command(
     wind_from,
     data_path,
     water_depth,
+    main_dimensions,
     yaw_setpoint,
     second_order,
     keep_suspect,
@@ -177,7 +188,9 @@ def dp_demo_command(
     prepare_outputs(*(out / n for n in names), force=force)
     # before the model is built: the run's size (the S-175 model has about 60 states)
     check_simulation_size(duration, dt, 60, 54, option="--duration")
-    ds, damping = scenario_data(data_path, second_order, water_depth=water_depth)
+    ds, damping = scenario_data(
+        data_path, second_order, water_depth=water_depth, main_dimensions=main_dimensions
+    )
     with progress_bar() as bar:
         task = bar.add_task(f"simulating {duration:g} s of DP", total=1.0)
         scenario = run_scenario(
