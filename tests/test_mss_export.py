@@ -216,3 +216,24 @@ def test_wamit_struct_has_motion_raos_as_mss_tanker(shared_data, tmp_path):
     with pytest.warns(HydroDataWarning, match="motionRAO not written.*--mass"):
         write_mss(bare, tmp_path / "b.mat")
     assert not hasattr(load(tmp_path / "b.mat"), "motionRAO")
+
+
+def test_convert_one_speed_of_a_multi_speed_struct(shared_data, tmp_path):
+    """MSS's s175.mat holds 5 speeds: convert to WAMIT (or BEMIO) stopped with a Python
+    hint (``ds.sel(forward_speed=0.0)``) the command line cannot follow. --speed writes one:
+    the .1 reads back as the struct's zero-speed added mass (z-up, 7 digits), and a .mat
+    at 10 kn holds that speed alone."""
+    source = shared_data / "mss" / "s175" / "s175.mat"
+    refused = CliRunner().invoke(main, ["convert", str(source), str(tmp_path / "a.1")])
+    assert refused.exit_code == 2 and "choose one with --speed" in refused.output
+    _run(["convert", source, tmp_path / "s.1", "--speed", "0"])
+    with warnings.catch_warnings():
+        warnings.simplefilter("ignore")
+        back = cummins.read(tmp_path / "s.1", rho=1025.0, g=9.81)
+        data = cummins.change_axes(cummins.read(source).sel(forward_speed=0.0), "z-up")
+    a, b = back.added_mass.values, data.added_mass.values
+    assert np.abs(a - b).max() <= 1e-6 * np.abs(b).max()
+    _run(["convert", source, tmp_path / "u.mat", "--speed", "5.14444"])
+    vessel = scipy.io.loadmat(tmp_path / "u.mat", squeeze_me=True, struct_as_record=False)
+    assert float(vessel["vessel"].velocities) == pytest.approx(5.14444)
+    assert np.shape(vessel["vessel"].A) == (6, 6, 36)

@@ -19,6 +19,8 @@ from cummins.cli.common import (
     read_options,
     reports_errors,
     select_body,
+    select_speed,
+    speed_option,
 )
 from cummins.cli.option_rules import Command
 from cummins.errors import CumminsWarning
@@ -78,6 +80,10 @@ from cummins.errors import CumminsWarning
     "into the .h5's hydro_coeffs/radiation_damping/state_space (A, B, C, D, it, K), which "
     "WEC-Sim reads. The model must be of these very data (its DOFs and data fingerprint).",
 )
+@speed_option(
+    "Of data at several forward speeds, write this one only. Needed for .1, .h5, .12d and "
+    ".12s (WAMIT and BEMIO files hold one speed); .nc and .mat hold them all without it."
+)
 @force_option("Overwrite DESTINATION if it exists.")
 @reports_errors
 def convert_command(
@@ -93,6 +99,7 @@ def convert_command(
     volumes,
     limit_rows,
     model_path,
+    speed,
     force,
 ):
     """Convert SOURCE to canonical NetCDF (.nc), a BEMIO .h5 for WEC-Sim, WAMIT numeric
@@ -146,6 +153,8 @@ def convert_command(
     prepare_outputs(destination, force=force)
     model = _load_model(model_path) if model_path is not None else None
     ds = read_hydrodb(source, format_, rho, g, ulen)
+    if speed is not None or Path(destination).suffix.lower() not in (".nc", ".mat"):
+        ds = select_speed(ds, speed)
     if body is not None:
         ds = select_body(ds, body)
     if volumes:
@@ -159,7 +168,9 @@ def convert_command(
     if reference_point is not None:
         ds = move_reference_point(ds, reference_point)
     if Path(destination).suffix.lower() == ".1":
-        _write_for_hydrodyn(ds, destination, source, limit_rows, force)
+        # the commands it prints name the same speed
+        again = source if speed is None else f"{source} --speed {speed:g}"
+        _write_for_hydrodyn(ds, destination, again, limit_rows, force)
         return
     if model is not None:
         _check_model(model, ds, model_path)
