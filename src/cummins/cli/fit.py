@@ -363,6 +363,9 @@ def fit_command(
     failures = model.attrs.get("failures", [])
     for failure in failures:
         console.print(f"[bold red]failure:[/bold red] {escape(failure)}", highlight=False)
+    remedy = inconsistent_data_remedy(failures, model.attrs.get("data_notes", []), omega_max)
+    if remedy:
+        console.print(f"[yellow]note:[/yellow] {escape(remedy)}", highlight=False)
     speed_value = float(ds.coords["forward_speed"]) if "forward_speed" in ds.coords else 0.0
     if failures and speed_value:
         console.print(
@@ -562,6 +565,30 @@ def table_label(dof: str) -> str:
     if body.startswith("body") and body[4:].isdigit():
         body = "b" + body[4:]
     return f"{body}.{name}"
+
+
+def inconsistent_data_remedy(failures, data_notes, omega_max=None) -> str | None:
+    """For failed DOFs whose data are not causal above some frequency (an irregular
+    frequency: the data notes' "A(ω) departs from what B(ω) implies from X rad/s", a
+    Kramers–Kronig test, Ogilvie (1964)), the --omega-max that leaves that part out."""
+    import re
+
+    starts = {}
+    for note in data_notes:
+        found = re.match(r"(\S+): A\(ω\) departs .*; fitted below ([0-9.eE+-]+) rad/s", note)
+        if found:
+            starts[found.group(1)] = float(found.group(2))
+    failed = {f.split(":", 1)[0] for f in failures}
+    named = {dof: w for dof, w in starts.items() if dof in failed}
+    if not named or (omega_max is not None and omega_max <= min(named.values())):
+        return None
+    w = min(named.values())
+    dofs = ", ".join(sorted(named, key=named.get))
+    return (
+        f"{dofs}: the data are not causal from {w:.4g} rad/s (an irregular frequency: "
+        f"cummins check): no causal model follows them there, and the R² counts them; "
+        f"--omega-max {w:.4g} fits the consistent part only"
+    )
 
 
 def fit_notes(model) -> list[str]:
