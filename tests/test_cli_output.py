@@ -51,6 +51,18 @@ def test_info_in_a_pipe_names_the_whole_file(tanker_deep, tmp_path):
     assert str(tanker_deep) in row and "(wamit)" in row
 
 
+def test_info_of_a_converted_file_names_the_file_read(tmp_path):
+    """`info x.h5` (or .nc) of a file convert wrote named only the solver's file its
+    data came from ("file tanker.1 (wamit)"), not the file read, nor its format."""
+    source = cummins.demo_files() / "tanker.1"
+    for name, kind in (("t.nc", "netcdf"), ("t.h5", "bemio")):
+        _run("convert", str(source), str(tmp_path / name), cwd=tmp_path)
+        out = _run("info", name, cwd=tmp_path)
+        row = " ".join(next(line for line in out.splitlines() if line.startswith("file")).split())
+        assert row.startswith(f"file {name} ({kind}): the data of "), row
+        assert "tanker.1 (wamit)" in row
+
+
 def test_kernel_in_a_pipe_prints_every_number_in_full(tanker_deep, tmp_path):
     out = _run("kernel", str(tanker_deep), "-o", "K.nc", cwd=tmp_path)
     assert "…" not in out and "\x1b[" not in out  # full numbers, no spinner
