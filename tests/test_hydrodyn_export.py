@@ -177,7 +177,7 @@ def test_qtfs_are_said_to_go_to_their_own_files(corpus, tmp_path):
     assert not (tmp_path / "s.12d").exists()
 
 
-def test_data_without_excitation_say_no_3_is_written(corpus, tmp_path):
+def test_data_without_excitation_or_hydrostatics_say_so(corpus, tmp_path):
     """WEIS' OC4 semi (.1 .hst .12d .12s, its .3 missing): convert wrote s.1 and s.hst and
     said nothing of the .3 HydroDyn reads with ExctnMod = 1; now it says so."""
     text = _convert(corpus / "WEIS" / "ss_fitting_OC4_semi" / "marin_semi.1", tmp_path / "s.1")
@@ -185,6 +185,12 @@ def test_data_without_excitation_say_no_3_is_written(corpus, tmp_path):
     assert not (tmp_path / "s.3").exists()
     text = _convert(corpus / "WEIS" / "ss_fitting_OC3_spar" / "spar.1", tmp_path / "t.1")
     assert "no t.3" not in text and (tmp_path / "t.3").exists()
+    assert "no t.hst" not in text and (tmp_path / "t.hst").exists()
+    # RAFT's copy of the spar has no .hst: said as well
+    raft = corpus / "RAFT" / "wamit_OC3_spar_no_A0_Ainf_rows" / "spar.1"
+    text = _convert(raft, tmp_path / "r.1")
+    assert "no r.hst: the data hold no hydrostatics" in text and "no r.3" not in text
+    assert not (tmp_path / "r.hst").exists()
 
 
 def test_main_help_lists_what_convert_writes():

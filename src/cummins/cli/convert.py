@@ -255,6 +255,12 @@ def _write_for_hydrodyn(ds, destination, source, limit_rows, force) -> None:
             "(read the solver's excitation file with the run); without it HydroDyn needs "
             "ExctnMod = 0 (no wave excitation), its .3 being read for ExctnMod = 1"
         )
+    if "hydrostatic_stiffness" not in ds:
+        console.print(
+            f"no {Path(destination).with_suffix('.hst').name}: the data hold no hydrostatics "
+            "(read the solver's .hst or KH file with the run), and HydroDyn reads the .hst "
+            "of its PotFile with PotMod = 1"
+        )
     console.print("HydroDyn: " + "; ".join(prepared.settings))
     if np.any(point.reshape(-1, 3)[:, 2] != 0):
         console.print(
