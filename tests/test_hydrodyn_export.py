@@ -242,3 +242,26 @@ def test_a_hydrodyn_input_file_names_the_wamit_files_it_reads(corpus, tmp_path):
     off.write_text("\n".join(lines) + "\n")
     result = CliRunner().invoke(main, ["info", str(off)])
     assert result.exit_code == 1 and "PotMod = 0" in " ".join(result.output.split())
+
+
+def test_openfast_models_say_their_reference_point(corpus, tmp_path):
+    """NEMOH's OC3 run is about (0, 0, -78) m: `fit --openfast` and `fit-excitation
+    --openfast` wrote .ss/.ssexctn about that point without a word, where HydroDyn takes
+    PtfmRefzt and the .1/.hst (convert's, often moved to the origin) must agree. They say
+    it now; about the origin (WEIS' WAMIT spar) nothing is added."""
+    nemoh = str(corpus / "WEC-Sim" / "nemoh_v3.0.2_OC3_Hywind_spar")
+    excitation = ["fit-excitation", nemoh, "-o", str(tmp_path / "b.nc"), "--heading", "0"]
+    runs = [
+        ["fit", nemoh, "-o", str(tmp_path / "a.nc"), "--openfast", str(tmp_path / "a.ss")],
+        [*excitation, "--openfast", str(tmp_path / "b.ssexctn")],
+    ]
+    for args in runs:
+        result = CliRunner().invoke(main, args)
+        assert result.exit_code == 0, result.output
+        text = " ".join(result.output.split())
+        assert "moments about [0.0, 0.0, -78.0] m (z-up), the data's reference point" in text
+    spar = str(corpus / "WEIS" / "ss_fitting_OC3_spar" / "spar.1")
+    result = CliRunner().invoke(
+        main, ["fit", spar, "-o", str(tmp_path / "c.nc"), "--openfast", str(tmp_path / "c.ss")]
+    )
+    assert result.exit_code == 0 and "moments about" not in result.output

@@ -418,7 +418,26 @@ def openfast_states_note(model, path) -> str:
             f"; no states for {', '.join(empty)}: no fluid memory (flagged enabled, as "
             "HydroDyn requires of every DOF)"
         )
-    return text
+    return text + reference_point_clause(model.attrs)
+
+
+def reference_point_clause(attrs) -> str:
+    """For a HydroDyn file (z-up) of a model about a point other than the origin: the
+    point, which PtfmRefxt/yt/zt must give and the .1/.hst share ("" at the origin)."""
+    import numpy as np
+
+    point = np.asarray(attrs.get("reference_point", np.zeros(3)), dtype=float).reshape(-1, 3)
+    if attrs.get("axis_convention") == "z-down":  # the file is in z-up axes
+        point = point * np.array([1.0, -1.0, -1.0])
+    if not np.any(point != 0):
+        return ""
+    listed = "; ".join(str(np.round(p, 6).tolist()) for p in point + 0.0)
+    return (
+        f"; moments about {listed} m (z-up), the data's reference point: HydroDyn's "
+        "PtfmRefxt/yt/zt must give it, and its .1/.hst be about the same point (cummins "
+        "convert DATA x.1 prints them; for the origin, convert with --reference-point "
+        "0 0 0 and fit that .1)"
+    )
 
 
 def check_model_outputs(labels, *, mss_path=None, openfast=None) -> None:

@@ -197,6 +197,7 @@ def fit_excitation_command(
         Path(json_path).write_text(json.dumps(summary, indent=2) + "\n", encoding="utf-8")
         console.print(f"wrote {json_path}")
     if openfast:
+        from cummins.cli.fit import reference_point_clause
         from cummins.io.openfast_excitation import (
             openfast_ssexctn_from_model,
             write_openfast_ssexctn,
@@ -215,6 +216,7 @@ def fit_excitation_command(
                 else ""
             )
             + f", t_c {model.delays[0]:.4g} s, {int(model.orders[0].sum())} states)"
+            + reference_point_clause(model.attrs)
         )
     if plot_dir:
         from cummins.excitation_model.figures import plot_excitation_fit
