@@ -237,3 +237,24 @@ def test_convert_one_speed_of_a_multi_speed_struct(shared_data, tmp_path):
     vessel = scipy.io.loadmat(tmp_path / "u.mat", squeeze_me=True, struct_as_record=False)
     assert float(vessel["vessel"].velocities) == pytest.approx(5.14444)
     assert np.shape(vessel["vessel"].A) == (6, 6, 36)
+
+
+def test_convert_main_dimensions_into_the_struct(shared_data, tmp_path):
+    """WAMIT files give no main dimensions: the struct warned that vessel.main lacks Lpp,
+    B, T, C_B, Lwl, S with no way to give them. --main-dimensions (MSS's tanker.mat:
+    246, 46, 10 m) writes them, C_B = ∇/(Lpp B T) as MSS defines it, and the struct then
+    runs the DP scenario, which refused it for the lack of them."""
+    source = shared_data / "mss" / "tanker" / "tanker.1"
+    warned = _run(["convert", source, tmp_path / "a.mat"]).output
+    assert "--main-dimensions LPP B T" in " ".join(warned.split())
+    out = tmp_path / "t.mat"
+    text = _run(["convert", source, out, "--main-dimensions", "246", "46", "10"]).output
+    assert "lacks Lpp" not in text
+    ours = scipy.io.loadmat(out, squeeze_me=True, struct_as_record=False)["vessel"].main
+    mss = scipy.io.loadmat(
+        shared_data / "mss" / "tanker" / "tanker.mat", squeeze_me=True, struct_as_record=False
+    )["vessel"].main
+    for key in ("Lpp", "B", "T", "nabla"):
+        assert float(getattr(ours, key)) == pytest.approx(float(getattr(mss, key)), rel=1e-9)
+    assert float(ours.C_B) == pytest.approx(float(mss.nabla) / (246 * 46 * 10), rel=1e-9)
+    _run(["dp-demo", "-o", tmp_path / "dp", "--duration", "30", "--data", out])

@@ -13,6 +13,7 @@ from cummins.cli.common import (
     console,
     finite,
     force_option,
+    main_dimensions_option,
     positive,
     prepare_outputs,
     read_hydrodb,
@@ -21,6 +22,7 @@ from cummins.cli.common import (
     select_body,
     select_speed,
     speed_option,
+    with_main_dimensions,
 )
 from cummins.cli.option_rules import Command
 from cummins.errors import CumminsWarning
@@ -80,6 +82,11 @@ from cummins.errors import CumminsWarning
     "into the .h5's hydro_coeffs/radiation_damping/state_space (A, B, C, D, it, K), which "
     "WEC-Sim reads. The model must be of these very data (its DOFs and data fingerprint).",
 )
+@main_dimensions_option(
+    "Length between perpendiculars, breadth and draught of the ship in m, when the files "
+    "do not give them (WAMIT): an MSS .mat holds them in vessel.main (Lpp, B, T, and "
+    "C_B, Lwl, S from them), which MSS's functions read."
+)
 @speed_option(
     "Of data at several forward speeds, write this one only. Needed for .1, .h5, .12d and "
     ".12s (WAMIT and BEMIO files hold one speed); .nc and .mat hold them all without it."
@@ -99,6 +106,7 @@ def convert_command(
     volumes,
     limit_rows,
     model_path,
+    main_dimensions,
     speed,
     force,
 ):
@@ -157,6 +165,7 @@ def convert_command(
         ds = select_speed(ds, speed)
     if body is not None:
         ds = select_body(ds, body)
+    ds = with_main_dimensions(ds, main_dimensions)
     if volumes:
         ds = _with_volumes(ds, volumes)
     if to_mat:

@@ -12,6 +12,7 @@ from cummins.cli.common import (
     console,
     force_option,
     heading_degrees,
+    main_dimensions_option,
     non_negative,
     note_inputs,
     positive,
@@ -89,11 +90,7 @@ from cummins.validation import check_simulation_size
     "record it (VERES, MSS structs): the wave numbers of the wave loads. Default: deep "
     "water, with a warning.",
 )
-@click.option(
-    "--main-dimensions",
-    type=(positive("m"), positive("m"), positive("m")),
-    default=None,
-    metavar="LPP B T",
+@main_dimensions_option(
     help="Length between perpendiculars, breadth and draught of the --data vessel in m, "
     "when its files do not give them (WAMIT: MSS's tanker is 246 46 10); they size the "
     "surge resistance, the cross-flow drag, the wind areas and the thrusters' positions.",

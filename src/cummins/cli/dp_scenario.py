@@ -109,17 +109,9 @@ def scenario_data(
             f"DP needs the data at zero forward speed; they hold {float(ds.forward_speed):g} m/s",
             path=path,
         )
-    if main_dimensions is not None:
-        from cummins.hydrodb import add_history
+    from cummins.cli.common import with_main_dimensions
 
-        ds = ds.copy()
-        for key, value in zip(
-            ("ship_length", "ship_breadth", "ship_draught"), main_dimensions, strict=True
-        ):
-            ds.attrs[key] = float(value)
-        add_history(
-            ds, "main dimensions given: Lpp, B, T = {:g}, {:g}, {:g} m".format(*main_dimensions)
-        )
+    ds = with_main_dimensions(ds, main_dimensions)
     check_dp_data(ds, second_order)
     return ds, data_viscous_damping(ds)
 

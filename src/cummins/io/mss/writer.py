@@ -304,7 +304,13 @@ def write_mss(ds: xr.Dataset, path: str | os.PathLike[str]) -> Path:
     lacking = [key for key in MAIN_FIELDS if key not in main]
     if lacking:
         warnings.warn(
-            f"{path.name}: vessel.main lacks {', '.join(lacking)} (not in the data)",
+            f"{path.name}: vessel.main lacks {', '.join(lacking)} (not in the data)"
+            + (
+                "; --main-dimensions LPP B T (the attributes ship_length, ship_breadth, "
+                "ship_draught) gives Lpp, B, T, and C_B, Lwl, S follow"
+                if {"Lpp", "B", "T"} & set(lacking)
+                else ""
+            ),
             HydroDataWarning,
             stacklevel=2,
         )
