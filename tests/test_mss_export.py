@@ -258,3 +258,6 @@ def test_convert_main_dimensions_into_the_struct(shared_data, tmp_path):
         assert float(getattr(ours, key)) == pytest.approx(float(getattr(mss, key)), rel=1e-9)
     assert float(ours.C_B) == pytest.approx(float(mss.nabla) / (246 * 46 * 10), rel=1e-9)
     _run(["dp-demo", "-o", tmp_path / "dp", "--duration", "30", "--data", out])
+    # a WAMIT file has no field for them: refused, not dropped
+    dims = ["--main-dimensions", "246", "46", "10"]
+    _run(["convert", source, tmp_path / "w.1", *dims], code=2)

@@ -158,6 +158,12 @@ def convert_command(
             "OpenFAST or MSS)",
             param_hint="--model",
         )
+    if main_dimensions is not None and Path(destination).suffix.lower() not in (".nc", ".mat"):
+        raise click.BadParameter(
+            f"{destination}: WAMIT, BEMIO and QTF files have no field for the main "
+            "dimensions; write .mat (MSS's vessel.main) or .nc",
+            param_hint="--main-dimensions",
+        )
     prepare_outputs(destination, force=force)
     model = _load_model(model_path) if model_path is not None else None
     ds = read_hydrodb(source, format_, rho, g, ulen)
