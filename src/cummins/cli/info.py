@@ -233,10 +233,9 @@ def _file_row(path, format_, d) -> str:
     if not source:
         return f"{path} ({kind})"
     origin = Path(str(source))
-    same = origin.name == read.name or (
+    if origin.resolve() == read.resolve() or (
         read.is_dir() and read.resolve() in origin.resolve().parents
-    )
-    if same or origin.resolve() == read.resolve():
+    ):
         return f"{source} ({kind})"
     if format_ is None:
         from cummins.errors import HydroDataError
@@ -246,6 +245,9 @@ def _file_row(path, format_, d) -> str:
             format_ = detect_format(read)[0]
         except (HydroDataError, OSError, ValueError):  # only a label: the file was read
             format_ = "?"
+    # a file of the same run (WAMIT's .12d, .3 or .hst given for its .1)
+    if format_ == kind and origin.stem == read.stem and origin.parent == read.parent:
+        return f"{source} ({kind})"
     return f"{path} ({format_}): the data of {source} ({kind})"
 
 
