@@ -211,6 +211,17 @@ def test_wamit_struct_has_motion_raos_as_mss_tanker(shared_data, tmp_path):
         a = ours.motionRAO.amp[k] * np.exp(1j * ours.motionRAO.phase[k])
         b = mss.motionRAO.amp[k][:, :, 0] * np.exp(1j * mss.motionRAO.phase[k][:, :, 0])
         assert np.abs(a - b).max() <= 0.02 * np.abs(b).max(), k
+    # read back, they are known as cummins', and `rao` says so instead of "the solver's"
+    from cummins.io.mss.reader import RAO_BY_CUMMINS
+
+    with warnings.catch_warnings():
+        warnings.simplefilter("ignore")
+        assert cummins.read(tmp_path / "t.mat").rao.attrs["description"] == RAO_BY_CUMMINS
+    args = ["rao", tmp_path / "t.mat", "-o", tmp_path / "r.nc", "--headings", "90"]
+    assert "note:" not in _run(args).output  # the same equation, the same RAOs
+    text = " ".join(_run([*args, "--viscous-damping", "Roll", "5e8", "--force"]).output.split())
+    assert "the motion RAOs the file holds (cummins', computed when it was written)" in text
+    assert "the solver's" not in text
     # without the inertia, none, and the warning says what to give
     bare = ds.drop_vars("inertia_matrix")
     with pytest.warns(HydroDataWarning, match="motionRAO not written.*--mass"):

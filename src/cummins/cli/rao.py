@@ -256,7 +256,17 @@ def rao_command(
     console.print(rao_table(rao))
     if omega is None and system is None:
         apart = rao_against_data(rao, ds)
-        if apart:
+        from cummins.io.mss.reader import RAO_BY_CUMMINS
+
+        if apart and ds["rao"].attrs.get("description") == RAO_BY_CUMMINS:
+            listed = ", ".join(f"{dof} {100 * v:.0f} %" for dof, v in apart.items())
+            console.print(
+                f"note: the motion RAOs the file holds (cummins', computed when it was "
+                f"written) differ from these by more than {100 * RAO_DATA_TOLERANCE:.0f} % "
+                f"of their peak: {listed}: the options given here (damping, stiffness, "
+                "inertia) differ from the data's"
+            )
+        elif apart:
             listed = ", ".join(f"{dof} {100 * v:.0f} %" for dof, v in apart.items())
             console.print(
                 f"note: the data's own motion RAOs (the solver's) differ from these by more "
