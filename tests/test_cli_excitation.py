@@ -83,3 +83,18 @@ def test_openfast_ssexctn_needs_one_heading(corpus, tmp_path):
     content = read_openfast_ssexctn(ss)
     assert content.n_states == ExcitationModel.load(out).total_order
     assert f"{content.n_states} states" in result.output
+
+
+def test_openfast_ssexctn_says_the_wavedir_it_wrote(shared_data, tmp_path):
+    """MSS's S-175 (Fossen's z-down axes), head-quartering seas 150°: the file holds
+    HydroDyn's z-up heading, -150°, which SS_Excitation compares with WaveDir and stops
+    on a mismatch; the command printed "WaveDir 150 deg". It prints the file's value."""
+    out = tmp_path / "s.ssexctn"
+    args = ["fit-excitation", str(shared_data / "mss" / "s175" / "s175.mat"), "--speed", "0"]
+    args += ["-o", str(tmp_path / "e.nc"), "--heading", "150", "--nrmse", "0.12"]
+    result = CliRunner().invoke(main, [*args, "--openfast", str(out)])
+    assert result.exit_code == 0, result.output
+    written = float(out.read_text().splitlines()[1].split()[0])
+    assert written == -150.0
+    text = " ".join(result.output.split())
+    assert "WaveDir -150 deg, the data's 150 deg in their z-down axes" in text

@@ -51,6 +51,23 @@ def test_info_in_a_pipe_names_the_whole_file(tanker_deep, tmp_path):
     assert str(tanker_deep) in row and "(wamit)" in row
 
 
+def test_info_of_a_converted_file_names_the_file_read(tmp_path):
+    """`info x.h5` (or .nc) of a file convert wrote named only the solver's file its
+    data came from ("file tanker.1 (wamit)"), not the file read, nor its format."""
+    for f in cummins.demo_files().glob("tanker.*"):
+        shutil.copy(f, tmp_path / f.name)
+
+    def row(name):
+        out = _run("info", name, cwd=tmp_path)
+        return " ".join(next(line for line in out.splitlines() if line.startswith("file")).split())
+
+    for name, kind in (("t.nc", "netcdf"), ("t.h5", "bemio"), ("tanker.nc", "netcdf")):
+        _run("convert", "tanker.1", name, cwd=tmp_path)
+        assert row(name) == f"file {name} ({kind}): the data of tanker.1 (wamit)"
+    # a file of the run itself names the run's file, as before
+    assert row("tanker.3") == "file tanker.1 (wamit)"
+
+
 def test_kernel_in_a_pipe_prints_every_number_in_full(tanker_deep, tmp_path):
     out = _run("kernel", str(tanker_deep), "-o", "K.nc", cwd=tmp_path)
     assert "…" not in out and "\x1b[" not in out  # full numbers, no spinner

@@ -132,6 +132,34 @@ def test_cli_dp_demo_names_what_the_data_lack(shared_data, tmp_path):
         scenario_data(path)
 
 
+def test_cli_dp_demo_main_dimensions_of_wamit_files(shared_data, tmp_path):
+    """WAMIT's tanker.1 lacks the main dimensions, and the hint said to convert the files
+    with MSS: dp-demo now takes them (--main-dimensions, MSS's tanker.mat's Lpp, B, T), and
+    the hint names the option. The DP holds the tanker within a few metres."""
+    from cummins.cli.dp_scenario import scenario_data
+
+    data = shared_data / "mss" / "tanker" / "tanker.1"
+    refused = CliRunner().invoke(main, ["dp-demo", "-o", str(tmp_path / "a"), "--data", str(data)])
+    assert refused.exit_code == 1 and "--main-dimensions LPP B T" in refused.output
+    out = tmp_path / "dp"
+    args = ["dp-demo", "-o", str(out), "--duration", "120", "--data", str(data)]
+    result = CliRunner().invoke(main, [*args, "--main-dimensions", "246", "46", "10"])
+    assert result.exit_code == 0, result.output
+    run = xr.open_dataset(out / "run.nc", engine="h5netcdf")
+    assert run.attrs["check_watch_circle_m"] < 20.0
+    ds, _ = scenario_data(data, main_dimensions=(246.0, 46.0, 10.0))
+    assert (ds.attrs["ship_length"], ds.attrs["ship_breadth"], ds.attrs["ship_draught"]) == (
+        246.0,
+        46.0,
+        10.0,
+    )
+    assert "main dimensions given" in ds.attrs["history"]
+    refused = CliRunner().invoke(
+        main, ["dp-demo", "-o", str(tmp_path / "c"), "--main-dimensions", "246", "46", "10"]
+    )
+    assert refused.exit_code == 2 and "--main-dimensions" in refused.output
+
+
 def test_cli_dp_demo_water_depth_of_veres_files(shared_data, tmp_path):
     """VERES files do not record the depth: dp-demo's warning told the user to give
     --water-depth, which dp-demo did not have. It has it now (for --data files), and

@@ -177,7 +177,7 @@ def test_qtfs_are_said_to_go_to_their_own_files(corpus, tmp_path):
     assert not (tmp_path / "s.12d").exists()
 
 
-def test_data_without_excitation_say_no_3_is_written(corpus, tmp_path):
+def test_data_without_excitation_or_hydrostatics_say_so(corpus, tmp_path):
     """WEIS' OC4 semi (.1 .hst .12d .12s, its .3 missing): convert wrote s.1 and s.hst and
     said nothing of the .3 HydroDyn reads with ExctnMod = 1; now it says so."""
     text = _convert(corpus / "WEIS" / "ss_fitting_OC4_semi" / "marin_semi.1", tmp_path / "s.1")
@@ -185,6 +185,12 @@ def test_data_without_excitation_say_no_3_is_written(corpus, tmp_path):
     assert not (tmp_path / "s.3").exists()
     text = _convert(corpus / "WEIS" / "ss_fitting_OC3_spar" / "spar.1", tmp_path / "t.1")
     assert "no t.3" not in text and (tmp_path / "t.3").exists()
+    assert "no t.hst" not in text and (tmp_path / "t.hst").exists()
+    # RAFT's copy of the spar has no .hst: said as well
+    raft = corpus / "RAFT" / "wamit_OC3_spar_no_A0_Ainf_rows" / "spar.1"
+    text = _convert(raft, tmp_path / "r.1")
+    assert "no r.hst: the data hold no hydrostatics" in text and "no r.3" not in text
+    assert not (tmp_path / "r.hst").exists()
 
 
 def test_main_help_lists_what_convert_writes():
@@ -236,3 +242,26 @@ def test_a_hydrodyn_input_file_names_the_wamit_files_it_reads(corpus, tmp_path):
     off.write_text("\n".join(lines) + "\n")
     result = CliRunner().invoke(main, ["info", str(off)])
     assert result.exit_code == 1 and "PotMod = 0" in " ".join(result.output.split())
+
+
+def test_openfast_models_say_their_reference_point(corpus, tmp_path):
+    """NEMOH's OC3 run is about (0, 0, -78) m: `fit --openfast` and `fit-excitation
+    --openfast` wrote .ss/.ssexctn about that point without a word, where HydroDyn takes
+    PtfmRefzt and the .1/.hst (convert's, often moved to the origin) must agree. They say
+    it now; about the origin (WEIS' WAMIT spar) nothing is added."""
+    nemoh = str(corpus / "WEC-Sim" / "nemoh_v3.0.2_OC3_Hywind_spar")
+    excitation = ["fit-excitation", nemoh, "-o", str(tmp_path / "b.nc"), "--heading", "0"]
+    runs = [
+        ["fit", nemoh, "-o", str(tmp_path / "a.nc"), "--openfast", str(tmp_path / "a.ss")],
+        [*excitation, "--openfast", str(tmp_path / "b.ssexctn")],
+    ]
+    for args in runs:
+        result = CliRunner().invoke(main, args)
+        assert result.exit_code == 0, result.output
+        text = " ".join(result.output.split())
+        assert "moments about [0.0, 0.0, -78.0] m (z-up), the data's reference point" in text
+    spar = str(corpus / "WEIS" / "ss_fitting_OC3_spar" / "spar.1")
+    result = CliRunner().invoke(
+        main, ["fit", spar, "-o", str(tmp_path / "c.nc"), "--openfast", str(tmp_path / "c.ss")]
+    )
+    assert result.exit_code == 0 and "moments about" not in result.output

@@ -104,6 +104,28 @@ def test_with_the_inertia_the_motions_judge_the_barge(barge):
     assert not [f for f in model.attrs["failures"] if "no motions judge" in f]
 
 
+def test_the_fit_failure_says_what_to_do(corpus, tmp_path):
+    """`cummins fit Barge.1` failed on heave (R² of A 0.58) with no word of the remedy
+    that the data notes above it hold: a note after the failure now names
+    --omega-max 2.8 (where heave's data leave causality); followed, no failure, no note."""
+    from click.testing import CliRunner
+
+    from cummins.cli import main
+
+    data = str(corpus / "ROSCO" / "wamit_ITI_barge_5MW_Baseline" / "Barge.1")
+    result = CliRunner().invoke(main, ["fit", data, "-o", str(tmp_path / "a.nc")])
+    assert result.exit_code == 3, result.output
+    text = " ".join(result.output.split())
+    after = text.split("failure: Heave")[1]
+    assert "note: Heave: the data are not causal from 2.8 rad/s" in after
+    assert "--omega-max 2.8 fits the consistent part only" in after
+    result = CliRunner().invoke(
+        main, ["fit", data, "-o", str(tmp_path / "b.nc"), "--omega-max", "2.8"]
+    )
+    assert result.exit_code == 0, result.output
+    assert "not causal from" not in result.output
+
+
 def test_the_check_says_where_and_what_to_do(barge):
     found = {
         f.where: f

@@ -125,6 +125,15 @@ def test_simulate_names_the_undamped_slow_drift_modes(corpus, tmp_path):
     assert result.exit_code == 0, result.output
     assert "lightly damped modes below the sea peak: Surge 112 s" in text
     assert "--external-damping" in text
+    # quadratic drag given on surge: not in the linear eigenvalues, so surge is not named
+    quad = str(tmp_path / "q.nc")
+    result = CliRunner().invoke(
+        main,
+        [*base, "--second-order", "full", "--quadratic-damping", "Surge", "1e6", "-o", quad],
+    )
+    text = " ".join(result.output.split())
+    assert result.exit_code == 0 and "below the sea peak: Sway 112 s" in text, text
+    assert "Surge 112 s" not in text
     result = CliRunner().invoke(
         main, [*base, "--second-order", "mean", "-o", str(tmp_path / "b.nc")]
     )

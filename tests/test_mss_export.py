@@ -211,8 +211,64 @@ def test_wamit_struct_has_motion_raos_as_mss_tanker(shared_data, tmp_path):
         a = ours.motionRAO.amp[k] * np.exp(1j * ours.motionRAO.phase[k])
         b = mss.motionRAO.amp[k][:, :, 0] * np.exp(1j * mss.motionRAO.phase[k][:, :, 0])
         assert np.abs(a - b).max() <= 0.02 * np.abs(b).max(), k
+    # read back, they are known as cummins', and `rao` says so instead of "the solver's"
+    from cummins.io.mss.reader import RAO_BY_CUMMINS
+
+    with warnings.catch_warnings():
+        warnings.simplefilter("ignore")
+        assert cummins.read(tmp_path / "t.mat").rao.attrs["description"] == RAO_BY_CUMMINS
+    args = ["rao", tmp_path / "t.mat", "-o", tmp_path / "r.nc", "--headings", "90"]
+    assert "note:" not in _run(args).output  # the same equation, the same RAOs
+    text = " ".join(_run([*args, "--viscous-damping", "Roll", "5e8", "--force"]).output.split())
+    assert "the motion RAOs the file holds (cummins', computed when it was written)" in text
+    assert "the solver's" not in text
     # without the inertia, none, and the warning says what to give
     bare = ds.drop_vars("inertia_matrix")
     with pytest.warns(HydroDataWarning, match="motionRAO not written.*--mass"):
         write_mss(bare, tmp_path / "b.mat")
     assert not hasattr(load(tmp_path / "b.mat"), "motionRAO")
+
+
+def test_convert_one_speed_of_a_multi_speed_struct(shared_data, tmp_path):
+    """MSS's s175.mat holds 5 speeds: convert to WAMIT (or BEMIO) stopped with a Python
+    hint (``ds.sel(forward_speed=0.0)``) the command line cannot follow. --speed writes one:
+    the .1 reads back as the struct's zero-speed added mass (z-up, 7 digits), and a .mat
+    at 10 kn holds that speed alone."""
+    source = shared_data / "mss" / "s175" / "s175.mat"
+    refused = CliRunner().invoke(main, ["convert", str(source), str(tmp_path / "a.1")])
+    assert refused.exit_code == 2 and "choose one with --speed" in refused.output
+    _run(["convert", source, tmp_path / "s.1", "--speed", "0"])
+    with warnings.catch_warnings():
+        warnings.simplefilter("ignore")
+        back = cummins.read(tmp_path / "s.1", rho=1025.0, g=9.81)
+        data = cummins.change_axes(cummins.read(source).sel(forward_speed=0.0), "z-up")
+    a, b = back.added_mass.values, data.added_mass.values
+    assert np.abs(a - b).max() <= 1e-6 * np.abs(b).max()
+    _run(["convert", source, tmp_path / "u.mat", "--speed", "5.14444"])
+    vessel = scipy.io.loadmat(tmp_path / "u.mat", squeeze_me=True, struct_as_record=False)
+    assert float(vessel["vessel"].velocities) == pytest.approx(5.14444)
+    assert np.shape(vessel["vessel"].A) == (6, 6, 36)
+
+
+def test_convert_main_dimensions_into_the_struct(shared_data, tmp_path):
+    """WAMIT files give no main dimensions: the struct warned that vessel.main lacks Lpp,
+    B, T, C_B, Lwl, S with no way to give them. --main-dimensions (MSS's tanker.mat:
+    246, 46, 10 m) writes them, C_B = ∇/(Lpp B T) as MSS defines it, and the struct then
+    runs the DP scenario, which refused it for the lack of them."""
+    source = shared_data / "mss" / "tanker" / "tanker.1"
+    warned = _run(["convert", source, tmp_path / "a.mat"]).output
+    assert "--main-dimensions LPP B T" in " ".join(warned.split())
+    out = tmp_path / "t.mat"
+    text = _run(["convert", source, out, "--main-dimensions", "246", "46", "10"]).output
+    assert "lacks Lpp" not in text
+    ours = scipy.io.loadmat(out, squeeze_me=True, struct_as_record=False)["vessel"].main
+    mss = scipy.io.loadmat(
+        shared_data / "mss" / "tanker" / "tanker.mat", squeeze_me=True, struct_as_record=False
+    )["vessel"].main
+    for key in ("Lpp", "B", "T", "nabla"):
+        assert float(getattr(ours, key)) == pytest.approx(float(getattr(mss, key)), rel=1e-9)
+    assert float(ours.C_B) == pytest.approx(float(mss.nabla) / (246 * 46 * 10), rel=1e-9)
+    _run(["dp-demo", "-o", tmp_path / "dp", "--duration", "30", "--data", out])
+    # a WAMIT file has no field for them: refused, not dropped
+    dims = ["--main-dimensions", "246", "46", "10"]
+    _run(["convert", source, tmp_path / "w.1", *dims], code=2)

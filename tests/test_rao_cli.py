@@ -121,3 +121,23 @@ def test_rao_names_the_dofs_apart_from_the_data_own_raos(runner, shared_data, tm
     result = runner.invoke(rao_command, args)
     assert result.exit_code == 0, result.output
     assert "Motion RAOs" in result.output and "note: the data's own" not in result.output
+
+
+def test_rao_says_when_a_resonance_moved(runner, shared_data, tmp_path):
+    """MSS's S-175 at zero speed in beam seas: the struct's MRB and restoring put roll's
+    resonance at 0.349 rad/s (√(C44/(I44 + A44)) = 0.346), VERES' own RAOs in the struct
+    peak at 0.314; the note blamed terms such as viscous roll damping, which cannot move
+    a resonance that far (0.2 % of critical in the struct's roll Bv44). A second note
+    names the shift; heave and pitch, which agree, are not named."""
+    data = shared_data / "mss" / "s175" / "s175.mat"
+    args = [str(data), "--speed", "0", "-o", str(tmp_path / "r.nc"), "--headings", "90"]
+    result = runner.invoke(rao_command, args)
+    assert result.exit_code == 0, result.output
+    text = " ".join(result.output.split())
+    assert "note: Roll peaks at 0.349 rad/s, the solver's at 0.314 rad/s" in text
+    assert "Heave peaks" not in text and "Pitch peaks" not in text
+    # the HAMS cylinder's RAOs are its data's: no such note
+    cylinder = shared_data / "corpus" / "HAMS" / "Cylinder" / "Output_Benchmark"
+    args = [str(cylinder / "Wamit_format" / "Buoy.1"), "-o", str(tmp_path / "c.nc")]
+    result = runner.invoke(rao_command, args)
+    assert result.exit_code == 0 and "peaks at" not in result.output

@@ -298,6 +298,33 @@ def speed_option(help: str = "Forward speed to use when the data hold several.")
     return click.option("--speed", type=finite("m/s"), default=None, metavar="M/S", help=help)
 
 
+def main_dimensions_option(help: str):
+    """--main-dimensions LPP B T (m), passed as ``main_dimensions`` (None if not given)."""
+    return click.option(
+        "--main-dimensions",
+        type=(positive("m"), positive("m"), positive("m")),
+        default=None,
+        metavar="LPP B T",
+        help=help,
+    )
+
+
+def with_main_dimensions(ds, dimensions):
+    """The data with the ship's main dimensions (Lpp, B, T in m) as the attributes
+    ``ship_length``, ``ship_breadth``, ``ship_draught`` (replacing the data's), said in
+    ``history``; ``dimensions`` None: the data as they are."""
+    if dimensions is None:
+        return ds
+    from cummins.hydrodb import add_history
+
+    out = ds.copy()
+    keys = ("ship_length", "ship_breadth", "ship_draught")
+    for key, value in zip(keys, dimensions, strict=True):
+        out.attrs[key] = float(value)
+    add_history(out, "main dimensions given: Lpp, B, T = {:g}, {:g}, {:g} m".format(*dimensions))
+    return out
+
+
 def force_option(help: str = "Overwrite the output files."):
     """--force: overwrite outputs that exist (without it a command refuses to)."""
     return click.option("--force", is_flag=True, help=help)

@@ -13,12 +13,16 @@ from cummins.cli.common import (
     console,
     finite,
     force_option,
+    main_dimensions_option,
     positive,
     prepare_outputs,
     read_hydrodb,
     read_options,
     reports_errors,
     select_body,
+    select_speed,
+    speed_option,
+    with_main_dimensions,
 )
 from cummins.cli.option_rules import Command
 from cummins.errors import CumminsWarning
@@ -78,6 +82,15 @@ from cummins.errors import CumminsWarning
     "into the .h5's hydro_coeffs/radiation_damping/state_space (A, B, C, D, it, K), which "
     "WEC-Sim reads. The model must be of these very data (its DOFs and data fingerprint).",
 )
+@main_dimensions_option(
+    "Length between perpendiculars, breadth and draught of the ship in m, when the files "
+    "do not give them (WAMIT): an MSS .mat holds them in vessel.main (Lpp, B, T, and "
+    "C_B, Lwl, S from them), which MSS's functions read."
+)
+@speed_option(
+    "Of data at several forward speeds, write this one only. Needed for .1, .h5, .12d and "
+    ".12s (WAMIT and BEMIO files hold one speed); .nc and .mat hold them all without it."
+)
 @force_option("Overwrite DESTINATION if it exists.")
 @reports_errors
 def convert_command(
@@ -93,6 +106,8 @@ def convert_command(
     volumes,
     limit_rows,
     model_path,
+    main_dimensions,
+    speed,
     force,
 ):
     """Convert SOURCE to canonical NetCDF (.nc), a BEMIO .h5 for WEC-Sim, WAMIT numeric
@@ -143,11 +158,20 @@ def convert_command(
             "OpenFAST or MSS)",
             param_hint="--model",
         )
+    if main_dimensions is not None and Path(destination).suffix.lower() not in (".nc", ".mat"):
+        raise click.BadParameter(
+            f"{destination}: WAMIT, BEMIO and QTF files have no field for the main "
+            "dimensions; write .mat (MSS's vessel.main) or .nc",
+            param_hint="--main-dimensions",
+        )
     prepare_outputs(destination, force=force)
     model = _load_model(model_path) if model_path is not None else None
     ds = read_hydrodb(source, format_, rho, g, ulen)
+    if speed is not None or Path(destination).suffix.lower() not in (".nc", ".mat"):
+        ds = select_speed(ds, speed)
     if body is not None:
         ds = select_body(ds, body)
+    ds = with_main_dimensions(ds, main_dimensions)
     if volumes:
         ds = _with_volumes(ds, volumes)
     if to_mat:
@@ -159,7 +183,9 @@ def convert_command(
     if reference_point is not None:
         ds = move_reference_point(ds, reference_point)
     if Path(destination).suffix.lower() == ".1":
-        _write_for_hydrodyn(ds, destination, source, limit_rows, force)
+        # the commands it prints name the same speed
+        again = source if speed is None else f"{source} --speed {speed:g}"
+        _write_for_hydrodyn(ds, destination, again, limit_rows, force)
         return
     if model is not None:
         _check_model(model, ds, model_path)
@@ -246,6 +272,12 @@ def _write_for_hydrodyn(ds, destination, source, limit_rows, force) -> None:
             f"no {Path(destination).with_suffix('.3').name}: the data hold no wave excitation "
             "(read the solver's excitation file with the run); without it HydroDyn needs "
             "ExctnMod = 0 (no wave excitation), its .3 being read for ExctnMod = 1"
+        )
+    if "hydrostatic_stiffness" not in ds:
+        console.print(
+            f"no {Path(destination).with_suffix('.hst').name}: the data hold no hydrostatics "
+            "(read the solver's .hst or KH file with the run), and HydroDyn reads the .hst "
+            "of its PotFile with PotMod = 1"
         )
     console.print("HydroDyn: " + "; ".join(prepared.settings))
     if np.any(point.reshape(-1, 3)[:, 2] != 0):

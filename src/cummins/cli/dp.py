@@ -12,6 +12,7 @@ from cummins.cli.common import (
     console,
     force_option,
     heading_degrees,
+    main_dimensions_option,
     non_negative,
     note_inputs,
     positive,
@@ -89,6 +90,11 @@ from cummins.validation import check_simulation_size
     "record it (VERES, MSS structs): the wave numbers of the wave loads. Default: deep "
     "water, with a warning.",
 )
+@main_dimensions_option(
+    help="Length between perpendiculars, breadth and draught of the --data vessel in m, "
+    "when its files do not give them (WAMIT: MSS's tanker is 246 46 10); they size the "
+    "surge resistance, the cross-flow drag, the wind areas and the thrusters' positions.",
+)
 @click.option(
     "--yaw-setpoint",
     type=heading_degrees(),
@@ -115,6 +121,7 @@ from cummins.validation import check_simulation_size
         "current_from": ("current_speed", lambda v: v > 0, "above 0"),
         "wind_from": ("wind_speed", lambda v: v > 0, "above 0"),
         "water_depth": "data_path",
+        "main_dimensions": "data_path",
     }
 )
 @reports_errors
@@ -129,6 +136,7 @@ def dp_demo_command(
     wind_from,
     data_path,
     water_depth,
+    main_dimensions,
     yaw_setpoint,
     second_order,
     keep_suspect,
@@ -177,7 +185,9 @@ def dp_demo_command(
     prepare_outputs(*(out / n for n in names), force=force)
     # before the model is built: the run's size (the S-175 model has about 60 states)
     check_simulation_size(duration, dt, 60, 54, option="--duration")
-    ds, damping = scenario_data(data_path, second_order, water_depth=water_depth)
+    ds, damping = scenario_data(
+        data_path, second_order, water_depth=water_depth, main_dimensions=main_dimensions
+    )
     with progress_bar() as bar:
         task = bar.add_task(f"simulating {duration:g} s of DP", total=1.0)
         scenario = run_scenario(

@@ -78,6 +78,7 @@ def scenario_data(
     second_order: str = "newman",
     *,
     water_depth: float | None = None,
+    main_dimensions: tuple[float, float, float] | None = None,
 ) -> tuple[xr.Dataset, dict[str, float]]:
     """The vessel of the scenario at zero speed and the linear viscous damping of its
     horizontal plane (N s/m, N m s/rad).
@@ -86,7 +87,8 @@ def scenario_data(
     (:func:`s175_data`) with :data:`LOW_FREQUENCY_DAMPING`. Any other file cummins reads
     (MSS, WAMIT, VERES …): its zero-speed data, checked by :func:`check_dp_data`, and the
     damping of :func:`data_viscous_damping`; ``water_depth`` (m) for files that do not
-    record it (:func:`cummins.read`).
+    record it (:func:`cummins.read`); ``main_dimensions`` (Lpp, B, T in m) for data that do
+    not give them (WAMIT), replacing the data's.
     """
     import cummins
     from cummins.errors import HydroDataError
@@ -107,6 +109,9 @@ def scenario_data(
             f"DP needs the data at zero forward speed; they hold {float(ds.forward_speed):g} m/s",
             path=path,
         )
+    from cummins.cli.common import with_main_dimensions
+
+    ds = with_main_dimensions(ds, main_dimensions)
     check_dp_data(ds, second_order)
     return ds, data_viscous_damping(ds)
 
@@ -143,8 +148,14 @@ def check_dp_data(ds: xr.Dataset, second_order: str = "newman") -> None:
         raise HydroDataError(
             "the DP scenario needs " + "; ".join(missing),
             path=ds.attrs.get("source_file"),
-            hint="an MSS vessel struct (.mat) holds all of it; WAMIT files give no main "
-            "dimensions: convert them with MSS (wamit2vessel) or use the MSS .mat",
+            hint="an MSS vessel struct (.mat) holds all of it"
+            + (
+                "; give the main dimensions with --main-dimensions LPP B T (m; in Python "
+                "the attributes ship_length, ship_breadth, ship_draught): WAMIT files, and "
+                "the structs cummins writes from them, have none"
+                if dims
+                else ""
+            ),
         )
 
 

@@ -363,6 +363,9 @@ def fit_command(
     failures = model.attrs.get("failures", [])
     for failure in failures:
         console.print(f"[bold red]failure:[/bold red] {escape(failure)}", highlight=False)
+    remedy = inconsistent_data_remedy(failures, model.attrs.get("data_notes", []), omega_max)
+    if remedy:
+        console.print(f"[yellow]note:[/yellow] {escape(remedy)}", highlight=False)
     speed_value = float(ds.coords["forward_speed"]) if "forward_speed" in ds.coords else 0.0
     if failures and speed_value:
         console.print(
@@ -415,7 +418,26 @@ def openfast_states_note(model, path) -> str:
             f"; no states for {', '.join(empty)}: no fluid memory (flagged enabled, as "
             "HydroDyn requires of every DOF)"
         )
-    return text
+    return text + reference_point_clause(model.attrs)
+
+
+def reference_point_clause(attrs) -> str:
+    """For a HydroDyn file (z-up) of a model about a point other than the origin: the
+    point, which PtfmRefxt/yt/zt must give and the .1/.hst share ("" at the origin)."""
+    import numpy as np
+
+    point = np.asarray(attrs.get("reference_point", np.zeros(3)), dtype=float).reshape(-1, 3)
+    if attrs.get("axis_convention") == "z-down":  # the file is in z-up axes
+        point = point * np.array([1.0, -1.0, -1.0])
+    if not np.any(point != 0):
+        return ""
+    listed = "; ".join(str(np.round(p, 6).tolist()) for p in point + 0.0)
+    return (
+        f"; moments about {listed} m (z-up), the data's reference point: HydroDyn's "
+        "PtfmRefxt/yt/zt must give it, and its .1/.hst be about the same point (cummins "
+        "convert DATA x.1 prints them; for the origin, convert with --reference-point "
+        "0 0 0 and fit that .1)"
+    )
 
 
 def check_model_outputs(labels, *, mss_path=None, openfast=None) -> None:
@@ -562,6 +584,30 @@ def table_label(dof: str) -> str:
     if body.startswith("body") and body[4:].isdigit():
         body = "b" + body[4:]
     return f"{body}.{name}"
+
+
+def inconsistent_data_remedy(failures, data_notes, omega_max=None) -> str | None:
+    """For failed DOFs whose data are not causal above some frequency (an irregular
+    frequency: the data notes' "A(ω) departs from what B(ω) implies from X rad/s", a
+    Kramers–Kronig test, Ogilvie (1964)), the --omega-max that leaves that part out."""
+    import re
+
+    starts = {}
+    for note in data_notes:
+        found = re.match(r"(\S+): A\(ω\) departs .*; fitted below ([0-9.eE+-]+) rad/s", note)
+        if found:
+            starts[found.group(1)] = float(found.group(2))
+    failed = {f.split(":", 1)[0] for f in failures}
+    named = {dof: w for dof, w in starts.items() if dof in failed}
+    if not named or (omega_max is not None and omega_max <= min(named.values())):
+        return None
+    w = min(named.values())
+    dofs = ", ".join(sorted(named, key=named.get))
+    return (
+        f"{dofs}: the data are not causal from {w:.4g} rad/s (an irregular frequency: "
+        f"cummins check): no causal model follows them there, and the R² counts them; "
+        f"--omega-max {w:.4g} fits the consistent part only"
+    )
 
 
 def fit_notes(model) -> list[str]:

@@ -197,12 +197,26 @@ def fit_excitation_command(
         Path(json_path).write_text(json.dumps(summary, indent=2) + "\n", encoding="utf-8")
         console.print(f"wrote {json_path}")
     if openfast:
-        from cummins.io.openfast_excitation import write_openfast_ssexctn
+        from cummins.cli.fit import reference_point_clause
+        from cummins.io.openfast_excitation import (
+            openfast_ssexctn_from_model,
+            write_openfast_ssexctn,
+        )
 
         write_openfast_ssexctn(model, openfast, force=force)
+        # the file's heading, HydroDyn's z-up one in (-180, 180], which WaveDir must equal
+        written = openfast_ssexctn_from_model(model).heading
+        given = float(np.degrees(model.headings[0]))
+        axes = model.attrs.get("axis_convention", "z-up")
         console.print(
-            f"wrote {openfast} (HydroDyn ExctnMod = 2: WaveDir {np.degrees(model.headings[0]):g} "
-            f"deg, t_c {model.delays[0]:.4g} s, {int(model.orders[0].sum())} states)"
+            f"wrote {openfast} (HydroDyn ExctnMod = 2: WaveDir {written:g} deg"
+            + (
+                f", the data's {given:g} deg in their {axes} axes"
+                if abs(np.angle(np.exp(1j * np.radians(written - given)))) > 1e-9 or axes != "z-up"
+                else ""
+            )
+            + f", t_c {model.delays[0]:.4g} s, {int(model.orders[0].sum())} states)"
+            + reference_point_clause(model.attrs)
         )
     if plot_dir:
         from cummins.excitation_model.figures import plot_excitation_fit

@@ -122,7 +122,7 @@ def info_command(path, format_, rho, g, ulen, as_json):
     table = Table(show_header=False, box=None, pad_edge=False)
     table.add_column(style="bold")
     table.add_column()
-    table.add_row("file", f"{d['source_file']} ({d['source_format']})")
+    table.add_row("file", _file_row(path, format_, d))
     table.add_row("DOFs", ", ".join(d["dofs"]))
     table.add_row(
         "frequencies",
@@ -223,6 +223,32 @@ def model_description(path) -> dict | None:
     out["fitted_to"] = str(model.attrs.get("source_file", "")) or "not recorded"
     out["failures"] = summary["failures"]
     return out
+
+
+def _file_row(path, format_, d) -> str:
+    """The file read, and the solver's file its data came from when they differ (a
+    NetCDF, BEMIO .h5 or MSS .mat that cummins wrote keeps the source's provenance)."""
+    source, kind = d.get("source_file"), d.get("source_format")
+    read = Path(path)
+    if not source:
+        return f"{path} ({kind})"
+    origin = Path(str(source))
+    if origin.resolve() == read.resolve() or (
+        read.is_dir() and read.resolve() in origin.resolve().parents
+    ):
+        return f"{source} ({kind})"
+    if format_ is None:
+        from cummins.errors import HydroDataError
+        from cummins.io import detect_format
+
+        try:
+            format_ = detect_format(read)[0]
+        except (HydroDataError, OSError, ValueError):  # only a label: the file was read
+            format_ = "?"
+    # a file of the same run (WAMIT's .12d, .3 or .hst given for its .1)
+    if format_ == kind and origin.stem == read.stem and origin.parent == read.parent:
+        return f"{source} ({kind})"
+    return f"{path} ({format_}): the data of {source} ({kind})"
 
 
 def openfast_description(path) -> dict:

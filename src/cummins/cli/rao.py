@@ -256,7 +256,17 @@ def rao_command(
     console.print(rao_table(rao))
     if omega is None and system is None:
         apart = rao_against_data(rao, ds)
-        if apart:
+        from cummins.io.mss.reader import RAO_BY_CUMMINS
+
+        if apart and ds["rao"].attrs.get("description") == RAO_BY_CUMMINS:
+            listed = ", ".join(f"{dof} {100 * v:.0f} %" for dof, v in apart.items())
+            console.print(
+                f"note: the motion RAOs the file holds (cummins', computed when it was "
+                f"written) differ from these by more than {100 * RAO_DATA_TOLERANCE:.0f} % "
+                f"of their peak: {listed}: the options given here (damping, stiffness, "
+                "inertia) differ from the data's"
+            )
+        elif apart:
             listed = ", ".join(f"{dof} {100 * v:.0f} %" for dof, v in apart.items())
             console.print(
                 f"note: the data's own motion RAOs (the solver's) differ from these by more "
@@ -265,6 +275,18 @@ def rao_command(
                 "not hold (VERES' viscous roll damping, MSS's surge estimates …); "
                 "--viscous-damping DOF B adds damping"
             )
+            shifted = resonance_shifts(rao, ds, list(apart))
+            if shifted:
+                console.print(
+                    "note: "
+                    + "; ".join(
+                        f"{dof} peaks at {ours:.3g} rad/s, the solver's at {theirs:.3g} rad/s"
+                        for dof, (ours, theirs) in shifted.items()
+                    )
+                    + ": damping moves a resonance little (under 5 % below 20 % of "
+                    "critical), so the solver's inertia or restoring likely differ from the "
+                    "data's (mass properties, GM, added mass)"
+                )
     if pto is not None:
         console.print(pto_table(pto))
     save_rao(rao, output, force=force, pto=pto)
@@ -314,6 +336,35 @@ def rao_against_data(rao, ds) -> dict[str, float]:
             if peak > 0 and np.isfinite(ref).all():
                 out[str(dof)] = max(out.get(str(dof), 0.0), float(np.abs(ours - ref).max() / peak))
     return {dof: v for dof, v in out.items() if v > RAO_DATA_TOLERANCE}
+
+
+def resonance_shifts(rao, ds, dofs, tolerance: float = 0.05) -> dict[str, tuple[float, float]]:
+    """The DOFs of ``dofs`` with restoring whose |RAO| peaks, at the heading of the data's
+    largest, at a frequency more than ``tolerance`` (relative) and two frequency steps
+    from the data's own ``rao`` peak, both peaks inside the frequency range (not the
+    long-wave limit of heave)."""
+    data = ds["rao"]
+    w = rao.omega.values
+    data_beta = np.mod(data.wave_direction.values, 2 * np.pi)
+    restoring = ds["hydrostatic_stiffness"]
+    out = {}
+    for dof in dofs:
+        if float(restoring.sel(influenced_dof=dof, radiating_dof=dof)) <= 0:
+            continue  # no resonance to move
+        ref = np.abs(data.sel(radiating_dof=dof).transpose("omega", "wave_direction").values)
+        k_ref, b_ref = np.unravel_index(int(np.argmax(ref)), ref.shape)
+        near = np.flatnonzero(
+            np.isclose(np.mod(rao.wave_direction.values, 2 * np.pi), data_beta[b_ref], atol=1e-6)
+        )
+        if near.size == 0:
+            continue
+        ours = np.abs(rao.isel(wave_direction=near[0]).sel(dof=dof).values)
+        k_ours = int(np.argmax(ours))
+        inside = all(0 < k < w.size - 1 for k in (k_ref, k_ours))
+        apart = abs(w[k_ours] - w[k_ref]) > tolerance * w[k_ref] and abs(k_ours - k_ref) >= 2
+        if inside and apart:
+            out[dof] = (float(w[k_ours]), float(w[k_ref]))
+    return out
 
 
 def pto_table(pto) -> Table:

@@ -179,6 +179,14 @@ def reduce_command(
         from cummins.radiation.fingerprint import check_model_data
 
         data = select_speed(read_hydrodb(data_path, format_, rho, g, ulen), speed)
+        lacking = [v for v in ("inertia_matrix", "hydrostatic_stiffness") if v not in data]
+        if motion_tol is not None and lacking:
+            raise click.UsageError(
+                f"--motion-tol compares motions: {Path(data_path).name} holds no "
+                f"{' and no '.join(lacking)}; give the body's inertia (--mass, "
+                "--center-of-gravity, --radii-of-gyration or --inertia-matrix) and its "
+                "moorings (--external-stiffness), as to cummins fit"
+            )
         data, joined = joined_data(data, system, dofs)
         aim = model.attrs.get("motions_of")
         if aim and system is None and not dofs:
@@ -222,6 +230,15 @@ def reduce_command(
     ]
     for failure in failures:
         console.print(f"[bold red]failure:[/bold red] {escape(failure)}", highlight=False)
+    unjudged = model.attrs.get("motions_unjudged")
+    if motion_tol is not None and unjudged and any("already" in f for f in failures):
+        console.print(
+            f"[yellow]note:[/yellow] {Path(model_path).name} was fitted without the motions "
+            f"to aim at ({escape(str(unjudged))}): fit again with the options given here "
+            "(cummins fit DATA --mass … -o MODEL.nc): that fit aims at these motions, "
+            "and its model is the one to reduce",
+            highlight=False,
+        )
     if failures:
         sys.exit(REDUCE_FAILED)
 

@@ -457,7 +457,7 @@ def simulate_command(
         if not first_order:
             console.print("note: the data have no first-order excitation: second-order force only")
         if second is not None and second_order != "mean" and sea is not None:
-            _note_lightly_damped(vessel, sea)
+            _note_lightly_damped(vessel, sea, b_q)
         with progress_bar() as bar:
             task = bar.add_task(
                 f"simulating {duration:g} s, {title}, heading {heading:g}°", total=1.0
@@ -602,16 +602,18 @@ def _check_spread_directions(ds, vessel, sea, heading, spreading, directions) ->
         ) from None
 
 
-def _note_lightly_damped(vessel, sea) -> None:
+def _note_lightly_damped(vessel, sea, quadratic=None) -> None:
     """Name the modes below the sea's peak frequency that the slowly varying force drives
-    at resonance with less than 1 % of critical damping (:mod:`cummins.timedomain.modes`)."""
+    at resonance with less than 1 % of critical damping (:mod:`cummins.timedomain.modes`);
+    those of a DOF with quadratic damping given (``quadratic``), which the linear model's
+    eigenvalues do not hold, are left out."""
     from cummins.timedomain.modes import lightly_damped_modes
 
     if np.isfinite(sea.tp) and sea.tp > 0:
         peak = 2 * np.pi / float(sea.tp)
     else:  # regular waves, a record's components: the largest
         peak = float(np.asarray(sea.omega)[int(np.argmax(np.abs(sea.amplitude)))])
-    modes = lightly_damped_modes(vessel, below=peak)
+    modes = [m for m in lightly_damped_modes(vessel, below=peak) if m.dof not in (quadratic or {})]
     if not modes:
         return
     listed = ", ".join(

@@ -1,9 +1,10 @@
 """The lightly damped modes of a vessel's linear model: what a slow-drift force resonates.
 
-The eigenvalues λ of the state matrix F of ẋ = F x + G τ (:meth:`cummins.vessel.Vessel.
-state_space`: inertia, restoring, the damping given and the fluid memory) are the modes of
-the linear model; an oscillatory pair λ = −ζω_n ± iω_n√(1 − ζ²) has the natural
-frequency ω_n = |λ| and the damping ratio ζ = −Re λ / |λ|. Radiation damping vanishes as
+The eigenvalues λ of the state matrix F of ẋ = F x + G τ
+(:meth:`cummins.vessel.Vessel.state_space`: inertia, restoring, the damping given and the
+fluid memory) are the modes of the linear model; an oscillatory pair
+λ = −ζω_n ± iω_n√(1 − ζ²) has the natural frequency ω_n = |λ| and the damping ratio
+ζ = −Re λ / |λ|. Radiation damping vanishes as
 ω → 0, so the modes of a moored floating body in surge, sway and yaw, and its heave,
 roll and pitch far below the wave frequencies, are damped by almost nothing but what is
 given: the slowly varying second-order force drives them at resonance, and their

@@ -362,6 +362,8 @@ def _read_mss(path, rho, g, speed, rao_reference) -> xr.Dataset:
             **kw,
             **attrs,
         )
+        if "rao" in ds and extra_attrs.get("rao_source"):
+            ds["rao"].attrs["description"] = RAO_BY_CUMMINS
         datasets.append(_move_waves(ds, wave_point, points.reference))
     if len(datasets) == 1:
         return datasets[0]
@@ -396,6 +398,11 @@ def _constant_stiffness(
     return first
 
 
+#: ``rao``'s description when the struct's motionRAO was computed by cummins
+#: (:func:`cummins.io.mss.writer._with_motion_rao`), not by the solver.
+RAO_BY_CUMMINS = "motion RAOs computed by cummins (motion_rao), not by the solver"
+
+
 def _extras(extras: np.void | None, path: Path, history: list[str]) -> dict[str, Any]:
     """What :func:`write_mss` stored in ``vessel.cummins`` for lossless round trips."""
     if extras is None:
@@ -418,6 +425,9 @@ def _extras(extras: np.void | None, path: Path, history: list[str]) -> dict[str,
                     extras["restoring_weight_center"], path, "vessel.cummins"
                 ).reshape(-1)[:3],
             )
+    if _has(extras, "rao_source"):  # motionRAO of cummins, not of the solver
+        out["rao_source"] = _text(extras, "rao_source")
+        history.append("motionRAO computed by cummins when the struct was written")
     for name in ("added_mass_inf", "added_mass_zero", "additional_stiffness"):
         if _has(extras, name):
             value = _numeric(extras[name], path, f"vessel.cummins.{name}")

@@ -55,6 +55,7 @@ def _with_motion_rao(ds: xr.Dataset, path: Path) -> xr.Dataset:
         )
         return ds
     from cummins.errors import AssumptionWarning
+    from cummins.io.mss.reader import RAO_BY_CUMMINS
     from cummins.seakeeping.frequency_domain import motion_rao
 
     try:
@@ -73,9 +74,7 @@ def _with_motion_rao(ds: xr.Dataset, path: Path) -> xr.Dataset:
     out["rao"] = rao.rename(dof="radiating_dof").transpose(
         "omega", "wave_direction", "radiating_dof"
     )
-    out["rao"].attrs = {
-        "description": "motion RAOs computed by cummins (motion_rao), not by the solver"
-    }
+    out["rao"].attrs = {"description": RAO_BY_CUMMINS}
     add_history(out, "motion RAOs computed by cummins.seakeeping.frequency_domain.motion_rao")
     warnings.warn(
         f"{path.name}: vessel.motionRAO computed by cummins (the data hold no solver RAOs): "
@@ -260,7 +259,9 @@ def write_mss(ds: xr.Dataset, path: str | os.PathLike[str]) -> Path:
             path=path,
             hint="select one body's six DOFs first",
         )
+    computed = "rao" not in ds
     ds = _with_motion_rao(ds, path)
+    computed = computed and "rao" in ds
     if "wave_direction" in ds.dims:
         ds = ds.assign_coords(wave_direction=np.mod(ds.wave_direction.values, 2 * np.pi))
     out = change_axes(ds, "z-down")
@@ -304,7 +305,13 @@ def write_mss(ds: xr.Dataset, path: str | os.PathLike[str]) -> Path:
     lacking = [key for key in MAIN_FIELDS if key not in main]
     if lacking:
         warnings.warn(
-            f"{path.name}: vessel.main lacks {', '.join(lacking)} (not in the data)",
+            f"{path.name}: vessel.main lacks {', '.join(lacking)} (not in the data)"
+            + (
+                "; --main-dimensions LPP B T (the attributes ship_length, ship_breadth, "
+                "ship_draught) gives Lpp, B, T, and C_B, Lwl, S follow"
+                if {"Lpp", "B", "T"} & set(lacking)
+                else ""
+            ),
             HydroDataWarning,
             stacklevel=2,
         )
@@ -349,6 +356,8 @@ def write_mss(ds: xr.Dataset, path: str | os.PathLike[str]) -> Path:
         "water_depth": float(out.attrs.get("water_depth", np.inf)),
         "reference_point": point[None, :],
     }
+    if computed:
+        extras["rao_source"] = "cummins motion_rao"
     if not with_limits:
         for name in ("added_mass_inf", "added_mass_zero"):
             if name in first:
