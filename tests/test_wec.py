@@ -438,18 +438,7 @@ def test_rigid_joint_equals_one_body_at_a_common_point(rm3):
     """Two bodies welded together move as one body whose inertia, added mass, damping,
     restoring and wave force are the sums of the bodies' terms moved to a common point
     (move_reference_point's screw transform): the joined RAOs equal that body's motion
-    carried back to each body's reference point, u(o) = u(c) + θ × (o − c). Each body in
-    equilibrium, its mass ρ∇ exactly (WEC-Sim's rounded masses leave 0.3 and 1.3 kg of
-    net buoyancy, a static load that moves the restoring of the bodies moved to c by
-    (ρ∇ − m) g Δz and that the free welded pair carries nowhere: 10⁻⁵ of the RAOs)."""
-    volumes = np.asarray(rm3.attrs["displaced_volume"], dtype=float)
-    radii = [list(np.sqrt(np.array(i) / m)) for i, m in zip(RM3_INERTIA, RM3_MASS, strict=True)]
-    rm3 = with_inertia(
-        rm3,
-        mass=list(rm3.attrs["rho"] * volumes),
-        center_of_gravity=RM3_CG,
-        radii_of_gyration=radii,
-    )
+    carried back to each body's reference point, u(o) = u(c) + θ × (o − c)."""
     c = np.array([0.0, 0.0, -10.0])
     system = MechanicalSystem(joints=(Joint("fixed", "body1", "body2", point=tuple(c)),))
     w = rm3.omega.values[20:200:30]
