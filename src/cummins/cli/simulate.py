@@ -507,28 +507,23 @@ def simulate_command(
         reference, record = print_pto_run(
             run, vessel, sea, ds, system, b_v, regular=regular, left_out=left_out
         )
-        if record is not None:  # the same solution on the run's own waves
-            run["pto_mean_power_frequency_domain_record"] = (
-                "pto",
-                np.asarray(record, dtype=float),
-                {
-                    "units": "W",
-                    "long_name": "mean absorbed power of the linear frequency-domain "
-                    "solution over the run's own record of its wave components",
-                    "left_out": ", ".join(left_out) or "none",
-                },
-            )
-        if reference is not None:  # the report shows it beside the run's
-            run["pto_mean_power_frequency_domain"] = (
-                "pto",
-                np.asarray(reference, dtype=float),
-                {
-                    "units": "W",
-                    "long_name": "mean absorbed power of the linear frequency-domain "
-                    "solution for the run's wave components",
-                    "left_out": ", ".join(left_out) or "none",
-                },
-            )
+        # the report shows them beside the run's: the solution for the run's wave
+        # components, and the same solution on the run's own record of them
+        for name, power, what in (
+            ("", reference, "for the run's wave components"),
+            ("_record", record, "over the run's own record of its wave components"),
+        ):
+            if power is not None:
+                run[f"pto_mean_power_frequency_domain{name}"] = (
+                    "pto",
+                    np.asarray(power, dtype=float),
+                    {
+                        "units": "W",
+                        "long_name": "mean absorbed power of the linear frequency-domain "
+                        f"solution {what}",
+                        "left_out": ", ".join(left_out) or "none",
+                    },
+                )
     from cummins.io.netcdf import save_netcdf
 
     save_netcdf(run, output)
