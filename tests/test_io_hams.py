@@ -27,6 +27,25 @@ def test_frequency_types_follow_the_control_file(corpus):
     assert "inertia_matrix" not in raft  # Hydrostatic.in holds a mass matrix of zeros
 
 
+def test_constants_not_written_are_not_said_to_come_from_the_file(corpus):
+    """RAFT's HAMS run has no Hydrostar_format headers: rho and g are HAMS's constants,
+    and the history must not also say they came from the file (nor, with rho given, that
+    the file records 1025); DeepCwind's .rao headers do print them."""
+    raft = cummins.read(corpus / "RAFT" / "hams_cylinder_empty_dot4")
+    history = raft.attrs["history"]
+    assert raft.attrs["rho"] == 1025.0 and raft.attrs["g"] == 9.80665
+    assert "rho = 1025 kg/m^3 (from the file)" not in history
+    assert "g = 9.80665 m/s^2 (from the file)" not in history
+    assert "rho = 1025 kg/m^3 (HAMS's constant, not written" in history
+    given = cummins.read(corpus / "RAFT" / "hams_cylinder_empty_dot4", rho=1000.0)
+    assert given.attrs["rho"] == 1000.0
+    assert "the file records" not in given.attrs["history"]
+    assert "rho = 1000 kg/m^3 (given; HAMS's constant" in given.attrs["history"]
+    np.testing.assert_allclose(given.added_mass.values * 1.025, raft.added_mass.values)
+    deep = cummins.read(corpus / "HAMS" / "DeepCwind")
+    assert "rho = 1025 kg/m^3 (from the file)" in deep.attrs["history"]
+
+
 def test_wavenumber_limits_are_zero_then_infinite(corpus):
     """With a wavenumber column HAMS writes k = 0 (ω = 0) and −1 (ω = ∞): the surge added
     mass at the highest k (1.5/m: 6067 nondim.) is near the −1 block (6397), far from the

@@ -35,6 +35,7 @@ def resolve_constant(
     path: str | os.PathLike[str],
     history: list[str],
     dimensional: bool,
+    source: str | None = None,
 ) -> float:
     """Decide the value of ρ, g or a length scale, and record where it came from.
 
@@ -52,6 +53,9 @@ def resolve_constant(
         True when the file's numbers are already dimensional: then a given value
         that differs from the file's one is an error, since it cannot change the data.
         For nondimensional data the given value wins (with a note).
+    source
+        Where ``in_file`` comes from when the file does not record it (such as a
+        program's fixed constant), for the history; by default the file.
     """
     if given is not None:
         given = float(given)
@@ -65,10 +69,11 @@ def resolve_constant(
                 hint=f"the data are dimensional, computed with {name} = {in_file:g}; "
                 f"drop the {name} option",
             )
-        history.append(f"{name} = {given:g} {unit} (given; the file records {in_file:g} {unit})")
+        where = "the file records" if source is None else f"{source}:"
+        history.append(f"{name} = {given:g} {unit} (given; {where} {in_file:g} {unit})")
         return given
     if in_file is not None:
-        history.append(f"{name} = {in_file:g} {unit} (from the file)")
+        history.append(f"{name} = {in_file:g} {unit} ({source or 'from the file'})")
         return float(in_file)
     if given is not None:
         history.append(f"{name} = {given:g} {unit} (given)")
@@ -112,17 +117,27 @@ def resolve_rho_g(
     history: list[str],
     dimensional: bool,
     defaults: bool = True,
+    sources: tuple[str | None, str | None] = (None, None),
 ) -> tuple[float, float]:
     """Water density and gravity of a file, with :func:`resolve_constant` for each.
 
     ``defaults=False`` makes a value that is neither given nor in the file an error
-    instead of falling back on :data:`DEFAULT_RHO` / :data:`DEFAULT_G`.
+    instead of falling back on :data:`DEFAULT_RHO` / :data:`DEFAULT_G`; ``sources`` are
+    the ``source`` of ρ and of g (:func:`resolve_constant`).
     """
     common = {"path": path, "history": history, "dimensional": dimensional}
     rho_v = resolve_constant(
-        "rho", rho, file_rho, DEFAULT_RHO if defaults else None, unit="kg/m^3", **common
+        "rho",
+        rho,
+        file_rho,
+        DEFAULT_RHO if defaults else None,
+        unit="kg/m^3",
+        source=sources[0],
+        **common,
     )
-    g_v = resolve_constant("g", g, file_g, DEFAULT_G if defaults else None, unit="m/s^2", **common)
+    g_v = resolve_constant(
+        "g", g, file_g, DEFAULT_G if defaults else None, unit="m/s^2", source=sources[1], **common
+    )
     return rho_v, g_v
 
 

@@ -464,8 +464,10 @@ def read_hams(
     if g_file is not None and abs(g_file - HAMS_G) < 5e-5:
         history.append(f"g printed as {g_file:g} in {where}: the standard 9.80665 m/s^2")
         g_file = HAMS_G
+    constants_source = None
     if rho_file is None:
         rho_file, g_file = HAMS_RHO, HAMS_G
+        constants_source = "HAMS's constant, not written in its Wamit_format files"
         history.append(
             "rho = 1025 kg/m^3, g = 9.80665 m/s^2: HAMS's constants (not written in the "
             "Wamit_format files; pass rho=, g= if the run used others)"
@@ -476,6 +478,7 @@ def read_hams(
         first_column=column,
         rho=rho_file,
         g=g_file,
+        constants_source=constants_source,
         ulen=float(control.get("ulen", 1.0)),
         water_depth=depth,
         history=history,

@@ -291,8 +291,11 @@ def read_wamit_run(
                 notes=notes,
             )
     rho_in_file = header.rho if header.rho is not None else (frc.rho if frc else None)
+    rho_source = g_source = None
     if rho_in_file is None:
-        rho_in_file = settings.rho
+        rho_in_file, rho_source = settings.rho, settings.constants_source
+    if header.g is None:
+        g_source = settings.constants_source
     rho_v, g_v = resolve_rho_g(
         rho,
         g,
@@ -301,6 +304,7 @@ def read_wamit_run(
         path=dot1,
         history=history,
         dimensional=False,
+        sources=(rho_source, g_source),
     )
     L = resolve_constant(
         "ulen",

@@ -21,6 +21,9 @@ class RunSettings:
         Kind of the first column (see :data:`FIRST_COLUMNS`).
     rho, g, ulen, water_depth
         Constants of the run, as recorded in its files (``None``: unknown).
+    constants_source
+        Where ``rho`` and ``g`` come from when no file of the run records them (the
+        program's fixed constants), for the history; ``None``: from the files.
     history
         Lines to add to the dataset's history.
     inertia_matrix, additional_damping, additional_stiffness
@@ -40,6 +43,7 @@ class RunSettings:
     g: float | None = None
     ulen: float | None = None
     water_depth: float | None = None
+    constants_source: str | None = None
     history: list[str] = field(default_factory=list)
     inertia_matrix: np.ndarray | None = None
     additional_damping: np.ndarray | None = None
