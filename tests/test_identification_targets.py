@@ -281,6 +281,24 @@ def test_asymmetric_pairs_are_named():
     with pytest.warns(CumminsWarning, match=r"A\[Surge, Pitch\] = .* but A\[Pitch, Surge\]"):
         model = fit_radiation(ds.assign(added_mass=a), passivity="diagonal")
     assert any("A[Surge, Pitch]" in note for note in model.attrs["data_notes"])
+    # a flipped sign is what a mixed-up convention gives: the advice names it
+    said = [note for note in model.attrs["data_notes"] if "A[Surge, Pitch]" in note]
+    assert all("check the DOF order and signs" in note for note in said), said
+
+
+def test_asymmetry_of_one_sign_is_not_blamed_on_a_sign_convention(shared_data):
+    """HAMS's benchmark cylinder: B[Surge, Pitch] and B[Pitch, Surge] differ (−234 and
+    −303 at 5.42 rad/s, as HAMS wrote them in Buoy.1) but share their sign: the solver's
+    asymmetry, which cummins check calls so, not a DOF order or sign mixed up."""
+    from cummins.radiation.fit.reciprocity import asymmetric_pairs
+
+    ds = cummins.read(shared_data / "corpus" / "HAMS" / "Cylinder")
+    said = asymmetric_pairs(ds)
+    assert any(
+        m.startswith("B[Surge, Pitch] = -233.61 but B[Pitch, Surge] = -303.28") for m in said
+    )
+    assert said and all("the solver's own asymmetry" in m for m in said), said
+    assert not any("check the DOF order" in m for m in said)
 
 
 @pytest.mark.parametrize(

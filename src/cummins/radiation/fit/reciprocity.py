@@ -161,6 +161,13 @@ def asymmetric_pairs(data: xr.Dataset, as_given=frozenset()) -> list[str]:
     w = data.omega.values
     speed = float(data.coords["forward_speed"]) if "forward_speed" in data.coords else 0.0
     advice = "; check the DOF order and signs of the data"
+    # both halves of one sign (X_ji a scaled X_ij, not −X_ij): no mixed-up sign
+    # convention, but the solver's own asymmetry (HAMS's cylinder: B[Surge, Pitch] −234
+    # and B[Pitch, Surge] −303), as cummins check's symmetry finding says
+    same_sign = (
+        "; both of one sign: the solver's own asymmetry (mesh, solver settings), "
+        "not a mixed-up sign convention (cummins check, symmetry, names where)"
+    )
     if speed and data.attrs.get("speed_terms_removed"):  # memory_part: vessel_at_speed
         advice = (
             f" (at {speed:g} m/s the difference is physics, X_ij(U) = X_ji(−U): the "
@@ -193,7 +200,7 @@ def asymmetric_pairs(data: xr.Dataset, as_given=frozenset()) -> list[str]:
                             if (i, j) in as_given
                             else "the fit uses their average"
                         )
-                        + advice
+                        + (same_sign if not speed and _one_sign(x, i, j, bad) else advice)
                     )
     return out
 
@@ -440,3 +447,9 @@ def passive_hermitian_part(
         "fitted to its nearest passive part"
     )
     return out, note
+
+
+def _one_sign(x: np.ndarray, i: int, j: int, bad: np.ndarray) -> bool:
+    """X_ij and X_ji of one sign at every frequency where they differ too much
+    (:func:`asymmetric_pairs`)."""
+    return bool(np.all(x[bad, i, j] * x[bad, j, i] > 0))
