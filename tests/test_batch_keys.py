@@ -6,6 +6,7 @@ files lack do (not ``--rho``), and ``water_depth`` and ``ulen`` are ``--water-de
 from __future__ import annotations
 
 import warnings
+from dataclasses import replace
 
 import pytest
 
@@ -148,3 +149,19 @@ def test_ulen_key_is_the_cli_option(corpus, tmp_path):
     np.testing.assert_allclose(raos[2], command, rtol=1e-9, atol=1e-12 * scale.max())
     assert np.abs(raos[None] - command).max(axis=(0, 1)).max() > 0.05 * scale.max()
     assert "# ulen: " in example_study_text()  # `cummins batch --example` lists it
+
+
+def test_the_restoring_weight_warning_names_the_study_key(corpus, tmp_path):
+    """The RM1's files do not say whether the restoring holds the weight: the warning of a
+    study that does not say either told the user to give --restoring-includes-weight, an
+    option batch does not have; it names the key of the study's file now."""
+    grid = {"heading": [45], "hs": [2], "tp": [8]}
+    study = _rm1(corpus, grid=grid, water_depth=50, source=tmp_path / "rm1.yaml")
+    study = replace(study, restoring_includes_weight=None)
+    with warnings.catch_warnings(record=True) as caught:
+        warnings.simplefilter("always")
+        prepare_study(study)
+    texts = [str(w.message) for w in caught if "restoring holds the weight" in str(w.message)]
+    assert len(texts) == 1, [str(w.message) for w in caught]
+    assert "say the key restoring_includes_weight of rm1.yaml: yes" in texts[0]
+    assert "--restoring-includes-weight" not in texts[0]
