@@ -165,3 +165,24 @@ def test_the_restoring_weight_warning_names_the_study_key(corpus, tmp_path):
     assert len(texts) == 1, [str(w.message) for w in caught]
     assert "say the key restoring_includes_weight of rm1.yaml: yes" in texts[0]
     assert "--restoring-includes-weight" not in texts[0]
+
+
+def test_a_statically_unstable_study_names_the_study_keys(corpus, tmp_path):
+    """A spring that overturns the RM1 in heave: the simulate study is refused before any
+    case, as `simulate` is (same error type), its hint naming the keys of the study's
+    file, not the options --center-of-gravity, --external-stiffness of the command line."""
+    from cummins.errors import CumminsError
+
+    grid = {"heading": [45], "hs": [2], "tp": [8]}
+    study = _rm1(corpus, grid=grid, water_depth=50, source=tmp_path / "rm1.yaml")
+    study = replace(study, analysis="simulate", n_omega=None, duration=600.0)
+    unstable = replace(study, external_stiffness=[["Heave", "Heave", -1.0e9]])
+    with warnings.catch_warnings():
+        warnings.simplefilter("ignore")
+        with pytest.raises(CumminsError) as caught:
+            prepare_study(unstable)
+    message = str(caught.value)
+    assert "statically unstable in Heave" in message
+    assert "the keys center_of_gravity and restoring_includes_weight of rm1.yaml" in message
+    assert "(external_stiffness)" in message and "--" not in message
+    assert type(caught.value).__name__ == "SimulationError"

@@ -20,7 +20,7 @@ from contextlib import contextmanager
 from pathlib import Path
 
 from cummins.io._common import CONSTANT_CHOICES
-from cummins.restoring import INCLUDES_WEIGHT_CHOICE
+from cummins.restoring import INCLUDES_WEIGHT_CHOICE, INSTABILITY_HINT
 from cummins.seakeeping.headings import HEADING_CHOICE
 
 #: The study's keys that choose a case's heading.
@@ -33,7 +33,20 @@ def study_wording(text: str, source: Path | None = None) -> str:
     for key, choice in CONSTANT_CHOICES.items():
         text = text.replace(choice, _key(key, source))
     text = text.replace(INCLUDES_WEIGHT_CHOICE, f"{_key('restoring_includes_weight', source)}: yes")
+    text = text.replace(INSTABILITY_HINT, _instability_hint(source))
     return text.replace(HEADING_CHOICE, HEADING_KEYS)
+
+
+def _instability_hint(source: Path | None) -> str:
+    """:data:`~cummins.restoring.INSTABILITY_HINT` in the study's keys."""
+    where = f" of {Path(source).name}" if source else ""
+    return (
+        "Check the centre of gravity and whether the restoring holds the weight's terms "
+        f"(cummins info says where C came from; the keys center_of_gravity and "
+        f"restoring_includes_weight{where}), or give the hinge or mooring that holds the body "
+        "(external_stiffness); a negative PTO stiffness (a PTO's stiffness, pto_stiffness, "
+        "reactive control) must stay smaller than the restoring it acts against"
+    )
 
 
 def _key(key: str, source: Path | None) -> str:
