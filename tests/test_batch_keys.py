@@ -186,3 +186,29 @@ def test_a_statically_unstable_study_names_the_study_keys(corpus, tmp_path):
     assert "the keys center_of_gravity and restoring_includes_weight of rm1.yaml" in message
     assert "(external_stiffness)" in message and "--" not in message
     assert type(caught.value).__name__ == "SimulationError"
+
+
+@pytest.mark.parametrize(
+    ("sea", "message"),
+    [
+        (
+            "grid: {heading: [0], hs: [1, 2], tp: [6, -10]}",
+            "bad.yaml: grid.tp: -10 s is not positive",
+        ),
+        ("grid: {heading: [0], hs: [0, 2], tp: [6]}", "bad.yaml: grid.hs: 0 m is not positive"),
+        (
+            "cases: [{heading: 0, hs: 1, tp: 6}, {heading: 0, hs: -1, tp: 6}]",
+            "bad.yaml: cases[1].hs: -1 m is not positive",
+        ),
+    ],
+)
+def test_a_sea_state_not_positive_names_the_file_the_axis_and_the_value(tmp_path, sea, message):
+    """A grid's H_s or T_p of 0 or less was refused as "grid: hs and tp must be positive",
+    without the file, the axis or the value at fault."""
+    from cummins.studies.study import load_study
+
+    (tmp_path / "x.1").write_text("", encoding="utf-8")  # checked first: it exists
+    (tmp_path / "bad.yaml").write_text(f"data: x.1\n{sea}\n", encoding="utf-8")
+    with pytest.raises(StudyError) as caught:
+        load_study(tmp_path / "bad.yaml").all_cases
+    assert str(caught.value).endswith(message)
