@@ -212,3 +212,24 @@ def test_a_sea_state_not_positive_names_the_file_the_axis_and_the_value(tmp_path
     with pytest.raises(StudyError) as caught:
         load_study(tmp_path / "bad.yaml").all_cases
     assert str(caught.value).endswith(message)
+
+
+@pytest.mark.parametrize(
+    ("key", "near"),
+    [("n_omgea", "n_omega"), ("radii_of_gyrations", "radii_of_gyration"), ("density", None)],
+)
+def test_an_unknown_key_suggests_the_nearest_study_key(tmp_path, key, near):
+    """A misspelt key is refused naming it and, when one is close, the key meant; the
+    list of the keys follows as before."""
+    from cummins.studies.study import STUDY_KEYS, load_study
+
+    (tmp_path / "x.1").write_text("", encoding="utf-8")
+    (tmp_path / "typo.yaml").write_text(f"data: x.1\n{key}: 1\n", encoding="utf-8")
+    with pytest.raises(StudyError) as caught:
+        load_study(tmp_path / "typo.yaml")
+    message = str(caught.value)
+    assert f"unknown key {key!r}" in message
+    assert ("did you mean" in message) == (near is not None)
+    if near is not None:
+        assert f"did you mean {near!r}?" in message
+    assert message.endswith(f"the keys are {', '.join(STUDY_KEYS)}")

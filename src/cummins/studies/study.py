@@ -19,6 +19,7 @@ Examples
 
 from __future__ import annotations
 
+import difflib
 import itertools
 import math
 import os
@@ -664,9 +665,11 @@ def load_study(path: str | os.PathLike[str]) -> Study:
         raise StudyError(f"{path}: expected a mapping of keys ({', '.join(STUDY_KEYS)})")
     unknown = sorted(set(map(str, raw)) - set(STUDY_KEYS))
     if unknown:
-        raise StudyError(
-            f"{path}: unknown key {unknown[0]!r}", hint=f"the keys are {', '.join(STUDY_KEYS)}"
-        )
+        near = difflib.get_close_matches(unknown[0], STUDY_KEYS, n=1)  # a typo's key
+        hint = (
+            f"did you mean {near[0]!r}? " if near else ""
+        ) + f"the keys are {', '.join(STUDY_KEYS)}"
+        raise StudyError(f"{path}: unknown key {unknown[0]!r}", hint=hint)
     if "data" not in raw:
         raise StudyError(f"{path}: missing key 'data' (the hydrodynamic database)")
     values = dict(raw)
