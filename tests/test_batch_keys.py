@@ -6,6 +6,7 @@ files lack do (not ``--rho``), and ``water_depth`` and ``ulen`` are ``--water-de
 from __future__ import annotations
 
 import warnings
+from dataclasses import replace
 
 import pytest
 
@@ -148,3 +149,87 @@ def test_ulen_key_is_the_cli_option(corpus, tmp_path):
     np.testing.assert_allclose(raos[2], command, rtol=1e-9, atol=1e-12 * scale.max())
     assert np.abs(raos[None] - command).max(axis=(0, 1)).max() > 0.05 * scale.max()
     assert "# ulen: " in example_study_text()  # `cummins batch --example` lists it
+
+
+def test_the_restoring_weight_warning_names_the_study_key(corpus, tmp_path):
+    """The RM1's files do not say whether the restoring holds the weight: the warning of a
+    study that does not say either told the user to give --restoring-includes-weight, an
+    option batch does not have; it names the key of the study's file now."""
+    grid = {"heading": [45], "hs": [2], "tp": [8]}
+    study = _rm1(corpus, grid=grid, water_depth=50, source=tmp_path / "rm1.yaml")
+    study = replace(study, restoring_includes_weight=None)
+    with warnings.catch_warnings(record=True) as caught:
+        warnings.simplefilter("always")
+        prepare_study(study)
+    texts = [str(w.message) for w in caught if "restoring holds the weight" in str(w.message)]
+    assert len(texts) == 1, [str(w.message) for w in caught]
+    assert "say the key restoring_includes_weight of rm1.yaml: yes" in texts[0]
+    assert "--restoring-includes-weight" not in texts[0]
+
+
+def test_a_statically_unstable_study_names_the_study_keys(corpus, tmp_path):
+    """A spring that overturns the RM1 in heave: the simulate study is refused before any
+    case, as `simulate` is (same error type), its hint naming the keys of the study's
+    file, not the options --center-of-gravity, --external-stiffness of the command line."""
+    from cummins.errors import CumminsError
+
+    grid = {"heading": [45], "hs": [2], "tp": [8]}
+    study = _rm1(corpus, grid=grid, water_depth=50, source=tmp_path / "rm1.yaml")
+    study = replace(study, analysis="simulate", n_omega=None, duration=600.0)
+    unstable = replace(study, external_stiffness=[["Heave", "Heave", -1.0e9]])
+    with warnings.catch_warnings():
+        warnings.simplefilter("ignore")
+        with pytest.raises(CumminsError) as caught:
+            prepare_study(unstable)
+    message = str(caught.value)
+    assert "statically unstable in Heave" in message
+    assert "the keys center_of_gravity and restoring_includes_weight of rm1.yaml" in message
+    assert "(external_stiffness)" in message and "--" not in message
+    assert type(caught.value).__name__ == "SimulationError"
+
+
+@pytest.mark.parametrize(
+    ("sea", "message"),
+    [
+        (
+            "grid: {heading: [0], hs: [1, 2], tp: [6, -10]}",
+            "bad.yaml: grid.tp: -10 s is not positive",
+        ),
+        ("grid: {heading: [0], hs: [0, 2], tp: [6]}", "bad.yaml: grid.hs: 0 m is not positive"),
+        (
+            "cases: [{heading: 0, hs: 1, tp: 6}, {heading: 0, hs: -1, tp: 6}]",
+            "bad.yaml: cases[1].hs: -1 m is not positive",
+        ),
+    ],
+)
+def test_a_sea_state_not_positive_names_the_file_the_axis_and_the_value(tmp_path, sea, message):
+    """A grid's H_s or T_p of 0 or less was refused as "grid: hs and tp must be positive",
+    without the file, the axis or the value at fault."""
+    from cummins.studies.study import load_study
+
+    (tmp_path / "x.1").write_text("", encoding="utf-8")  # checked first: it exists
+    (tmp_path / "bad.yaml").write_text(f"data: x.1\n{sea}\n", encoding="utf-8")
+    with pytest.raises(StudyError) as caught:
+        load_study(tmp_path / "bad.yaml").all_cases
+    assert str(caught.value).endswith(message)
+
+
+@pytest.mark.parametrize(
+    ("key", "near"),
+    [("n_omgea", "n_omega"), ("radii_of_gyrations", "radii_of_gyration"), ("density", None)],
+)
+def test_an_unknown_key_suggests_the_nearest_study_key(tmp_path, key, near):
+    """A misspelt key is refused naming it and, when one is close, the key meant; the
+    list of the keys follows as before."""
+    from cummins.studies.study import STUDY_KEYS, load_study
+
+    (tmp_path / "x.1").write_text("", encoding="utf-8")
+    (tmp_path / "typo.yaml").write_text(f"data: x.1\n{key}: 1\n", encoding="utf-8")
+    with pytest.raises(StudyError) as caught:
+        load_study(tmp_path / "typo.yaml")
+    message = str(caught.value)
+    assert f"unknown key {key!r}" in message
+    assert ("did you mean" in message) == (near is not None)
+    if near is not None:
+        assert f"did you mean {near!r}?" in message
+    assert message.endswith(f"the keys are {', '.join(STUDY_KEYS)}")

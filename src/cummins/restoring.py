@@ -54,6 +54,9 @@ SOURCE = "restoring_source"
 
 #: ``with_weight(includes=…)``: what the data's restoring holds, when the user says so.
 INCLUDES = {"hydrostatic": False, "total": True}
+#: How a user says the restoring holds the weight, in the warning of files that do not
+#: say (a batch study says its own key instead: :func:`cummins.studies.wording.study_wording`).
+INCLUDES_WEIGHT_CHOICE = "--restoring-includes-weight yes (includes='total')"
 
 
 # --------------------------------------------------------------------------- the weight
@@ -228,8 +231,7 @@ def with_weight(
                     f"{where}: the files do not say whether the restoring holds the weight's "
                     "terms; taken as hydrostatic only (OpenFAST's convention) and the weight "
                     "of the mass and centre of gravity given is added (C44, C55 -m g z_G). "
-                    "If the solver included it, say --restoring-includes-weight yes "
-                    "(includes='total')"
+                    f"If the solver included it, say {INCLUDES_WEIGHT_CHOICE}"
                 ),
                 stacklevel=3,
             )

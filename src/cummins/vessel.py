@@ -103,6 +103,15 @@ class Vessel:
             if np.shape(pto.direction) != (n,):
                 raise SimulationError(f"PTO {pto.name} is not resolved on the vessel's {n} DOFs")
 
+    def __repr__(self) -> str:  # not its matrices: a notebook's echo in one line
+        joints = "" if self.constraint is None else f", {self.constraint.shape[1]} motions free"
+        ptos = f", PTOs {', '.join(p.name for p in self.ptos)}" if self.ptos else ""
+        source = f"; from {self.attrs['source_file']!r}" if "source_file" in self.attrs else ""
+        return (
+            f"Vessel({len(self.dofs)} DOFs {', '.join(self.dofs)}{joints}{ptos}; radiation: "
+            f"{self.radiation.total_order} states{source})"
+        )
+
     @property
     def added_mass_inf(self) -> NDArray[np.float64]:
         """A∞ (n, n) of the radiation model."""

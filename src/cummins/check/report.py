@@ -54,6 +54,18 @@ class CheckReport:
     def __iter__(self) -> Iterator[Finding]:
         return iter(self.findings)
 
+    def __repr__(self) -> str:  # a notebook's echo: the tally, not every finding's fields
+        tally = ", ".join(
+            f"{n} {s}" for s in SEVERITIES if (n := sum(f.severity == s for f in self.findings))
+        )
+        return (
+            f"CheckReport({self.source!r}: {len(self.findings)} findings ({tally}), worst "
+            f"{self.worst()!r}, ok={self.ok}; print() or .to_text() lists them)"
+        )
+
+    def __str__(self) -> str:
+        return self.to_text()
+
     @property
     def ok(self) -> bool:
         """True when no finding is an error."""

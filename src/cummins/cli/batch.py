@@ -191,25 +191,33 @@ def _print_tables(results) -> None:
         table.add_row(*(f"{row[k]:g}" for k in keys), f"{100 * row['operability']:.1f} %")
     console.print(table)
     lim = limiting_hs(results)
-    if set(lim.dims) == {"heading", "tp"}:
-        lim = lim.transpose("heading", "tp")
-        grid = Table(title=escape("Limiting Hs [m] per heading [deg] (rows) and Tp [s] (columns)"))
-        grid.add_column("heading", justify="right")
-        for tp in lim.tp.values:
-            grid.add_column(f"{tp:g}", justify="right")
-        for h in lim.heading.values:
-            row = lim.sel(heading=h)
-            grid.add_row(
-                f"{h:g}",
-                *(
-                    limiting_hs_text(v, b)
-                    for v, b in zip(row.values, row.beyond_grid.values, strict=True)
-                ),
-            )
-        console.print(grid)
-        note = beyond_grid_note(lim)
-        if note:
-            console.print(escape(note), highlight=False)
+    if "tp" not in lim.dims or "heading" not in lim.dims:
+        return
+    # rows: heading and every other axis (a PTO's damping, gamma, spreading), columns: Tp
+    keys = ["heading", *(d for d in lim.dims if d not in ("heading", "tp"))]
+    lim = lim.transpose(*keys, "tp")
+    units = {"heading": "deg"} | {
+        k: results[k].attrs["units"] for k in keys if "units" in results[k].attrs
+    }
+    names = ", ".join(f"{k} [{units[k]}]" if k in units else k for k in keys)
+    grid = Table(title=escape(f"Limiting Hs [m] per {names} (rows) and Tp [s] (columns)"))
+    for key in keys:
+        grid.add_column(key, justify="right")
+    for tp in lim.tp.values:
+        grid.add_column(f"{tp:g}", justify="right")
+    for index in np.ndindex(*lim.shape[:-1]):
+        row = lim[index]
+        grid.add_row(
+            *(f"{float(lim[k][i]):g}" for k, i in zip(keys, index, strict=True)),
+            *(
+                limiting_hs_text(v, b)
+                for v, b in zip(row.values, row.beyond_grid.values, strict=True)
+            ),
+        )
+    console.print(grid)
+    note = beyond_grid_note(lim)
+    if note:
+        console.print(escape(note), highlight=False)
 
 
 def _print_pto_sweep(results) -> None:

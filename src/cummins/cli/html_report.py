@@ -47,6 +47,7 @@ from pathlib import Path
 import numpy as np
 import xarray as xr
 
+from cummins.cli.html_cases import cases_body
 from cummins.cli.html_excitation import excitation_model_sections
 from cummins.cli.html_page import Section as Section
 from cummins.cli.html_page import _note, failures_html, figure_html, table_html
@@ -511,7 +512,7 @@ def batch_sections(results: xr.Dataset) -> list[Section]:
         lim = limiting_hs(results)
         sections.append(Section("Operability", _operability_body(op) + _limiting_body(lim)))
     sections += pto_batch_sections(results)
-    sections.append(Section("Statistics per case", _cases_body(results)))
+    sections.append(Section("Statistics per case", cases_body(results)))
     return sections
 
 
@@ -567,42 +568,6 @@ def _limiting_body(lim: xr.DataArray) -> str:
             "drawn at the largest Hs computed)",
         )
     )
-
-
-def _cases_body(results: xr.Dataset, most: int = 40) -> str:
-    dims = list(results.operable.dims)
-    has_limits = results.sizes.get("criterion", 0) > 0
-    if not has_limits:  # a study without limits: its criterion variables are empty
-        results = results.drop_dims("criterion", errors="ignore")
-    stacked = results.stack(_row=dims) if len(dims) > 1 else results.rename({dims[0]: "_row"})
-    n = stacked.sizes["_row"]
-    worst = stacked.limit_ratio.max("criterion").values if has_limits else np.zeros(n)
-    order = np.argsort(-worst, kind="stable")[:most] if n > most else np.arange(n)
-    keys = [k for k in ("heading", "hs", "tp", "gamma", "spreading", "seed") if k in stacked.coords]
-    dofs = [str(d) for d in results.dof.values]
-    header = [*keys, *(f"{d} 2σ [{'deg' if is_rotation(d) else 'm'}]" for d in dofs)]
-    header += ["worst ratio", "operable"] if has_limits else []
-    rows, classes = [], []
-    for k in order:
-        case = stacked.isel(_row=int(k))
-        sig = case.significant_amplitude.values
-        values = [float(case[key].values) for key in keys]
-        values += [
-            float(np.degrees(s) if is_rotation(d) else s) for d, s in zip(dofs, sig, strict=True)
-        ]
-        cls = [""] * len(values)
-        if has_limits:
-            ok = bool(case.operable.values)
-            values += [float(worst[k]), ok]
-            cls += ["", "good" if ok else "bad"]
-        rows.append(values)
-        classes.append(cls)
-    intro = (
-        f"The {len(order)} cases with the largest response/limit ratio of {n}."
-        if n > most
-        else f"All {n} cases."
-    ) + " 2σ: significant single amplitude (2√m0 in the frequency domain)."
-    return _note(intro) + table_html(header, rows, classes=classes)
 
 
 def _plot_operability(op: xr.DataArray):

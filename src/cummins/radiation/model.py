@@ -474,6 +474,13 @@ class RadiationModel:
         """Number of states of the MIMO model."""
         return int(self.A.shape[0])
 
+    def __repr__(self) -> str:  # not every pole and residue: .summary() tables the fit
+        return (
+            f"RadiationModel({len(self.dofs)} DOFs {', '.join(self.dofs)}: {self.total_order} "
+            f"states, {len(self.couplings)} couplings, {len(self.blocks)} blocks, "
+            f"stable={self.is_stable()})"
+        )
+
     def coupling(self, i: int | str, j: int | str) -> CouplingModel | None:
         """The model of coupling (i, j) (indices or DOF labels), or None; a pair inside
         a block as :meth:`MemoryBlock.element`."""

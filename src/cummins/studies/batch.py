@@ -182,7 +182,12 @@ def prepare_study(study: Study) -> tuple[StudyContext, str]:
     work. Its warnings name the study's keys, not the options of the command line
     (:func:`~cummins.studies.wording.study_warnings`)."""
     with study_warnings(study.source):
-        return _prepare_study(study)
+        try:
+            return _prepare_study(study)
+        except CumminsError as exc:  # its hints in the study's keys, its type kept
+            if exc.args and isinstance(exc.args[0], str):
+                exc.args = (study_wording(exc.args[0], study.source), *exc.args[1:])
+            raise
 
 
 def _prepare_study(study: Study) -> tuple[StudyContext, str]:

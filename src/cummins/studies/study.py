@@ -19,6 +19,7 @@ Examples
 
 from __future__ import annotations
 
+import difflib
 import itertools
 import math
 import os
@@ -311,8 +312,10 @@ def _case_from_mapping(raw: Any, k: int, source: Path | None) -> Case:
 def _checked_case(case: Case, key: str, source: Path | None) -> Case:
     if not -360.0 <= case.heading <= 360.0:
         raise StudyError(f"{at_key(source, key)}: heading {case.heading:g} deg is beyond one turn")
-    if not case.hs > 0 or not case.tp > 0:
-        raise StudyError(f"{at_key(source, key)}: hs and tp must be positive")
+    for name, unit in (("hs", "m"), ("tp", "s")):
+        if not getattr(case, name) > 0:  # the axis and the value at fault
+            value = getattr(case, name)
+            raise StudyError(f"{at_key(source, f'{key}.{name}')}: {value:g} {unit} is not positive")
     if case.gamma is not None and not case.gamma >= 1:
         raise StudyError(f"{at_key(source, key)}: gamma must be >= 1")
     if case.spreading is not None and not case.spreading >= 0:
@@ -560,7 +563,9 @@ class Study:
         names = [name for name, _ in self.grid]
         out = []
         for values in itertools.product(*(v for _, v in self.grid)):
-            out.append(_checked_case(Case(**dict(zip(names, values, strict=True))), "grid", None))
+            out.append(
+                _checked_case(Case(**dict(zip(names, values, strict=True))), "grid", self.source)
+            )
         return tuple(out)
 
     @property
@@ -660,9 +665,11 @@ def load_study(path: str | os.PathLike[str]) -> Study:
         raise StudyError(f"{path}: expected a mapping of keys ({', '.join(STUDY_KEYS)})")
     unknown = sorted(set(map(str, raw)) - set(STUDY_KEYS))
     if unknown:
-        raise StudyError(
-            f"{path}: unknown key {unknown[0]!r}", hint=f"the keys are {', '.join(STUDY_KEYS)}"
-        )
+        near = difflib.get_close_matches(unknown[0], STUDY_KEYS, n=1)  # a typo's key
+        hint = (
+            f"did you mean {near[0]!r}? " if near else ""
+        ) + f"the keys are {', '.join(STUDY_KEYS)}"
+        raise StudyError(f"{path}: unknown key {unknown[0]!r}", hint=hint)
     if "data" not in raw:
         raise StudyError(f"{path}: missing key 'data' (the hydrodynamic database)")
     values = dict(raw)

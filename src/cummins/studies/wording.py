@@ -1,10 +1,12 @@
 """The library's hints said as a study's keys: where a message tells the user of a
-command to give ``--rho``, ``--water-depth`` or ``--heading``, a batch study's log names
-the study's key (``rho``, ``water_depth``, ``grid.heading``), the option it has.
+command to give ``--rho``, ``--water-depth``, ``--heading`` or
+``--restoring-includes-weight``, a batch study's log names the study's key (``rho``,
+``water_depth``, ``grid.heading``, ``restoring_includes_weight``), the option it has.
 
 The library writes each such hint from one constant
 (:data:`cummins.io._common.CONSTANT_CHOICES`,
-:data:`cummins.seakeeping.headings.HEADING_CHOICE`); :func:`study_wording` replaces it,
+:data:`cummins.seakeeping.headings.HEADING_CHOICE`,
+:data:`cummins.restoring.INCLUDES_WEIGHT_CHOICE`); :func:`study_wording` replaces it,
 :func:`study_warnings` re-issues the warnings raised while a study is prepared or a case
 runs in those words. A case runs in a worker process: :func:`recorded_warnings` keeps its
 warnings with its results and :func:`reissue_warnings` shows them where the study runs.
@@ -18,6 +20,7 @@ from contextlib import contextmanager
 from pathlib import Path
 
 from cummins.io._common import CONSTANT_CHOICES
+from cummins.restoring import INCLUDES_WEIGHT_CHOICE, INSTABILITY_HINT
 from cummins.seakeeping.headings import HEADING_CHOICE
 
 #: The study's keys that choose a case's heading.
@@ -29,7 +32,21 @@ def study_wording(text: str, source: Path | None = None) -> str:
     :data:`HEADING_CHOICE` replaced by the keys of the study defined in ``source``."""
     for key, choice in CONSTANT_CHOICES.items():
         text = text.replace(choice, _key(key, source))
+    text = text.replace(INCLUDES_WEIGHT_CHOICE, f"{_key('restoring_includes_weight', source)}: yes")
+    text = text.replace(INSTABILITY_HINT, _instability_hint(source))
     return text.replace(HEADING_CHOICE, HEADING_KEYS)
+
+
+def _instability_hint(source: Path | None) -> str:
+    """:data:`~cummins.restoring.INSTABILITY_HINT` in the study's keys."""
+    where = f" of {Path(source).name}" if source else ""
+    return (
+        "Check the centre of gravity and whether the restoring holds the weight's terms "
+        f"(cummins info says where C came from; the keys center_of_gravity and "
+        f"restoring_includes_weight{where}), or give the hinge or mooring that holds the body "
+        "(external_stiffness); a negative PTO stiffness (a PTO's stiffness, pto_stiffness, "
+        "reactive control) must stay smaller than the restoring it acts against"
+    )
 
 
 def _key(key: str, source: Path | None) -> str:
