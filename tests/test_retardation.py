@@ -381,3 +381,44 @@ def test_kramers_kronig_of_some_columns(tanker_wamit):
     some = kramers_kronig_integral(w, b, a, columns=diagonal)
     scale = np.abs(full[:, diagonal]).max(axis=0)
     assert np.all(np.abs(some - full[:, diagonal]) <= 1e-12 * scale)
+
+
+def test_a_negative_coupling_gets_the_tail_of_its_mirror():
+    """The tail of −B is minus the tail of B (the added mass negated alike): a coupling
+    of negative sign still rising in magnitude at the last frequency is continued to the
+    same knee as its positive mirror. It got no tail, with a note that its added mass is
+    most consistent with none (the slope was clipped at 0 and the knee's bound taken for a
+    positive B)."""
+    w = np.linspace(0.5, 5.0, 30)
+    b, a = np.tanh(w) * w, 5.0 - 0.1 * w
+    up = fit_damping_tail(w, b, "auto", added_mass=a)
+    down = fit_damping_tail(w, -b, "auto", added_mass=-a)
+    assert up.kind[0] == down.kind[0] == "rising"
+    assert up.knee[0] > w[-1]  # the data say it turns beyond the last frequency
+    assert down.knee[0] == pytest.approx(up.knee[0])
+    assert down.slope[0] == pytest.approx(-up.slope[0]) and up.slope[0] > 0
+    beyond = np.linspace(w[-1], 4 * w[-1], 50)
+    np.testing.assert_allclose(down.at(beyond), -up.at(beyond), rtol=1e-12)
+
+
+def test_an_axisymmetric_bodys_mirrored_couplings_get_mirrored_tails(corpus):
+    """HAMS's cylinder (axisymmetric): surge–pitch and sway–roll damping are mirrors
+    (B15 ≈ −B24, 0.7 % apart at the last frequency, both still growing): their tails are
+    alike, each of its coupling's sign. Before, the negative one had none (K(0) −155 with
+    0 % of ∫B in the tail against 1205 with 87 %)."""
+    ds = cummins.read(corpus / "HAMS" / "Cylinder" / "Output_Benchmark" / "Wamit_format" / "Buoy.1")
+    a = ds.added_mass.values
+    b = ds.radiation_damping.values
+    w = ds.omega.values
+    pairs = [(0, 4), (1, 3)]
+    assert b[-1, 0, 4] < 0 < b[-1, 1, 3]
+    assert abs(b[-1, 0, 4] + b[-1, 1, 3]) < 0.01 * abs(b[-1, 1, 3])
+    tail = fit_damping_tail(
+        w,
+        np.stack([b[:, i, j] for i, j in pairs], 1),
+        added_mass=np.stack([a[:, i, j] for i, j in pairs], 1),
+    )
+    assert tail.kind[0] == tail.kind[1] != "none"
+    beyond = np.linspace(w[-1], 3 * w[-1], 20)
+    values = tail.at(beyond)
+    np.testing.assert_allclose(values[:, 0], -values[:, 1], rtol=0.1)

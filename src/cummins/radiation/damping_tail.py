@@ -267,8 +267,9 @@ def fit_damping_tail(
     Where the fitted curve does not decay (α ≤ 0, n ≤ 1: B still rising at the last
     frequency, its peak beyond the data) and B_N is at least :data:`RISING_MIN` of the
     peak (below, no tail: noise on a decayed damping), the damping must decay beyond it, at a
-    rate the damping alone does not tell: it is continued along its trend (the slope s ≥ 0
-    of a straight line through the window) up to a knee ω_k, then decays as ω⁻²
+    rate the damping alone does not tell: it is continued along its trend (the slope s of a
+    straight line through the window, |B| not falling: s ≥ 0 for a positive B, ≤ 0 for a
+    negative coupling: the tail of −B is minus that of B) up to a knee ω_k, then decays as ω⁻²
     (``"rising"``; ω_k = ω_N is the ω⁻² law from the last point). The added mass tells
     where: A(ω) − A∞ is the Kramers–Kronig transform of B over all frequencies
     (Hjulstad (2004) eq. 5.23), so with ``added_mass`` the knee among
@@ -337,7 +338,9 @@ def fit_damping_tail(
             # still rising (or flat) at the last frequency: continued along its trend to
             # a knee (chosen below), then ω⁻²
             kinds[k], rates[k] = "rising", MIN_POWER
-            slopes[k] = max(float(np.polyfit(ww, window, 1)[0]), 0.0)
+            # |B| not falling: the trend of B's own sign (a coupling may be negative)
+            sign = float(np.sign(window[-1]))
+            slopes[k] = sign * max(sign * float(np.polyfit(ww, window, 1)[0]), 0.0)
             notes[k] = "damping still rising at the last frequency: continued to a knee, then ω⁻²"
             continue
         _, kinds[k], rates[k] = min(candidates)
@@ -367,7 +370,8 @@ def fit_damping_tail(
 RISING_MIN = 0.1
 #: Where a damping still rising at the last frequency may turn, × ω_N (1: at once).
 RISE_KNEES = (1.0, 1.1, 1.25, 1.5, 1.75, 2.0)
-#: ... but not above this multiple of the last value: the data do not tell more.
+#: ... but not above this multiple of the last value (in magnitude): the data do not tell
+#: more.
 RISE_LIMIT = 2.0
 
 
@@ -402,7 +406,7 @@ def _consistent_knees(w: NDArray, b: NDArray, a: NDArray, slopes: NDArray) -> ND
             tail = tail + hilbert_pv(np.array([w[-1], knee]), np.vstack([b[-1], top]), y)
         estimate = a[upper] - (2.0 / np.pi) * (inner + tail)
         spread = np.std(estimate, axis=0)
-        better = (top <= RISE_LIMIT * b[-1]) & (spread < best)
+        better = (np.abs(top) <= RISE_LIMIT * np.abs(b[-1])) & (spread < best)
         best = np.where(better, spread, best)
         knees = np.where(better, knee, knees)
     return knees
