@@ -357,7 +357,7 @@ def moved_restoring(
     """
     if "hydrostatic_stiffness" not in ds:
         return ds, ""
-    from cummins.mechanics.preload import BALANCED
+    from cummins.mechanics.preload import net_buoyancy
 
     groups = bodies(ds)
     shift = np.asarray(new, dtype=float).reshape(-1, 3) - np.asarray(old, dtype=float).reshape(
@@ -383,8 +383,8 @@ def moved_restoring(
             if held == 0:  # a given weight with no volume is taken as in equilibrium
                 unknown.append(body or "the body")
             continue
-        net = rho * volumes[k] - held  # kg: the static load (ρ∇ − m) g
-        if abs(net) <= BALANCED * max(rho * volumes[k], abs(held)):
+        net = net_buoyancy(rho * volumes[k], held)  # kg: the static load (ρ∇ − m) g
+        if net == 0:
             continue  # floating freely up to the rounding: no load, as the joints' pre-load
         load = weight_stiffness(net * step, g, axes)
         index = _rigid_index(labels, body)

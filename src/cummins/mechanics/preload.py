@@ -102,10 +102,16 @@ def net_static_forces(ds: xr.Dataset, frame: BodyFrame) -> NDArray[np.float64] |
         k = frame.dof_index(b, "Heave")
         if k is None:
             return None
-        buoyancy, mass = rho * volumes[b], inertia[k, k]
-        if abs(buoyancy - mass) > BALANCED * max(abs(buoyancy), abs(mass)):
-            out[b] = (buoyancy - mass) * g
+        out[b] = net_buoyancy(rho * volumes[b], inertia[k, k]) * g
     return out
+
+
+def net_buoyancy(buoyancy: float, mass: float) -> float:
+    """ρ∇ − m of a body, kg (``buoyancy`` ρ∇ and ``mass`` m in kg): 0 within
+    :data:`BALANCED` of floating freely, the rounding of the numbers they come from."""
+    if abs(buoyancy - mass) > BALANCED * max(abs(buoyancy), abs(mass)):
+        return buoyancy - mass
+    return 0.0
 
 
 def _hessian_form(n: NDArray, v: NDArray) -> NDArray[np.float64]:
